@@ -1,0 +1,41 @@
+/* imageio.h - read and write images by file name: the one entry point the rest of envtex uses.
+ * Lecture slide 10 (HDR images): environment maps are OpenEXR (.exr), Radiance (.hdr, RGBE) or
+ * PFM; textures may also be PNG.
+ *
+ *     image im = {0};
+ *     if (imageio_read("data/env/sky.exr", &im, &err)) ...   // err: "sky.exr: truncated ..."
+ *     if (imageio_write("out/demo.png", &im, NULL, &err)) ...  // tone mapped sRGB, atomic
+ *
+ * Reading picks the format by the file's magic bytes (not its name).  Writing picks it by the
+ * extension: .exr (linear float RGB, ZIP), .png (8-bit sRGB after tone mapping), .pfm (linear
+ * float).  Every write goes to a temporary file in the same folder and is renamed over the
+ * target only when complete, so a failure never leaves a partial file or clobbers an old one.
+ * Errors name the file (err->file) and say what is wrong; hostile headers are refused before
+ * any allocation (image_check_size).
+ */
+#ifndef ENVTEX_IMAGEIO_H
+#define ENVTEX_IMAGEIO_H
+
+#include "envtex/error.h"
+#include "envtex/image.h"
+#include "envtex/tonemap.h"
+
+/* Read any supported image into *out (linear RGB; PNG colour is decoded from sRGB, grey is
+ * replicated, alpha dropped).  *out must not own pixels; on failure it stays empty. */
+int imageio_read(const char *path, image *out, error *err);
+
+/* Write `im` to `path`, format by extension (.exr .png .pfm, case-insensitive).  `tm` is used
+ * for .png only; NULL means tonemap_defaults().  Atomic (temporary file + rename). */
+int imageio_write(const char *path, const image *im, const tonemap_params *tm, error *err);
+
+/* 1 if `path` ends in an extension imageio_write knows, else 0. */
+int imageio_can_write(const char *path);
+
+/* Atomic-write helpers shared by the format modules: open a temporary file beside `path`
+ * (its name goes to tmp_path, at least ERROR_FILE_MAX bytes), and commit (fsync-free rename) or
+ * abandon it (unlink).  Library code outside imageio may use them for other output files. */
+int imageio_tmp_open(const char *path, char *tmp_path, error *err); /* returns an fd or -1 */
+int imageio_tmp_commit(const char *tmp_path, const char *path, error *err);
+void imageio_tmp_abandon(const char *tmp_path);
+
+#endif

@@ -1,0 +1,149 @@
+/* scene.h - a scene as the CSE 167/168 `.test` file describes it, plus envtex's commands
+ * (docs/scene-format.md lists every command, its arguments, defaults and limits).
+ *
+ *     scene sc;
+ *     scene_load_opts o = scene_load_defaults();
+ *     if (scene_load("data/scenes/mirror.test", &o, &sc, &err)) { error_print(&err, stderr); }
+ *     ... render ...
+ *     scene_free(&sc);
+ *
+ * Data flows one way: scene file -> scene -> integrator -> image.  The scene holds only what
+ * the file said, already in world space: triangles are transformed when read; spheres keep
+ * their object-to-world matrix (a scaled sphere is an ellipsoid); lights keep world positions.
+ * It builds no acceleration structure or sampling table: the integrator builds what it needs.
+ */
+#ifndef ENVTEX_SCENE_H
+#define ENVTEX_SCENE_H
+
+#include <stdint.h>
+
+#include "envtex/error.h"
+#include "envtex/image.h"
+#include "envtex/transform.h"
+#include "envtex/vec.h"
+
+/* Limits a scene may not exceed (checked when read, before anything is allocated). */
+#define SCENE_MAX_SIZE 16384         /* image width or height */
+#define SCENE_MAX_PIXELS (1L << 26)  /* width * height */
+#define SCENE_MAX_SPP 1048576
+#define SCENE_MAX_DEPTH 1000         /* maxdepth; -1 (unlimited, with Russian roulette) is allowed */
+#define SCENE_MAX_LIGHTSAMPLES 65536
+#define SCENE_MAX_PRIMS 50000000L    /* vertices, triangles or spheres */
+#define SCENE_MAX_TRANSFORM_STACK 1024
+
+typedef enum brdf_kind {
+    BRDF_PHONG, /* course default: Blinn-Phong for `raytracer`, modified Phong for path tracers */
+    BRDF_GGX,
+    BRDF_MIRROR, /* perfect mirror weighted by `specular` */
+    BRDF_GLASS   /* smooth dielectric, index `ior`, exact Fresnel */
+} brdf_kind;
+
+typedef struct material {
+    rgb ambient, diffuse, specular, emission;
+    double shininess;
+    brdf_kind brdf;
+    double roughness; /* GGX alpha */
+    double ior;       /* index of refraction for BRDF_GLASS */
+} material;
+
+typedef struct scene_sphere {
+    vec3 center;    /* object space, as written */
+    double radius;
+    mat4 xf, inv;   /* object -> world and its inverse (transform current at `sphere`) */
+    int material;   /* index into scene.materials */
+} scene_sphere;
+
+typedef struct scene_triangle {
+    vec3 p[3];      /* world-space corners, counter-clockwise */
+    vec3 n[3];      /* world-space unit vertex normals (trinormal); unused if !has_normals */
+    int has_normals;
+    int material;
+} scene_triangle;
+
+typedef enum light_kind { LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_QUAD } light_kind;
+
+typedef struct scene_light {
+    light_kind kind;
+    rgb color;          /* intensity (point, directional) or radiance L (quad) */
+    vec3 dir;           /* directional: unit, world, pointing TOWARDS the light */
+    vec3 pos;           /* point: world position; quad: corner a */
+    vec3 ab, ac;        /* quad: world edges; emits on the side of ac x ab (FORMAT.md) */
+    double atten[3];    /* point: constant, linear, quadratic */
+} scene_light;
+
+typedef enum integrator_kind {
+    INTEGRATOR_RAYTRACER,
+    INTEGRATOR_ANALYTICDIRECT,
+    INTEGRATOR_DIRECT,
+    INTEGRATOR_PATHTRACER
+} integrator_kind;
+
+typedef enum nee_mode { NEE_OFF, NEE_ON, NEE_MIS } nee_mode;
+typedef enum sampling_kind { SAMPLING_HEMISPHERE, SAMPLING_COSINE, SAMPLING_BRDF } sampling_kind;
+typedef enum envmiss_mode { ENVMISS_ENVMAP, ENVMISS_BLACK } envmiss_mode;
+
+typedef struct scene_envmap {
+    int present;        /* 0: no envmap (rays that leave see black) */
+    char path[1024];    /* resolved path (relative to the scene file's folder) */
+    double scale;       /* radiance multiplier, default 1 */
+    mat4 xf, inv;       /* envmap frame -> world (transform current at `envmap`) and inverse */
+    image img;          /* the lat-long map, loaded by scene_load; owned */
+    int line;           /* line of the `envmap` command, for messages */
+} scene_envmap;
+
+typedef struct scene {
+    /* image and camera */
+    int width, height;         /* `size`; required */
+    char output[1024];         /* `output`, default "raytrace.png", relative to the working folder */
+    int has_camera;
+    vec3 eye, center, up;      /* `camera` */
+    double fovy;               /* degrees */
+    /* renderer settings */
+    int maxdepth;              /* default 5; -1 unlimited */
+    integrator_kind integrator;
+    int spp;                   /* default 1 */
+    int lightsamples;          /* default 1 */
+    int lightstratify;         /* 0/1 */
+    nee_mode nee;
+    int russianroulette;       /* 0/1 */
+    sampling_kind importancesampling;
+    double gamma;              /* 0: not given (PNG gets the sRGB curve) */
+    envmiss_mode envmiss;
+    scene_envmap envmap;
+    /* geometry, materials, lights: arrays owned by the scene */
+    material *materials; int n_materials;
+    scene_sphere *spheres; long n_spheres;
+    scene_triangle *triangles; long n_triangles;
+    scene_light *lights; int n_lights;
+    /* where it came from */
+    char path[1024];
+} scene;
+
+typedef void (*scene_warn_fn)(void *ctx, const error *warning);
+
+typedef struct scene_load_opts {
+    int strict;          /* unknown commands are errors instead of warnings */
+    scene_warn_fn warn;  /* called for each warning (may be NULL: warnings are dropped) */
+    void *warn_ctx;
+    int load_images;     /* 1 (default): read the envmap image; 0: leave it (parser tests) */
+} scene_load_opts;
+
+scene_load_opts scene_load_defaults(void);
+
+/* Read and check a scene file.  On failure err names FILE:LINE and the offending token, *out
+ * owns nothing, and -1 is returned.  On success free with scene_free. */
+int scene_load(const char *path, const scene_load_opts *opts, scene *out, error *err);
+
+/* The same from a string in memory; `name` is used in messages and as the base folder for
+ * relative file names ("-" or NULL: the working folder). */
+int scene_load_string(const char *text, const char *name, const scene_load_opts *opts, scene *out,
+                      error *err);
+
+void scene_free(scene *sc);
+
+/* Default material state (ambient 0.2, all else 0, shininess 0, phong, roughness 0, ior 1.5). */
+material scene_default_material(void);
+
+const char *scene_integrator_name(integrator_kind k);
+
+#endif

@@ -1,0 +1,49 @@
+/* error.c - errors as values (see include/envtex/error.h). */
+#include "envtex/error.h"
+
+#include <stdarg.h>
+#include <string.h>
+
+static void one_line(char *s)
+{
+    for (; *s; s++)
+        if (*s == '\n' || *s == '\r') *s = ' ';
+}
+
+int error_set(error *err, const char *file, int line, const char *fmt, ...)
+{
+    if (!err) return -1;
+    snprintf(err->file, sizeof err->file, "%s", file ? file : "");
+    err->line = line;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(err->msg, sizeof err->msg, fmt, ap);
+    va_end(ap);
+    one_line(err->msg);
+    return -1;
+}
+
+int error_prefix(error *err, const char *fmt, ...)
+{
+    if (!err) return -1;
+    char head[ERROR_MSG_MAX], old[ERROR_MSG_MAX];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(head, sizeof head, fmt, ap);
+    va_end(ap);
+    memcpy(old, err->msg, sizeof old);
+    snprintf(err->msg, sizeof err->msg, "%s: %s", head, old);
+    one_line(err->msg);
+    return -1;
+}
+
+void error_print(const error *err, FILE *out)
+{
+    fputs("envtex: ", out);
+    if (err->file[0]) {
+        fputs(err->file, out);
+        if (err->line > 0) fprintf(out, ":%d", err->line);
+        fputs(": ", out);
+    }
+    fprintf(out, "%s\n", err->msg[0] ? err->msg : "unknown error");
+}
