@@ -30,6 +30,7 @@
 #define SCENE_MAX_LIGHTSAMPLES 65536
 #define SCENE_MAX_PRIMS 50000000L    /* vertices, triangles or spheres */
 #define SCENE_MAX_TRANSFORM_STACK 1024
+#define SCENE_MAX_LINE 65536         /* bytes in one line, without its '\n' */
 
 typedef enum brdf_kind {
     BRDF_PHONG, /* course default: Blinn-Phong for `raytracer`, modified Phong for path tracers */
@@ -131,19 +132,27 @@ typedef struct scene_load_opts {
 scene_load_opts scene_load_defaults(void);
 
 /* Read and check a scene file.  On failure err names FILE:LINE and the offending token, *out
- * owns nothing, and -1 is returned.  On success free with scene_free. */
+ * owns nothing, and -1 is returned.  On success free with scene_free.  `opts` may be NULL
+ * (scene_load_defaults()).  Messages read like
+ *     err->file "dir/x.test", err->line 7, err->msg "expected a number for 'sphere' argument 4,
+ *     got 'abc'"
+ * Errors found only at the end ("no 'size' command", "no 'camera' command") have line 0; an
+ * envmap image that cannot be read is reported at the `envmap` line with the reader's reason. */
 int scene_load(const char *path, const scene_load_opts *opts, scene *out, error *err);
 
 /* The same from a string in memory; `name` is used in messages and as the base folder for
- * relative file names ("-" or NULL: the working folder). */
+ * relative file names ("-" or NULL: the working folder; NULL shows as "<string>" in messages
+ * and leaves sc->path empty). */
 int scene_load_string(const char *text, const char *name, const scene_load_opts *opts, scene *out,
                       error *err);
 
+/* Free everything the scene owns and zero *sc (safe on a zeroed or already freed scene). */
 void scene_free(scene *sc);
 
 /* Default material state (ambient 0.2, all else 0, shininess 0, phong, roughness 0, ior 1.5). */
 material scene_default_material(void);
 
+/* "raytracer", "analyticdirect", "direct" or "pathtracer" (static strings), as in the file. */
 const char *scene_integrator_name(integrator_kind k);
 
 #endif

@@ -1,0 +1,966 @@
+/* scene.c - the CSE 167/168 `.test` scene parser plus envtex's commands (see
+ * include/envtex/scene.h and docs/scene-format.md).
+ *
+ * One pass, line by line.  Each line is copied into a fixed buffer, split into white-space
+ * separated tokens, and handed to the command's handler through a table.  Handlers check their
+ * arguments completely before they change the scene, so every error names the line and the
+ * token that is wrong.  Arrays grow by doubling, so a 100k-triangle mesh costs O(n).
+ */
+#include "envtex/scene.h"
+
+#include <errno.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "envtex/imageio.h"
+
+/* A command has at most 12 arguments (quadLight); a few more slots let us name the first extra
+ * token in "takes N arguments, got M" messages. */
+#define MAX_TOKENS 16
+
+/* maxverts / maxvertnorms are only capacity hints: a hostile "maxverts 999999999999" must not
+ * reserve gigabytes, so a hint reserves at most this many entries (arrays still grow past it). */
+#define HINT_CAP (1L << 20)
+
+/* sin of the angle between the camera's up and its view direction below which
+ * right = normalize(look x up) has no reliable direction (doubles carry ~1e-16 relative error,
+ * so 1e-9 leaves a wide margin while rejecting only truly parallel vectors). */
+#define CAMERA_PARALLEL_EPS 1e-9
+
+/* sin of the angle between a quad light's edges below which it is a sliver of no area: rounding
+ * of exactly parallel edges leaves |ab x ac| ~ 1e-16 |ab| |ac|. */
+#define QUAD_PARALLEL_EPS 1e-12
+
+typedef struct vertex_normal { vec3 p, n; } vertex_normal;
+
+typedef struct parser {
+    scene *sc;
+    const scene_load_opts *opts;
+    const char *name;          /* scene name for messages (err->file) */
+    char base[1024];           /* the scene file's folder with its trailing '/', or "" */
+    error *err;
+    int line;                  /* 1-based line being read */
+    /* the current line's tokens: tok[0] is the command */
+    char *tok[MAX_TOKENS];
+    int ntok;                  /* number of tokens (may exceed MAX_TOKENS: only counted) */
+    /* transform state */
+    mat4 xf;                   /* object -> world, current */
+    mat4 inv;                  /* its inverse when inv_state == 1 */
+    int inv_state;             /* 0 not computed, 1 valid, -1 singular */
+    mat4 *stack;               /* saved transforms (pushTransform) */
+    int depth, stack_cap;
+    /* material and light state */
+    material mat;
+    double atten[3];
+    /* vertex lists (the scene keeps only world-space triangles) */
+    vec3 *verts;
+    long n_verts, cap_verts;
+    vertex_normal *vnorms;
+    long n_vnorms, cap_vnorms;
+    /* capacities of the scene's arrays */
+    long cap_spheres, cap_tris;
+    long cap_lights, cap_materials;
+    /* bookkeeping */
+    int seen_size, warned_order;
+    char envmap_token[1024];   /* the envmap file name as written, for messages */
+} parser;
+
+/* ---- messages --------------------------------------------------------------------------- */
+
+static int fail(parser *p, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static int fail(parser *p, const char *fmt, ...)
+{
+    char msg[ERROR_MSG_MAX];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    return error_set(p->err, p->name, p->line, "%s", msg);
+}
+
+static void warn(parser *p, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void warn(parser *p, const char *fmt, ...)
+{
+    if (!p->opts->warn) return;
+    error w;
+    char msg[ERROR_MSG_MAX];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    error_set(&w, p->name, p->line, "%s", msg);
+    p->opts->warn(p->opts->warn_ctx, &w);
+}
+
+/* ---- growing arrays --------------------------------------------------------------------- */
+
+/* Make room for `need` elements of `size` bytes in *arr (capacity *cap), doubling. */
+static int grow(parser *p, void **arr, long *cap, long need, size_t size)
+{
+    if (need <= *cap) return 0;
+    long n = *cap > 0 ? *cap : 16;
+    while (n < need) n *= 2; /* need <= SCENE_MAX_PRIMS, so n stays far below LONG_MAX */
+    void *q = realloc(*arr, (size_t)n * size);
+    if (!q) return fail(p, "out of memory for '%s' (%ld entries)", p->tok[0], need);
+    *arr = q;
+    *cap = n;
+    return 0;
+}
+
+/* ---- arguments -------------------------------------------------------------------------- */
+
+/* Argument i (1-based) as a finite double: strtod must consume the whole token. */
+static int arg_num(parser *p, int i, double *out)
+{
+    const char *s = p->tok[i];
+    char *end;
+    errno = 0;
+    double v = strtod(s, &end);
+    if (end == s || *end != '\0')
+        return fail(p, "expected a number for '%s' argument %d, got '%s'", p->tok[0], i, s);
+    /* NaN, Inf and overflow ("1e999" gives HUGE_VAL); underflow to a tiny value is harmless */
+    if (!isfinite(v))
+        return fail(p, "expected a finite number for '%s' argument %d, got '%s'", p->tok[0], i, s);
+    *out = v;
+    return 0;
+}
+
+/* Arguments first..first+n-1 into v[0..n-1]. */
+static int arg_nums(parser *p, int first, int n, double *v)
+{
+    for (int k = 0; k < n; k++)
+        if (arg_num(p, first + k, &v[k])) return -1;
+    return 0;
+}
+
+/* Argument i as an integer in [lo, hi] ("10", "10.0" and "1e1" are 10; "10.5" is an error). */
+static int arg_int(parser *p, int i, double lo, double hi, long *out)
+{
+    double v;
+    if (arg_num(p, i, &v)) return -1;
+    if (v != floor(v))
+        return fail(p, "expected an integer for '%s' argument %d, got '%s'", p->tok[0], i,
+                    p->tok[i]);
+    if (v < lo || v > hi)
+        return fail(p, "'%s' argument %d must be in [%.0f, %.0f], got '%s'", p->tok[0], i, lo, hi,
+                    p->tok[i]);
+    *out = (long)v;
+    return 0;
+}
+
+/* Argument i as a number >= 0 (strict = 0) or > 0 (strict = 1). */
+static int arg_nonneg(parser *p, int i, int strict, double *out)
+{
+    if (arg_num(p, i, out)) return -1;
+    if (strict ? !(*out > 0) : !(*out >= 0))
+        return fail(p, "'%s' argument %d must be %s 0, got '%s'", p->tok[0], i,
+                    strict ? ">" : ">=", p->tok[i]);
+    return 0;
+}
+
+/* Arguments first..first+2 as a colour with every channel >= 0. */
+static int arg_rgb(parser *p, int first, rgb *out)
+{
+    double v[3];
+    for (int k = 0; k < 3; k++)
+        if (arg_nonneg(p, first + k, 0, &v[k])) return -1;
+    *out = rgb_make(v[0], v[1], v[2]);
+    return 0;
+}
+
+/* Argument 1 as one of `n` keywords (exact, lower case); *out = its index. */
+static int arg_word(parser *p, const char *const *words, int n, int *out)
+{
+    for (int k = 0; k < n; k++)
+        if (strcmp(p->tok[1], words[k]) == 0) {
+            *out = k;
+            return 0;
+        }
+    char list[256] = "";
+    size_t len = 0;
+    for (int k = 0; k < n; k++) {
+        const char *sep = k == 0 ? "" : k == n - 1 ? " or " : ", ";
+        int w = snprintf(list + len, sizeof list - len, "%s'%s'", sep, words[k]);
+        if (w < 0 || (size_t)w >= sizeof list - len) break;
+        len += (size_t)w;
+    }
+    return fail(p, "'%s' must be %s, got '%s'", p->tok[0], list, p->tok[1]);
+}
+
+static int arg_onoff(parser *p, int *out)
+{
+    static const char *const w[] = {"off", "on"};
+    return arg_word(p, w, 2, out);
+}
+
+/* ---- transforms ------------------------------------------------------------------------- */
+
+/* Right-multiply the current transform (OpenGL): the command written last applies first. */
+static int xf_apply(parser *p, mat4 m)
+{
+    mat4 r = mat4_mul(p->xf, m);
+    for (int i = 0; i < 4; i++)
+        for (int j = 0; j < 4; j++)
+            if (!isfinite(r.m[i][j]))
+                return fail(p, "'%s' makes the current transform overflow", p->tok[0]);
+    p->xf = r;
+    p->inv_state = 0;
+    return 0;
+}
+
+/* The inverse of the current transform, computed once per change; an error names the command
+ * that needs it (a sphere, a trinormal, an envmap) when the transform is singular. */
+static int xf_inverse(parser *p, const mat4 **inv)
+{
+    if (p->inv_state == 0) p->inv_state = mat4_inverse(p->xf, &p->inv) == 0 ? 1 : -1;
+    if (p->inv_state < 0)
+        return fail(p, "'%s' needs the inverse of the current transform, which is singular "
+                       "(a 'scale' by 0?)", p->tok[0]);
+    *inv = &p->inv;
+    return 0;
+}
+
+/* ---- materials -------------------------------------------------------------------------- */
+
+static int rgb_equal(rgb a, rgb b) { return a.r == b.r && a.g == b.g && a.b == b.b; }
+
+static int material_equal(const material *a, const material *b)
+{
+    return rgb_equal(a->ambient, b->ambient) && rgb_equal(a->diffuse, b->diffuse) &&
+           rgb_equal(a->specular, b->specular) && rgb_equal(a->emission, b->emission) &&
+           a->shininess == b->shininess && a->brdf == b->brdf && a->roughness == b->roughness &&
+           a->ior == b->ior;
+}
+
+/* Index of the current material state: the last stored one if nothing changed since, else a
+ * new entry (so a mesh of 100k triangles with one material stores one material). */
+static int material_index(parser *p, int *out)
+{
+    scene *sc = p->sc;
+    if (sc->n_materials > 0 && material_equal(&sc->materials[sc->n_materials - 1], &p->mat)) {
+        *out = sc->n_materials - 1;
+        return 0;
+    }
+    if (grow(p, (void **)&sc->materials, &p->cap_materials, (long)sc->n_materials + 1,
+             sizeof *sc->materials))
+        return -1;
+    sc->materials[sc->n_materials] = p->mat;
+    *out = sc->n_materials++;
+    return 0;
+}
+
+/* ---- commands --------------------------------------------------------------------------- */
+/* Each handler sees p->tok[1..] with the argument count already checked. */
+
+static int cmd_size(parser *p)
+{
+    long w, h;
+    if (arg_int(p, 1, 1, SCENE_MAX_SIZE, &w) || arg_int(p, 2, 1, SCENE_MAX_SIZE, &h)) return -1;
+    if (w * h > SCENE_MAX_PIXELS)
+        return fail(p, "'size' %ld x %ld is %ld pixels, more than the limit %ld", w, h, w * h,
+                    (long)SCENE_MAX_PIXELS);
+    p->sc->width = (int)w;
+    p->sc->height = (int)h;
+    return 0;
+}
+
+static int cmd_maxdepth(parser *p)
+{
+    long d;
+    if (arg_int(p, 1, -1, SCENE_MAX_DEPTH, &d)) return -1;
+    p->sc->maxdepth = (int)d;
+    return 0;
+}
+
+static int cmd_output(parser *p)
+{
+    /* kept as written: relative to the working folder, as the course skeleton does */
+    size_t n = strlen(p->tok[1]);
+    if (n >= sizeof p->sc->output)
+        return fail(p, "'output' file name is longer than %zu bytes", sizeof p->sc->output - 1);
+    memcpy(p->sc->output, p->tok[1], n + 1);
+    return 0;
+}
+
+static int cmd_camera(parser *p)
+{
+    double v[10];
+    if (arg_nums(p, 1, 10, v)) return -1;
+    vec3 from = vec3_make(v[0], v[1], v[2]), at = vec3_make(v[3], v[4], v[5]);
+    vec3 up = vec3_make(v[6], v[7], v[8]);
+    if (!(v[9] > 0 && v[9] < 180))
+        return fail(p, "'camera' fovy must be in (0, 180) degrees, got '%s'", p->tok[10]);
+    vec3 look = vec3_sub(at, from);
+    if (!(vec3_length(look) > 0)) return fail(p, "'camera' look-from equals look-at");
+    if (!(vec3_length(up) > 0)) return fail(p, "'camera' up vector is zero");
+    /* |look x up| = |look| |up| sin(angle): right = look x up must have a direction */
+    if (!(vec3_length(vec3_cross(look, up)) >
+          CAMERA_PARALLEL_EPS * vec3_length(look) * vec3_length(up)))
+        return fail(p, "'camera' up vector (%s %s %s) is parallel to the view direction",
+                    p->tok[7], p->tok[8], p->tok[9]);
+    scene *sc = p->sc;
+    sc->has_camera = 1;
+    sc->eye = from;
+    sc->center = at;
+    sc->up = up;
+    sc->fovy = v[9];
+    return 0;
+}
+
+static int cmd_sphere(parser *p)
+{
+    double v[4];
+    if (arg_nums(p, 1, 3, v) || arg_nonneg(p, 4, 1, &v[3])) return -1;
+    const mat4 *inv;
+    if (xf_inverse(p, &inv)) return -1;
+    scene *sc = p->sc;
+    if (sc->n_spheres >= SCENE_MAX_PRIMS)
+        return fail(p, "more than %ld spheres", (long)SCENE_MAX_PRIMS);
+    int m;
+    if (material_index(p, &m)) return -1;
+    if (grow(p, (void **)&sc->spheres, &p->cap_spheres, sc->n_spheres + 1, sizeof *sc->spheres))
+        return -1;
+    scene_sphere *s = &sc->spheres[sc->n_spheres++];
+    s->center = vec3_make(v[0], v[1], v[2]);
+    s->radius = v[3];
+    s->xf = p->xf;
+    s->inv = *inv;
+    s->material = m;
+    return 0;
+}
+
+/* maxverts / maxvertnorms: capacity hints, capped at HINT_CAP. */
+static int cmd_maxverts(parser *p)
+{
+    long n;
+    if (arg_int(p, 1, 0, 1e18, &n)) return -1;
+    if (n > HINT_CAP) n = HINT_CAP;
+    if (strcmp(p->tok[0], "maxverts") == 0)
+        return grow(p, (void **)&p->verts, &p->cap_verts, n, sizeof *p->verts);
+    return grow(p, (void **)&p->vnorms, &p->cap_vnorms, n, sizeof *p->vnorms);
+}
+
+static int cmd_vertex(parser *p)
+{
+    double v[3];
+    if (arg_nums(p, 1, 3, v)) return -1;
+    if (p->n_verts >= SCENE_MAX_PRIMS)
+        return fail(p, "more than %ld vertices", (long)SCENE_MAX_PRIMS);
+    if (grow(p, (void **)&p->verts, &p->cap_verts, p->n_verts + 1, sizeof *p->verts)) return -1;
+    p->verts[p->n_verts++] = vec3_make(v[0], v[1], v[2]);
+    return 0;
+}
+
+static int cmd_vertexnormal(parser *p)
+{
+    double v[6];
+    if (arg_nums(p, 1, 6, v)) return -1;
+    vec3 n = vec3_make(v[3], v[4], v[5]);
+    if (!(vec3_length(n) > 0)) return fail(p, "'vertexnormal' normal is zero");
+    if (p->n_vnorms >= SCENE_MAX_PRIMS)
+        return fail(p, "more than %ld vertex normals", (long)SCENE_MAX_PRIMS);
+    if (grow(p, (void **)&p->vnorms, &p->cap_vnorms, p->n_vnorms + 1, sizeof *p->vnorms))
+        return -1;
+    p->vnorms[p->n_vnorms++] = (vertex_normal){vec3_make(v[0], v[1], v[2]), n};
+    return 0;
+}
+
+/* The three indices of a tri / trinormal, each in [0, count). */
+static int tri_indices(parser *p, long count, const char *list, long idx[3])
+{
+    for (int k = 0; k < 3; k++) {
+        double v;
+        if (arg_num(p, k + 1, &v)) return -1;
+        if (v != floor(v))
+            return fail(p, "expected an integer for '%s' argument %d, got '%s'", p->tok[0], k + 1,
+                        p->tok[k + 1]);
+        if (v < 0 || v >= (double)count)
+            return fail(p, "'%s' vertex index '%s' is out of range: %ld %s defined so far",
+                        p->tok[0], p->tok[k + 1], count, list);
+        idx[k] = (long)v;
+    }
+    return 0;
+}
+
+static int add_triangle(parser *p, const scene_triangle *t)
+{
+    scene *sc = p->sc;
+    for (int k = 0; k < 3; k++)
+        if (!vec3_is_finite(t->p[k]))
+            return fail(p, "'%s' corner %d overflows under the current transform", p->tok[0], k);
+    if (sc->n_triangles >= SCENE_MAX_PRIMS)
+        return fail(p, "more than %ld triangles", (long)SCENE_MAX_PRIMS);
+    int m;
+    if (material_index(p, &m)) return -1;
+    if (grow(p, (void **)&sc->triangles, &p->cap_tris, sc->n_triangles + 1,
+             sizeof *sc->triangles))
+        return -1;
+    scene_triangle *d = &sc->triangles[sc->n_triangles++];
+    *d = *t;
+    d->material = m;
+    return 0;
+}
+
+static int cmd_tri(parser *p)
+{
+    long idx[3];
+    if (tri_indices(p, p->n_verts, "vertices", idx)) return -1;
+    scene_triangle t;
+    memset(&t, 0, sizeof t);
+    for (int k = 0; k < 3; k++) t.p[k] = mat4_point(&p->xf, p->verts[idx[k]]);
+    return add_triangle(p, &t);
+}
+
+static int cmd_trinormal(parser *p)
+{
+    long idx[3];
+    if (tri_indices(p, p->n_vnorms, "vertexnormals", idx)) return -1;
+    const mat4 *inv;
+    if (xf_inverse(p, &inv)) return -1;
+    scene_triangle t;
+    memset(&t, 0, sizeof t);
+    t.has_normals = 1;
+    for (int k = 0; k < 3; k++) {
+        const vertex_normal *v = &p->vnorms[idx[k]];
+        t.p[k] = mat4_point(&p->xf, v->p);
+        vec3 n = mat4_normal(inv, v->n); /* n' = (M^-1)^T n */
+        double len = vec3_length(n);
+        if (!(len > 0) || !isfinite(len))
+            return fail(p, "'trinormal' normal of vertex '%s' degenerates under the current "
+                           "transform", p->tok[k + 1]);
+        t.n[k] = vec3_scale(n, 1.0 / len);
+    }
+    return add_triangle(p, &t);
+}
+
+static int cmd_translate(parser *p)
+{
+    double v[3];
+    if (arg_nums(p, 1, 3, v)) return -1;
+    return xf_apply(p, mat4_translate(vec3_make(v[0], v[1], v[2])));
+}
+
+static int cmd_rotate(parser *p)
+{
+    double v[4];
+    if (arg_nums(p, 1, 4, v)) return -1;
+    vec3 axis = vec3_make(v[0], v[1], v[2]);
+    if (!(vec3_length(axis) > 0)) return fail(p, "'rotate' axis is zero");
+    return xf_apply(p, mat4_rotate(axis, v[3]));
+}
+
+static int cmd_scale(parser *p)
+{
+    double v[3];
+    if (arg_nums(p, 1, 3, v)) return -1;
+    /* a zero factor is allowed here; it is an error only where an inverse is needed */
+    return xf_apply(p, mat4_scale(vec3_make(v[0], v[1], v[2])));
+}
+
+static int cmd_push(parser *p)
+{
+    if (p->depth >= SCENE_MAX_TRANSFORM_STACK)
+        return fail(p, "'pushTransform' nested deeper than %d", SCENE_MAX_TRANSFORM_STACK);
+    if (p->depth >= p->stack_cap) {
+        long cap = p->stack_cap;
+        if (grow(p, (void **)&p->stack, &cap, p->depth + 1, sizeof *p->stack)) return -1;
+        p->stack_cap = (int)cap;
+    }
+    p->stack[p->depth++] = p->xf;
+    return 0;
+}
+
+static int cmd_pop(parser *p)
+{
+    if (p->depth == 0) return fail(p, "'popTransform' without a matching 'pushTransform'");
+    p->xf = p->stack[--p->depth];
+    p->inv_state = 0;
+    return 0;
+}
+
+static int add_light(parser *p, const scene_light *l)
+{
+    scene *sc = p->sc;
+    if (sc->n_lights >= SCENE_MAX_PRIMS)
+        return fail(p, "more than %ld lights", (long)SCENE_MAX_PRIMS);
+    if (grow(p, (void **)&sc->lights, &p->cap_lights, (long)sc->n_lights + 1, sizeof *sc->lights))
+        return -1;
+    sc->lights[sc->n_lights++] = *l;
+    return 0;
+}
+
+/* Lights are in world space: the current transform does not apply (docs/scene-format.md). */
+static int cmd_directional(parser *p)
+{
+    double v[3];
+    scene_light l;
+    memset(&l, 0, sizeof l);
+    if (arg_nums(p, 1, 3, v) || arg_rgb(p, 4, &l.color)) return -1;
+    vec3 d = vec3_make(v[0], v[1], v[2]);
+    if (!(vec3_length(d) > 0)) return fail(p, "'directional' direction is zero");
+    l.kind = LIGHT_DIRECTIONAL;
+    l.dir = vec3_normalize(d);
+    return add_light(p, &l);
+}
+
+static int cmd_point(parser *p)
+{
+    double v[3];
+    scene_light l;
+    memset(&l, 0, sizeof l);
+    if (arg_nums(p, 1, 3, v) || arg_rgb(p, 4, &l.color)) return -1;
+    l.kind = LIGHT_POINT;
+    l.pos = vec3_make(v[0], v[1], v[2]);
+    memcpy(l.atten, p->atten, sizeof l.atten); /* the attenuation current when read */
+    return add_light(p, &l);
+}
+
+static int cmd_attenuation(parser *p)
+{
+    double v[3];
+    for (int k = 0; k < 3; k++)
+        if (arg_nonneg(p, k + 1, 0, &v[k])) return -1;
+    /* point lights are divided by c + l d + q d^2: all zero would divide by zero */
+    if (v[0] == 0 && v[1] == 0 && v[2] == 0) return fail(p, "'attenuation' is all zero");
+    memcpy(p->atten, v, sizeof v);
+    return 0;
+}
+
+static int cmd_colour(parser *p)
+{
+    rgb c;
+    if (arg_rgb(p, 1, &c)) return -1;
+    const char *k = p->tok[0];
+    if (strcmp(k, "ambient") == 0) p->mat.ambient = c;
+    else if (strcmp(k, "diffuse") == 0) p->mat.diffuse = c;
+    else if (strcmp(k, "specular") == 0) p->mat.specular = c;
+    else p->mat.emission = c;
+    return 0;
+}
+
+static int cmd_shininess(parser *p) { return arg_nonneg(p, 1, 0, &p->mat.shininess); }
+
+static int cmd_integrator(parser *p)
+{
+    /* in the order of integrator_kind */
+    static const char *const w[] = {"raytracer", "analyticdirect", "direct", "pathtracer"};
+    int k;
+    if (arg_word(p, w, 4, &k)) return -1;
+    p->sc->integrator = (integrator_kind)k;
+    return 0;
+}
+
+static int cmd_quadlight(parser *p)
+{
+    double v[9];
+    scene_light l;
+    memset(&l, 0, sizeof l);
+    if (arg_nums(p, 1, 9, v) || arg_rgb(p, 10, &l.color)) return -1;
+    l.kind = LIGHT_QUAD;
+    l.pos = vec3_make(v[0], v[1], v[2]);
+    l.ab = vec3_make(v[3], v[4], v[5]);
+    l.ac = vec3_make(v[6], v[7], v[8]);
+    /* area = |ab x ac| = |ab| |ac| sin(angle) */
+    double area = vec3_length(vec3_cross(l.ab, l.ac));
+    if (!(area > QUAD_PARALLEL_EPS * vec3_length(l.ab) * vec3_length(l.ac)) || !(area > 0))
+        return fail(p, "'quadLight' has zero area (edges ab and ac are zero or parallel)");
+    return add_light(p, &l);
+}
+
+static int cmd_lightsamples(parser *p)
+{
+    long n;
+    if (arg_int(p, 1, 1, SCENE_MAX_LIGHTSAMPLES, &n)) return -1;
+    p->sc->lightsamples = (int)n;
+    return 0;
+}
+
+static int cmd_lightstratify(parser *p) { return arg_onoff(p, &p->sc->lightstratify); }
+
+static int cmd_spp(parser *p)
+{
+    long n;
+    if (arg_int(p, 1, 1, SCENE_MAX_SPP, &n)) return -1;
+    p->sc->spp = (int)n;
+    return 0;
+}
+
+static int cmd_nee(parser *p)
+{
+    static const char *const w[] = {"off", "on", "mis"}; /* nee_mode order */
+    int k;
+    if (arg_word(p, w, 3, &k)) return -1;
+    p->sc->nee = (nee_mode)k;
+    return 0;
+}
+
+static int cmd_russianroulette(parser *p) { return arg_onoff(p, &p->sc->russianroulette); }
+
+static int cmd_importancesampling(parser *p)
+{
+    static const char *const w[] = {"hemisphere", "cosine", "brdf"}; /* sampling_kind order */
+    int k;
+    if (arg_word(p, w, 3, &k)) return -1;
+    p->sc->importancesampling = (sampling_kind)k;
+    return 0;
+}
+
+static int cmd_brdf(parser *p)
+{
+    static const char *const w[] = {"phong", "ggx", "mirror", "glass"}; /* brdf_kind order */
+    int k;
+    if (arg_word(p, w, 4, &k)) return -1;
+    p->mat.brdf = (brdf_kind)k;
+    return 0;
+}
+
+static int cmd_roughness(parser *p) { return arg_nonneg(p, 1, 0, &p->mat.roughness); }
+static int cmd_ior(parser *p) { return arg_nonneg(p, 1, 1, &p->mat.ior); }
+static int cmd_gamma(parser *p) { return arg_nonneg(p, 1, 1, &p->sc->gamma); }
+
+static int cmd_envmiss(parser *p)
+{
+    static const char *const w[] = {"envmap", "black"}; /* envmiss_mode order */
+    int k;
+    if (arg_word(p, w, 2, &k)) return -1;
+    p->sc->envmiss = (envmiss_mode)k;
+    return 0;
+}
+
+static int cmd_envmap(parser *p)
+{
+    scene_envmap *e = &p->sc->envmap;
+    if (e->present) return fail(p, "envmap given twice (first at line %d)", e->line);
+    double scale = 1.0;
+    if (p->ntok == 3 && arg_nonneg(p, 2, 1, &scale)) return -1;
+    const mat4 *inv;
+    if (xf_inverse(p, &inv)) return -1;
+    const char *file = p->tok[1];
+    size_t n = strlen(file);
+    if (n >= sizeof p->envmap_token)
+        return fail(p, "'envmap' file name is longer than %zu bytes",
+                    sizeof p->envmap_token - 1);
+    /* relative names are relative to the scene file's folder; absolute ones are kept */
+    const char *base = file[0] == '/' ? "" : p->base;
+    int w = snprintf(e->path, sizeof e->path, "%s%s", base, file);
+    if (w < 0 || (size_t)w >= sizeof e->path)
+        return fail(p, "'envmap' path '%s%s' is longer than %zu bytes", base, file,
+                    sizeof e->path - 1);
+    memcpy(p->envmap_token, file, n + 1);
+    e->present = 1;
+    e->scale = scale;
+    e->xf = p->xf;
+    e->inv = *inv;
+    e->line = p->line;
+    return 0;
+}
+
+typedef struct command {
+    const char *name;
+    int (*run)(parser *p);
+    int min_args, max_args;
+} command;
+
+/* Geometry first: it is most of the lines of a big scene. */
+static const command commands[] = {
+    {"vertex", cmd_vertex, 3, 3},
+    {"tri", cmd_tri, 3, 3},
+    {"vertexnormal", cmd_vertexnormal, 6, 6},
+    {"trinormal", cmd_trinormal, 3, 3},
+    {"sphere", cmd_sphere, 4, 4},
+    {"size", cmd_size, 2, 2},
+    {"maxdepth", cmd_maxdepth, 1, 1},
+    {"output", cmd_output, 1, 1},
+    {"camera", cmd_camera, 10, 10},
+    {"maxverts", cmd_maxverts, 1, 1},
+    {"maxvertnorms", cmd_maxverts, 1, 1},
+    {"translate", cmd_translate, 3, 3},
+    {"rotate", cmd_rotate, 4, 4},
+    {"scale", cmd_scale, 3, 3},
+    {"pushTransform", cmd_push, 0, 0},
+    {"popTransform", cmd_pop, 0, 0},
+    {"directional", cmd_directional, 6, 6},
+    {"point", cmd_point, 6, 6},
+    {"attenuation", cmd_attenuation, 3, 3},
+    {"ambient", cmd_colour, 3, 3},
+    {"diffuse", cmd_colour, 3, 3},
+    {"specular", cmd_colour, 3, 3},
+    {"emission", cmd_colour, 3, 3},
+    {"shininess", cmd_shininess, 1, 1},
+    {"integrator", cmd_integrator, 1, 1},
+    {"quadLight", cmd_quadlight, 12, 12},
+    {"lightsamples", cmd_lightsamples, 1, 1},
+    {"lightstratify", cmd_lightstratify, 1, 1},
+    {"spp", cmd_spp, 1, 1},
+    {"nexteventestimation", cmd_nee, 1, 1},
+    {"russianroulette", cmd_russianroulette, 1, 1},
+    {"importancesampling", cmd_importancesampling, 1, 1},
+    {"brdf", cmd_brdf, 1, 1},
+    {"roughness", cmd_roughness, 1, 1},
+    {"gamma", cmd_gamma, 1, 1},
+    {"envmap", cmd_envmap, 1, 2},
+    {"envmiss", cmd_envmiss, 1, 1},
+    {"ior", cmd_ior, 1, 1},
+};
+
+/* ---- lines ------------------------------------------------------------------------------ */
+
+static int is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+
+/* Split the NUL-terminated line in place; a token starting with '#' ends the line. */
+static void tokenize(parser *p, char *s)
+{
+    p->ntok = 0;
+    for (;;) {
+        while (is_space(*s)) s++;
+        if (*s == '\0' || *s == '#') return;
+        if (p->ntok < MAX_TOKENS) p->tok[p->ntok] = s;
+        p->ntok++;
+        while (*s && !is_space(*s)) s++;
+        if (*s == '\0') return;
+        *s++ = '\0';
+    }
+}
+
+static int run_line(parser *p)
+{
+    if (p->ntok == 0) return 0;
+    const char *name = p->tok[0];
+    const command *c = NULL;
+    for (size_t i = 0; i < sizeof commands / sizeof commands[0]; i++)
+        if (strcmp(name, commands[i].name) == 0) {
+            c = &commands[i];
+            break;
+        }
+    if (!c) {
+        if (p->opts->strict) return fail(p, "unknown command '%s'", name);
+        warn(p, "unknown command '%s' (ignored)", name);
+        return 0;
+    }
+    if (c->run == cmd_size) {
+        p->seen_size = 1;
+    } else if (!p->seen_size && !p->warned_order) {
+        p->warned_order = 1;
+        warn(p, "'%s' comes before 'size' (the course puts 'size' first)", name);
+    }
+    int nargs = p->ntok - 1;
+    if (nargs < c->min_args || nargs > c->max_args) {
+        char takes[64];
+        if (c->min_args == c->max_args)
+            snprintf(takes, sizeof takes, "%d argument%s", c->min_args,
+                     c->min_args == 1 ? "" : "s");
+        else
+            snprintf(takes, sizeof takes, "%d or %d arguments", c->min_args, c->max_args);
+        if (nargs > c->max_args)
+            return fail(p, "'%s' takes %s, got %d (from '%s' on)", name, takes, nargs,
+                        p->tok[c->max_args + 1]);
+        return fail(p, "'%s' takes %s, got %d", name, takes, nargs);
+    }
+    return c->run(p);
+}
+
+/* After the last line: what a renderer needs, then the envmap image. */
+static int finish(parser *p)
+{
+    scene *sc = p->sc;
+    p->line = 0;
+    if (!p->seen_size) return error_set(p->err, p->name, 0, "no 'size' command");
+    if (!sc->has_camera) return error_set(p->err, p->name, 0, "no 'camera' command");
+    if (p->depth > 0)
+        warn(p, "%d 'pushTransform' without 'popTransform' at the end of the file", p->depth);
+    if (sc->envmap.present && p->opts->load_images) {
+        error ie;
+        memset(&ie, 0, sizeof ie);
+        if (imageio_read(sc->envmap.path, &sc->envmap.img, &ie)) {
+            if (strcmp(p->envmap_token, sc->envmap.path) == 0)
+                return error_set(p->err, p->name, sc->envmap.line, "envmap '%s': %s",
+                                 p->envmap_token, ie.msg);
+            return error_set(p->err, p->name, sc->envmap.line, "envmap '%s' (%s): %s",
+                             p->envmap_token, sc->envmap.path, ie.msg);
+        }
+    }
+    return 0;
+}
+
+static void scene_init(scene *sc)
+{
+    memset(sc, 0, sizeof *sc);
+    snprintf(sc->output, sizeof sc->output, "raytrace.png");
+    sc->maxdepth = 5;
+    sc->integrator = INTEGRATOR_RAYTRACER;
+    sc->spp = 1;
+    sc->lightsamples = 1;
+    sc->nee = NEE_OFF;
+    sc->importancesampling = SAMPLING_HEMISPHERE;
+    sc->envmiss = ENVMISS_ENVMAP;
+    sc->envmap.scale = 1.0;
+    sc->envmap.xf = mat4_identity();
+    sc->envmap.inv = mat4_identity();
+    sc->fovy = 0;
+}
+
+/* Parse `len` bytes of text (NULs already rejected) into *out. */
+static int parse(const char *text, size_t len, const char *name, const scene_load_opts *opts,
+                 scene *out, error *err)
+{
+    scene_load_opts defaults = scene_load_defaults();
+    parser p;
+    memset(&p, 0, sizeof p);
+    p.sc = out;
+    p.opts = opts ? opts : &defaults;
+    p.name = name ? name : "<string>";
+    p.err = err;
+    p.xf = mat4_identity();
+    p.mat = scene_default_material();
+    p.atten[0] = 1.0; /* attenuation 1 0 0: no fall-off */
+
+    scene_init(out);
+    int rc = -1;
+    char *buf = NULL;
+    if (name && strcmp(name, "-") != 0) {
+        size_t n = strlen(name);
+        if (n >= sizeof out->path) {
+            error_set(err, name, 0, "scene path is longer than %zu bytes", sizeof out->path - 1);
+            goto done;
+        }
+        memcpy(out->path, name, n + 1);
+        const char *slash = strrchr(name, '/');
+        if (slash) {
+            size_t b = (size_t)(slash - name) + 1;
+            if (b >= sizeof p.base) {
+                error_set(err, name, 0, "scene folder is longer than %zu bytes",
+                          sizeof p.base - 1);
+                goto done;
+            }
+            memcpy(p.base, name, b);
+            p.base[b] = '\0';
+        }
+    } else if (name) {
+        memcpy(out->path, "-", 2);
+    }
+
+    buf = malloc(SCENE_MAX_LINE + 1);
+    if (!buf) {
+        error_set(err, p.name, 0, "out of memory");
+        goto done;
+    }
+    size_t pos = 0;
+    /* a UTF-8 byte-order mark some editors write is not part of the first keyword */
+    if (len >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0) pos = 3;
+    while (pos < len) {
+        p.line++;
+        const char *nl = memchr(text + pos, '\n', len - pos);
+        size_t n = (nl ? (size_t)(nl - text) : len) - pos;
+        if (n > SCENE_MAX_LINE) {
+            fail(&p, "line is longer than %d bytes", SCENE_MAX_LINE);
+            goto done;
+        }
+        memcpy(buf, text + pos, n);
+        buf[n] = '\0';
+        pos += n + 1;
+        tokenize(&p, buf);
+        if (run_line(&p)) goto done;
+    }
+    if (finish(&p)) goto done;
+    rc = 0;
+done:
+    free(buf);
+    free(p.stack);
+    free(p.verts);
+    free(p.vnorms);
+    if (rc) scene_free(out);
+    return rc;
+}
+
+/* ---- public ----------------------------------------------------------------------------- */
+
+scene_load_opts scene_load_defaults(void)
+{
+    scene_load_opts o;
+    memset(&o, 0, sizeof o);
+    o.load_images = 1;
+    return o;
+}
+
+material scene_default_material(void)
+{
+    material m;
+    memset(&m, 0, sizeof m);
+    m.ambient = rgb_gray(0.2);
+    m.brdf = BRDF_PHONG;
+    m.ior = 1.5;
+    return m;
+}
+
+int scene_load_string(const char *text, const char *name, const scene_load_opts *opts, scene *out,
+                      error *err)
+{
+    return parse(text, strlen(text), name, opts, out, err);
+}
+
+int scene_load(const char *path, const scene_load_opts *opts, scene *out, error *err)
+{
+    memset(out, 0, sizeof *out);
+    FILE *f = fopen(path, "rb");
+    if (!f) return error_set(err, path, 0, "cannot open: %s", strerror(errno));
+    int rc = -1;
+    size_t len = 0, cap = 1 << 16;
+    char *text = malloc(cap);
+    if (!text) {
+        error_set(err, path, 0, "out of memory");
+        goto done;
+    }
+    for (;;) {
+        if (len == cap) {
+            char *t = cap <= ((size_t)-1) / 2 ? realloc(text, cap * 2) : NULL;
+            if (!t) {
+                error_set(err, path, 0, "out of memory reading the file");
+                goto done;
+            }
+            text = t;
+            cap *= 2;
+        }
+        size_t got = fread(text + len, 1, cap - len, f);
+        len += got;
+        if (got == 0) break;
+    }
+    if (ferror(f)) {
+        error_set(err, path, 0, "cannot read: %s", strerror(errno));
+        goto done;
+    }
+    const char *nul = memchr(text, '\0', len);
+    if (nul) {
+        int line = 1;
+        for (const char *c = text; c < nul; c++) line += *c == '\n';
+        error_set(err, path, line, "NUL byte in the file (binary file?)");
+        goto done;
+    }
+    rc = parse(text, len, path, opts, out, err);
+done:
+    free(text);
+    fclose(f);
+    return rc;
+}
+
+void scene_free(scene *sc)
+{
+    if (!sc) return;
+    free(sc->materials);
+    free(sc->spheres);
+    free(sc->triangles);
+    free(sc->lights);
+    image_free(&sc->envmap.img);
+    memset(sc, 0, sizeof *sc);
+}
+
+const char *scene_integrator_name(integrator_kind k)
+{
+    switch (k) {
+    case INTEGRATOR_RAYTRACER: return "raytracer";
+    case INTEGRATOR_ANALYTICDIRECT: return "analyticdirect";
+    case INTEGRATOR_DIRECT: return "direct";
+    case INTEGRATOR_PATHTRACER: return "pathtracer";
+    }
+    return "unknown";
+}
