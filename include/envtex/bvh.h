@@ -1,0 +1,55 @@
+/* bvh.h - bounding volume hierarchy over a scene's spheres and triangles, built with the binned
+ * surface area heuristic (Wald 2007).  A scene with at most BVH_MIN_PRIMS primitives gets no
+ * tree (one leaf, tested linearly): it pays nothing for a structure it cannot gain from.
+ *
+ *     bvh b;
+ *     if (bvh_build(&b, sc, &err)) ...
+ *     hit h; if (bvh_intersect(&b, sc, &r, &h)) shade(&h);
+ *     bvh_free(&b);
+ *
+ * The bvh keeps a pointer to nothing in the scene but reads it on every query: pass the same
+ * scene, unchanged, to every call.  Queries allocate nothing.
+ */
+#ifndef ENVTEX_BVH_H
+#define ENVTEX_BVH_H
+
+#include "envtex/error.h"
+#include "envtex/ray.h"
+#include "envtex/scene.h"
+
+/* With this many primitives or fewer, a linear loop beats a tree (measured: make bench). */
+#define BVH_MIN_PRIMS 8
+#define BVH_LEAF_MAX 4   /* a node with this many primitives or fewer becomes a leaf */
+#define BVH_BINS 16      /* SAH bins per axis */
+#define BVH_MAX_DEPTH 64 /* traversal stack size; the build stops splitting at this depth */
+
+typedef struct bvh_node {
+    vec3 lo, hi;   /* bounds */
+    int first;     /* leaf: first index into prims; inner: index of the right child (left = +1) */
+    int count;     /* leaf: number of primitives (> 0); inner: 0 */
+    int axis;      /* inner: split axis, to visit the nearer child first */
+} bvh_node;
+
+typedef struct bvh_tri { vec3 p0, p1, p2; } bvh_tri;
+
+typedef struct bvh {
+    bvh_node *nodes; long n_nodes;
+    unsigned *prims;  /* primitive ids in leaf order: id < n_spheres is a sphere, else a triangle */
+    bvh_tri *tris;    /* triangle corners in leaf order (cache friendly), parallel to prims */
+    long n_prims;
+    long n_spheres;
+    int is_tree;      /* 0: a single leaf (no tree was worth building) */
+    int depth;        /* deepest leaf */
+    double build_seconds;
+} bvh;
+
+int bvh_build(bvh *b, const scene *sc, error *err);
+void bvh_free(bvh *b);
+
+/* Closest hit with t in (r->tmin, r->tmax): fills *h completely and returns 1, else 0. */
+int bvh_intersect(const bvh *b, const scene *sc, const ray *r, hit *h);
+
+/* 1 if anything lies on the ray with t in (r->tmin, r->tmax) (shadow rays; any hit will do). */
+int bvh_occluded(const bvh *b, const scene *sc, const ray *r);
+
+#endif

@@ -1,0 +1,32 @@
+/* camera.h - the pinhole camera of the CSE 167/168 format:
+ * `camera fromx fromy fromz atx aty atz upx upy upz fovy`.
+ *
+ *     camera cam;
+ *     camera_init(&cam, eye, center, up, fovy_degrees, width, height);
+ *     ray r = camera_ray(&cam, x + 0.5, y + 0.5);   // through the centre of pixel (x, y)
+ *
+ * Frame: w = normalize(eye - center) (the camera looks along -w), u = normalize(up x w),
+ * v = w x u; equivalently right = normalize(look x up), up' = right x look, so `up` need not be
+ * perpendicular to the view.  Pixel coordinates are continuous: x in [0, width) to the right,
+ * y in [0, height) DOWN (row 0 at the top).  fovy is the full vertical field of view; the
+ * horizontal one follows from the aspect ratio width / height.
+ */
+#ifndef ENVTEX_CAMERA_H
+#define ENVTEX_CAMERA_H
+
+#include "envtex/ray.h"
+
+typedef struct camera {
+    vec3 eye, u, v, w;
+    double tan_half_y, tan_half_x;
+    int width, height;
+} camera;
+
+/* Caller guarantees eye != center, up not parallel to the view, 0 < fovy < 180 (the scene
+ * parser checks these); asserts otherwise. */
+void camera_init(camera *c, vec3 eye, vec3 center, vec3 up, double fovy_degrees, int width, int height);
+
+/* Ray through continuous pixel position (x, y); unit direction, tmin 0, tmax infinity. */
+ray camera_ray(const camera *c, double x, double y);
+
+#endif

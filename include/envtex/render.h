@@ -1,0 +1,52 @@
+/* render.h - from a scene to an image: builds what the scene needs (and nothing else), runs the
+ * scene's integrator over every pixel, and reports what it built and what it cost.
+ *
+ *     render_opts o = render_defaults();
+ *     o.seed = 7;
+ *     image img; render_stats st;
+ *     if (render_scene(sc, &o, &img, &st, &err)) ...
+ *     ... image_free(&img);
+ *
+ * Deterministic: pixel (x, y) draws from random stream y * width + x of `seed`, so the image
+ * depends only on the scene, spp and seed, and is bit-identical run to run on one build.
+ * With spp = 1 the ray passes through the pixel centre; with spp > 1 each sample is jittered
+ * uniformly within the pixel and the samples are averaged (a box filter).
+ */
+#ifndef ENVTEX_RENDER_H
+#define ENVTEX_RENDER_H
+
+#include <stdint.h>
+
+#include "envtex/error.h"
+#include "envtex/image.h"
+#include "envtex/scene.h"
+
+typedef void (*render_progress_fn)(void *ctx, int rows_done, int rows);
+
+typedef struct render_opts {
+    int spp;                   /* samples per pixel; 0: the scene's `spp` */
+    uint64_t seed;             /* default 0 */
+    render_progress_fn progress; /* called after each row (may be NULL) */
+    void *progress_ctx;
+} render_opts;
+
+typedef struct render_stats {
+    double seconds;            /* wall-clock time of the pixel loop */
+    double build_seconds;      /* time to build acceleration structures and tables */
+    long long rays;            /* rays traced, shadow rays included */
+    int spp;
+    long nonfinite_pixels;     /* pixels with a NaN or Inf channel (should be 0) */
+    /* what was built */
+    long prims;
+    int bvh_is_tree;
+    long bvh_nodes;
+    int bvh_depth;
+} render_stats;
+
+render_opts render_defaults(void);
+
+/* Render `sc` into *out (allocated here, width x height; free with image_free).  Fails with a
+ * message (naming the scene file) if the scene asks for something this build cannot render. */
+int render_scene(const scene *sc, const render_opts *opts, image *out, render_stats *stats, error *err);
+
+#endif

@@ -1,0 +1,25 @@
+/* sphere.h - ray-sphere intersection under any affine transform (a scaled sphere is an
+ * ellipsoid), as the CSE 167 raytracer assignment does it: intersect the ray transformed into
+ * object space, then bring the hit and its normal back (normal by the inverse transpose).
+ *
+ *     double t;
+ *     if (sphere_intersect(&sc->spheres[i], &r, &t)) sphere_hit(&sc->spheres[i], &r, t, &h);
+ */
+#ifndef ENVTEX_SPHERE_H
+#define ENVTEX_SPHERE_H
+
+#include "envtex/ray.h"
+#include "envtex/scene.h"
+
+/* Nearest t in (r->tmin, r->tmax) where the ray meets the (transformed) sphere: 1 and *t, or 0.
+ * t is the world ray's parameter (the object-space ray keeps it, since the map is affine). */
+int sphere_intersect(const scene_sphere *s, const ray *r, double *t);
+
+/* Fill h->p, h->ng = h->ns (unit, outward, world space) and h->bary = (theta, phi) of the
+ * object-space point, for the hit at parameter t. */
+void sphere_hit(const scene_sphere *s, const ray *r, double t, hit *h);
+
+/* World-space axis-aligned bounds of the transformed sphere (corners of the object box). */
+void sphere_bounds(const scene_sphere *s, vec3 *lo, vec3 *hi);
+
+#endif

@@ -1,0 +1,23 @@
+/* triangle.h - ray-triangle intersection with barycentric coordinates (the texture lecture
+ * interpolates (s,t) and normals with them: p = b0 p0 + b1 p1 + b2 p2, b0 = 1 - b1 - b2).
+ *
+ *     double t, b1, b2;
+ *     if (triangle_intersect(p0, p1, p2, &r, &t, &b1, &b2)) ...
+ *
+ * Moller-Trumbore in double precision.  Edges and vertices count as inside, with a tolerance of
+ * TRIANGLE_EDGE_EPS in barycentric units, so a ray through an edge shared by two triangles hits
+ * at least one of them (no cracks).  Degenerate (zero-area) triangles are never hit.
+ */
+#ifndef ENVTEX_TRIANGLE_H
+#define ENVTEX_TRIANGLE_H
+
+#include "envtex/ray.h"
+
+/* Rounding in the barycentric computation is ~1e-16 relative; 1e-12 closes shared-edge cracks
+ * for any sane coordinates while widening each triangle by an invisible amount. */
+#define TRIANGLE_EDGE_EPS 1e-12
+
+/* 1 if the ray meets the triangle at t in (r->tmin, r->tmax), with barycentrics b1, b2 of p1, p2. */
+int triangle_intersect(vec3 p0, vec3 p1, vec3 p2, const ray *r, double *t, double *b1, double *b2);
+
+#endif

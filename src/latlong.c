@@ -1,0 +1,67 @@
+/* latlong.c - latitude-longitude environment maps (see include/envtex/latlong.h). */
+#include "envtex/latlong.h"
+
+int latlong_dir_to_uv(vec3 d, uv2 *uv)
+{
+    if (!vec3_is_finite(d)) return -1;
+    double rxy = sqrt(d.x * d.x + d.y * d.y);
+    if (rxy == 0 && d.z == 0) return -1;
+    double theta = atan2(rxy, d.z);                    /* theta = acos(z / |d|), stable form */
+    double phi = rxy > 0 ? atan2(d.y, d.x) : 0.0;      /* phi = atan2(y, x), 0 at the poles */
+    if (phi < 0) phi += 2 * M_PI;                      /* wrap to [0, 2 pi) */
+    double u = phi / (2 * M_PI);
+    if (u >= 1.0) u = 0.0;                             /* -tiny + 2 pi rounds to 2 pi */
+    uv->u = u;
+    uv->v = theta / M_PI;
+    return 0;
+}
+
+vec3 latlong_uv_to_dir(uv2 uv)
+{
+    double theta = M_PI * uv.v, phi = 2 * M_PI * uv.u;
+    double s = sin(theta);
+    return vec3_make(s * cos(phi), s * sin(phi), cos(theta));
+}
+
+rgb latlong_lookup_bilinear(const image *map, vec3 d)
+{
+    uv2 uv;
+    if (latlong_dir_to_uv(d, &uv)) return rgb_gray(0);
+    int w = map->w, h = map->h;
+    /* continuous texel coordinates, texel centres at integers */
+    double x = uv.u * w - 0.5, y = uv.v * h - 0.5;
+    double fx = floor(x), fy = floor(y);
+    double ax = x - fx, ay = y - fy;
+    int x0 = (int)fx, y0 = (int)fy;
+    int x1 = x0 + 1, y1 = y0 + 1;
+    /* wrap in phi, clamp in theta */
+    if (x0 < 0) x0 += w;
+    if (x1 >= w) x1 -= w;
+    if (x0 >= w) x0 -= w;
+    if (y0 < 0) y0 = 0;
+    if (y1 > h - 1) y1 = h - 1;
+    if (y0 > h - 1) y0 = h - 1;
+    rgb c00 = image_get(map, x0, y0), c10 = image_get(map, x1, y0);
+    rgb c01 = image_get(map, x0, y1), c11 = image_get(map, x1, y1);
+    /* L = (1-ax)(1-ay) c00 + ax (1-ay) c10 + (1-ax) ay c01 + ax ay c11 */
+    rgb top = rgb_add(rgb_scale(c00, 1 - ax), rgb_scale(c10, ax));
+    rgb bot = rgb_add(rgb_scale(c01, 1 - ax), rgb_scale(c11, ax));
+    return rgb_add(rgb_scale(top, 1 - ay), rgb_scale(bot, ay));
+}
+
+rgb latlong_lookup_nearest(const image *map, vec3 d)
+{
+    uv2 uv;
+    if (latlong_dir_to_uv(d, &uv)) return rgb_gray(0);
+    int x = (int)(uv.u * map->w), y = (int)(uv.v * map->h);
+    if (x >= map->w) x = map->w - 1;
+    if (y >= map->h) y = map->h - 1;
+    return image_get(map, x, y);
+}
+
+double latlong_texel_solid_angle(int r, int w, int h)
+{
+    /* d(omega) = d(cos theta) d(phi): no sin theta in the lecture's (u = cos theta, phi) form */
+    double ct0 = cos(M_PI * r / h), ct1 = cos(M_PI * (r + 1) / h);
+    return (ct0 - ct1) * 2 * M_PI / w;
+}

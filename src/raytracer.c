@@ -1,0 +1,105 @@
+/* raytracer.c - the Whitted integrator with reflection maps (see include/envtex/raytracer.h). */
+#include "envtex/raytracer.h"
+
+#include "envtex/fresnel.h"
+
+void raytracer_init(raytracer *rt, const scene *sc, const bvh *accel)
+{
+    rt->sc = sc;
+    rt->accel = accel;
+    envmap_init(&rt->env, sc);
+    rt->maxdepth = sc->maxdepth < 0 ? RAYTRACER_UNLIMITED_DEPTH : sc->maxdepth;
+    rt->rays = 0;
+}
+
+static rgb trace(raytracer *rt, ray r, int depth, double weight);
+
+/* Blinn-Phong direct lighting from point and directional lights, with shadow rays. */
+static rgb direct_lights(raytracer *rt, const hit *h, vec3 n, vec3 view, const material *m, int highlight)
+{
+    rgb sum = rgb_gray(0);
+    int has_kd = !rgb_is_black(m->diffuse), has_ks = highlight && !rgb_is_black(m->specular);
+    if (!has_kd && !has_ks) return sum;
+    for (int i = 0; i < rt->sc->n_lights; i++) {
+        const scene_light *l = &rt->sc->lights[i];
+        vec3 ldir;
+        double atten = 1.0;
+        ray shadow;
+        if (l->kind == LIGHT_DIRECTIONAL) {
+            ldir = l->dir;
+            shadow = ray_spawn(h->p, h->ng, ldir);
+        } else if (l->kind == LIGHT_POINT) {
+            vec3 to = vec3_sub(l->pos, h->p);
+            double d = vec3_length(to);
+            if (!(d > 0)) continue;
+            ldir = vec3_scale(to, 1 / d);
+            atten = l->atten[0] + l->atten[1] * d + l->atten[2] * d * d; /* c + l d + q d^2 */
+            if (!(atten > 0)) continue;
+            shadow = ray_spawn_to(h->p, h->ng, l->pos);
+        } else {
+            continue; /* quad lights belong to the sampling integrators */
+        }
+        double ndotl = vec3_dot(n, ldir);
+        if (ndotl <= 0) continue;
+        rt->rays++;
+        if (bvh_occluded(rt->accel, rt->sc, &shadow)) continue; /* V = 0 */
+        rgb c = rgb_scale(m->diffuse, ndotl);                  /* kd max(N.L, 0) */
+        if (has_ks) {
+            vec3 half = vec3_normalize(vec3_add(ldir, view));  /* H = (L + V) / |L + V| */
+            double ndoth = vec3_dot(n, half);
+            if (ndoth > 0) c = rgb_madd(c, m->specular, pow(ndoth, m->shininess)); /* ks (N.H)^s */
+        }
+        sum = rgb_fma(sum, l->color, rgb_scale(c, 1 / atten));
+    }
+    return sum;
+}
+
+static rgb miss(raytracer *rt, vec3 d, int depth)
+{
+    /* camera rays see the environment as the background; reflected rays see it unless the
+     * scene asks for the lecture's contrast, `envmiss black` */
+    if (depth > 0 && rt->sc->envmiss == ENVMISS_BLACK) return rgb_gray(0);
+    return envmap_radiance(&rt->env, d);
+}
+
+static rgb trace(raytracer *rt, ray r, int depth, double weight)
+{
+    hit h;
+    rt->rays++;
+    if (!bvh_intersect(rt->accel, rt->sc, &r, &h)) return miss(rt, r.d, depth);
+    const material *m = &rt->sc->materials[h.material];
+    vec3 d = vec3_normalize(r.d), view = vec3_neg(d);
+    int outside = vec3_dot(d, h.ng) < 0;
+    /* shade with normals facing the viewer (two-sided surfaces) */
+    vec3 n = outside ? h.ns : vec3_neg(h.ns);
+    vec3 ng = outside ? h.ng : vec3_neg(h.ng);
+    if (vec3_dot(n, view) < 0) n = ng; /* interpolated normal facing away: fall back */
+
+    rgb c = rgb_add(m->ambient, m->emission);
+    c = rgb_add(c, direct_lights(rt, &h, n, view, m, m->brdf == BRDF_PHONG || m->brdf == BRDF_GGX));
+    if (depth >= rt->maxdepth) return c;
+
+    if (m->brdf == BRDF_GLASS) {
+        /* entering: eta = ior / 1; leaving: eta = 1 / ior */
+        double eta = outside ? m->ior : 1.0 / m->ior;
+        double cos_i = vec3_dot(view, n);
+        double F = fresnel_dielectric(cos_i, eta);
+        vec3 refl = vec3_reflect(d, n);
+        if (weight * F > RAYTRACER_MIN_WEIGHT)
+            c = rgb_madd(c, trace(rt, ray_spawn(h.p, h.ng, refl), depth + 1, weight * F), F);
+        vec3 tdir;
+        if (F < 1 && weight * (1 - F) > RAYTRACER_MIN_WEIGHT && fresnel_refract(d, n, eta, &tdir))
+            c = rgb_madd(c, trace(rt, ray_spawn(h.p, h.ng, tdir), depth + 1, weight * (1 - F)), 1 - F);
+        return c;
+    }
+    double ks = rgb_max(m->specular);
+    if (ks > 0 && weight * ks > RAYTRACER_MIN_WEIGHT) {
+        /* Color += reflectivity * Color of reflected ray */
+        vec3 refl = vec3_reflect(d, n);
+        rgb li = trace(rt, ray_spawn(h.p, h.ng, refl), depth + 1, weight * ks);
+        c = rgb_fma(c, m->specular, li);
+    }
+    return c;
+}
+
+rgb raytracer_trace(raytracer *rt, ray r) { return trace(rt, r, 0, 1.0); }

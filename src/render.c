@@ -1,0 +1,84 @@
+/* render.c - the pixel loop (see include/envtex/render.h). */
+#include "envtex/render.h"
+
+#include <string.h>
+#include <time.h>
+
+#include "envtex/bvh.h"
+#include "envtex/camera.h"
+#include "envtex/raytracer.h"
+#include "envtex/rng.h"
+
+render_opts render_defaults(void)
+{
+    render_opts o;
+    memset(&o, 0, sizeof o);
+    return o;
+}
+
+static double now_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+int render_scene(const scene *sc, const render_opts *opts, image *out, render_stats *stats, error *err)
+{
+    render_opts def = render_defaults();
+    if (!opts) opts = &def;
+    memset(stats, 0, sizeof *stats);
+    out->w = out->h = 0;
+    out->px = NULL;
+    if (sc->integrator != INTEGRATOR_RAYTRACER)
+        return error_set(err, sc->path, 0,
+                         "integrator '%s' is not implemented yet; this version renders only 'raytracer'",
+                         scene_integrator_name(sc->integrator));
+    int spp = opts->spp > 0 ? opts->spp : sc->spp;
+    if (spp < 1 || spp > SCENE_MAX_SPP)
+        return error_set(err, sc->path, 0, "spp %d is out of range [1, %d]", spp, SCENE_MAX_SPP);
+
+    bvh accel;
+    double t0 = now_seconds();
+    if (bvh_build(&accel, sc, err)) return -1;
+    stats->build_seconds = now_seconds() - t0;
+    if (image_alloc(out, sc->width, sc->height, err)) {
+        bvh_free(&accel);
+        return error_prefix(err, "%s: output image", sc->path);
+    }
+
+    camera cam;
+    camera_init(&cam, sc->eye, sc->center, sc->up, sc->fovy, sc->width, sc->height);
+    raytracer rt;
+    raytracer_init(&rt, sc, &accel);
+
+    double t1 = now_seconds();
+    for (int y = 0; y < sc->height; y++) {
+        for (int x = 0; x < sc->width; x++) {
+            rng r;
+            rng_seed(&r, opts->seed, (uint64_t)y * (uint64_t)sc->width + (uint64_t)x);
+            rgb sum = rgb_gray(0);
+            for (int s = 0; s < spp; s++) {
+                double jx = 0.5, jy = 0.5;
+                if (spp > 1) {
+                    jx = rng_uniform(&r);
+                    jy = rng_uniform(&r);
+                }
+                sum = rgb_add(sum, raytracer_trace(&rt, camera_ray(&cam, x + jx, y + jy)));
+            }
+            rgb c = rgb_scale(sum, 1.0 / spp);
+            if (!rgb_is_finite(c)) stats->nonfinite_pixels++;
+            image_set(out, x, y, c);
+        }
+        if (opts->progress) opts->progress(opts->progress_ctx, y + 1, sc->height);
+    }
+    stats->seconds = now_seconds() - t1;
+    stats->rays = rt.rays;
+    stats->spp = spp;
+    stats->prims = accel.n_prims;
+    stats->bvh_is_tree = accel.is_tree;
+    stats->bvh_nodes = accel.n_nodes;
+    stats->bvh_depth = accel.depth;
+    bvh_free(&accel);
+    return 0;
+}

@@ -1,0 +1,54 @@
+/* sphere.c - ray-sphere intersection under an affine transform (see include/envtex/sphere.h). */
+#include "envtex/sphere.h"
+
+int sphere_intersect(const scene_sphere *s, const ray *r, double *t_out)
+{
+    /* Object-space ray: o' = M^-1 o - c, d' = M^-1 d (not renormalized: t stays the world t). */
+    vec3 o = vec3_sub(mat4_point(&s->inv, r->o), s->center);
+    vec3 d = mat4_dir(&s->inv, r->d);
+    /* |o + t d|^2 = R^2  ->  a t^2 + 2 b t + c = 0 with a = d.d, b = o.d, c = o.o - R^2 */
+    double a = vec3_dot(d, d), b = vec3_dot(o, d);
+    if (!(a > 0)) return 0;
+    /* c computed as |o - (o.d/a) d|^2 - (R^2 - ...) form loses less precision far away:
+     * discriminant/a^2 = R^2 - |o - (b/a) d|^2  (Hearn & Baker; Ray Tracing Gems ch. 7) */
+    vec3 perp = vec3_madd(o, d, -b / a);
+    double R2 = s->radius * s->radius;
+    double disc = R2 - vec3_dot(perp, perp); /* = (b^2 - a c) / a */
+    if (disc < 0) return 0;
+    double c = vec3_dot(o, o) - R2;
+    /* stable roots: q = -(b + sign(b) sqrt(a disc)); t0 = q / a, t1 = c / q */
+    double q = -(b + copysign(sqrt(a * disc), b));
+    double t0 = q / a, t1 = q != 0 ? c / q : t0;
+    if (t0 > t1) { double tmp = t0; t0 = t1; t1 = tmp; }
+    if (t0 > r->tmin && t0 < r->tmax) { *t_out = t0; return 1; }
+    if (t1 > r->tmin && t1 < r->tmax) { *t_out = t1; return 1; }
+    return 0;
+}
+
+void sphere_hit(const scene_sphere *s, const ray *r, double t, hit *h)
+{
+    vec3 po = vec3_add(mat4_point(&s->inv, r->o), vec3_scale(mat4_dir(&s->inv, r->d), t));
+    vec3 local = vec3_sub(po, s->center);
+    h->t = t;
+    h->p = mat4_point(&s->xf, po);
+    /* normal: object normal (p - c) through the inverse transpose */
+    h->ng = h->ns = vec3_normalize(mat4_normal(&s->inv, local));
+    vec3 u = vec3_normalize(local);
+    double phi = atan2(u.y, u.x);
+    if (phi < 0) phi += 2 * M_PI;
+    h->bary = (uv2){atan2(sqrt(u.x * u.x + u.y * u.y), u.z), phi};
+}
+
+void sphere_bounds(const scene_sphere *s, vec3 *lo, vec3 *hi)
+{
+    *lo = vec3_make(INFINITY, INFINITY, INFINITY);
+    *hi = vec3_neg(*lo);
+    for (int i = 0; i < 8; i++) {
+        vec3 c = vec3_make(s->center.x + (i & 1 ? s->radius : -s->radius),
+                           s->center.y + (i & 2 ? s->radius : -s->radius),
+                           s->center.z + (i & 4 ? s->radius : -s->radius));
+        vec3 w = mat4_point(&s->xf, c);
+        *lo = vec3_min(*lo, w);
+        *hi = vec3_max(*hi, w);
+    }
+}
