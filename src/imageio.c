@@ -1,16 +1,156 @@
-/* imageio.c - STUB until the image I/O modules land. */
+/* imageio.c - read and write images by file name (see include/envtex/imageio.h). */
 #include "envtex/imageio.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "envtex/exrfile.h"
+#include "envtex/pfm.h"
+#include "envtex/pngfile.h"
+#include "envtex/rgbe.h"
+
+/* ---- atomic writes ------------------------------------------------------------------------- */
+
+int imageio_tmp_open(const char *path, char *tmp_path, error *err)
+{
+    /* "PATH.tmp.XXXXXX": same folder as the target, so rename() never crosses file systems */
+    int n = snprintf(tmp_path, ERROR_FILE_MAX, "%s.tmp.XXXXXX", path);
+    if (n < 0 || n >= ERROR_FILE_MAX) {
+        tmp_path[0] = '\0';
+        return error_set(err, path, 0, "path is too long");
+    }
+    int fd = mkstemp(tmp_path);
+    if (fd < 0) {
+        int e = errno;
+        tmp_path[0] = '\0';
+        return error_set(err, path, 0, "cannot create a file here: %s", strerror(e));
+    }
+    /* mkstemp makes the file 0600; give it the mode a plain fopen would (0666 less umask) */
+    mode_t mask = umask(0);
+    umask(mask);
+    if (fchmod(fd, 0666 & ~mask) != 0) { /* not fatal: the file is merely private */ }
+    return fd;
+}
+
+int imageio_tmp_commit(const char *tmp_path, const char *path, error *err)
+{
+    if (rename(tmp_path, path) != 0) {
+        int e = errno;
+        unlink(tmp_path);
+        return error_set(err, path, 0, "cannot replace the file: %s", strerror(e));
+    }
+    return 0;
+}
+
+void imageio_tmp_abandon(const char *tmp_path)
+{
+    if (tmp_path && tmp_path[0]) unlink(tmp_path);
+}
+
+/* ---- whole files --------------------------------------------------------------------------- */
+
+int imageio_read_all(const char *path, unsigned char **data, size_t *size, error *err)
+{
+    *data = NULL;
+    *size = 0;
+    int fd = open(path, O_RDONLY);
+    if (fd < 0) return error_set(err, path, 0, "cannot open: %s", strerror(errno));
+    struct stat st;
+    if (fstat(fd, &st) != 0) {
+        int e = errno;
+        close(fd);
+        return error_set(err, path, 0, "cannot open: %s", strerror(e));
+    }
+    if (S_ISDIR(st.st_mode)) {
+        close(fd);
+        return error_set(err, path, 0, "cannot open: %s", strerror(EISDIR));
+    }
+    if (!S_ISREG(st.st_mode) || (uint64_t)st.st_size > (uint64_t)SIZE_MAX - 1) {
+        close(fd);
+        return error_set(err, path, 0, "cannot open: not a regular file");
+    }
+    size_t n = (size_t)st.st_size, done = 0;
+    unsigned char *buf = malloc(n + 1); /* +1: never malloc(0), and room for a terminating 0 */
+    if (!buf) {
+        close(fd);
+        return error_set(err, path, 0, "out of memory reading %zu bytes", n);
+    }
+    while (done < n) {
+        ssize_t got = read(fd, buf + done, n - done);
+        if (got < 0 && errno == EINTR) continue;
+        if (got < 0) {
+            int e = errno;
+            free(buf);
+            close(fd);
+            return error_set(err, path, 0, "read error: %s", strerror(e));
+        }
+        if (got == 0) break; /* the file shrank: read what is there */
+        done += (size_t)got;
+    }
+    close(fd);
+    buf[done] = 0;
+    *data = buf;
+    *size = done;
+    return 0;
+}
+
+/* ---- by magic / by extension --------------------------------------------------------------- */
+
 int imageio_read(const char *path, image *out, error *err)
 {
-    out->w = out->h = 0; out->px = NULL;
-    return error_set(err, path, 0, "image reading is not implemented yet");
+    out->w = out->h = 0;
+    out->px = NULL;
+    int fd = open(path, O_RDONLY);
+    if (fd < 0) return error_set(err, path, 0, "cannot open: %s", strerror(errno));
+    struct stat st;
+    if (fstat(fd, &st) == 0 && S_ISDIR(st.st_mode)) {
+        close(fd);
+        return error_set(err, path, 0, "cannot open: %s", strerror(EISDIR));
+    }
+    unsigned char m[8] = {0};
+    ssize_t n;
+    do n = read(fd, m, sizeof m); while (n < 0 && errno == EINTR);
+    int e = errno;
+    close(fd);
+    if (n < 0) return error_set(err, path, 0, "cannot read: %s", strerror(e));
+    if (n == 0) return error_set(err, path, 0, "file is empty");
+
+    if (n >= 4 && memcmp(m, EXRFILE_MAGIC, 4) == 0) return exrfile_read(path, out, err);
+    if (n >= 8 && memcmp(m, PNGFILE_MAGIC, 8) == 0) return pngfile_read(path, out, err);
+    if (n >= 2 && m[0] == '#' && m[1] == '?') return rgbe_read(path, out, err);
+    if (n >= 2 && m[0] == 'P' && (m[1] == 'F' || m[1] == 'f')) return pfm_read(path, out, err);
+    return error_set(err, path, 0,
+                     "unknown image format (not OpenEXR, PNG, Radiance .hdr or PFM)");
 }
+
+/* ".ext" of path, "" if none (a dot in a folder name does not count) */
+static const char *extension(const char *path)
+{
+    const char *dot = strrchr(path, '.'), *slash = strrchr(path, '/');
+    return dot && (!slash || dot > slash) ? dot : "";
+}
+
+int imageio_can_write(const char *path)
+{
+    const char *x = extension(path);
+    return !strcasecmp(x, ".exr") || !strcasecmp(x, ".png") || !strcasecmp(x, ".pfm") ||
+           !strcasecmp(x, ".hdr");
+}
+
 int imageio_write(const char *path, const image *im, const tonemap_params *tm, error *err)
 {
-    (void)im; (void)tm;
-    return error_set(err, path, 0, "image writing is not implemented yet");
+    const char *x = extension(path);
+    if (!strcasecmp(x, ".exr")) return exrfile_write(path, im, 0, err);
+    if (!strcasecmp(x, ".png")) return pngfile_write(path, im, tm, err);
+    if (!strcasecmp(x, ".pfm")) return pfm_write(path, im, err);
+    if (!strcasecmp(x, ".hdr")) return rgbe_write(path, im, err);
+    return error_set(err, path, 0, "cannot tell the image format from the name; use .exr, .png, "
+                                   ".pfm or .hdr");
 }
-int imageio_can_write(const char *path) { (void)path; return 0; }
-int imageio_tmp_open(const char *path, char *tmp_path, error *err) { (void)tmp_path; return error_set(err, path, 0, "stub"); }
-int imageio_tmp_commit(const char *tmp_path, const char *path, error *err) { (void)tmp_path; return error_set(err, path, 0, "stub"); }
-void imageio_tmp_abandon(const char *tmp_path) { (void)tmp_path; }

@@ -6,12 +6,16 @@
  *     if (imageio_read("data/env/sky.exr", &im, &err)) ...   // err: "sky.exr: truncated ..."
  *     if (imageio_write("out/demo.png", &im, NULL, &err)) ...  // tone mapped sRGB, atomic
  *
- * Reading picks the format by the file's magic bytes (not its name).  Writing picks it by the
+ * Reading picks the format by the file's magic bytes (not its name): OpenEXR (76 2f 31 01),
+ * PNG (its 8-byte signature), Radiance ("#?"), PFM ("PF" or "Pf").  Writing picks it by the
  * extension: .exr (linear float RGB, ZIP), .png (8-bit sRGB after tone mapping), .pfm (linear
- * float).  Every write goes to a temporary file in the same folder and is renamed over the
- * target only when complete, so a failure never leaves a partial file or clobbers an old one.
- * Errors name the file (err->file) and say what is wrong; hostile headers are refused before
- * any allocation (image_check_size).
+ * float), .hdr (Radiance RGBE, run-length encoded).  Every write goes to a temporary file
+ * "PATH.tmp.XXXXXX" in the same folder and is renamed over the target only when complete, so a
+ * failure never leaves a partial file and an existing target stays byte-identical.
+ * Errors name the file (err->file) and say what is wrong ("cannot open: No such file or
+ * directory", "cannot open: Is a directory", "unknown image format ..."); hostile headers are
+ * refused before any allocation (image_check_size).  The formats themselves are in exrfile.h,
+ * pngfile.h, rgbe.h and pfm.h.
  */
 #ifndef ENVTEX_IMAGEIO_H
 #define ENVTEX_IMAGEIO_H
@@ -24,18 +28,26 @@
  * replicated, alpha dropped).  *out must not own pixels; on failure it stays empty. */
 int imageio_read(const char *path, image *out, error *err);
 
-/* Write `im` to `path`, format by extension (.exr .png .pfm, case-insensitive).  `tm` is used
- * for .png only; NULL means tonemap_defaults().  Atomic (temporary file + rename). */
+/* Write `im` to `path`, format by extension (.exr .png .pfm .hdr, case-insensitive; an
+ * unknown extension is an error).  `tm` is used for .png only; NULL means tonemap_defaults().
+ * An empty image (no pixels, or a size image_check_size refuses) is an error and nothing is
+ * written.  Atomic (temporary file + rename). */
 int imageio_write(const char *path, const image *im, const tonemap_params *tm, error *err);
 
 /* 1 if `path` ends in an extension imageio_write knows, else 0. */
 int imageio_can_write(const char *path);
 
 /* Atomic-write helpers shared by the format modules: open a temporary file beside `path`
- * (its name goes to tmp_path, at least ERROR_FILE_MAX bytes), and commit (fsync-free rename) or
- * abandon it (unlink).  Library code outside imageio may use them for other output files. */
+ * (its name goes to tmp_path, at least ERROR_FILE_MAX bytes; mode 0666 less the umask), and
+ * commit (fsync-free rename) or abandon it (unlink).  The caller closes the descriptor (and
+ * checks close / fclose) BEFORE commit.  A failed commit unlinks the temporary file itself.
+ * Library code outside imageio may use them for other output files. */
 int imageio_tmp_open(const char *path, char *tmp_path, error *err); /* returns an fd or -1 */
 int imageio_tmp_commit(const char *tmp_path, const char *path, error *err);
 void imageio_tmp_abandon(const char *tmp_path);
+
+/* Read a whole file into *data (malloc'd, one extra 0 byte after the *size bytes; free() it).
+ * Errors: "cannot open: <strerror>" (missing file, folder, not a regular file), read errors. */
+int imageio_read_all(const char *path, unsigned char **data, size_t *size, error *err);
 
 #endif

@@ -1,0 +1,443 @@
+/* exrfile.c - OpenEXR read / write through OpenEXRCore 3.1 (see include/envtex/exrfile.h).
+ *
+ * Reading decodes whole chunks (scanline blocks or tiles): the library converts each chunk's
+ * half / float / uint samples into an interleaved RGB float buffer in one call, and we copy that
+ * buffer's rows into the image, clipped to the display window.  We do our own file I/O
+ * (pread on a descriptor we opened) so that "cannot open" errors are ours and so that the
+ * library's error messages reach our error struct through user_data instead of stderr.
+ */
+#include "envtex/exrfile.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <openexr.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "envtex/imageio.h"
+
+/* ---- our stream: a file descriptor plus the first message the library reported ------------- */
+
+typedef struct exr_stream {
+    int fd;
+    int64_t size;  /* file size for reading (lets the library validate offsets); -1 for writing */
+    char msg[512]; /* first message from OpenEXRCore, "" if none */
+} exr_stream;
+
+static void stream_on_error(exr_const_context_t ctxt, exr_result_t code, const char *msg)
+{
+    void *ud = NULL;
+    if (!ctxt || exr_get_user_data(ctxt, &ud) != EXR_ERR_SUCCESS || !ud) return;
+    exr_stream *s = ud;
+    if (s->msg[0]) return; /* keep the first: later ones are usually consequences */
+    snprintf(s->msg, sizeof s->msg, "%s", msg ? msg : exr_get_default_error_message(code));
+}
+
+static int64_t stream_read(exr_const_context_t ctxt, void *ud, void *buffer, uint64_t sz,
+                           uint64_t offset, exr_stream_error_func_ptr_t error_cb)
+{
+    exr_stream *s = ud;
+    uint8_t *p = buffer;
+    uint64_t done = 0;
+    while (done < sz) {
+        ssize_t n = pread(s->fd, p + done, (size_t)(sz - done), (off_t)(offset + done));
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) {
+            error_cb(ctxt, EXR_ERR_READ_IO, "read error: %s", strerror(errno));
+            return -1;
+        }
+        if (n == 0) break; /* end of file: the library reports the short read */
+        done += (uint64_t)n;
+    }
+    return (int64_t)done;
+}
+
+static int64_t stream_size(exr_const_context_t ctxt, void *ud)
+{
+    (void)ctxt;
+    return ((exr_stream *)ud)->size;
+}
+
+static int64_t stream_write(exr_const_context_t ctxt, void *ud, const void *buffer, uint64_t sz,
+                            uint64_t offset, exr_stream_error_func_ptr_t error_cb)
+{
+    exr_stream *s = ud;
+    const uint8_t *p = buffer;
+    uint64_t done = 0;
+    while (done < sz) {
+        ssize_t n = pwrite(s->fd, p + done, (size_t)(sz - done), (off_t)(offset + done));
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) {
+            error_cb(ctxt, EXR_ERR_WRITE_IO, "write error: %s", n < 0 ? strerror(errno) : "no progress");
+            return -1;
+        }
+        done += (uint64_t)n;
+    }
+    return (int64_t)done;
+}
+
+/* The library's message if it gave one, else its text for the code. */
+static const char *exr_why(const exr_stream *s, exr_result_t r)
+{
+    return s->msg[0] ? s->msg : exr_get_default_error_message(r);
+}
+
+/* ---- reading ------------------------------------------------------------------------------- */
+
+/* Which channels feed r, g, b: indices into the channel list; grey = 1 when only Y is read. */
+typedef struct exr_pick {
+    int idx[3];
+    int grey;
+} exr_pick;
+
+static int find_channel(const exr_attr_chlist_t *cl, const char *name)
+{
+    for (int i = 0; i < cl->num_channels; i++)
+        if (strcmp(cl->entries[i].name.str, name) == 0) return i;
+    return -1;
+}
+
+/* R,G,B; else Y alone; else the one layer "L.R","L.G","L.B".  0 ok, -1 with a message. */
+static int pick_channels(const exr_attr_chlist_t *cl, exr_pick *pk, const char *path, error *err)
+{
+    pk->grey = 0;
+    pk->idx[0] = find_channel(cl, "R");
+    pk->idx[1] = find_channel(cl, "G");
+    pk->idx[2] = find_channel(cl, "B");
+    if (pk->idx[0] < 0 || pk->idx[1] < 0 || pk->idx[2] < 0) {
+        int y = find_channel(cl, "Y");
+        if (y >= 0 && (find_channel(cl, "RY") >= 0 || find_channel(cl, "BY") >= 0))
+            return error_set(err, path, 0,
+                             "OpenEXR luminance-chroma images (Y, RY, BY) are not supported; "
+                             "re-save as RGB");
+        if (y >= 0) {
+            pk->grey = 1;
+            pk->idx[0] = y;
+            pk->idx[1] = pk->idx[2] = -1;
+        } else {
+            /* one layer that has .R .G .B, e.g. "beauty.R": accepted only if it is the only one */
+            int found = 0;
+            for (int i = 0; i < cl->num_channels; i++) {
+                const char *n = cl->entries[i].name.str;
+                size_t len = strlen(n);
+                if (len < 3 || strcmp(n + len - 2, ".R") != 0) continue;
+                char g[256], b[256];
+                if (len >= sizeof g) continue;
+                memcpy(g, n, len + 1);
+                memcpy(b, n, len + 1);
+                g[len - 1] = 'G';
+                b[len - 1] = 'B';
+                int ig = find_channel(cl, g), ib = find_channel(cl, b);
+                if (ig < 0 || ib < 0) continue;
+                if (found++) break;
+                pk->idx[0] = i;
+                pk->idx[1] = ig;
+                pk->idx[2] = ib;
+            }
+            if (found != 1) {
+                char names[400] = "";
+                size_t at = 0;
+                for (int i = 0; i < cl->num_channels && at + 2 < sizeof names; i++) {
+                    int n = snprintf(names + at, sizeof names - at, "%s%s", i ? " " : "",
+                                     cl->entries[i].name.str);
+                    if (n < 0) break;
+                    at += (size_t)n;
+                }
+                return error_set(err, path, 0,
+                                 found ? "several layers have R, G, B channels (%s); envtex "
+                                         "reads one: keep only one layer"
+                                       : "no R, G, B or Y channels (channels: %s)",
+                                 names);
+            }
+        }
+    }
+    for (int k = 0; k < 3; k++) {
+        if (pk->idx[k] < 0) continue;
+        const exr_attr_chlist_entry_t *e = &cl->entries[pk->idx[k]];
+        if (e->x_sampling != 1 || e->y_sampling != 1)
+            return error_set(err, path, 0, "channel %s is sub-sampled (%d x %d); not supported",
+                             e->name.str, e->x_sampling, e->y_sampling);
+        if (e->pixel_type != EXR_PIXEL_HALF && e->pixel_type != EXR_PIXEL_FLOAT &&
+            e->pixel_type != EXR_PIXEL_UINT)
+            return error_set(err, path, 0, "channel %s has an unknown pixel type",
+                             e->name.str);
+    }
+    return 0;
+}
+
+/* Where decoded chunks go. */
+typedef struct exr_target {
+    image *im;
+    exr_attr_box2i_t disp; /* display window: image pixel (0,0) is disp.min */
+    float *buf;            /* one chunk, interleaved RGB float, row stride buf_w pixels */
+    int buf_w;
+    exr_pick pick;
+} exr_target;
+
+/* Decode the chunk `ci` whose top-left pixel is (x0, y0) in file coordinates into t->buf and copy
+ * it into the image, clipped to the display window. */
+static int decode_chunk(exr_context_t ctx, const exr_chunk_info_t *ci, int x0, int y0,
+                        exr_decode_pipeline_t *dec, int *dec_ready, exr_target *t,
+                        exr_stream *s, const char *path, error *err)
+{
+    exr_result_t r = *dec_ready ? exr_decoding_update(ctx, 0, ci, dec)
+                                : exr_decoding_initialize(ctx, 0, ci, dec);
+    if (r != EXR_ERR_SUCCESS) goto fail;
+    *dec_ready = 1;
+    if (ci->width > t->buf_w) { r = EXR_ERR_CORRUPT_CHUNK; goto fail; }
+    for (int c = 0; c < dec->channel_count; c++) {
+        exr_coding_channel_info_t *ch = &dec->channels[c];
+        ch->decode_to_ptr = NULL;
+        for (int k = 0; k < 3; k++) {
+            if (t->pick.idx[k] != c) continue;
+            ch->decode_to_ptr = (uint8_t *)(t->buf + k);
+            ch->user_pixel_stride = 3 * (int32_t)sizeof(float);
+            ch->user_line_stride = 3 * (int32_t)sizeof(float) * t->buf_w;
+            ch->user_data_type = EXR_PIXEL_FLOAT;
+            ch->user_bytes_per_element = (int16_t)sizeof(float);
+        }
+    }
+    r = exr_decoding_choose_default_routines(ctx, 0, dec);
+    if (r != EXR_ERR_SUCCESS) goto fail;
+    r = exr_decoding_run(ctx, 0, dec);
+    if (r != EXR_ERR_SUCCESS) goto fail;
+
+    /* copy rows, clipped to the display window */
+    image *im = t->im;
+    for (int j = 0; j < ci->height; j++) {
+        long y = (long)y0 + j - t->disp.min.y;
+        if (y < 0 || y >= im->h) continue;
+        long xa = (long)x0 - t->disp.min.x, xb = xa + ci->width; /* [xa, xb) in image columns */
+        long skip = xa < 0 ? -xa : 0;
+        if (xa < 0) xa = 0;
+        if (xb > im->w) xb = im->w;
+        if (xa >= xb) continue;
+        const float *src = t->buf + 3 * ((size_t)j * (size_t)t->buf_w + (size_t)skip);
+        float *dst = image_px(im, (int)xa, (int)y);
+        size_t n = (size_t)(xb - xa);
+        if (!t->pick.grey) {
+            memcpy(dst, src, n * 3 * sizeof *dst);
+        } else {
+            for (size_t i = 0; i < n; i++) dst[3 * i] = dst[3 * i + 1] = dst[3 * i + 2] = src[3 * i];
+        }
+    }
+    return 0;
+fail:
+    return error_set(err, path, 0, "cannot decode OpenEXR pixels near (%d, %d): %s", x0, y0,
+                     exr_why(s, r));
+}
+
+int exrfile_read(const char *path, image *out, error *err)
+{
+    out->w = out->h = 0;
+    out->px = NULL;
+    int rc = -1, dec_ready = 0;
+    exr_stream s = {.fd = -1, .size = 0, .msg = ""};
+    exr_context_t ctx = NULL;
+    exr_decode_pipeline_t dec = EXR_DECODE_PIPELINE_INITIALIZER;
+    exr_target t = {0};
+    image im = {0};
+    exr_result_t r;
+
+    s.fd = open(path, O_RDONLY);
+    if (s.fd < 0) return error_set(err, path, 0, "cannot open: %s", strerror(errno));
+    struct stat st;
+    if (fstat(s.fd, &st) != 0 || S_ISDIR(st.st_mode)) {
+        error_set(err, path, 0, "cannot open: %s", S_ISDIR(st.st_mode) ? strerror(EISDIR) : strerror(errno));
+        goto done;
+    }
+    s.size = (int64_t)st.st_size;
+
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    init.error_handler_fn = stream_on_error;
+    init.user_data = &s;
+    init.read_fn = stream_read;
+    init.size_fn = stream_size;
+    init.max_image_width = init.max_image_height = (int)IMAGE_MAX_SIDE;
+    init.max_tile_width = init.max_tile_height = (int)IMAGE_MAX_SIDE;
+    /* A damaged chunk table is an error, not something to rebuild by scanning the file. */
+    init.flags = EXR_CONTEXT_FLAG_DISABLE_CHUNK_RECONSTRUCTION;
+    r = exr_start_read(&ctx, path, &init);
+    if (r != EXR_ERR_SUCCESS) {
+        error_set(err, path, 0, "not a readable OpenEXR file: %s", exr_why(&s, r));
+        goto done;
+    }
+
+    exr_storage_t storage;
+    exr_compression_t comp;
+    const exr_attr_chlist_t *chans = NULL;
+    exr_attr_box2i_t dw;
+    if ((r = exr_get_storage(ctx, 0, &storage)) || (r = exr_get_compression(ctx, 0, &comp)) ||
+        (r = exr_get_channels(ctx, 0, &chans)) || (r = exr_get_data_window(ctx, 0, &dw)) ||
+        (r = exr_get_display_window(ctx, 0, &t.disp)) || !chans) {
+        error_set(err, path, 0, "OpenEXR header is incomplete: %s", exr_why(&s, r));
+        goto done;
+    }
+    if (storage != EXR_STORAGE_SCANLINE && storage != EXR_STORAGE_TILED) {
+        error_set(err, path, 0, "deep OpenEXR images are not supported");
+        goto done;
+    }
+    if (comp == EXR_COMPRESSION_DWAA || comp == EXR_COMPRESSION_DWAB) {
+        error_set(err, path, 0,
+                  "%s compression: OpenEXR 3.1's C API cannot decode DWAA/DWAB; re-save the "
+                  "file with ZIP compression (e.g. `oiiotool in.exr --compression zip -o "
+                  "out.exr`, or from any image editor)",
+                  comp == EXR_COMPRESSION_DWAA ? "DWAA" : "DWAB");
+        goto done;
+    }
+    if (pick_channels(chans, &t.pick, path, err)) goto done;
+
+    /* sizes in long so a hostile window cannot overflow before the check */
+    long disp_w = (long)t.disp.max.x - t.disp.min.x + 1, disp_h = (long)t.disp.max.y - t.disp.min.y + 1;
+    long data_w = (long)dw.max.x - dw.min.x + 1, data_h = (long)dw.max.y - dw.min.y + 1;
+    if (image_check_size(disp_w, disp_h, path, err)) { error_prefix(err, "display window"); goto done; }
+    if (image_check_size(data_w, data_h, path, err)) { error_prefix(err, "data window"); goto done; }
+
+    /* chunk geometry: scanline blocks of `lines` rows, or tiles of level 0 */
+    int32_t tile_w = 0, tile_h = 0, lines = 0;
+    if (storage == EXR_STORAGE_TILED) {
+        if ((r = exr_get_tile_sizes(ctx, 0, 0, 0, &tile_w, &tile_h)) || tile_w < 1 || tile_h < 1) {
+            error_set(err, path, 0, "bad OpenEXR tile description: %s", exr_why(&s, r));
+            goto done;
+        }
+        t.buf_w = (int)(tile_w < data_w ? tile_w : data_w);
+        lines = (int32_t)(tile_h < data_h ? tile_h : data_h);
+    } else {
+        if ((r = exr_get_scanlines_per_chunk(ctx, 0, &lines)) || lines < 1) {
+            error_set(err, path, 0, "bad OpenEXR compression block size: %s", exr_why(&s, r));
+            goto done;
+        }
+        t.buf_w = (int)data_w;
+        if (lines > data_h) lines = (int32_t)data_h;
+    }
+    if (image_alloc(&im, (int)disp_w, (int)disp_h, err)) { error_prefix(err, "%s", path); goto done; }
+    t.im = &im;
+    t.buf = malloc((size_t)t.buf_w * (size_t)lines * 3 * sizeof *t.buf);
+    if (!t.buf) {
+        error_set(err, path, 0, "out of memory for a %d x %d OpenEXR chunk", t.buf_w, (int)lines);
+        goto done;
+    }
+
+    exr_chunk_info_t ci;
+    if (storage == EXR_STORAGE_TILED) {
+        long ntx = (data_w + tile_w - 1) / tile_w, nty = (data_h + tile_h - 1) / tile_h;
+        for (long ty = 0; ty < nty; ty++)
+            for (long tx = 0; tx < ntx; tx++) {
+                r = exr_read_tile_chunk_info(ctx, 0, (int)tx, (int)ty, 0, 0, &ci);
+                if (r != EXR_ERR_SUCCESS) {
+                    error_set(err, path, 0, "bad OpenEXR tile (%ld, %ld): %s", tx, ty, exr_why(&s, r));
+                    goto done;
+                }
+                if (decode_chunk(ctx, &ci, (int)(dw.min.x + tx * tile_w), (int)(dw.min.y + ty * tile_h),
+                                 &dec, &dec_ready, &t, &s, path, err))
+                    goto done;
+            }
+    } else {
+        for (long y = dw.min.y; y <= dw.max.y; y += lines) {
+            r = exr_read_scanline_chunk_info(ctx, 0, (int)y, &ci);
+            if (r != EXR_ERR_SUCCESS) {
+                error_set(err, path, 0, "bad OpenEXR scanline block at y = %ld: %s", y, exr_why(&s, r));
+                goto done;
+            }
+            if (decode_chunk(ctx, &ci, dw.min.x, ci.start_y, &dec, &dec_ready, &t, &s, path, err))
+                goto done;
+        }
+    }
+    *out = im;
+    im.px = NULL;
+    rc = 0;
+done:
+    if (dec_ready) exr_decoding_destroy(ctx, &dec);
+    if (ctx) exr_finish(&ctx);
+    if (s.fd >= 0) close(s.fd);
+    free(t.buf);
+    image_free(&im);
+    return rc;
+}
+
+/* ---- writing ------------------------------------------------------------------------------- */
+
+int exrfile_write(const char *path, const image *im, int half, error *err)
+{
+    if (!im || !im->px || image_check_size(im->w, im->h, path, err))
+        return error_set(err, path, 0, "cannot write an empty or invalid image");
+    char tmp[ERROR_FILE_MAX];
+    exr_stream s = {.fd = -1, .size = -1, .msg = ""};
+    exr_context_t ctx = NULL;
+    exr_encode_pipeline_t enc = EXR_ENCODE_PIPELINE_INITIALIZER;
+    int enc_ready = 0, rc = -1;
+    exr_result_t r;
+
+    s.fd = imageio_tmp_open(path, tmp, err);
+    if (s.fd < 0) return -1;
+
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    init.error_handler_fn = stream_on_error;
+    init.user_data = &s;
+    init.write_fn = stream_write;
+    r = exr_start_write(&ctx, path, EXR_WRITE_FILE_DIRECTLY, &init);
+    int part = 0;
+    if (r == EXR_ERR_SUCCESS) r = exr_add_part(ctx, "rgb", EXR_STORAGE_SCANLINE, &part);
+    if (r == EXR_ERR_SUCCESS)
+        r = exr_initialize_required_attr_simple(ctx, part, im->w, im->h, EXR_COMPRESSION_ZIP);
+    exr_pixel_type_t ptype = half ? EXR_PIXEL_HALF : EXR_PIXEL_FLOAT;
+    static const char *const names[3] = {"R", "G", "B"};
+    for (int k = 0; k < 3 && r == EXR_ERR_SUCCESS; k++)
+        r = exr_add_channel(ctx, part, names[k], ptype, EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
+    if (r == EXR_ERR_SUCCESS) r = exr_write_header(ctx);
+    if (r != EXR_ERR_SUCCESS) {
+        error_set(err, path, 0, "cannot write OpenEXR header: %s", exr_why(&s, r));
+        goto done;
+    }
+    int32_t lines = 0;
+    if ((r = exr_get_scanlines_per_chunk(ctx, part, &lines)) || lines < 1) {
+        error_set(err, path, 0, "cannot write OpenEXR: %s", exr_why(&s, r));
+        goto done;
+    }
+    for (int y = 0; y < im->h; y += lines) {
+        exr_chunk_info_t ci;
+        r = exr_write_scanline_chunk_info(ctx, part, y, &ci);
+        if (r == EXR_ERR_SUCCESS)
+            r = enc_ready ? exr_encoding_update(ctx, part, &ci, &enc)
+                          : exr_encoding_initialize(ctx, part, &ci, &enc);
+        if (r != EXR_ERR_SUCCESS) goto fail;
+        enc_ready = 1;
+        for (int c = 0; c < enc.channel_count; c++) {
+            exr_coding_channel_info_t *ch = &enc.channels[c];
+            int k = ch->channel_name[0] == 'R' ? 0 : ch->channel_name[0] == 'G' ? 1 : 2;
+            ch->encode_from_ptr = (const uint8_t *)(image_px(im, 0, y) + k);
+            ch->user_pixel_stride = 3 * (int32_t)sizeof(float);
+            ch->user_line_stride = 3 * (int32_t)sizeof(float) * im->w;
+            ch->user_data_type = EXR_PIXEL_FLOAT;
+            ch->user_bytes_per_element = (int16_t)sizeof(float);
+        }
+        if ((r = exr_encoding_choose_default_routines(ctx, part, &enc)) ||
+            (r = exr_encoding_run(ctx, part, &enc)))
+            goto fail;
+    }
+    if (enc_ready) exr_encoding_destroy(ctx, &enc);
+    enc_ready = 0;
+    r = exr_finish(&ctx); /* writes the chunk offset table */
+    ctx = NULL;
+    if (r != EXR_ERR_SUCCESS) goto fail;
+    int fd = s.fd;
+    s.fd = -1;
+    if (close(fd) != 0) {
+        error_set(err, path, 0, "cannot write: %s", strerror(errno));
+        goto done;
+    }
+    rc = imageio_tmp_commit(tmp, path, err);
+    tmp[0] = '\0'; /* commit removes the temporary file itself when it fails */
+    goto done;
+fail:
+    error_set(err, path, 0, "cannot write OpenEXR pixels: %s", exr_why(&s, r));
+done:
+    if (enc_ready) exr_encoding_destroy(ctx, &enc);
+    if (ctx) exr_finish(&ctx);
+    if (s.fd >= 0) close(s.fd);
+    if (rc != 0 && tmp[0]) imageio_tmp_abandon(tmp);
+    return rc;
+}

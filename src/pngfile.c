@@ -1,0 +1,189 @@
+/* pngfile.c - PNG read / write through libpng (see include/envtex/pngfile.h).
+ *
+ * libpng reports errors by calling an error function that must not return: ours copies the
+ * message and longjmps back to the setjmp in the function that called libpng.  Everything that
+ * must be freed after such a jump lives in a struct owned by the CALLER of that function, so no
+ * local variable of the setjmp function is relied on after the jump.
+ */
+#include "envtex/pngfile.h"
+
+#include <errno.h>
+#include <png.h>
+#include <setjmp.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "envtex/imageio.h"
+
+typedef struct png_job {
+    const char *path;
+    FILE *f;
+    png_structp png;
+    png_infop info;
+    unsigned char *bytes; /* decoded / encoded rows */
+    png_bytep *rows;
+    float *lut;           /* sRGB decode table, 256 or 65536 entries */
+    image im;
+    char msg[256];        /* libpng's message */
+} png_job;
+
+static void job_error(png_structp png, png_const_charp msg)
+{
+    png_job *job = png_get_error_ptr(png);
+    snprintf(job->msg, sizeof job->msg, "%s", msg ? msg : "libpng error");
+    png_longjmp(png, 1);
+}
+
+static void job_warning(png_structp png, png_const_charp msg) { (void)png; (void)msg; }
+
+/* ---- reading ------------------------------------------------------------------------------- */
+
+static int read_body(png_job *job, error *err)
+{
+    if (setjmp(png_jmpbuf(job->png)))
+        return error_set(err, job->path, 0, "corrupt or truncated PNG: %s", job->msg);
+    png_init_io(job->png, job->f);
+    png_read_info(job->png, job->info);
+    png_uint_32 w, h;
+    int depth, type, interlace;
+    png_get_IHDR(job->png, job->info, &w, &h, &depth, &type, &interlace, NULL, NULL);
+    if (image_check_size((long)w, (long)h, job->path, err)) return -1; /* before any pixel memory */
+
+    /* every layout to 8- or 16-bit RGB */
+    if (type == PNG_COLOR_TYPE_PALETTE) png_set_palette_to_rgb(job->png);
+    if (type == PNG_COLOR_TYPE_GRAY && depth < 8) png_set_expand_gray_1_2_4_to_8(job->png);
+    png_set_strip_alpha(job->png); /* alpha, and the alpha a palette's tRNS expands to */
+    if (type == PNG_COLOR_TYPE_GRAY || type == PNG_COLOR_TYPE_GRAY_ALPHA) png_set_gray_to_rgb(job->png);
+    if (interlace != PNG_INTERLACE_NONE) png_set_interlace_handling(job->png);
+    png_read_update_info(job->png, job->info);
+    int bytes_per = png_get_bit_depth(job->png, job->info) == 16 ? 2 : 1;
+    size_t rowbytes = png_get_rowbytes(job->png, job->info);
+    if (png_get_channels(job->png, job->info) != 3 || rowbytes != (size_t)w * 3 * (size_t)bytes_per)
+        return error_set(err, job->path, 0, "unexpected PNG layout after conversion");
+
+    if (image_alloc(&job->im, (int)w, (int)h, err)) return error_prefix(err, "%s", job->path);
+    job->bytes = malloc(rowbytes * h);
+    job->rows = malloc(sizeof *job->rows * h);
+    size_t levels = bytes_per == 2 ? 65536 : 256;
+    job->lut = malloc(sizeof *job->lut * levels);
+    if (!job->bytes || !job->rows || !job->lut)
+        return error_set(err, job->path, 0, "out of memory for a %u x %u PNG", (unsigned)w, (unsigned)h);
+    for (size_t i = 0; i < levels; i++) /* linear = srgb_decode(code / max code) */
+        job->lut[i] = (float)tonemap_srgb_decode((double)i / (double)(levels - 1));
+    for (png_uint_32 y = 0; y < h; y++) job->rows[y] = job->bytes + rowbytes * y;
+    png_read_image(job->png, job->rows);
+    png_read_end(job->png, NULL);
+
+    size_t count = (size_t)w * h * 3;
+    float *dst = job->im.px;
+    if (bytes_per == 1) {
+        for (size_t i = 0; i < count; i++) dst[i] = job->lut[job->bytes[i]];
+    } else {
+        for (size_t i = 0; i < count; i++) /* 16-bit samples are big endian */
+            dst[i] = job->lut[(size_t)job->bytes[2 * i] << 8 | job->bytes[2 * i + 1]];
+    }
+    return 0;
+}
+
+int pngfile_read(const char *path, image *out, error *err)
+{
+    out->w = out->h = 0;
+    out->px = NULL;
+    png_job job = {.path = path};
+    int rc = -1;
+    unsigned char sig[8];
+    job.f = fopen(path, "rb");
+    if (!job.f) return error_set(err, path, 0, "cannot open: %s", strerror(errno));
+    size_t got = fread(sig, 1, sizeof sig, job.f);
+    if (got == 0 && ferror(job.f)) { /* e.g. a folder: EISDIR */
+        error_set(err, path, 0, "cannot open: %s", strerror(errno));
+        goto done;
+    }
+    if (got != sizeof sig || png_sig_cmp(sig, 0, sizeof sig)) {
+        error_set(err, path, 0, "not a PNG file");
+        goto done;
+    }
+    job.png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &job, job_error, job_warning);
+    if (job.png) job.info = png_create_info_struct(job.png);
+    if (!job.png || !job.info) {
+        error_set(err, path, 0, "out of memory starting libpng");
+        goto done;
+    }
+    png_set_sig_bytes(job.png, sizeof sig);
+    if (read_body(&job, err)) goto done;
+    *out = job.im;
+    job.im.px = NULL;
+    rc = 0;
+done:
+    if (job.png) png_destroy_read_struct(&job.png, job.info ? &job.info : NULL, NULL);
+    fclose(job.f);
+    free(job.bytes);
+    free(job.rows);
+    free(job.lut);
+    image_free(&job.im);
+    return rc;
+}
+
+/* ---- writing ------------------------------------------------------------------------------- */
+
+static int write_body(png_job *job, int w, int h, const uint8_t *rgb8, error *err)
+{
+    if (setjmp(png_jmpbuf(job->png)))
+        return error_set(err, job->path, 0, "cannot write PNG: %s", job->msg);
+    png_init_io(job->png, job->f);
+    png_set_IHDR(job->png, job->info, (png_uint_32)w, (png_uint_32)h, 8, PNG_COLOR_TYPE_RGB,
+                 PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    png_set_sRGB(job->png, job->info, PNG_sRGB_INTENT_PERCEPTUAL);
+    png_write_info(job->png, job->info);
+    for (int y = 0; y < h; y++) png_write_row(job->png, rgb8 + (size_t)y * (size_t)w * 3);
+    png_write_end(job->png, NULL);
+    return 0;
+}
+
+int pngfile_write_rgb8(const char *path, int w, int h, const uint8_t *rgb8, error *err)
+{
+    if (!rgb8 || image_check_size(w, h, path, err))
+        return error_set(err, path, 0, "cannot write an empty or invalid image");
+    char tmp[ERROR_FILE_MAX];
+    png_job job = {.path = path};
+    int rc = -1;
+    int fd = imageio_tmp_open(path, tmp, err);
+    if (fd < 0) return -1;
+    job.f = fdopen(fd, "wb");
+    if (!job.f) {
+        close(fd);
+        error_set(err, path, 0, "cannot write: %s", strerror(errno));
+        goto done;
+    }
+    job.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &job, job_error, job_warning);
+    if (job.png) job.info = png_create_info_struct(job.png);
+    if (!job.png || !job.info) {
+        error_set(err, path, 0, "out of memory starting libpng");
+        goto done;
+    }
+    if (write_body(&job, w, h, rgb8, err)) goto done;
+    rc = 0;
+done:
+    if (job.png) png_destroy_write_struct(&job.png, job.info ? &job.info : NULL);
+    if (job.f && fclose(job.f) != 0 && rc == 0)
+        rc = error_set(err, path, 0, "cannot write: %s", strerror(errno));
+    if (rc != 0) {
+        imageio_tmp_abandon(tmp);
+        return -1;
+    }
+    return imageio_tmp_commit(tmp, path, err);
+}
+
+int pngfile_write(const char *path, const image *im, const tonemap_params *tm, error *err)
+{
+    if (!im || !im->px || image_check_size(im->w, im->h, path, err))
+        return error_set(err, path, 0, "cannot write an empty or invalid image");
+    tonemap_params def = tonemap_defaults();
+    uint8_t *buf = malloc((size_t)im->w * (size_t)im->h * 3);
+    if (!buf) return error_set(err, path, 0, "out of memory for a %d x %d PNG", im->w, im->h);
+    tonemap_image(tm ? tm : &def, im, buf);
+    int rc = pngfile_write_rgb8(path, im->w, im->h, buf, err);
+    free(buf);
+    return rc;
+}
