@@ -62,6 +62,7 @@ typedef struct parser {
     long cap_spheres, cap_tris;
     long cap_lights, cap_materials;
     /* bookkeeping */
+    long max_prims;            /* SCENE_MAX_PRIMS unless the options lower it */
     int seen_size, warned_order;
     char envmap_token[1024];   /* the envmap file name as written, for messages */
 } parser;
@@ -315,8 +316,8 @@ static int cmd_sphere(parser *p)
     const mat4 *inv;
     if (xf_inverse(p, &inv)) return -1;
     scene *sc = p->sc;
-    if (sc->n_spheres >= SCENE_MAX_PRIMS)
-        return fail(p, "more than %ld spheres", (long)SCENE_MAX_PRIMS);
+    if (sc->n_spheres >= p->max_prims)
+        return fail(p, "more than %ld spheres", p->max_prims);
     int m;
     if (material_index(p, &m)) return -1;
     if (grow(p, (void **)&sc->spheres, &p->cap_spheres, sc->n_spheres + 1, sizeof *sc->spheres))
@@ -345,8 +346,8 @@ static int cmd_vertex(parser *p)
 {
     double v[3];
     if (arg_nums(p, 1, 3, v)) return -1;
-    if (p->n_verts >= SCENE_MAX_PRIMS)
-        return fail(p, "more than %ld vertices", (long)SCENE_MAX_PRIMS);
+    if (p->n_verts >= p->max_prims)
+        return fail(p, "more than %ld vertices", p->max_prims);
     if (grow(p, (void **)&p->verts, &p->cap_verts, p->n_verts + 1, sizeof *p->verts)) return -1;
     p->verts[p->n_verts++] = vec3_make(v[0], v[1], v[2]);
     return 0;
@@ -358,8 +359,8 @@ static int cmd_vertexnormal(parser *p)
     if (arg_nums(p, 1, 6, v)) return -1;
     vec3 n = vec3_make(v[3], v[4], v[5]);
     if (!(vec3_length(n) > 0)) return fail(p, "'vertexnormal' normal is zero");
-    if (p->n_vnorms >= SCENE_MAX_PRIMS)
-        return fail(p, "more than %ld vertex normals", (long)SCENE_MAX_PRIMS);
+    if (p->n_vnorms >= p->max_prims)
+        return fail(p, "more than %ld vertex normals", p->max_prims);
     if (grow(p, (void **)&p->vnorms, &p->cap_vnorms, p->n_vnorms + 1, sizeof *p->vnorms))
         return -1;
     p->vnorms[p->n_vnorms++] = (vertex_normal){vec3_make(v[0], v[1], v[2]), n};
@@ -389,8 +390,8 @@ static int add_triangle(parser *p, const scene_triangle *t)
     for (int k = 0; k < 3; k++)
         if (!vec3_is_finite(t->p[k]))
             return fail(p, "'%s' corner %d overflows under the current transform", p->tok[0], k);
-    if (sc->n_triangles >= SCENE_MAX_PRIMS)
-        return fail(p, "more than %ld triangles", (long)SCENE_MAX_PRIMS);
+    if (sc->n_triangles >= p->max_prims)
+        return fail(p, "more than %ld triangles", p->max_prims);
     int m;
     if (material_index(p, &m)) return -1;
     if (grow(p, (void **)&sc->triangles, &p->cap_tris, sc->n_triangles + 1,
@@ -482,8 +483,8 @@ static int cmd_pop(parser *p)
 static int add_light(parser *p, const scene_light *l)
 {
     scene *sc = p->sc;
-    if (sc->n_lights >= SCENE_MAX_PRIMS)
-        return fail(p, "more than %ld lights", (long)SCENE_MAX_PRIMS);
+    if (sc->n_lights >= p->max_prims)
+        return fail(p, "more than %ld lights", p->max_prims);
     if (grow(p, (void **)&sc->lights, &p->cap_lights, (long)sc->n_lights + 1, sizeof *sc->lights))
         return -1;
     sc->lights[sc->n_lights++] = *l;
@@ -814,6 +815,8 @@ static int parse(const char *text, size_t len, const char *name, const scene_loa
     p.xf = mat4_identity();
     p.mat = scene_default_material();
     p.atten[0] = 1.0; /* attenuation 1 0 0: no fall-off */
+    p.max_prims = p.opts->max_prims > 0 && p.opts->max_prims < SCENE_MAX_PRIMS
+                      ? p.opts->max_prims : SCENE_MAX_PRIMS;
 
     scene_init(out);
     int rc = -1;

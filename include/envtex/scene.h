@@ -127,6 +127,7 @@ typedef struct scene_load_opts {
     scene_warn_fn warn;  /* called for each warning (may be NULL: warnings are dropped) */
     void *warn_ctx;
     int load_images;     /* 1 (default): read the envmap image; 0: leave it (parser tests) */
+    long max_prims;      /* 0 (default): SCENE_MAX_PRIMS; a smaller limit lets tests reach it */
 } scene_load_opts;
 
 scene_load_opts scene_load_defaults(void);

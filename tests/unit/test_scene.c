@@ -1,0 +1,918 @@
+/* test_scene.c - the scene-file parser: every command's effect and default, the transform
+ * order, material deduplication, and every error path at its FILE:LINE naming its token. */
+#include <stdio.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "envtex/imageio.h"
+#include "envtex/scene.h"
+#include "unit.h"
+
+/* Two lines every valid scene needs; a bad command placed after them is on line 3. */
+#define HEAD "size 10 10\ncamera 0 0 5 0 0 0 0 1 0 45\n"
+
+typedef struct warnings {
+    int n;
+    error last;
+} warnings;
+
+static void count_warning(void *ctx, const error *w)
+{
+    warnings *ws = ctx;
+    ws->n++;
+    ws->last = *w;
+}
+
+static scene_load_opts opts_counting(warnings *ws)
+{
+    scene_load_opts o = scene_load_defaults();
+    o.load_images = 0;
+    o.warn = count_warning;
+    o.warn_ctx = ws;
+    memset(ws, 0, sizeof *ws);
+    return o;
+}
+
+/* Parse `text` (named "t.test"), which must succeed. */
+static void load_ok(const char *text, scene *sc)
+{
+    scene_load_opts o = scene_load_defaults();
+    o.load_images = 0;
+    error err = {0};
+    int rc = scene_load_string(text, "t.test", &o, sc, &err);
+    ck_assert_msg(rc == 0, "unexpected error: %s:%d: %s", err.file, err.line, err.msg);
+}
+
+/* Parse `text`, which must fail at `line` with a message containing `what`; *out owns nothing. */
+static void load_fails(const char *text, int line, const char *what)
+{
+    scene_load_opts o = scene_load_defaults();
+    o.load_images = 0;
+    scene sc;
+    error err = {0};
+    int rc = scene_load_string(text, "t.test", &o, &sc, &err);
+    ck_assert_msg(rc == -1, "no error for:\n%s", text);
+    ck_assert_str_eq(err.file, "t.test");
+    ck_assert_msg(err.line == line, "error at line %d, expected %d: %s", err.line, line, err.msg);
+    ck_assert_msg(strstr(err.msg, what) != NULL, "message '%s' does not contain \"%s\"", err.msg,
+                  what);
+    ck_assert_ptr_null(sc.materials);
+    ck_assert_ptr_null(sc.spheres);
+    ck_assert_ptr_null(sc.triangles);
+    ck_assert_ptr_null(sc.lights);
+    ck_assert_ptr_null(sc.envmap.img.px);
+}
+
+static void assert_vec_near(vec3 a, double x, double y, double z)
+{
+    ck_assert_near(a.x, x, 1e-12);
+    ck_assert_near(a.y, y, 1e-12);
+    ck_assert_near(a.z, z, 1e-12);
+}
+
+/* ---- every error path ------------------------------------------------------------------- */
+
+typedef struct bad_case {
+    const char *text; /* appended to HEAD */
+    int line;
+    const char *what; /* the offending token (quoted) or the words that name the problem */
+} bad_case;
+
+static const bad_case bad_cases[] = {
+    /* numbers */
+    {"sphere 0 0 0 abc\n", 3, "expected a number for 'sphere' argument 4, got 'abc'"},
+    {"sphere 0 0 0 1x\n", 3, "'1x'"},
+    {"sphere 0 0 0 nan\n", 3, "got 'nan'"},
+    {"sphere 0 0 inf 1\n", 3, "argument 3, got 'inf'"},
+    {"sphere 0 0 0 1e999\n", 3, "'1e999'"},
+    {"gamma -inf\n", 3, "'-inf'"},
+    /* argument counts */
+    {"sphere 0 0 0\n", 3, "'sphere' takes 4 arguments, got 3"},
+    {"sphere 0 0 0 1 7\n", 3, "from '7'"},
+    {"size 10 10 10\n", 3, "'size' takes 2 arguments, got 3"},
+    {"pushTransform x\n", 3, "'x'"},
+    {"output\n", 3, "'output' takes 1 argument, got 0"},
+    {"envmap\n", 3, "'envmap' takes 1 or 2 arguments, got 0"},
+    {"envmap a.exr 1 c\n", 3, "from 'c'"},
+    {"quadLight 0 0 0 1 0 0 0 1 0 1 1\n", 3, "'quadLight' takes 12 arguments, got 11"},
+    /* image size */
+    {"size 0 10\n", 3, "'0'"},
+    {"size 10 -5\n", 3, "'size' argument 2 must be in [1, 16384], got '-5'"},
+    {"size 16385 10\n", 3, "'16385'"},
+    {"size 16384 16384\n", 3, "pixels"},
+    {"size 10.5 10\n", 3, "expected an integer for 'size' argument 1, got '10.5'"},
+    /* renderer settings */
+    {"spp 0\n", 3, "'spp' argument 1 must be in [1, 1048576], got '0'"},
+    {"spp 1048577\n", 3, "'1048577'"},
+    {"spp 2.5\n", 3, "'2.5'"},
+    {"maxdepth -2\n", 3, "'-2'"},
+    {"maxdepth 1001\n", 3, "'1001'"},
+    {"lightsamples 0\n", 3, "'lightsamples' argument 1 must be in [1, 65536], got '0'"},
+    {"lightsamples 65537\n", 3, "'65537'"},
+    {"integrator foo\n", 3, "'integrator' must be 'raytracer', 'analyticdirect', 'direct' or "
+                            "'pathtracer', got 'foo'"},
+    {"nexteventestimation maybe\n", 3, "'maybe'"},
+    {"lightstratify yes\n", 3, "'lightstratify' must be 'off' or 'on', got 'yes'"},
+    {"russianroulette 1\n", 3, "got '1'"},
+    {"importancesampling uniform\n", 3, "'uniform'"},
+    {"envmiss foo\n", 3, "'envmiss' must be 'envmap' or 'black', got 'foo'"},
+    {"gamma 0\n", 3, "'gamma' argument 1 must be > 0, got '0'"},
+    /* material state */
+    {"brdf foo\n", 3, "'brdf' must be 'phong', 'ggx', 'mirror' or 'glass', got 'foo'"},
+    {"roughness -0.1\n", 3, "'roughness' argument 1 must be >= 0, got '-0.1'"},
+    {"ior 0\n", 3, "'ior' argument 1 must be > 0, got '0'"},
+    {"ior -1.5\n", 3, "'-1.5'"},
+    {"shininess -1\n", 3, "'shininess' argument 1 must be >= 0, got '-1'"},
+    {"diffuse 1 -1 0\n", 3, "'diffuse' argument 2 must be >= 0, got '-1'"},
+    {"emission 1 1 x\n", 3, "'x'"},
+    /* geometry */
+    {"sphere 0 0 0 0\n", 3, "'sphere' argument 4 must be > 0, got '0'"},
+    {"sphere 0 0 0 -1\n", 3, "'-1'"},
+    {"maxverts -1\n", 3, "'-1'"},
+    {"maxvertnorms 2.5\n", 3, "'2.5'"},
+    {"tri 0 1 2\n", 3, "'tri' vertex index '0' is out of range: 0 vertices"},
+    {"vertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\ntri 0 1 3\n", 6,
+     "'tri' vertex index '3' is out of range: 3 vertices"},
+    {"vertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\ntri 0 -1 2\n", 6, "'-1'"},
+    {"vertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\ntri 0 1 1.5\n", 6,
+     "expected an integer for 'tri' argument 3, got '1.5'"},
+    {"vertex 0 0 0\ntrinormal 0 0 0\n", 4, "'trinormal' vertex index '0' is out of range"},
+    {"vertexnormal 0 0 0 0 0 1\ntrinormal 0 0 1\n", 4, "'1'"},
+    {"vertexnormal 0 0 0 0 0 0\n", 3, "'vertexnormal' normal is zero"},
+    /* transforms */
+    {"popTransform\n", 3, "'popTransform' without a matching 'pushTransform'"},
+    {"pushTransform\npopTransform\npopTransform\n", 5, "popTransform"},
+    {"rotate 0 0 0 45\n", 3, "'rotate' axis is zero"},
+    {"scale 1e300 1 1\nscale 1e300 1 1\n", 4, "'scale' makes the current transform overflow"},
+    {"scale 1 0 1\nsphere 0 0 0 1\n", 4, "'sphere' needs the inverse of the current transform"},
+    {"vertexnormal 0 0 0 0 0 1\nvertexnormal 1 0 0 0 0 1\nvertexnormal 0 1 0 0 0 1\n"
+     "scale 1 1 0\ntrinormal 0 1 2\n", 7, "'trinormal' needs the inverse"},
+    {"scale 0 0 0\nenvmap sky.exr\n", 4, "'envmap' needs the inverse"},
+    /* lights */
+    {"directional 0 0 0 1 1 1\n", 3, "'directional' direction is zero"},
+    {"directional 0 1 0 -1 1 1\n", 3, "'directional' argument 4 must be >= 0, got '-1'"},
+    {"point 0 0 0 1 x 1\n", 3, "expected a number for 'point' argument 5, got 'x'"},
+    {"attenuation 0 0 0\n", 3, "'attenuation' is all zero"},
+    {"attenuation 1 -1 0\n", 3, "'-1'"},
+    {"quadLight 0 0 0 1 0 0 2 0 0 1 1 1\n", 3, "'quadLight' has zero area"},
+    {"quadLight 0 0 0 0 0 0 0 1 0 1 1 1\n", 3, "'quadLight' has zero area"},
+    {"quadLight 0 0 0 1 0 0 0 1 0 1 -1 1\n", 3, "'-1'"},
+    /* camera */
+    {"camera 0 0 5 0 0 0 0 1 0 0\n", 3, "'camera' fovy must be in (0, 180) degrees, got '0'"},
+    {"camera 0 0 5 0 0 0 0 1 0 180\n", 3, "'180'"},
+    {"camera 1 2 3 1 2 3 0 1 0 45\n", 3, "'camera' look-from equals look-at"},
+    {"camera 0 0 5 0 0 0 0 0 2 45\n", 3, "'camera' up vector (0 0 2) is parallel"},
+    {"camera 0 0 5 0 0 0 0 0 0 45\n", 3, "'camera' up vector is zero"},
+    /* envmap */
+    {"envmap a.exr\nenvmap b.exr\n", 4, "envmap given twice (first at line 3)"},
+    {"envmap sky.exr 0\n", 3, "'envmap' argument 2 must be > 0, got '0'"},
+    {"envmap sky.exr nan\n", 3, "'nan'"},
+};
+
+/* a loop test: Check passes the case index as _i */
+START_TEST(test_each_bad_line_is_an_error_at_its_line_naming_the_token)
+{
+    char text[1024];
+    snprintf(text, sizeof text, "%s%s", HEAD, bad_cases[_i].text);
+    load_fails(text, bad_cases[_i].line, bad_cases[_i].what);
+}
+END_TEST
+
+START_TEST(test_a_scene_without_size_is_an_error_at_the_end)
+{
+    load_fails("camera 0 0 5 0 0 0 0 1 0 45\n", 0, "no 'size' command");
+    load_fails("", 0, "no 'size' command");
+}
+END_TEST
+
+START_TEST(test_a_scene_without_camera_is_an_error_at_the_end)
+{
+    load_fails("size 10 10\nsphere 0 0 0 1\n", 0, "no 'camera' command");
+}
+END_TEST
+
+START_TEST(test_a_line_longer_than_the_limit_is_an_error_not_an_overflow)
+{
+    size_t n = SCENE_MAX_LINE + 1; /* one byte too long */
+    char *text = malloc(strlen(HEAD) + n + 2);
+    ck_assert_ptr_nonnull(text);
+    strcpy(text, HEAD);
+    memset(text + strlen(HEAD), '1', n);
+    text[strlen(HEAD) + n] = '\0';
+    load_fails(text, 3, "line is longer than 65536 bytes");
+    /* exactly at the limit (a comment) is fine */
+    char *ok = malloc(strlen(HEAD) + SCENE_MAX_LINE + 2);
+    ck_assert_ptr_nonnull(ok);
+    strcpy(ok, HEAD);
+    memset(ok + strlen(HEAD), ' ', SCENE_MAX_LINE);
+    ok[strlen(HEAD)] = '#';
+    strcpy(ok + strlen(HEAD) + SCENE_MAX_LINE, "\n");
+    scene sc;
+    load_ok(ok, &sc);
+    scene_free(&sc);
+    free(text);
+    free(ok);
+}
+END_TEST
+
+START_TEST(test_push_deeper_than_the_stack_limit_is_an_error)
+{
+    size_t each = strlen("pushTransform\n");
+    char *text = malloc(strlen(HEAD) + each * (SCENE_MAX_TRANSFORM_STACK + 1) + 1);
+    ck_assert_ptr_nonnull(text);
+    char *w = text + sprintf(text, "%s", HEAD);
+    for (int i = 0; i < SCENE_MAX_TRANSFORM_STACK; i++) w += sprintf(w, "pushTransform\n");
+    /* the limit itself is fine (a warning for the unbalanced pushes at the end) */
+    warnings ws;
+    scene_load_opts o = opts_counting(&ws);
+    scene sc;
+    error err = {0};
+    ck_assert_int_eq(scene_load_string(text, "t.test", &o, &sc, &err), 0);
+    ck_assert_int_eq(ws.n, 1);
+    ck_assert_ptr_nonnull(strstr(ws.last.msg, "1024 'pushTransform' without 'popTransform'"));
+    scene_free(&sc);
+    /* one more is not */
+    sprintf(w, "pushTransform\n");
+    load_fails(text, 2 + SCENE_MAX_TRANSFORM_STACK + 1, "nested deeper than 1024");
+    free(text);
+}
+END_TEST
+
+START_TEST(test_more_primitives_than_the_limit_is_an_error)
+{
+    scene_load_opts o = scene_load_defaults();
+    o.load_images = 0;
+    o.max_prims = 3;
+    scene sc;
+    error err = {0};
+    const char *three = HEAD "vertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+                             "tri 0 1 2\ntri 0 1 2\ntri 0 1 2\n"
+                             "sphere 0 0 0 1\nsphere 0 0 0 1\nsphere 0 0 0 1\n";
+    ck_assert_int_eq(scene_load_string(three, "t.test", &o, &sc, &err), 0);
+    scene_free(&sc);
+
+    ck_assert_int_eq(scene_load_string(HEAD "vertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+                                            "vertex 0 0 1\n",
+                                       "t.test", &o, &sc, &err),
+                     -1);
+    ck_assert_int_eq(err.line, 6);
+    ck_assert_str_eq(err.msg, "more than 3 vertices");
+
+    char text[1024];
+    snprintf(text, sizeof text, "%s%s", three, "tri 0 1 2\n");
+    ck_assert_int_eq(scene_load_string(text, "t.test", &o, &sc, &err), -1);
+    ck_assert_int_eq(err.line, 12);
+    ck_assert_str_eq(err.msg, "more than 3 triangles");
+
+    snprintf(text, sizeof text, "%s%s", three, "sphere 0 0 0 1\n");
+    ck_assert_int_eq(scene_load_string(text, "t.test", &o, &sc, &err), -1);
+    ck_assert_int_eq(err.line, 12);
+    ck_assert_str_eq(err.msg, "more than 3 spheres");
+    ck_assert_ptr_null(sc.spheres);
+}
+END_TEST
+
+START_TEST(test_a_huge_maxverts_hint_allocates_nothing_huge)
+{
+    /* uncapped, this asks for 24 TB: realloc fails (or ASan aborts) and the test fails */
+    scene sc;
+    load_ok(HEAD "maxverts 999999999999\nmaxvertnorms 999999999999\n"
+                 "vertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\ntri 0 1 2\n",
+            &sc);
+    ck_assert_int_eq(sc.n_triangles, 1);
+    scene_free(&sc);
+}
+END_TEST
+
+START_TEST(test_a_nul_byte_makes_the_file_an_error)
+{
+    char dir[] = "/tmp/test_scene_XXXXXX";
+    ck_assert_ptr_nonnull(mkdtemp(dir));
+    char path[256];
+    snprintf(path, sizeof path, "%s/bin.test", dir);
+    FILE *f = fopen(path, "wb");
+    ck_assert_ptr_nonnull(f);
+    static const char bytes[] = "size 10 10\n# comment\ncam\0era\n";
+    fwrite(bytes, 1, sizeof bytes - 1, f);
+    fclose(f);
+    scene sc;
+    error err = {0};
+    ck_assert_int_eq(scene_load(path, NULL, &sc, &err), -1);
+    ck_assert_str_eq(err.file, path);
+    ck_assert_int_eq(err.line, 3);
+    ck_assert_ptr_nonnull(strstr(err.msg, "binary file?"));
+    unlink(path);
+    rmdir(dir);
+}
+END_TEST
+
+START_TEST(test_a_missing_file_is_an_error_naming_it)
+{
+    scene sc;
+    error err = {0};
+    ck_assert_int_eq(scene_load("/nonexistent/dir/x.test", NULL, &sc, &err), -1);
+    ck_assert_str_eq(err.file, "/nonexistent/dir/x.test");
+    ck_assert_int_eq(err.line, 0);
+    ck_assert_ptr_nonnull(strstr(err.msg, "cannot open"));
+}
+END_TEST
+
+/* ---- warnings and --strict -------------------------------------------------------------- */
+
+START_TEST(test_unknown_commands_are_warnings_with_file_and_line)
+{
+    warnings ws;
+    scene_load_opts o = opts_counting(&ws);
+    scene sc;
+    error err = {0};
+    ck_assert_int_eq(scene_load_string(HEAD "foo 1 2\nsphere 0 0 0 1\nbar\n", "t.test", &o, &sc,
+                                       &err),
+                     0);
+    ck_assert_int_eq(ws.n, 2);
+    ck_assert_str_eq(ws.last.file, "t.test");
+    ck_assert_int_eq(ws.last.line, 5);
+    ck_assert_str_eq(ws.last.msg, "unknown command 'bar' (ignored)");
+    ck_assert_int_eq(sc.n_spheres, 1);
+    scene_free(&sc);
+    /* without a callback the warnings are dropped */
+    o.warn = NULL;
+    ck_assert_int_eq(scene_load_string(HEAD "foo\n", "t.test", &o, &sc, &err), 0);
+    scene_free(&sc);
+}
+END_TEST
+
+START_TEST(test_strict_makes_unknown_commands_errors)
+{
+    warnings ws;
+    scene_load_opts o = opts_counting(&ws);
+    o.strict = 1;
+    scene sc;
+    error err = {0};
+    ck_assert_int_eq(scene_load_string(HEAD "sphere 0 0 0 1\nfoo 1 2\n", "t.test", &o, &sc, &err),
+                     -1);
+    ck_assert_int_eq(err.line, 4);
+    ck_assert_str_eq(err.msg, "unknown command 'foo'");
+    ck_assert_int_eq(ws.n, 0);
+    ck_assert_ptr_null(sc.spheres);
+}
+END_TEST
+
+START_TEST(test_commands_before_size_warn_once_even_when_strict)
+{
+    warnings ws;
+    scene_load_opts o = opts_counting(&ws);
+    o.strict = 1;
+    scene sc;
+    error err = {0};
+    ck_assert_int_eq(scene_load_string("# first\ncamera 0 0 5 0 0 0 0 1 0 45\nsphere 0 0 0 1\n"
+                                       "size 10 10\n",
+                                       "t.test", &o, &sc, &err),
+                     0);
+    ck_assert_int_eq(ws.n, 1);
+    ck_assert_int_eq(ws.last.line, 2);
+    ck_assert_ptr_nonnull(strstr(ws.last.msg, "'camera' comes before 'size'"));
+    ck_assert_int_eq(sc.width, 10);
+    scene_free(&sc);
+    /* size first: no warning */
+    ck_assert_int_eq(scene_load_string(HEAD, "t.test", &o, &sc, &err), 0);
+    ck_assert_int_eq(ws.n, 1);
+    scene_free(&sc);
+}
+END_TEST
+
+/* ---- lexical rules ---------------------------------------------------------------------- */
+
+START_TEST(test_comments_blank_lines_crlf_and_tabs_are_tolerated)
+{
+    scene sc;
+    load_ok("\xEF\xBB\xBF# a comment\r\n"
+            "\r\n"
+            "   \t# an indented comment\r\n"
+            "size\t64 32\r\n"
+            "  \t \r\n"
+            "camera 0 0 5  0 0 0\t0 1 0 45   # trailing comment\r\n"
+            "sphere 1 2 3 0.5\r\n"
+            "output out.png",
+            &sc);
+    ck_assert_int_eq(sc.width, 64);
+    ck_assert_int_eq(sc.height, 32);
+    ck_assert_int_eq(sc.n_spheres, 1);
+    ck_assert_double_eq(sc.spheres[0].radius, 0.5);
+    ck_assert_str_eq(sc.output, "out.png");
+    scene_free(&sc);
+    /* line numbers count comments and blank lines, and CRLF is one line end */
+    load_fails("# c\r\n\r\nsize 10 10\r\ncamera 0 0 5 0 0 0 0 1 0 45\r\n\r\nsphere 0 0 0 q\r\n", 6,
+               "'q'");
+}
+END_TEST
+
+/* ---- each command's effect -------------------------------------------------------------- */
+
+START_TEST(test_defaults_are_the_courses)
+{
+    scene sc;
+    load_ok(HEAD, &sc);
+    ck_assert_str_eq(sc.path, "t.test");
+    ck_assert_str_eq(sc.output, "raytrace.png");
+    ck_assert_int_eq(sc.maxdepth, 5);
+    ck_assert_int_eq(sc.integrator, INTEGRATOR_RAYTRACER);
+    ck_assert_int_eq(sc.spp, 1);
+    ck_assert_int_eq(sc.lightsamples, 1);
+    ck_assert_int_eq(sc.lightstratify, 0);
+    ck_assert_int_eq(sc.nee, NEE_OFF);
+    ck_assert_int_eq(sc.russianroulette, 0);
+    ck_assert_int_eq(sc.importancesampling, SAMPLING_HEMISPHERE);
+    ck_assert_double_eq(sc.gamma, 0);
+    ck_assert_int_eq(sc.envmiss, ENVMISS_ENVMAP);
+    ck_assert_int_eq(sc.envmap.present, 0);
+    ck_assert_double_eq(sc.envmap.scale, 1);
+    ck_assert_int_eq(sc.n_materials, 0);
+    ck_assert_int_eq(sc.n_spheres, 0);
+    ck_assert_int_eq(sc.n_triangles, 0);
+    ck_assert_int_eq(sc.n_lights, 0);
+    scene_free(&sc);
+
+    material m = scene_default_material();
+    ck_assert_double_eq(m.ambient.r, 0.2);
+    ck_assert_double_eq(m.ambient.g, 0.2);
+    ck_assert_double_eq(m.ambient.b, 0.2);
+    ck_assert(rgb_is_black(m.diffuse) && rgb_is_black(m.specular) && rgb_is_black(m.emission));
+    ck_assert_double_eq(m.shininess, 0);
+    ck_assert_int_eq(m.brdf, BRDF_PHONG);
+    ck_assert_double_eq(m.roughness, 0);
+    ck_assert_double_eq(m.ior, 1.5);
+
+    scene_load_opts o = scene_load_defaults();
+    ck_assert_int_eq(o.strict, 0);
+    ck_assert_int_eq(o.load_images, 1);
+    ck_assert_ptr_null(o.warn);
+}
+END_TEST
+
+START_TEST(test_image_and_camera_commands_are_stored)
+{
+    scene sc;
+    load_ok("size 640 480\ncamera 1 2 3 4 5 6 0 1 1 30\noutput sub/x.png\nmaxdepth -1\n", &sc);
+    ck_assert_int_eq(sc.width, 640);
+    ck_assert_int_eq(sc.height, 480);
+    ck_assert_int_eq(sc.has_camera, 1);
+    assert_vec_near(sc.eye, 1, 2, 3);
+    assert_vec_near(sc.center, 4, 5, 6);
+    assert_vec_near(sc.up, 0, 1, 1); /* as written: the camera orthogonalises it */
+    ck_assert_double_eq(sc.fovy, 30);
+    ck_assert_str_eq(sc.output, "sub/x.png");
+    ck_assert_int_eq(sc.maxdepth, -1);
+    scene_free(&sc);
+    /* "10.0" and "1e1" are integers */
+    load_ok("size 10.0 1e1\ncamera 0 0 5 0 0 0 0 1 0 45\nmaxdepth 1000\n", &sc);
+    ck_assert_int_eq(sc.width, 10);
+    ck_assert_int_eq(sc.height, 10);
+    ck_assert_int_eq(sc.maxdepth, 1000);
+    scene_free(&sc);
+}
+END_TEST
+
+START_TEST(test_renderer_settings_are_stored)
+{
+    scene sc;
+    load_ok(HEAD "spp 1048576\nlightsamples 65536\nlightstratify on\nnexteventestimation mis\n"
+                 "russianroulette on\nimportancesampling brdf\ngamma 2.2\nenvmiss black\n",
+            &sc);
+    ck_assert_int_eq(sc.spp, SCENE_MAX_SPP);
+    ck_assert_int_eq(sc.lightsamples, SCENE_MAX_LIGHTSAMPLES);
+    ck_assert_int_eq(sc.lightstratify, 1);
+    ck_assert_int_eq(sc.nee, NEE_MIS);
+    ck_assert_int_eq(sc.russianroulette, 1);
+    ck_assert_int_eq(sc.importancesampling, SAMPLING_BRDF);
+    ck_assert_double_eq(sc.gamma, 2.2);
+    ck_assert_int_eq(sc.envmiss, ENVMISS_BLACK);
+    scene_free(&sc);
+    load_ok(HEAD "lightstratify on\nlightstratify off\nnexteventestimation on\n"
+                 "russianroulette off\nimportancesampling cosine\nenvmiss envmap\n",
+            &sc);
+    ck_assert_int_eq(sc.lightstratify, 0);
+    ck_assert_int_eq(sc.nee, NEE_ON);
+    ck_assert_int_eq(sc.russianroulette, 0);
+    ck_assert_int_eq(sc.importancesampling, SAMPLING_COSINE);
+    ck_assert_int_eq(sc.envmiss, ENVMISS_ENVMAP);
+    scene_free(&sc);
+    load_ok(HEAD "nexteventestimation on\nnexteventestimation off\nimportancesampling cosine\n"
+                 "importancesampling hemisphere\n",
+            &sc);
+    ck_assert_int_eq(sc.nee, NEE_OFF);
+    ck_assert_int_eq(sc.importancesampling, SAMPLING_HEMISPHERE);
+    scene_free(&sc);
+}
+END_TEST
+
+START_TEST(test_every_integrator_name_round_trips)
+{
+    static const integrator_kind kinds[] = {INTEGRATOR_RAYTRACER, INTEGRATOR_ANALYTICDIRECT,
+                                            INTEGRATOR_DIRECT, INTEGRATOR_PATHTRACER};
+    for (int i = 0; i < 4; i++) {
+        char text[256];
+        snprintf(text, sizeof text, HEAD "integrator %s\n", scene_integrator_name(kinds[i]));
+        scene sc;
+        load_ok(text, &sc);
+        ck_assert_int_eq(sc.integrator, kinds[i]);
+        scene_free(&sc);
+    }
+    ck_assert_str_eq(scene_integrator_name(INTEGRATOR_ANALYTICDIRECT), "analyticdirect");
+    ck_assert_str_eq(scene_integrator_name(INTEGRATOR_PATHTRACER), "pathtracer");
+}
+END_TEST
+
+START_TEST(test_each_object_takes_the_material_current_when_read)
+{
+    scene sc;
+    load_ok(HEAD "sphere 0 0 0 1\n"
+                 "ambient 0.1 0.2 0.3\ndiffuse 0.4 0.5 0.6\nspecular 0.7 0.8 0.9\n"
+                 "emission 1 2 3\nshininess 50\nbrdf ggx\nroughness 0.25\nior 1.33\n"
+                 "sphere 0 0 0 1\n"
+                 "brdf mirror\nsphere 0 0 0 1\nbrdf glass\nsphere 0 0 0 1\n"
+                 "brdf phong\nsphere 0 0 0 1\n",
+            &sc);
+    ck_assert_int_eq(sc.n_spheres, 5);
+    ck_assert_int_eq(sc.n_materials, 5);
+    const material *d = &sc.materials[sc.spheres[0].material];
+    material def = scene_default_material();
+    ck_assert_double_eq(d->ambient.g, def.ambient.g);
+    ck_assert(rgb_is_black(d->diffuse));
+    const material *m = &sc.materials[sc.spheres[1].material];
+    ck_assert_double_eq(m->ambient.r, 0.1);
+    ck_assert_double_eq(m->ambient.b, 0.3);
+    ck_assert_double_eq(m->diffuse.g, 0.5);
+    ck_assert_double_eq(m->specular.b, 0.9);
+    ck_assert_double_eq(m->emission.r, 1);
+    ck_assert_double_eq(m->emission.b, 3);
+    ck_assert_double_eq(m->shininess, 50);
+    ck_assert_int_eq(m->brdf, BRDF_GGX);
+    ck_assert_double_eq(m->roughness, 0.25);
+    ck_assert_double_eq(m->ior, 1.33);
+    ck_assert_int_eq(sc.materials[sc.spheres[2].material].brdf, BRDF_MIRROR);
+    ck_assert_int_eq(sc.materials[sc.spheres[3].material].brdf, BRDF_GLASS);
+    ck_assert_int_eq(sc.materials[sc.spheres[4].material].brdf, BRDF_PHONG);
+    /* the state carries over: the later spheres keep the earlier diffuse */
+    ck_assert_double_eq(sc.materials[sc.spheres[4].material].diffuse.r, 0.4);
+    scene_free(&sc);
+}
+END_TEST
+
+START_TEST(test_materials_are_stored_once_until_the_state_changes)
+{
+    scene sc;
+    load_ok(HEAD "vertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+                 "diffuse 1 0 0\ntri 0 1 2\ntri 0 1 2\nsphere 0 0 0 1\n"
+                 "diffuse 1 0 0\ntri 0 1 2\n"                /* same value: no new material */
+                 "diffuse 0 1 0\ndiffuse 1 0 0\ntri 0 1 2\n" /* changed and back: none either */
+                 "diffuse 0 0 1\ntri 0 1 2\n"                /* a real change */
+                 "diffuse 1 0 0\nsphere 0 0 0 1\n",          /* back to the first: a third */
+            &sc);
+    ck_assert_int_eq(sc.n_triangles, 5);
+    ck_assert_int_eq(sc.n_materials, 3);
+    ck_assert_int_eq(sc.triangles[0].material, 0);
+    ck_assert_int_eq(sc.triangles[1].material, 0);
+    ck_assert_int_eq(sc.spheres[0].material, 0);
+    ck_assert_int_eq(sc.triangles[2].material, 0);
+    ck_assert_int_eq(sc.triangles[3].material, 0);
+    ck_assert_int_eq(sc.triangles[4].material, 1);
+    ck_assert_double_eq(sc.materials[1].diffuse.b, 1);
+    ck_assert_int_eq(sc.spheres[1].material, 2);
+    scene_free(&sc);
+}
+END_TEST
+
+START_TEST(test_translate_then_rotate_rotates_the_object_first)
+{
+    /* right-multiplied: M = T R, so (1,0,0) -> R -> (0,1,0) -> T -> (1,1,0) */
+    scene sc;
+    load_ok(HEAD "translate 1 0 0\nrotate 0 0 1 90\nsphere 0 0 0 1\n"
+                 "vertex 1 0 0\nvertex 0 1 0\nvertex 0 0 1\ntri 0 1 2\n",
+            &sc);
+    const scene_sphere *s = &sc.spheres[0];
+    assert_vec_near(s->center, 0, 0, 0);
+    ck_assert_double_eq(s->radius, 1);
+    assert_vec_near(mat4_point(&s->xf, vec3_make(1, 0, 0)), 1, 1, 0);
+    assert_vec_near(mat4_point(&s->inv, vec3_make(1, 1, 0)), 1, 0, 0);
+    const scene_triangle *t = &sc.triangles[0];
+    ck_assert_int_eq(t->has_normals, 0);
+    assert_vec_near(t->p[0], 1, 1, 0);
+    assert_vec_near(t->p[1], 0, 0, 0);
+    assert_vec_near(t->p[2], 1, 0, 1);
+    scene_free(&sc);
+    /* the other order translates first: (1,0,0) -> (2,0,0) -> (0,2,0) */
+    load_ok(HEAD "rotate 0 0 1 90\ntranslate 1 0 0\nsphere 0 0 0 1\n", &sc);
+    assert_vec_near(mat4_point(&sc.spheres[0].xf, vec3_make(1, 0, 0)), 0, 2, 0);
+    scene_free(&sc);
+}
+END_TEST
+
+START_TEST(test_tri_uses_the_transform_current_at_tri_not_at_vertex)
+{
+    scene sc;
+    load_ok(HEAD "vertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\ntranslate 0 0 5\ntri 0 1 2\n", &sc);
+    assert_vec_near(sc.triangles[0].p[1], 1, 0, 5);
+    scene_free(&sc);
+}
+END_TEST
+
+START_TEST(test_pop_restores_the_transform_saved_by_push)
+{
+    scene sc;
+    load_ok(HEAD "scale 2 2 2\npushTransform\ntranslate 5 0 0\npushTransform\nscale 3 1 1\n"
+                 "popTransform\nsphere 0 0 0 1\npopTransform\nsphere 0 0 0 1\n",
+            &sc);
+    /* first: S(2) T(5,0,0): (1,0,0) -> (6,0,0) -> (12,0,0) */
+    assert_vec_near(mat4_point(&sc.spheres[0].xf, vec3_make(1, 0, 0)), 12, 0, 0);
+    /* second: S(2) only */
+    assert_vec_near(mat4_point(&sc.spheres[1].xf, vec3_make(1, 0, 0)), 2, 0, 0);
+    assert_vec_near(mat4_point(&sc.spheres[1].inv, vec3_make(2, 0, 0)), 1, 0, 0);
+    scene_free(&sc);
+}
+END_TEST
+
+START_TEST(test_a_scaled_sphere_keeps_an_ellipsoid_matrix_and_its_inverse)
+{
+    scene sc;
+    load_ok(HEAD "scale 2 1 0.5\nsphere 1 0 0 3\n", &sc);
+    const scene_sphere *s = &sc.spheres[0];
+    assert_vec_near(s->center, 1, 0, 0); /* object space, as written */
+    ck_assert_double_eq(s->radius, 3);
+    mat4 id = mat4_mul(s->xf, s->inv);
+    for (int i = 0; i < 4; i++)
+        for (int j = 0; j < 4; j++) ck_assert_near(id.m[i][j], i == j, 1e-12);
+    assert_vec_near(mat4_point(&s->xf, vec3_make(0, 0, 3)), 0, 0, 1.5);
+    scene_free(&sc);
+}
+END_TEST
+
+START_TEST(test_trinormal_transforms_normals_by_the_inverse_transpose)
+{
+    scene sc;
+    load_ok(HEAD "vertexnormal 0 0 0 1 1 0\nvertexnormal 1 0 0 0 0 3\nvertexnormal 0 1 0 0 0 1\n"
+                 "scale 2 1 1\ntrinormal 0 1 2\n",
+            &sc);
+    const scene_triangle *t = &sc.triangles[0];
+    ck_assert_int_eq(t->has_normals, 1);
+    assert_vec_near(t->p[1], 2, 0, 0);
+    /* (M^-1)^T (1,1,0) = (0.5, 1, 0), normalised; a plain M would give (2, 1, 0) */
+    double l = sqrt(0.25 + 1);
+    assert_vec_near(t->n[0], 0.5 / l, 1 / l, 0);
+    assert_vec_near(t->n[1], 0, 0, 1); /* unit even when written with length 3 */
+    scene_free(&sc);
+}
+END_TEST
+
+START_TEST(test_lights_are_in_world_space_and_point_takes_the_current_attenuation)
+{
+    scene sc;
+    load_ok(HEAD "translate 5 0 0\nscale 2 2 2\n"
+                 "directional 0 3 0 0.1 0.2 0.3\npoint 1 2 3 4 5 6\n"
+                 "attenuation 0 1 0.5\npoint 0 0 0 1 1 1\n"
+                 "quadLight 1 2 3 1 0 0 0 0 2 7 8 9\n",
+            &sc);
+    ck_assert_int_eq(sc.n_lights, 4);
+    const scene_light *l = sc.lights;
+    ck_assert_int_eq(l[0].kind, LIGHT_DIRECTIONAL);
+    assert_vec_near(l[0].dir, 0, 1, 0); /* unit, towards the light, not transformed */
+    ck_assert_double_eq(l[0].color.b, 0.3);
+    ck_assert_int_eq(l[1].kind, LIGHT_POINT);
+    assert_vec_near(l[1].pos, 1, 2, 3);
+    ck_assert_double_eq(l[1].color.g, 5);
+    ck_assert_double_eq(l[1].atten[0], 1);
+    ck_assert_double_eq(l[1].atten[1], 0);
+    ck_assert_double_eq(l[1].atten[2], 0);
+    ck_assert_double_eq(l[2].atten[0], 0);
+    ck_assert_double_eq(l[2].atten[1], 1);
+    ck_assert_double_eq(l[2].atten[2], 0.5);
+    ck_assert_int_eq(l[3].kind, LIGHT_QUAD);
+    assert_vec_near(l[3].pos, 1, 2, 3);
+    assert_vec_near(l[3].ab, 1, 0, 0);
+    assert_vec_near(l[3].ac, 0, 0, 2);
+    ck_assert_double_eq(l[3].color.r, 7);
+    scene_free(&sc);
+}
+END_TEST
+
+START_TEST(test_envmap_takes_file_scale_and_the_current_transform)
+{
+    scene sc;
+    load_ok(HEAD "envmap sky.exr\n", &sc);
+    ck_assert_int_eq(sc.envmap.present, 1);
+    ck_assert_str_eq(sc.envmap.path, "sky.exr");
+    ck_assert_double_eq(sc.envmap.scale, 1);
+    ck_assert_int_eq(sc.envmap.line, 3);
+    ck_assert_ptr_null(sc.envmap.img.px); /* load_images = 0 */
+    assert_vec_near(mat4_dir(&sc.envmap.xf, vec3_make(0, 0, 1)), 0, 0, 1);
+    scene_free(&sc);
+    /* rotate 1 0 0 -90 gives a y-up world its sky overhead: envmap +z -> world +y */
+    load_ok(HEAD "rotate 1 0 0 -90\nenvmap sky.exr 2.5\n", &sc);
+    ck_assert_double_eq(sc.envmap.scale, 2.5);
+    ck_assert_int_eq(sc.envmap.line, 4);
+    assert_vec_near(mat4_dir(&sc.envmap.xf, vec3_make(0, 0, 1)), 0, 1, 0);
+    assert_vec_near(mat4_dir(&sc.envmap.inv, vec3_make(0, 1, 0)), 0, 0, 1);
+    scene_free(&sc);
+}
+END_TEST
+
+START_TEST(test_envmap_paths_are_relative_to_the_scene_folder)
+{
+    scene_load_opts o = scene_load_defaults();
+    o.load_images = 0;
+    scene sc;
+    error err = {0};
+    ck_assert_int_eq(scene_load_string(HEAD "envmap sky.exr\noutput out/a.png\n", "dir/x.test",
+                                       &o, &sc, &err),
+                     0);
+    ck_assert_str_eq(sc.envmap.path, "dir/sky.exr");
+    ck_assert_str_eq(sc.output, "out/a.png"); /* output stays relative to the working folder */
+    ck_assert_str_eq(sc.path, "dir/x.test");
+    scene_free(&sc);
+    ck_assert_int_eq(scene_load_string(HEAD "envmap /abs/sky.exr\n", "dir/x.test", &o, &sc, &err),
+                     0);
+    ck_assert_str_eq(sc.envmap.path, "/abs/sky.exr");
+    scene_free(&sc);
+    ck_assert_int_eq(scene_load_string(HEAD "envmap ../hdri/sky.exr\n", "a/b/x.test", &o, &sc,
+                                       &err),
+                     0);
+    ck_assert_str_eq(sc.envmap.path, "a/b/../hdri/sky.exr");
+    scene_free(&sc);
+    /* no folder, "-" and NULL: the working folder */
+    ck_assert_int_eq(scene_load_string(HEAD "envmap sky.exr\n", "x.test", &o, &sc, &err), 0);
+    ck_assert_str_eq(sc.envmap.path, "sky.exr");
+    scene_free(&sc);
+    ck_assert_int_eq(scene_load_string(HEAD "envmap sky.exr\n", "-", &o, &sc, &err), 0);
+    ck_assert_str_eq(sc.envmap.path, "sky.exr");
+    scene_free(&sc);
+    ck_assert_int_eq(scene_load_string(HEAD "envmap sky.exr\n", NULL, &o, &sc, &err), 0);
+    ck_assert_str_eq(sc.envmap.path, "sky.exr");
+    ck_assert_str_eq(sc.path, "");
+    scene_free(&sc);
+    ck_assert_int_eq(scene_load_string(HEAD "envmap sky.exr 0\n", NULL, &o, &sc, &err), -1);
+    ck_assert_str_eq(err.file, "<string>");
+}
+END_TEST
+
+START_TEST(test_scene_load_resolves_envmap_beside_a_scene_file)
+{
+    char dir[] = "/tmp/test_scene_XXXXXX";
+    ck_assert_ptr_nonnull(mkdtemp(dir));
+    char path[256], want[256];
+    snprintf(path, sizeof path, "%s/x.test", dir);
+    snprintf(want, sizeof want, "%s/hdri/sky.exr", dir);
+    FILE *f = fopen(path, "w");
+    ck_assert_ptr_nonnull(f);
+    fputs(HEAD "envmap hdri/sky.exr 3\r\n", f);
+    fclose(f);
+    scene_load_opts o = scene_load_defaults();
+    o.load_images = 0;
+    scene sc;
+    error err = {0};
+    ck_assert_int_eq(scene_load(path, &o, &sc, &err), 0);
+    ck_assert_str_eq(sc.path, path);
+    ck_assert_str_eq(sc.envmap.path, want);
+    ck_assert_double_eq(sc.envmap.scale, 3);
+    scene_free(&sc);
+    unlink(path);
+    rmdir(dir);
+}
+END_TEST
+
+START_TEST(test_an_unreadable_envmap_is_an_error_at_its_line_with_the_reason)
+{
+    /* Holds both before and after image I/O lands: the file does not exist either way. */
+    scene sc;
+    error err = {0};
+    ck_assert_int_eq(scene_load_string(HEAD "# sky\nenvmap missing.exr\n", "nowhere/x.test", NULL,
+                                       &sc, &err),
+                     -1);
+    ck_assert_str_eq(err.file, "nowhere/x.test");
+    ck_assert_int_eq(err.line, 4);
+    ck_assert_msg(strstr(err.msg, "envmap 'missing.exr' (nowhere/missing.exr): ") == err.msg,
+                  "message: %s", err.msg);
+    ck_assert_ptr_null(sc.envmap.img.px);
+}
+END_TEST
+
+START_TEST(test_a_readable_envmap_is_loaded_when_images_are_on)
+{
+    /* Tolerates the image I/O stub: if a PFM cannot be written yet, there is nothing to read. */
+    char dir[] = "/tmp/test_scene_XXXXXX";
+    ck_assert_ptr_nonnull(mkdtemp(dir));
+    char img_path[256], scene_path[256];
+    snprintf(img_path, sizeof img_path, "%s/sky.pfm", dir);
+    snprintf(scene_path, sizeof scene_path, "%s/x.test", dir);
+    image im = {0};
+    error err = {0};
+    ck_assert_int_eq(image_alloc(&im, 4, 2, &err), 0);
+    int wrote = imageio_write(img_path, &im, NULL, &err) == 0;
+    image_free(&im);
+    if (wrote) {
+        FILE *f = fopen(scene_path, "w");
+        ck_assert_ptr_nonnull(f);
+        fputs(HEAD "envmap sky.pfm\n", f);
+        fclose(f);
+        scene sc;
+        ck_assert_msg(scene_load(scene_path, NULL, &sc, &err) == 0, "%s", err.msg);
+        ck_assert_int_eq(sc.envmap.img.w, 4);
+        ck_assert_int_eq(sc.envmap.img.h, 2);
+        ck_assert_ptr_nonnull(sc.envmap.img.px);
+        scene_free(&sc);
+        ck_assert_ptr_null(sc.envmap.img.px);
+        unlink(scene_path);
+        unlink(img_path);
+    }
+    rmdir(dir);
+}
+END_TEST
+
+START_TEST(test_a_100k_triangle_mesh_parses_with_one_material)
+{
+    enum { N = 225 }; /* N x N vertices, 2 (N-1)^2 = 100352 triangles */
+    size_t cap = (size_t)N * N * 40 + (size_t)(N - 1) * (N - 1) * 2 * 32 + 256;
+    char *text = malloc(cap);
+    ck_assert_ptr_nonnull(text);
+    char *w = text + sprintf(text, HEAD "diffuse 0.5 0.5 0.5\n");
+    for (int y = 0; y < N; y++)
+        for (int x = 0; x < N; x++) w += sprintf(w, "vertex %d %d 0\n", x, y);
+    for (int y = 0; y + 1 < N; y++)
+        for (int x = 0; x + 1 < N; x++) {
+            int a = y * N + x;
+            w += sprintf(w, "tri %d %d %d\ntri %d %d %d\n", a, a + 1, a + N + 1, a, a + N + 1,
+                         a + N);
+        }
+    ck_assert_uint_lt((size_t)(w - text), cap);
+    scene sc;
+    load_ok(text, &sc);
+    ck_assert_int_eq(sc.n_triangles, 2L * (N - 1) * (N - 1));
+    ck_assert_int_eq(sc.n_materials, 1);
+    const scene_triangle *last = &sc.triangles[sc.n_triangles - 1];
+    assert_vec_near(last->p[0], N - 2, N - 2, 0);
+    assert_vec_near(last->p[2], N - 2, N - 1, 0);
+    scene_free(&sc);
+    free(text);
+}
+END_TEST
+
+START_TEST(test_scene_free_is_safe_twice_and_on_a_zeroed_scene)
+{
+    scene sc;
+    memset(&sc, 0, sizeof sc);
+    scene_free(&sc);
+    load_ok(HEAD "sphere 0 0 0 1\n", &sc);
+    scene_free(&sc);
+    scene_free(&sc);
+    ck_assert_ptr_null(sc.spheres);
+    ck_assert_int_eq(sc.n_spheres, 0);
+}
+END_TEST
+
+Suite *scene_suite(void)
+{
+    Suite *s = suite_create("scene");
+    TCase *errors = tcase_create("errors");
+    tcase_add_loop_test(errors, test_each_bad_line_is_an_error_at_its_line_naming_the_token, 0,
+                        (int)(sizeof bad_cases / sizeof bad_cases[0]));
+    tcase_add_test(errors, test_a_scene_without_size_is_an_error_at_the_end);
+    tcase_add_test(errors, test_a_scene_without_camera_is_an_error_at_the_end);
+    tcase_add_test(errors, test_a_line_longer_than_the_limit_is_an_error_not_an_overflow);
+    tcase_add_test(errors, test_push_deeper_than_the_stack_limit_is_an_error);
+    tcase_add_test(errors, test_more_primitives_than_the_limit_is_an_error);
+    tcase_add_test(errors, test_a_huge_maxverts_hint_allocates_nothing_huge);
+    tcase_add_test(errors, test_a_nul_byte_makes_the_file_an_error);
+    tcase_add_test(errors, test_a_missing_file_is_an_error_naming_it);
+    tcase_add_test(errors, test_an_unreadable_envmap_is_an_error_at_its_line_with_the_reason);
+    suite_add_tcase(s, errors);
+
+    TCase *lex = tcase_create("lexical");
+    tcase_add_test(lex, test_unknown_commands_are_warnings_with_file_and_line);
+    tcase_add_test(lex, test_strict_makes_unknown_commands_errors);
+    tcase_add_test(lex, test_commands_before_size_warn_once_even_when_strict);
+    tcase_add_test(lex, test_comments_blank_lines_crlf_and_tabs_are_tolerated);
+    suite_add_tcase(s, lex);
+
+    TCase *cmds = tcase_create("commands");
+    tcase_add_test(cmds, test_defaults_are_the_courses);
+    tcase_add_test(cmds, test_image_and_camera_commands_are_stored);
+    tcase_add_test(cmds, test_renderer_settings_are_stored);
+    tcase_add_test(cmds, test_every_integrator_name_round_trips);
+    tcase_add_test(cmds, test_each_object_takes_the_material_current_when_read);
+    tcase_add_test(cmds, test_materials_are_stored_once_until_the_state_changes);
+    tcase_add_test(cmds, test_translate_then_rotate_rotates_the_object_first);
+    tcase_add_test(cmds, test_tri_uses_the_transform_current_at_tri_not_at_vertex);
+    tcase_add_test(cmds, test_pop_restores_the_transform_saved_by_push);
+    tcase_add_test(cmds, test_a_scaled_sphere_keeps_an_ellipsoid_matrix_and_its_inverse);
+    tcase_add_test(cmds, test_trinormal_transforms_normals_by_the_inverse_transpose);
+    tcase_add_test(cmds, test_lights_are_in_world_space_and_point_takes_the_current_attenuation);
+    tcase_add_test(cmds, test_envmap_takes_file_scale_and_the_current_transform);
+    tcase_add_test(cmds, test_envmap_paths_are_relative_to_the_scene_folder);
+    tcase_add_test(cmds, test_scene_load_resolves_envmap_beside_a_scene_file);
+    tcase_add_test(cmds, test_a_readable_envmap_is_loaded_when_images_are_on);
+    tcase_add_test(cmds, test_a_100k_triangle_mesh_parses_with_one_material);
+    tcase_add_test(cmds, test_scene_free_is_safe_twice_and_on_a_zeroed_scene);
+    suite_add_tcase(s, cmds);
+    return s;
+}
+
+UNIT_MAIN(scene_suite)
