@@ -1,0 +1,94 @@
+/* texlookup.c - wrap modes, nearest and bilinear texture lookups (see include/envtex/texlookup.h). */
+#include "envtex/texlookup.h"
+
+#include <assert.h>
+#include <math.h>
+#include <string.h>
+
+int texlookup_wrap(int i, int n, wrap_mode wrap)
+{
+    assert(n >= 1);
+    if ((unsigned)i < (unsigned)n) return i; /* inside: the common case, every mode agrees */
+    switch (wrap) {
+    case WRAP_CLAMP:
+        return i < 0 ? 0 : n - 1;
+    case WRAP_MIRROR: {
+        long long period = 2LL * n; /* 2n overflows an int for n > 2^30 */
+        long long r = i % period;   /* in (-2n, 2n) */
+        if (r < 0) r += period;     /* [0, 2n) */
+        return (int)(r < n ? r : period - 1 - r); /* the second copy runs backwards */
+    }
+    case WRAP_REPEAT:
+    default: {
+        assert(wrap == WRAP_REPEAT);
+        int r = i % n; /* in (-n, n) */
+        return r < 0 ? r + n : r;
+    }
+    }
+}
+
+/* Past this magnitude floor(x) is wrapped in double; below it, converted to int and wrapped
+ * there.  2^30 leaves room for the + 1 of a bilinear neighbour without reaching INT_MAX. */
+#define WRAP_INT_SAFE 0x1p30
+
+int texlookup_wrap_floor(double x, int n, wrap_mode wrap)
+{
+    assert(n >= 1);
+    double f = floor(x);
+    if (fabs(f) < WRAP_INT_SAFE) return texlookup_wrap((int)f, n, wrap); /* false for NaN */
+    if (isnan(f)) return 0;
+    if (wrap == WRAP_CLAMP) return f < 0 ? 0 : n - 1;
+    if (!isfinite(f)) return 0;
+    /* fmod is exact, so the remainder of an integer-valued f is an exact integer */
+    double period = wrap == WRAP_MIRROR ? 2.0 * n : (double)n;
+    double r = fmod(f, period); /* (-period, period) */
+    if (r < 0) r += period;     /* [0, period) */
+    if (wrap == WRAP_MIRROR && r >= n) r = period - 1 - r;
+    return (int)r;
+}
+
+static const char *const wrap_names[] = {"repeat", "clamp", "mirror"};
+
+int texlookup_wrap_parse(const char *name, wrap_mode *out)
+{
+    for (int k = 0; k < 3; k++)
+        if (name && strcmp(name, wrap_names[k]) == 0) {
+            *out = (wrap_mode)k;
+            return 0;
+        }
+    return -1;
+}
+
+const char *texlookup_wrap_name(wrap_mode wrap)
+{
+    return (unsigned)wrap < 3 ? wrap_names[wrap] : "unknown";
+}
+
+rgb texlookup_nearest(const image *im, uv2 st, wrap_mode wrap)
+{
+    assert(im->w >= 1 && im->h >= 1);
+    int i = texlookup_wrap_floor(st.u * im->w, im->w, wrap); /* i = floor(s W) */
+    int j = texlookup_wrap_floor(st.v * im->h, im->h, wrap); /* j = floor(t H), from the bottom */
+    return image_get(im, i, im->h - 1 - j);
+}
+
+rgb texlookup_bilinear(const image *im, uv2 st, wrap_mode wrap)
+{
+    assert(im->w >= 1 && im->h >= 1);
+    int w = im->w, h = im->h;
+    double x = st.u * w - 0.5, y = st.v * h - 0.5; /* texel centres at integers */
+    double x0 = floor(x), y0 = floor(y);
+    double fx = x - x0, fy = y - y0; /* [0, 1]; NaN for a non-finite coordinate */
+    if (!(fx >= 0.0)) fx = 0.0;
+    if (!(fy >= 0.0)) fy = 0.0;
+    int i0 = texlookup_wrap_floor(x0, w, wrap), i1 = texlookup_wrap_floor(x0 + 1.0, w, wrap);
+    int j0 = texlookup_wrap_floor(y0, h, wrap), j1 = texlookup_wrap_floor(y0 + 1.0, h, wrap);
+    const float *r0 = image_px(im, 0, h - 1 - j0); /* row of j0 (rows counted from the top) */
+    const float *r1 = image_px(im, 0, h - 1 - j1);
+    const float *c00 = r0 + 3 * i0, *c10 = r0 + 3 * i1, *c01 = r1 + 3 * i0, *c11 = r1 + 3 * i1;
+    /* c = (1-fy) [(1-fx) c00 + fx c10] + fy [(1-fx) c01 + fx c11] */
+    double w00 = (1 - fx) * (1 - fy), w10 = fx * (1 - fy), w01 = (1 - fx) * fy, w11 = fx * fy;
+    return (rgb){w00 * c00[0] + w10 * c10[0] + w01 * c01[0] + w11 * c11[0],
+                 w00 * c00[1] + w10 * c10[1] + w01 * c01[1] + w11 * c11[1],
+                 w00 * c00[2] + w10 * c10[2] + w01 * c01[2] + w11 * c11[2]};
+}
