@@ -8,6 +8,7 @@
  */
 #include "envtex/scene.h"
 
+#include <assert.h>
 #include <errno.h>
 #include <stdarg.h>
 #include <stdlib.h>
@@ -564,7 +565,7 @@ static int cmd_quadlight(parser *p)
     l.ac = vec3_make(v[6], v[7], v[8]);
     /* area = |ab x ac| = |ab| |ac| sin(angle) */
     double area = vec3_length(vec3_cross(l.ab, l.ac));
-    if (!(area > QUAD_PARALLEL_EPS * vec3_length(l.ab) * vec3_length(l.ac)) || !(area > 0))
+    if (!(area > QUAD_PARALLEL_EPS * vec3_length(l.ab) * vec3_length(l.ac)))
         return fail(p, "'quadLight' has zero area (edges ab and ac are zero or parallel)");
     return add_light(p, &l);
 }
@@ -899,11 +900,13 @@ material scene_default_material(void)
 int scene_load_string(const char *text, const char *name, const scene_load_opts *opts, scene *out,
                       error *err)
 {
+    assert(text && out);
     return parse(text, strlen(text), name, opts, out, err);
 }
 
 int scene_load(const char *path, const scene_load_opts *opts, scene *out, error *err)
 {
+    assert(path && out);
     memset(out, 0, sizeof *out);
     FILE *f = fopen(path, "rb");
     if (!f) return error_set(err, path, 0, "cannot open: %s", strerror(errno));
