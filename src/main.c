@@ -1,0 +1,380 @@
+/* main.c - the envtex command line.  Parses arguments, calls the library, prints results.
+ * Every failure prints one line `envtex: FILE:LINE: what is wrong` and exits with status 1.
+ *
+ *   envtex SCENE                    same as `envtex render SCENE`
+ *   envtex render SCENE [-o OUT] [--spp N] [--seed N] [--ref REF] [--quiet] [--verbose] [--strict]
+ *   envtex compare A B [--diff D.png] [--fail-percent P --fail T --hard H]
+ *   envtex tonemap IN OUT.png [--exposure EV] [--op clamp|reinhard|aces] [--gamma G]
+ *   envtex gen-env KIND OUT [--width W] [--value V] [--sun-ratio R] [--sun-radius DEG]
+ *                           [--sun-elevation DEG] [--sun-azimuth DEG]
+ */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "envtex/bvh.h"
+#include "envtex/compare.h"
+#include "envtex/genenv.h"
+#include "envtex/imageio.h"
+#include "envtex/render.h"
+#include "envtex/scene.h"
+#include "envtex/tonemap.h"
+
+static const char *usage_text =
+    "usage: envtex SCENE                         (same as: envtex render SCENE)\n"
+    "       envtex render SCENE [-o OUT.exr|.png|.pfm] [--spp N] [--seed N] [--ref REF]\n"
+    "                           [--quiet] [--verbose] [--strict]\n"
+    "       envtex compare A B [--diff DIFF.png] [--fail-percent P] [--fail T] [--hard H]\n"
+    "       envtex tonemap IN OUT.png [--exposure EV] [--op clamp|reinhard|aces] [--gamma G]\n"
+    "       envtex gen-env constant|sky|sun|axes OUT [--width W] [--value V] [--sun-ratio R]\n"
+    "                      [--sun-radius DEG] [--sun-elevation DEG] [--sun-azimuth DEG]\n";
+
+static int fail(const error *err)
+{
+    error_print(err, stderr);
+    return 1;
+}
+
+static int usage_error(const char *fmt, const char *arg)
+{
+    fprintf(stderr, "envtex: ");
+    fprintf(stderr, fmt, arg);
+    fprintf(stderr, " (envtex --help for usage)\n");
+    return 1;
+}
+
+/* Parse a whole-token number; 0 on success. */
+static int parse_double(const char *s, double *out)
+{
+    char *end;
+    errno = 0;
+    double v = strtod(s, &end);
+    if (end == s || *end || errno == ERANGE || !isfinite(v)) return -1;
+    *out = v;
+    return 0;
+}
+
+static int parse_long(const char *s, long lo, long hi, long *out)
+{
+    char *end;
+    errno = 0;
+    long v = strtol(s, &end, 10);
+    if (end == s || *end || errno == ERANGE || v < lo || v > hi) return -1;
+    *out = v;
+    return 0;
+}
+
+/* Fetch the value after option argv[*i]; NULL (and a message) if missing. */
+static const char *opt_value(int argc, char **argv, int *i)
+{
+    if (*i + 1 >= argc) {
+        usage_error("option '%s' needs a value", argv[*i]);
+        return NULL;
+    }
+    return argv[++*i];
+}
+
+/* ---- render ------------------------------------------------------------------------------ */
+
+/* Scene warnings are kept until the scene has loaded: a scene that fails prints only its error
+ * (one line), a scene that loads prints its warnings before rendering. */
+#define MAX_WARNINGS_SHOWN 20
+typedef struct warnings {
+    error first[MAX_WARNINGS_SHOWN];
+    int n;
+} warnings;
+
+static void warn_keep(void *ctx, const error *w)
+{
+    warnings *ws = ctx;
+    if (ws->n < MAX_WARNINGS_SHOWN) ws->first[ws->n] = *w;
+    ws->n++;
+}
+
+static void warnings_print(const warnings *ws)
+{
+    for (int i = 0; i < ws->n && i < MAX_WARNINGS_SHOWN; i++) {
+        const error *w = &ws->first[i];
+        fputs("envtex: warning: ", stderr);
+        if (w->file[0]) fprintf(stderr, w->line > 0 ? "%s:%d: " : "%s: ", w->file, w->line);
+        fprintf(stderr, "%s\n", w->msg);
+    }
+    if (ws->n > MAX_WARNINGS_SHOWN)
+        fprintf(stderr, "envtex: warning: ... and %d more warnings\n", ws->n - MAX_WARNINGS_SHOWN);
+}
+
+static void progress_bar(void *ctx, int done, int rows)
+{
+    (void)ctx;
+    int width = 40, filled = (int)((long)done * width / rows);
+    fprintf(stderr, "\r[%.*s%*s] %3d%%", filled, "########################################",
+            width - filled, "", (int)((long)done * 100 / rows));
+    if (done == rows) fputs("\r\033[K", stderr);
+    fflush(stderr);
+}
+
+/* Output path must be writable before the render starts: try the temporary file now. */
+static int check_output(const char *path, error *err)
+{
+    if (!imageio_can_write(path))
+        return error_set(err, path, 0, "cannot write this format: use .exr, .png or .pfm");
+    char tmp[ERROR_FILE_MAX];
+    int fd = imageio_tmp_open(path, tmp, err);
+    if (fd < 0) return -1;
+    close(fd);
+    imageio_tmp_abandon(tmp);
+    return 0;
+}
+
+static int cmd_render(int argc, char **argv)
+{
+    const char *scene_path = NULL, *out_path = NULL, *ref_path = NULL;
+    int quiet = 0, verbose = 0, strict = 0;
+    render_opts ro = render_defaults();
+    for (int i = 0; i < argc; i++) {
+        const char *a = argv[i], *v;
+        long n;
+        if (!strcmp(a, "-o")) {
+            if (!(out_path = opt_value(argc, argv, &i))) return 1;
+        } else if (!strcmp(a, "--spp")) {
+            if (!(v = opt_value(argc, argv, &i))) return 1;
+            if (parse_long(v, 1, SCENE_MAX_SPP, &n)) return usage_error("--spp needs a whole number from 1 to 1048576, got '%s'", v);
+            ro.spp = (int)n;
+        } else if (!strcmp(a, "--seed")) {
+            if (!(v = opt_value(argc, argv, &i))) return 1;
+            if (parse_long(v, 0, 0x7fffffffffffffffL, &n)) return usage_error("--seed needs a whole number >= 0, got '%s'", v);
+            ro.seed = (uint64_t)n;
+        } else if (!strcmp(a, "--ref")) {
+            if (!(ref_path = opt_value(argc, argv, &i))) return 1;
+        } else if (!strcmp(a, "--quiet")) quiet = 1;
+        else if (!strcmp(a, "--verbose")) verbose = 1;
+        else if (!strcmp(a, "--strict")) strict = 1;
+        else if (a[0] == '-' && a[1]) return usage_error("unknown option '%s'", a);
+        else if (!scene_path) scene_path = a;
+        else return usage_error("unexpected argument '%s'", a);
+    }
+    if (!scene_path) return usage_error("%s", "render needs a scene file");
+
+    error err = {0};
+    scene sc;
+    scene_load_opts lo = scene_load_defaults();
+    lo.strict = strict;
+    static warnings ws; /* static: about 40 KB */
+    lo.warn = warn_keep;
+    lo.warn_ctx = &ws;
+    if (scene_load(scene_path, &lo, &sc, &err)) return fail(&err);
+    if (!quiet) warnings_print(&ws);
+    if (!out_path) out_path = sc.output;
+
+    int status = 1;
+    image img = {0}, ref = {0};
+    if (check_output(out_path, &err)) goto done;
+    if (ref_path && imageio_read(ref_path, &ref, &err)) goto done;
+    if (!quiet && isatty(STDERR_FILENO)) {
+        ro.progress = progress_bar;
+    }
+    render_stats st;
+    if (render_scene(&sc, &ro, &img, &st, &err)) goto done;
+    if (verbose) {
+        fprintf(stderr, "envtex: scene %s: %dx%d, %ld primitives (%ld spheres, %ld triangles), %d lights, %d materials\n",
+                scene_path, sc.width, sc.height, st.prims, sc.n_spheres, sc.n_triangles, sc.n_lights, sc.n_materials);
+        if (st.bvh_is_tree)
+            fprintf(stderr, "envtex: built BVH: %ld nodes, depth %d, %.3f s\n", st.bvh_nodes, st.bvh_depth, st.build_seconds);
+        else
+            fprintf(stderr, "envtex: no BVH (%ld primitives <= %d: tested linearly)\n", st.prims, BVH_MIN_PRIMS);
+        if (sc.envmap.present)
+            fprintf(stderr, "envtex: envmap %s: %dx%d lat-long, scale %g, %.1f MB; no sampling tables (not needed by 'raytracer')\n",
+                    sc.envmap.path, sc.envmap.img.w, sc.envmap.img.h, sc.envmap.scale,
+                    sc.envmap.img.w * (double)sc.envmap.img.h * 12 / 1e6);
+        else
+            fprintf(stderr, "envtex: no envmap\n");
+    }
+    if (st.nonfinite_pixels)
+        fprintf(stderr, "envtex: warning: %s: %ld pixels are NaN or Inf\n", scene_path, st.nonfinite_pixels);
+    tonemap_params tm = tonemap_defaults();
+    tm.gamma = sc.gamma;
+    if (imageio_write(out_path, &img, &tm, &err)) goto done;
+
+    printf("time_s=%.3f spp=%d rays=%lld mrays_per_s=%.3f nonfinite=%ld", st.seconds, st.spp, st.rays,
+           st.seconds > 0 ? st.rays / st.seconds / 1e6 : 0.0, st.nonfinite_pixels);
+    if (ref_path) {
+        compare_result cr;
+        if (compare_metrics(&img, &ref, &cr, &err)) {
+            printf("\n");
+            error_prefix(&err, "--ref %s", ref_path);
+            goto done;
+        }
+        printf(" relmse=%.6g rmse=%.6g", cr.relmse, cr.rmse);
+    }
+    printf("\n");
+    status = 0;
+done:
+    if (status) error_print(&err, stderr);
+    image_free(&img);
+    image_free(&ref);
+    scene_free(&sc);
+    return status;
+}
+
+/* ---- compare ----------------------------------------------------------------------------- */
+
+static int cmd_compare(int argc, char **argv)
+{
+    const char *a_path = NULL, *b_path = NULL, *diff_path = NULL;
+    compare_thresholds_params th = compare_thresholds_defaults();
+    int use_thresholds = 0;
+    for (int i = 0; i < argc; i++) {
+        const char *a = argv[i], *v;
+        double *target = NULL;
+        if (!strcmp(a, "--diff")) {
+            if (!(diff_path = opt_value(argc, argv, &i))) return 1;
+            continue;
+        }
+        if (!strcmp(a, "--fail-percent")) target = &th.fail_percent;
+        else if (!strcmp(a, "--fail")) target = &th.fail_thresh;
+        else if (!strcmp(a, "--hard")) target = &th.hard_thresh;
+        if (target) {
+            if (!(v = opt_value(argc, argv, &i))) return 1;
+            if (parse_double(v, target) || *target < 0) return usage_error("a threshold must be a number >= 0, got '%s'", v);
+            use_thresholds = 1;
+        } else if (a[0] == '-' && a[1]) return usage_error("unknown option '%s'", a);
+        else if (!a_path) a_path = a;
+        else if (!b_path) b_path = a;
+        else return usage_error("unexpected argument '%s'", a);
+    }
+    if (!b_path) return usage_error("%s", "compare needs two images: A (tested) and B (reference)");
+    error err = {0};
+    image a = {0}, b = {0}, d = {0};
+    int status = 1;
+    if (diff_path && check_output(diff_path, &err)) goto done;
+    if (imageio_read(a_path, &a, &err) || imageio_read(b_path, &b, &err)) goto done;
+    compare_result cr;
+    if (compare_metrics(&a, &b, &cr, &err)) {
+        error_set(&err, a_path, 0, "%s (against %s)", err.msg, b_path);
+        goto done;
+    }
+    printf("rmse=%.6g relmse=%.6g psnr=%.3f max_abs=%.6g nan=%ld\n", cr.rmse, cr.relmse, cr.psnr,
+           cr.max_abs, cr.nonfinite);
+    if (diff_path) {
+        if (compare_diff_image(&a, &b, &d, &err) || imageio_write(diff_path, &d, NULL, &err)) goto done;
+    }
+    status = 0;
+    if (use_thresholds) {
+        compare_verdict v;
+        compare_thresholds(&a, &b, &th, &v);
+        printf("%s: %ld of %ld pixels (%.3f%%) differ by more than %g (allowed %g%%), max %.6g at (%d, %d) (hard limit %g), %ld NaN/Inf: %s\n",
+               v.pass ? "PASS" : "FAIL", v.failed, v.pixels, v.failed_percent, th.fail_thresh,
+               th.fail_percent, v.max_diff, v.max_x, v.max_y, th.hard_thresh, v.nonfinite, v.why);
+        if (!v.pass) status = 2; /* a failed comparison is not an error: status 2 */
+    }
+done:
+    if (status == 1) error_print(&err, stderr);
+    image_free(&a);
+    image_free(&b);
+    image_free(&d);
+    return status;
+}
+
+/* ---- tonemap ----------------------------------------------------------------------------- */
+
+static int cmd_tonemap(int argc, char **argv)
+{
+    const char *in = NULL, *out = NULL;
+    tonemap_params tm = tonemap_defaults();
+    for (int i = 0; i < argc; i++) {
+        const char *a = argv[i], *v;
+        if (!strcmp(a, "--exposure")) {
+            if (!(v = opt_value(argc, argv, &i))) return 1;
+            if (parse_double(v, &tm.exposure)) return usage_error("--exposure needs a number, got '%s'", v);
+        } else if (!strcmp(a, "--op")) {
+            if (!(v = opt_value(argc, argv, &i))) return 1;
+            if (tonemap_op_parse(v, &tm.op)) return usage_error("--op must be clamp, reinhard or aces, got '%s'", v);
+        } else if (!strcmp(a, "--gamma")) {
+            if (!(v = opt_value(argc, argv, &i))) return 1;
+            if (parse_double(v, &tm.gamma) || !(tm.gamma > 0)) return usage_error("--gamma needs a number > 0, got '%s'", v);
+        } else if (a[0] == '-' && a[1]) return usage_error("unknown option '%s'", a);
+        else if (!in) in = a;
+        else if (!out) out = a;
+        else return usage_error("unexpected argument '%s'", a);
+    }
+    if (!out) return usage_error("%s", "tonemap needs IN and OUT.png");
+    error err = {0};
+    image img = {0};
+    int status = 1;
+    if (check_output(out, &err)) goto done;
+    if (imageio_read(in, &img, &err)) goto done;
+    if (imageio_write(out, &img, &tm, &err)) goto done;
+    status = 0;
+done:
+    if (status) error_print(&err, stderr);
+    image_free(&img);
+    return status;
+}
+
+/* ---- gen-env ----------------------------------------------------------------------------- */
+
+static int cmd_gen_env(int argc, char **argv)
+{
+    const char *kind_name = NULL, *out = NULL;
+    genenv_params p = genenv_defaults();
+    for (int i = 0; i < argc; i++) {
+        const char *a = argv[i], *v;
+        double *target = NULL;
+        if (!strcmp(a, "--width")) {
+            long n;
+            if (!(v = opt_value(argc, argv, &i))) return 1;
+            if (parse_long(v, 2, IMAGE_MAX_SIDE, &n)) return usage_error("--width needs a whole number from 2 to 32768, got '%s'", v);
+            p.width = (int)n;
+            continue;
+        }
+        if (!strcmp(a, "--value")) target = &p.value;
+        else if (!strcmp(a, "--sun-ratio")) target = &p.sun_ratio;
+        else if (!strcmp(a, "--sun-radius")) target = &p.sun_radius_deg;
+        else if (!strcmp(a, "--sun-elevation")) target = &p.sun_elevation_deg;
+        else if (!strcmp(a, "--sun-azimuth")) target = &p.sun_azimuth_deg;
+        if (target) {
+            if (!(v = opt_value(argc, argv, &i))) return 1;
+            if (parse_double(v, target)) return usage_error("option needs a finite number, got '%s'", v);
+        } else if (a[0] == '-' && a[1]) return usage_error("unknown option '%s'", a);
+        else if (!kind_name) kind_name = a;
+        else if (!out) out = a;
+        else return usage_error("unexpected argument '%s'", a);
+    }
+    if (!out) return usage_error("%s", "gen-env needs KIND and OUT");
+    genenv_kind kind;
+    if (genenv_kind_parse(kind_name, &kind)) return usage_error("unknown environment kind '%s' (constant, sky, sun, axes)", kind_name);
+    error err = {0};
+    image img = {0};
+    int status = 1;
+    if (check_output(out, &err)) goto done;
+    if (genenv_make(kind, &p, &img, &err)) {
+        error_prefix(&err, "gen-env %s", kind_name);
+        goto done;
+    }
+    if (imageio_write(out, &img, NULL, &err)) goto done;
+    status = 0;
+done:
+    if (status) error_print(&err, stderr);
+    image_free(&img);
+    return status;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc < 2) {
+        fputs(usage_text, stderr);
+        return 1;
+    }
+    const char *cmd = argv[1];
+    if (!strcmp(cmd, "-h") || !strcmp(cmd, "--help") || !strcmp(cmd, "help")) {
+        fputs(usage_text, stdout);
+        return 0;
+    }
+    if (!strcmp(cmd, "render")) return cmd_render(argc - 2, argv + 2);
+    if (!strcmp(cmd, "compare")) return cmd_compare(argc - 2, argv + 2);
+    if (!strcmp(cmd, "tonemap")) return cmd_tonemap(argc - 2, argv + 2);
+    if (!strcmp(cmd, "gen-env")) return cmd_gen_env(argc - 2, argv + 2);
+    return cmd_render(argc - 1, argv + 1); /* envtex SCENE [options] */
+}
