@@ -1,0 +1,190 @@
+/* test_transform.c - 4x4 affine transforms as the scene format composes them (right
+ * multiplication: the command written last applies first), inverses, and normals under
+ * non-uniform scale (the inverse transpose). */
+#include "envtex/transform.h"
+
+#include <string.h>
+
+#include "envtex/rng.h"
+#include "unit.h"
+
+static void assert_vec_near(vec3 a, vec3 b, double tol)
+{
+    ck_assert_near(a.x, b.x, tol);
+    ck_assert_near(a.y, b.y, tol);
+    ck_assert_near(a.z, b.z, tol);
+}
+
+static double sym(rng *r) { return 2 * rng_uniform(r) - 1; } /* uniform in [-1, 1) */
+
+/* A random affine matrix M = T R S H: translation up to 10, any rotation, non-uniform scale
+ * with factors in [0.1, 10] (a mirror half the time), and a shear H. */
+static mat4 random_affine(rng *r)
+{
+    double a = pow(10, sym(r)) * (rng_uniform(r) < 0.5 ? -1 : 1);
+    mat4 h = mat4_identity();
+    h.m[0][1] = 0.5 * sym(r); /* a shear no product of T, R, S gives */
+    mat4 m = mat4_translate(vec3_make(10 * sym(r), 10 * sym(r), 10 * sym(r)));
+    m = mat4_mul(m, mat4_rotate(vec3_make(sym(r), sym(r), sym(r) + 0.1), 360 * rng_uniform(r)));
+    m = mat4_mul(m, mat4_scale(vec3_make(a, pow(10, sym(r)), pow(10, sym(r)))));
+    return mat4_mul(m, h);
+}
+
+START_TEST(test_transform_rotate_90_about_z_maps_x_to_y)
+{
+    mat4 r = mat4_rotate(vec3_make(0, 0, 1), 90);
+    assert_vec_near(mat4_dir(&r, vec3_make(1, 0, 0)), vec3_make(0, 1, 0), 1e-15);
+    assert_vec_near(mat4_dir(&r, vec3_make(0, 1, 0)), vec3_make(-1, 0, 0), 1e-15);
+    assert_vec_near(mat4_dir(&r, vec3_make(0, 0, 1)), vec3_make(0, 0, 1), 1e-15);
+    /* the axis need not be unit length: (0,0,5) is the same axis */
+    mat4 r5 = mat4_rotate(vec3_make(0, 0, 5), 90);
+    assert_vec_near(mat4_dir(&r5, vec3_make(1, 0, 0)), vec3_make(0, 1, 0), 1e-15);
+}
+END_TEST
+
+START_TEST(test_transform_rotate_is_right_handed_about_x_and_y)
+{
+    /* right hand rule: about x, y goes to z; about y, z goes to x */
+    mat4 rx = mat4_rotate(vec3_make(1, 0, 0), 90), ry = mat4_rotate(vec3_make(0, 1, 0), 90);
+    assert_vec_near(mat4_dir(&rx, vec3_make(0, 1, 0)), vec3_make(0, 0, 1), 1e-15);
+    assert_vec_near(mat4_dir(&ry, vec3_make(0, 0, 1)), vec3_make(1, 0, 0), 1e-15);
+    /* rotate 1 0 0 -90 (FORMAT.md): the envmap's +z becomes the world's +y */
+    mat4 env = mat4_rotate(vec3_make(1, 0, 0), -90);
+    assert_vec_near(mat4_dir(&env, vec3_make(0, 0, 1)), vec3_make(0, 1, 0), 1e-15);
+    /* 120 degrees about (1,1,1) cycles the axes x -> y -> z */
+    mat4 c = mat4_rotate(vec3_make(1, 1, 1), 120);
+    assert_vec_near(mat4_dir(&c, vec3_make(1, 0, 0)), vec3_make(0, 1, 0), 1e-15);
+    assert_vec_near(mat4_dir(&c, vec3_make(0, 1, 0)), vec3_make(0, 0, 1), 1e-15);
+}
+END_TEST
+
+START_TEST(test_transform_right_multiplication_applies_the_last_command_first)
+{
+    /* "translate 0 1 0" then "rotate 0 0 1 90" in a file: M = T R, p' = T (R p) */
+    mat4 m = mat4_identity();
+    m = mat4_mul(m, mat4_translate(vec3_make(0, 1, 0)));
+    m = mat4_mul(m, mat4_rotate(vec3_make(0, 0, 1), 90));
+    assert_vec_near(mat4_point(&m, vec3_make(1, 0, 0)), vec3_make(0, 2, 0), 1e-15);
+    /* the other order would give R (T p) = R (1,1,0) = (-1,1,0) */
+    mat4 rt = mat4_mul(mat4_rotate(vec3_make(0, 0, 1), 90), mat4_translate(vec3_make(0, 1, 0)));
+    assert_vec_near(mat4_point(&rt, vec3_make(1, 0, 0)), vec3_make(-1, 1, 0), 1e-15);
+    /* directions ignore the translation */
+    assert_vec_near(mat4_dir(&m, vec3_make(1, 0, 0)), vec3_make(0, 1, 0), 1e-15);
+    /* scale then translate: scale applies to the translation written after it */
+    mat4 st = mat4_mul(mat4_scale(vec3_make(2, 3, 4)), mat4_translate(vec3_make(1, 1, 1)));
+    assert_vec_near(mat4_point(&st, vec3_make(0, 0, 0)), vec3_make(2, 3, 4), 1e-15);
+}
+END_TEST
+
+START_TEST(test_transform_transpose_swaps_rows_and_columns)
+{
+    mat4 a;
+    for (int i = 0; i < 4; i++)
+        for (int j = 0; j < 4; j++) a.m[i][j] = 10 * i + j;
+    mat4 t = mat4_transpose(a);
+    for (int i = 0; i < 4; i++)
+        for (int j = 0; j < 4; j++) ck_assert(t.m[i][j] == a.m[j][i]);
+}
+END_TEST
+
+START_TEST(test_transform_inverse_of_random_affine_matrices_is_exact)
+{
+    rng r;
+    rng_seed(&r, 11, 0);
+    for (int n = 0; n < 2000; n++) {
+        mat4 m = random_affine(&r), inv;
+        ck_assert_int_eq(mat4_inverse(m, &inv), 0);
+        mat4 p = mat4_mul(m, inv), q = mat4_mul(inv, m);
+        /* condition number <= ~1e3 and entries <= ~1e2: rounding leaves ~1e-13 */
+        double tol = 1e-12;
+        for (int i = 0; i < 4; i++)
+            for (int j = 0; j < 4; j++) {
+                ck_assert_near(p.m[i][j], i == j, tol);
+                ck_assert_near(q.m[i][j], i == j, tol);
+            }
+        ck_assert(inv.m[3][0] == 0 && inv.m[3][1] == 0 && inv.m[3][2] == 0 && inv.m[3][3] == 1);
+    }
+}
+END_TEST
+
+START_TEST(test_transform_inverse_of_simple_matrices_is_within_1e_12)
+{
+    mat4 m = mat4_mul(mat4_translate(vec3_make(1, -2, 3)),
+                      mat4_mul(mat4_rotate(vec3_make(1, 2, 3), 37), mat4_scale(vec3_make(2, 0.5, 3)))),
+         inv;
+    ck_assert_int_eq(mat4_inverse(m, &inv), 0);
+    mat4 p = mat4_mul(m, inv);
+    for (int i = 0; i < 4; i++)
+        for (int j = 0; j < 4; j++) ck_assert_near(p.m[i][j], i == j, 1e-12);
+    /* a pure translation inverts exactly */
+    mat4 t = mat4_translate(vec3_make(5, 6, 7)), ti;
+    ck_assert_int_eq(mat4_inverse(t, &ti), 0);
+    ck_assert(ti.m[0][3] == -5 && ti.m[1][3] == -6 && ti.m[2][3] == -7);
+}
+END_TEST
+
+START_TEST(test_transform_singular_matrix_returns_minus_one_and_leaves_out_untouched)
+{
+    mat4 sentinel;
+    memset(&sentinel, 0, sizeof sentinel);
+    sentinel.m[1][2] = 42;
+    mat4 out = sentinel;
+    /* scale 0 along y: the usual way a scene makes a singular transform */
+    ck_assert_int_eq(mat4_inverse(mat4_scale(vec3_make(1, 0, 1)), &out), -1);
+    ck_assert_mem_eq(&out, &sentinel, sizeof out);
+    /* rank 2 without a zero on the diagonal: rows 0 and 1 equal */
+    mat4 m = mat4_identity();
+    m.m[0][0] = m.m[0][1] = m.m[1][0] = m.m[1][1] = 1;
+    ck_assert_int_eq(mat4_inverse(m, &out), -1);
+    ck_assert_mem_eq(&out, &sentinel, sizeof out);
+    /* NaN is not invertible either */
+    mat4 nan = mat4_identity();
+    nan.m[0][0] = NAN;
+    ck_assert_int_eq(mat4_inverse(nan, &out), -1);
+    ck_assert_mem_eq(&out, &sentinel, sizeof out);
+}
+END_TEST
+
+START_TEST(test_transform_normal_stays_perpendicular_under_nonuniform_scale)
+{
+    rng r;
+    rng_seed(&r, 12, 0);
+    for (int n = 0; n < 2000; n++) {
+        mat4 m = random_affine(&r), inv;
+        ck_assert_int_eq(mat4_inverse(m, &inv), 0);
+        vec3 nrm = vec3_normalize(vec3_make(sym(&r), sym(&r), sym(&r)));
+        vec3 t0, t1;
+        vec3_basis(nrm, &t0, &t1); /* two tangents of the surface */
+        vec3 nw = vec3_normalize(mat4_normal(&inv, nrm));
+        vec3 a = vec3_normalize(mat4_dir(&m, t0)), b = vec3_normalize(mat4_dir(&m, t1));
+        ck_assert_near(vec3_dot(nw, a), 0, 1e-9);
+        ck_assert_near(vec3_dot(nw, b), 0, 1e-9);
+    }
+    /* the known case: scale (2,1,1) turns the 45-degree normal (1,1,0) towards y: (1/2, 1, 0) */
+    mat4 s = mat4_scale(vec3_make(2, 1, 1)), si;
+    ck_assert_int_eq(mat4_inverse(s, &si), 0);
+    vec3 n = mat4_normal(&si, vec3_make(1, 1, 0));
+    assert_vec_near(n, vec3_make(0.5, 1, 0), 1e-15);
+    /* the plain matrix would have given (2,1,0), which is not perpendicular */
+    vec3 wrong = mat4_dir(&s, vec3_make(1, 1, 0));
+    ck_assert(fabs(vec3_dot(vec3_normalize(wrong), vec3_normalize(mat4_dir(&s, vec3_make(1, -1, 0))))) > 0.1);
+}
+END_TEST
+
+Suite *transform_suite(void)
+{
+    Suite *s = suite_create("transform");
+    TCase *tc = tcase_create("core");
+    tcase_add_test(tc, test_transform_rotate_90_about_z_maps_x_to_y);
+    tcase_add_test(tc, test_transform_rotate_is_right_handed_about_x_and_y);
+    tcase_add_test(tc, test_transform_right_multiplication_applies_the_last_command_first);
+    tcase_add_test(tc, test_transform_transpose_swaps_rows_and_columns);
+    tcase_add_test(tc, test_transform_inverse_of_random_affine_matrices_is_exact);
+    tcase_add_test(tc, test_transform_inverse_of_simple_matrices_is_within_1e_12);
+    tcase_add_test(tc, test_transform_singular_matrix_returns_minus_one_and_leaves_out_untouched);
+    tcase_add_test(tc, test_transform_normal_stays_perpendicular_under_nonuniform_scale);
+    suite_add_tcase(s, tc);
+    return s;
+}
+
+UNIT_MAIN(transform_suite)
