@@ -122,15 +122,12 @@ static rgb fetch(const cubemap *cm, int f, int i, int j)
     return rgb_scale(sum, 1.0 / 3.0);
 }
 
-int cubemap_lookup_bilinear(const cubemap *cm, vec3 d, rgb *out)
+rgb cubemap_lookup_bilinear(const cubemap *cm, vec3 d)
 {
     assert(cm->size > 0);
     int f;
     uv2 st;
-    if (cubemap_dir_to_face(d, &f, &st)) {
-        *out = rgb_gray(0.0);
-        return -1;
-    }
+    if (cubemap_dir_to_face(d, &f, &st)) return rgb_gray(0.0);
     int n = cm->size;
     /* texel centres sit at (i + 0.5)/N: x = s N - 0.5, x in [-0.5, N - 0.5] */
     double x = st.u * n - 0.5, y = st.v * n - 0.5;
@@ -142,8 +139,7 @@ int cubemap_lookup_bilinear(const cubemap *cm, vec3 d, rgb *out)
     /* bilinear: (1-fx)(1-fy) c00 + fx (1-fy) c10 + (1-fx) fy c01 + fx fy c11 */
     rgb top = rgb_add(rgb_scale(c00, 1.0 - fx), rgb_scale(c10, fx));
     rgb bottom = rgb_add(rgb_scale(c01, 1.0 - fx), rgb_scale(c11, fx));
-    *out = rgb_add(rgb_scale(top, 1.0 - fy), rgb_scale(bottom, fy));
-    return 0;
+    return rgb_add(rgb_scale(top, 1.0 - fy), rgb_scale(bottom, fy));
 }
 
 /* ---- cross layouts ------------------------------------------------------------------------ */

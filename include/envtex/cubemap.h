@@ -4,8 +4,7 @@
  *
  *     cubemap cm = {0};
  *     if (cubemap_from_cross(&cross, &cm, &err)) return -1;  // 4:3 or 3:4 cross image
- *     rgb c;
- *     if (cubemap_lookup_bilinear(&cm, dir, &c) == 0) ...    // dir in the envmap frame
+ *     rgb c = cubemap_lookup_bilinear(&cm, dir);             // dir in the envmap frame
  *     cubemap_free(&cm);
  *
  * Frame.  Directions are in the envmap frame (+z up).  OpenGL's cube-map face table (OpenGL 4.6
@@ -96,9 +95,9 @@ void cubemap_free(cubemap *cm);
  * exactly the neighbour texel that shares the edge.  The one texel beyond a cube corner (where
  * three faces meet and no fourth texel exists) is the average of the three corner texels, as
  * ARB_seamless_cube_map does, so the lookup is continuous at corners too.
- * Returns 0 and *out, or -1 and black for a zero, infinite or NaN direction.
- * Allocates nothing. */
-int cubemap_lookup_bilinear(const cubemap *cm, vec3 d, rgb *out);
+ * A zero, infinite or NaN direction returns black (as latlong_lookup_bilinear does).
+ * cm must hold faces (size >= 1, asserted).  Allocates nothing. */
+rgb cubemap_lookup_bilinear(const cubemap *cm, vec3 d);
 
 /* Split a horizontal cross (4N x 3N) into six new faces in *cm (layout above).  *cm is
  * overwritten (not freed first); on failure it is left empty. */
