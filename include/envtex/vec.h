@@ -49,13 +49,15 @@ static inline double vec3_max_abs(vec3 a)
     return x > y ? (x > z ? x : z) : (y > z ? y : z);
 }
 static inline double vec3_get(vec3 a, int axis) { return axis == 0 ? a.x : axis == 1 ? a.y : a.z; }
+/* Component-wise min / max.  Ternaries, not fmin/fmax: those are library calls at -O2 (they
+ * must honour NaN), and bounding-box code calls these millions of times. */
 static inline vec3 vec3_min(vec3 a, vec3 b)
 {
-    return (vec3){fmin(a.x, b.x), fmin(a.y, b.y), fmin(a.z, b.z)};
+    return (vec3){a.x < b.x ? a.x : b.x, a.y < b.y ? a.y : b.y, a.z < b.z ? a.z : b.z};
 }
 static inline vec3 vec3_max(vec3 a, vec3 b)
 {
-    return (vec3){fmax(a.x, b.x), fmax(a.y, b.y), fmax(a.z, b.z)};
+    return (vec3){a.x > b.x ? a.x : b.x, a.y > b.y ? a.y : b.y, a.z > b.z ? a.z : b.z};
 }
 /* Mirror direction of incoming d about normal n (n unit): r = d - 2 (d.n) n  (lecture slide 3). */
 static inline vec3 vec3_reflect(vec3 d, vec3 n) { return vec3_madd(d, n, -2.0 * vec3_dot(d, n)); }
