@@ -1,0 +1,71 @@
+/* equalarea.c - equal-area environment maps (see include/envtex/equalarea.h). */
+#include "envtex/equalarea.h"
+
+#include <assert.h>
+
+/* d / |d| for a finite non-zero d, else -1.  Divides by the largest |component| first, so the
+ * length of a huge or subnormal vector neither overflows nor underflows. */
+static int unit_direction(vec3 d, vec3 *out)
+{
+    if (!vec3_is_finite(d)) return -1;
+    double m = vec3_max_abs(d);
+    if (m == 0) return -1;
+    d = vec3_make(d.x / m, d.y / m, d.z / m);
+    *out = vec3_scale(d, 1.0 / vec3_length(d)); /* length in [1, sqrt 3]: no zero division */
+    return 0;
+}
+
+int equalarea_dir_to_uv(vec3 d, uv2 *uv)
+{
+    vec3 n;
+    if (unit_direction(d, &n)) return -1;
+    double s2 = n.x * n.x + n.y * n.y;                      /* sin^2 theta */
+    double one_minus_z = n.z > 0 ? s2 / (1.0 + n.z) : 1.0 - n.z; /* 1 - z = (1 - z^2)/(1 + z) */
+    double phi = s2 > 0 ? atan2(n.y, n.x) : 0.0;            /* phi = atan2(y, x); 0 at the poles */
+    if (phi < 0) phi += 2.0 * M_PI;                         /* wrap to [0, 2 pi) */
+    double u = phi / (2.0 * M_PI) + 0.0;                    /* + 0.0 turns -0 into +0 */
+    if (u >= 1.0) u = 0.0;                                  /* -tiny + 2 pi rounds to 2 pi */
+    uv->u = u;
+    uv->v = 0.5 * one_minus_z;                              /* v = (1 - cos theta) / 2 */
+    return 0;
+}
+
+vec3 equalarea_uv_to_dir(uv2 uv)
+{
+    double v = fmin(fmax(uv.v, 0.0), 1.0);
+    double phi = 2.0 * M_PI * uv.u;                  /* phi = 2 pi u */
+    double z = 1.0 - 2.0 * v;                        /* cos theta = 1 - 2 v */
+    double s = 2.0 * sqrt(v * (1.0 - v));            /* sin theta = sqrt((1-z)(1+z)) */
+    return vec3_make(s * cos(phi), s * sin(phi), z);
+}
+
+rgb equalarea_lookup_bilinear(const image *map, vec3 d)
+{
+    assert(map->w > 0 && map->h > 0);
+    uv2 uv;
+    if (equalarea_dir_to_uv(d, &uv)) return rgb_gray(0.0);
+    int w = map->w, h = map->h;
+    /* texel centres at integers: x in [-0.5, W - 0.5), y in [-0.5, H - 0.5] */
+    double x = uv.u * w - 0.5, y = uv.v * h - 0.5;
+    double x0 = floor(x), y0 = floor(y);
+    double ax = x - x0, ay = y - y0;
+    int i0 = (int)x0, j0 = (int)y0;
+    int i1 = i0 + 1, j1 = j0 + 1;
+    if (i0 < 0) i0 += w;   /* wrap in phi */
+    if (i1 >= w) i1 -= w;
+    if (j0 < 0) j0 = 0;    /* clamp at the poles */
+    if (j1 > h - 1) j1 = h - 1;
+    rgb c00 = image_get(map, i0, j0), c10 = image_get(map, i1, j0);
+    rgb c01 = image_get(map, i0, j1), c11 = image_get(map, i1, j1);
+    /* L = (1-ax)(1-ay) c00 + ax (1-ay) c10 + (1-ax) ay c01 + ax ay c11 */
+    rgb top = rgb_add(rgb_scale(c00, 1.0 - ax), rgb_scale(c10, ax));
+    rgb bottom = rgb_add(rgb_scale(c01, 1.0 - ax), rgb_scale(c11, ax));
+    return rgb_add(rgb_scale(top, 1.0 - ay), rgb_scale(bottom, ay));
+}
+
+double equalarea_texel_solid_angle(int w, int h)
+{
+    if (w < 1 || h < 1) return 0.0;
+    /* d(omega) = d(cos theta) d(phi) = (2 / h) (2 pi / w) */
+    return 4.0 * M_PI / ((double)w * (double)h);
+}
