@@ -1,0 +1,472 @@
+/* test_mipmap.c - pyramid sizes and means for non-power-of-two images, wrap modes at every
+ * level's border, level selection, trilinear continuity, EWA known answers. */
+#include "envtex/mipmap.h"
+
+#include <stdint.h>
+#include <string.h>
+
+#include "unit.h"
+
+static const wrap_mode all_modes[3] = {WRAP_REPEAT, WRAP_CLAMP, WRAP_MIRROR};
+
+static uint64_t rng_state = 0x9E3779B97F4A7C15ULL;
+static double rng_uniform(double lo, double hi)
+{
+    rng_state ^= rng_state << 13;
+    rng_state ^= rng_state >> 7;
+    rng_state ^= rng_state << 17;
+    return lo + (hi - lo) * (double)(rng_state >> 11) * 0x1p-53;
+}
+
+static image new_image(int w, int h)
+{
+    image im = {0};
+    error err = {0};
+    ck_assert_int_eq(image_alloc(&im, w, h, &err), 0);
+    return im;
+}
+
+static image random_image(int w, int h)
+{
+    image im = new_image(w, h);
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++)
+            image_set(&im, x, y, rgb_make(rng_uniform(0.1, 1), rng_uniform(0, 5), rng_uniform(0, 0.01)));
+    return im;
+}
+
+/* texel (i, j) (j from the bottom) = 1 where (i / cell + j / cell) is odd, else 0 */
+static image checker_image(int w, int h, int cell)
+{
+    image im = new_image(w, h);
+    for (int j = 0; j < h; j++)
+        for (int i = 0; i < w; i++) image_set(&im, i, h - 1 - j, rgb_gray((i / cell + j / cell) % 2));
+    return im;
+}
+
+static mipmap build(const image *im, wrap_mode wrap)
+{
+    mipmap m;
+    error err = {0};
+    ck_assert_int_eq(mipmap_build(&m, im, wrap, &err), 0);
+    return m;
+}
+
+static rgb image_mean(const image *im)
+{
+    double s[3] = {0, 0, 0};
+    for (int y = 0; y < im->h; y++)
+        for (int x = 0; x < im->w; x++) {
+            rgb c = image_get(im, x, y);
+            s[0] += c.r;
+            s[1] += c.g;
+            s[2] += c.b;
+        }
+    double n = (double)im->w * im->h;
+    return rgb_make(s[0] / n, s[1] / n, s[2] / n);
+}
+
+static void ck_rgb_near(rgb a, rgb b, double tol)
+{
+    ck_assert_near(a.r, b.r, tol);
+    ck_assert_near(a.g, b.g, tol);
+    ck_assert_near(a.b, b.b, tol);
+}
+
+START_TEST(test_levels_halve_rounding_down_to_one_by_one)
+{
+    const int sizes[][2] = {{5, 3}, {1, 7}, {1, 1}, {8, 8}, {1000, 3}, {2, 1}};
+    const int want_levels[] = {3, 3, 1, 4, 10, 2};
+    for (int k = 0; k < 6; k++) {
+        image im = new_image(sizes[k][0], sizes[k][1]);
+        mipmap m = build(&im, WRAP_REPEAT);
+        ck_assert_int_eq(mipmap_levels(&m), want_levels[k]);
+        int w = sizes[k][0], h = sizes[k][1];
+        for (int l = 0; l < mipmap_levels(&m); l++) {
+            ck_assert_int_eq(mipmap_level(&m, l)->w, w);
+            ck_assert_int_eq(mipmap_level(&m, l)->h, h);
+            w = w / 2 > 1 ? w / 2 : 1;
+            h = h / 2 > 1 ? h / 2 : 1;
+        }
+        ck_assert(mipmap_level(&m, mipmap_levels(&m) - 1)->w == 1);
+        ck_assert(mipmap_level(&m, mipmap_levels(&m) - 1)->h == 1);
+        mipmap_free(&m);
+        image_free(&im);
+    }
+    /* 5x3 -> 2x1 -> 1x1 spelled out */
+    image im = new_image(5, 3);
+    mipmap m = build(&im, WRAP_CLAMP);
+    ck_assert(mipmap_level(&m, 1)->w == 2 && mipmap_level(&m, 1)->h == 1);
+    mipmap_free(&m);
+    image_free(&im);
+}
+END_TEST
+
+START_TEST(test_level_zero_references_the_base_and_free_leaves_it_alone)
+{
+    image im = random_image(6, 5);
+    mipmap m = build(&im, WRAP_REPEAT);
+    ck_assert(mipmap_level(&m, 0)->px == im.px);
+    mipmap_free(&m);
+    mipmap_free(&m); /* twice is safe */
+    ck_assert(im.px != NULL);
+    im.px[0] = 0.5f; /* still ours (AddressSanitizer would catch a use after free) */
+    image_free(&im);
+}
+END_TEST
+
+START_TEST(test_every_level_keeps_the_mean_for_odd_and_even_sizes)
+{
+    const int sizes[][2] = {{37, 23}, {5, 3}, {1, 7}, {16, 9}, {3, 3}, {64, 1}};
+    for (int k = 0; k < 6; k++)
+        for (int md = 0; md < 3; md++) {
+            image im = random_image(sizes[k][0], sizes[k][1]);
+            mipmap m = build(&im, all_modes[md]);
+            rgb mean = image_mean(&im);
+            for (int l = 1; l < mipmap_levels(&m); l++) {
+                rgb ml = image_mean(mipmap_level(&m, l));
+                ck_assert_near(ml.r, mean.r, 1e-6 * mean.r);
+                ck_assert_near(ml.g, mean.g, 1e-6 * mean.g);
+                ck_assert_near(ml.b, mean.b, 1e-6 * mean.b);
+            }
+            mipmap_free(&m);
+            image_free(&im);
+        }
+}
+END_TEST
+
+START_TEST(test_odd_sizes_keep_the_last_column_and_row)
+{
+    /* only the last column (of 5) and the top row (of 3) are lit: a filter that drops the odd
+     * one out would leave level 1 black */
+    image im = new_image(5, 3);
+    for (int y = 0; y < 3; y++) image_set(&im, 4, y, rgb_gray(1));
+    image im2 = new_image(5, 3);
+    for (int x = 0; x < 5; x++) image_set(&im2, x, 0, rgb_gray(1));
+    mipmap m = build(&im, WRAP_CLAMP), m2 = build(&im2, WRAP_CLAMP);
+    ck_assert(image_get(mipmap_level(&m, 1), 1, 0).r > 0.3);
+    ck_assert(image_get(mipmap_level(&m2, 1), 0, 0).r > 0.3);
+    ck_assert_near(image_mean(mipmap_level(&m, 1)).r, 0.2, 1e-7);
+    ck_assert_near(image_mean(mipmap_level(&m2, 1)).r, 1.0 / 3, 1e-7);
+    mipmap_free(&m);
+    mipmap_free(&m2);
+    image_free(&im);
+    image_free(&im2);
+}
+END_TEST
+
+START_TEST(test_even_sizes_use_the_weights_one_seven_seven_one_over_sixteen)
+{
+    image im = new_image(4, 1); /* an impulse at column 1 */
+    image_set(&im, 1, 0, rgb_gray(1));
+    mipmap m = build(&im, WRAP_CLAMP);
+    ck_assert_near(image_get(mipmap_level(&m, 1), 0, 0).r, 7.0 / 16, 1e-7);
+    ck_assert_near(image_get(mipmap_level(&m, 1), 1, 0).r, 1.0 / 16, 1e-7);
+    mipmap_free(&m);
+    image_free(&im);
+}
+END_TEST
+
+START_TEST(test_repeat_blends_the_opposite_border_at_every_level_and_clamp_does_not)
+{
+    /* red left column, blue right column, black between */
+    image im = new_image(16, 4);
+    for (int y = 0; y < 4; y++) {
+        image_set(&im, 0, y, rgb_make(1, 0, 0));
+        image_set(&im, 15, y, rgb_make(0, 0, 1));
+    }
+    mipmap rep = build(&im, WRAP_REPEAT), cla = build(&im, WRAP_CLAMP), mir = build(&im, WRAP_MIRROR);
+    for (int l = 1; l < mipmap_levels(&rep); l++) {
+        const image *r = mipmap_level(&rep, l);
+        if (r->w < 2) break;
+        rgb left = image_get(r, 0, 0), right = image_get(r, r->w - 1, 0);
+        ck_assert_msg(left.b > 0 && right.r > 0, "repeat level %d: no wrap-around", l);
+    }
+    for (int l = 1; l <= 2; l++) { /* up to 4 x 1: the halves stay apart */
+        const image *c = mipmap_level(&cla, l), *mi = mipmap_level(&mir, l);
+        ck_assert_msg(image_get(c, 0, 0).b == 0 && image_get(c, c->w - 1, 0).r == 0,
+                      "clamp level %d bleeds across the border", l);
+        ck_assert_msg(image_get(mi, 0, 0).b == 0 && image_get(mi, mi->w - 1, 0).r == 0,
+                      "mirror level %d bleeds across the border", l);
+        ck_assert(image_get(c, 0, 0).r > 0 && image_get(c, c->w - 1, 0).b > 0);
+    }
+    mipmap_free(&rep);
+    mipmap_free(&cla);
+    mipmap_free(&mir);
+    image_free(&im);
+}
+END_TEST
+
+START_TEST(test_level_for_footprint_is_log2_of_the_width_in_texels)
+{
+    image im = new_image(8, 8); /* levels 0..3 */
+    mipmap m = build(&im, WRAP_REPEAT);
+    ck_assert(mipmap_level_for_footprint(&m, 1.0) == 0.0);
+    ck_assert(mipmap_level_for_footprint(&m, 4.0) == 2.0);
+    ck_assert(mipmap_level_for_footprint(&m, 2.0) == 1.0);
+    ck_assert_near(mipmap_level_for_footprint(&m, 3.0), log2(3.0), 1e-15);
+    ck_assert(mipmap_level_for_footprint(&m, 0.25) == 0.0);
+    ck_assert(mipmap_level_for_footprint(&m, 0.0) == 0.0);
+    ck_assert(mipmap_level_for_footprint(&m, -5.0) == 0.0);
+    ck_assert(mipmap_level_for_footprint(&m, NAN) == 0.0);
+    ck_assert(mipmap_level_for_footprint(&m, 64.0) == 3.0);
+    ck_assert(mipmap_level_for_footprint(&m, INFINITY) == 3.0);
+    mipmap_free(&m);
+    image_free(&im);
+}
+END_TEST
+
+START_TEST(test_trilinear_below_one_texel_is_bilinear_on_the_base)
+{
+    image im = random_image(13, 6);
+    for (int md = 0; md < 3; md++) {
+        mipmap m = build(&im, all_modes[md]);
+        for (int k = 0; k < 200; k++) {
+            uv2 st = {rng_uniform(-2, 3), rng_uniform(-2, 3)};
+            rgb want = texlookup_bilinear(&im, st, all_modes[md]);
+            rgb a = mipmap_lookup_trilinear(&m, st, 0.0), b = mipmap_lookup_trilinear(&m, st, 1.0 / 13);
+            ck_assert(a.r == want.r && a.g == want.g && a.b == want.b);
+            ck_assert(b.r == want.r && b.g == want.g && b.b == want.b);
+        }
+        mipmap_free(&m);
+    }
+    image_free(&im);
+}
+END_TEST
+
+START_TEST(test_trilinear_blends_the_two_nearest_levels_by_the_fraction)
+{
+    image im = random_image(32, 20);
+    mipmap m = build(&im, WRAP_REPEAT);
+    uv2 st = {0.3, 0.71};
+    double fp = pow(2.0, 1.25) / 32; /* level 1.25 */
+    rgb want = rgb_madd(rgb_scale(texlookup_bilinear(mipmap_level(&m, 1), st, WRAP_REPEAT), 0.75),
+                        texlookup_bilinear(mipmap_level(&m, 2), st, WRAP_REPEAT), 0.25);
+    ck_rgb_near(mipmap_lookup_trilinear(&m, st, fp), want, 1e-12);
+    /* huge footprint: the 1 x 1 level, the mean */
+    ck_rgb_near(mipmap_lookup_trilinear(&m, st, 1e9), image_mean(&im), 1e-5);
+    mipmap_free(&m);
+    image_free(&im);
+}
+END_TEST
+
+START_TEST(test_trilinear_is_continuous_in_the_footprint)
+{
+    /* Steps of 1e-4 in log2(footprint) move the level by 1e-4, so the colour by at most 1e-4
+     * times the largest difference between levels (< 5 here); switching levels without the
+     * blend jumps by that whole difference. */
+    image im = random_image(40, 24);
+    for (int md = 0; md < 3; md++) {
+        mipmap m = build(&im, all_modes[md]);
+        for (int k = 0; k < 3; k++) {
+            uv2 st = {rng_uniform(0, 1), rng_uniform(0, 1)};
+            rgb prev = mipmap_lookup_trilinear(&m, st, 0.5 / 40);
+            for (double e = log2(0.5 / 40); e < 1.0; e += 1e-4) {
+                rgb c = mipmap_lookup_trilinear(&m, st, exp2(e));
+                ck_assert_msg(fabs(c.g - prev.g) < 5.1e-4 && fabs(c.r - prev.r) < 1.1e-4,
+                              "jump at footprint %g: %g -> %g", exp2(e), prev.g, c.g);
+                prev = c;
+            }
+            /* right across the switch from level 0 to level 1 (1 texel) */
+            rgb lo = mipmap_lookup_trilinear(&m, st, (1 - 1e-9) / 40);
+            rgb hi = mipmap_lookup_trilinear(&m, st, (1 + 1e-9) / 40);
+            ck_rgb_near(lo, hi, 1e-7);
+        }
+        mipmap_free(&m);
+    }
+    image_free(&im);
+}
+END_TEST
+
+START_TEST(test_ewa_of_a_constant_texture_is_the_constant)
+{
+    image im = new_image(23, 9);
+    for (int y = 0; y < 9; y++)
+        for (int x = 0; x < 23; x++) image_set(&im, x, y, rgb_make(0.25, 2.0, 0.125));
+    for (int md = 0; md < 3; md++) {
+        mipmap m = build(&im, all_modes[md]);
+        for (int k = 0; k < 300; k++) {
+            uv2 st = {rng_uniform(-1.5, 2.5), rng_uniform(-1.5, 2.5)};
+            double s = exp2(rng_uniform(-12, 2));
+            uv2 dx = {s * rng_uniform(-1, 1), s * rng_uniform(-1, 1)};
+            uv2 dy = {s * rng_uniform(-1, 1) * 0.05, s * rng_uniform(-1, 1)};
+            ck_rgb_near(mipmap_lookup_ewa(&m, st, dx, dy), rgb_make(0.25, 2.0, 0.125), 1e-6);
+        }
+        mipmap_free(&m);
+    }
+    image_free(&im);
+}
+END_TEST
+
+START_TEST(test_ewa_with_zero_footprint_is_bilinear_on_the_base)
+{
+    image im = random_image(11, 7);
+    for (int md = 0; md < 3; md++) {
+        mipmap m = build(&im, all_modes[md]);
+        for (int k = 0; k < 100; k++) {
+            uv2 st = {rng_uniform(-1, 2), rng_uniform(-1, 2)};
+            rgb a = mipmap_lookup_ewa(&m, st, (uv2){0, 0}, (uv2){0, 0});
+            rgb b = texlookup_bilinear(&im, st, all_modes[md]);
+            ck_assert(a.r == b.r && a.g == b.g && a.b == b.b);
+        }
+        mipmap_free(&m);
+    }
+    image_free(&im);
+}
+END_TEST
+
+START_TEST(test_ewa_with_a_tiny_footprint_is_bilinear_on_a_ramp_at_texel_centres)
+{
+    /* value = 3 i + 5 j: the symmetric Gaussian around a texel centre averages a linear function
+     * to its centre value, as bilinear does */
+    image im = new_image(16, 12);
+    for (int j = 0; j < 12; j++)
+        for (int i = 0; i < 16; i++) image_set(&im, i, 11 - j, rgb_make(3 * i + 5 * j, i, j));
+    mipmap m = build(&im, WRAP_CLAMP);
+    for (int j = 3; j < 9; j++)
+        for (int i = 3; i < 13; i++) {
+            uv2 st = {(i + 0.5) / 16, (j + 0.5) / 12};
+            rgb e = mipmap_lookup_ewa(&m, st, (uv2){1e-4, 0}, (uv2){0, 1e-4});
+            ck_rgb_near(e, rgb_make(3 * i + 5 * j, i, j), 1e-9);
+        }
+    mipmap_free(&m);
+    image_free(&im);
+}
+END_TEST
+
+START_TEST(test_ewa_of_a_checkerboard_with_a_large_footprint_is_its_average)
+{
+    image fine = checker_image(64, 64, 1), coarse = checker_image(64, 64, 8);
+    for (int md = 0; md < 3; md++) {
+        mipmap a = build(&fine, all_modes[md]), b = build(&coarse, all_modes[md]);
+        for (int k = 0; k < 20; k++) {
+            /* away from the border, where clamp and mirror make a checker's filtered value
+             * differ from 1/2 */
+            uv2 st = {rng_uniform(0.3, 0.7), rng_uniform(0.3, 0.7)};
+            /* footprint wider than the texture: the 1 x 1 level */
+            ck_assert_near(mipmap_lookup_ewa(&b, st, (uv2){3, 0}, (uv2){0, 2}).r, 0.5, 1e-6);
+            ck_assert_near(mipmap_lookup_ewa(&b, st, (uv2){INFINITY, 0}, (uv2){0, 2}).r, 0.5, 1e-6);
+            ck_assert_near(mipmap_lookup_ewa(&b, st, (uv2){NAN, 0}, (uv2){0, 2}).r, 0.5, 1e-6);
+            /* a 1-texel checker is gone (exactly 1/2) from level 1 up: 4 texels, level 2 */
+            ck_assert_near(mipmap_lookup_ewa(&a, st, (uv2){4.0 / 64, 1.0 / 64}, (uv2){-1.0 / 64, 4.0 / 64}).r,
+                           0.5, 1e-6);
+        }
+        mipmap_free(&a);
+        mipmap_free(&b);
+    }
+    image_free(&fine);
+    image_free(&coarse);
+}
+END_TEST
+
+START_TEST(test_ewa_filters_along_the_major_axis_only)
+{
+    /* stripes across x (alternating columns) and across y (alternating rows) */
+    image cols = new_image(64, 64), rows = new_image(64, 64);
+    for (int y = 0; y < 64; y++)
+        for (int x = 0; x < 64; x++) {
+            image_set(&cols, x, y, rgb_gray(x % 2));
+            image_set(&rows, x, y, rgb_gray(y % 2));
+        }
+    mipmap mc = build(&cols, WRAP_REPEAT), mr = build(&rows, WRAP_REPEAT);
+    /* 4 texels along s, half a texel along t: a ratio of 8, the largest kept as given */
+    uv2 dx = {4.0 / 64, 0}, dy = {0, 0.5 / 64};
+    for (int k = 0; k < 10; k++) {
+        /* texel centres in texture row 30 = image row 33, which is lit */
+        uv2 st = {(20 + k + 0.5) / 64, (30 + 0.5) / 64};
+        /* across the stripes: averaged */
+        ck_assert_near(mipmap_lookup_ewa(&mc, st, dx, dy).r, 0.5, 0.05);
+        /* along the stripes: the lit row stays bright */
+        ck_assert(mipmap_lookup_ewa(&mr, st, dx, dy).r > 0.85);
+        /* while an isotropic footprint as wide as the major axis would average it away */
+        ck_assert_near(mipmap_lookup_ewa(&mr, st, dx, (uv2){0, 4.0 / 64}).r, 0.5, 0.05);
+    }
+    mipmap_free(&mc);
+    mipmap_free(&mr);
+    image_free(&cols);
+    image_free(&rows);
+}
+END_TEST
+
+START_TEST(test_ewa_clamps_the_anisotropy)
+{
+    image im = random_image(32, 32);
+    mipmap m = build(&im, WRAP_REPEAT);
+    uv2 st = {0.4, 0.6}, major = {0.5, 0};
+    /* a line footprint (minor 0) and one at exactly the largest ratio agree */
+    rgb line = mipmap_lookup_ewa(&m, st, major, (uv2){0, 0});
+    rgb capped = mipmap_lookup_ewa(&m, st, major, (uv2){0, 0.5 / MIPMAP_MAX_ANISOTROPY});
+    ck_rgb_near(line, capped, 1e-12);
+    /* so does a needle of ratio 1000 */
+    rgb needle = mipmap_lookup_ewa(&m, st, major, (uv2){0, 0.5 / 1000});
+    ck_rgb_near(needle, capped, 1e-12);
+    mipmap_free(&m);
+    image_free(&im);
+}
+END_TEST
+
+START_TEST(test_ewa_far_coordinates_read_like_near_ones)
+{
+    image im = random_image(8, 8);
+    uv2 dx = {0.05, 0}, dy = {0, 0.03}; /* axis aligned: clamp's far result is exact */
+    mipmap rep = build(&im, WRAP_REPEAT), cla = build(&im, WRAP_CLAMP);
+    ck_rgb_near(mipmap_lookup_ewa(&rep, (uv2){0.3 + 1e6, 0.6 - 1e6}, dx, dy),
+                mipmap_lookup_ewa(&rep, (uv2){0.3, 0.6}, dx, dy), 1e-6);
+    ck_rgb_near(mipmap_lookup_ewa(&cla, (uv2){-1e9, 0.6}, dx, dy),
+                mipmap_lookup_ewa(&cla, (uv2){-3.0, 0.6}, dx, dy), 1e-9);
+    ck_rgb_near(mipmap_lookup_ewa(&cla, (uv2){0.4, 1e12}, dx, dy),
+                mipmap_lookup_ewa(&cla, (uv2){0.4, 4.0}, dx, dy), 1e-9);
+    ck_assert(rgb_is_finite(mipmap_lookup_ewa(&rep, (uv2){NAN, 0.5}, dx, dy)));
+    ck_assert(rgb_is_finite(mipmap_lookup_ewa(&cla, (uv2){INFINITY, 0.5}, dx, dy)));
+    ck_assert(rgb_is_finite(mipmap_lookup_trilinear(&cla, (uv2){INFINITY, NAN}, 0.1)));
+    mipmap_free(&rep);
+    mipmap_free(&cla);
+    image_free(&im);
+}
+END_TEST
+
+START_TEST(test_build_rejects_an_empty_image_and_an_unknown_wrap_mode)
+{
+    mipmap m;
+    error err = {0};
+    image empty = {0};
+    ck_assert_int_eq(mipmap_build(&m, &empty, WRAP_REPEAT, &err), -1);
+    ck_assert(strstr(err.msg, "empty") != NULL);
+    mipmap_free(&m);
+    image im = new_image(2, 2);
+    memset(&err, 0, sizeof err);
+    ck_assert_int_eq(mipmap_build(&m, &im, (wrap_mode)7, &err), -1);
+    ck_assert(strstr(err.msg, "wrap") != NULL);
+    mipmap_free(&m);
+    image_free(&im);
+}
+END_TEST
+
+Suite *mipmap_suite(void)
+{
+    Suite *s = suite_create("mipmap");
+    TCase *tc = tcase_create("core");
+    tcase_set_timeout(tc, 30);
+    tcase_add_test(tc, test_levels_halve_rounding_down_to_one_by_one);
+    tcase_add_test(tc, test_level_zero_references_the_base_and_free_leaves_it_alone);
+    tcase_add_test(tc, test_every_level_keeps_the_mean_for_odd_and_even_sizes);
+    tcase_add_test(tc, test_odd_sizes_keep_the_last_column_and_row);
+    tcase_add_test(tc, test_even_sizes_use_the_weights_one_seven_seven_one_over_sixteen);
+    tcase_add_test(tc, test_repeat_blends_the_opposite_border_at_every_level_and_clamp_does_not);
+    tcase_add_test(tc, test_level_for_footprint_is_log2_of_the_width_in_texels);
+    tcase_add_test(tc, test_trilinear_below_one_texel_is_bilinear_on_the_base);
+    tcase_add_test(tc, test_trilinear_blends_the_two_nearest_levels_by_the_fraction);
+    tcase_add_test(tc, test_trilinear_is_continuous_in_the_footprint);
+    tcase_add_test(tc, test_ewa_of_a_constant_texture_is_the_constant);
+    tcase_add_test(tc, test_ewa_with_zero_footprint_is_bilinear_on_the_base);
+    tcase_add_test(tc, test_ewa_with_a_tiny_footprint_is_bilinear_on_a_ramp_at_texel_centres);
+    tcase_add_test(tc, test_ewa_of_a_checkerboard_with_a_large_footprint_is_its_average);
+    tcase_add_test(tc, test_ewa_filters_along_the_major_axis_only);
+    tcase_add_test(tc, test_ewa_clamps_the_anisotropy);
+    tcase_add_test(tc, test_ewa_far_coordinates_read_like_near_ones);
+    tcase_add_test(tc, test_build_rejects_an_empty_image_and_an_unknown_wrap_mode);
+    suite_add_tcase(s, tc);
+    return s;
+}
+
+UNIT_MAIN(mipmap_suite)
