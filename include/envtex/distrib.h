@@ -13,7 +13,9 @@
  *     distrib2d_free(&d);
  *
  * Two ways to sample the same distribution:
- *   - inversion by binary search over the CDF (`*_sample`): O(log n), and MONOTONE: a larger xi
+ *   - inversion by binary search over the CDF (`*_sample`): O(log n) (a guide table, the
+ *     cutpoint method, first narrows the search to ~5 bins, so a search of a table too big for
+ *     the cache costs ~2 cache misses, not log2 n), and MONOTONE: a larger xi
  *     never gives a smaller bin, and within one bin the remapped value grows with xi.  Stratified
  *     or low-discrepancy inputs stay stratified, so use this one for them;
  *   - the alias method of Walker, built in O(n) with Vose's algorithm (`*_sample_alias`, after
@@ -34,8 +36,10 @@
  *     next dimension.
  *   - Weights that are NaN, +-Inf or negative are counted in `n_bad` and treated as 0; if every
  *     weight is 0 the distribution falls back to uniform and sets `fell_back_to_uniform`.
- *   - A positive weight so small against the total that its CDF step rounds away in double
- *     (below about 1e-16 of the total) gets pmf 0 and is never chosen, like a zero weight.
+ *   - pmf is a difference of two CDF entries, each known to about an ulp of 1, so a bin of
+ *     probability p has a pmf within ~1e-16 / p relative of w / total (2e-8 for the dim cells
+ *     beside a sun 10^8 times brighter).  A positive weight below ~1e-16 of the total gets a
+ *     CDF step that rounds away: pmf 0, never chosen, like a zero weight.
  *   - Sampling and pmf functions allocate nothing and do not modify the tables.
  *
  * Precision and memory.  CDFs are accumulated AND stored in double.  Storing the conditional
@@ -44,9 +48,15 @@
  * off by up to 5%; at 10^5 some dim cells get a zero-width step and are NEVER sampled although
  * their weight is positive (a biased estimator); at 10^8 (a real sun) 2553 of 4096 cells vanish.
  * In double the CDF of an 8192 x 4096 grid (33.5M cells) is 268 MB and the normalization error
- * is ~1e-13.  Alias tables take 8 bytes a cell: a float threshold and an int32 alias.  The
+ * is ~1e-13; guide tables add 1 byte a cell.  Alias tables take 8 bytes a cell: a float
+ * threshold and an int32 alias.  The
  * float threshold changes the probability an alias table actually samples by at most
  * ~6e-8 relative to the pmf it reports; that is far below Monte Carlo noise.
+ *
+ * Speed (one core, -O2): building 4096 x 2048 takes ~0.06 s (+0.1 s for the alias tables),
+ * 8192 x 4096 ~0.35 s.  A 2D sample costs ~20-50 ns while the tables sit in cache; on a table
+ * far bigger than the cache, with samples spread over it, both samplers are bound by memory
+ * latency: ~120 ns alias (2 misses), ~140-200 ns binary search with the guide (~550 without).
  */
 #ifndef ENVTEX_DISTRIB_H
 #define ENVTEX_DISTRIB_H
@@ -75,6 +85,9 @@ typedef struct distrib1d {
     int fell_back_to_uniform; /* 1 if every weight was 0 and the table is uniform */
     int first_nonzero;        /* first bin with positive pmf */
     int last_nonzero;         /* last bin with positive pmf */
+    int32_t *guide;           /* n_guide + 1 entries: guide[g] = the bin of xi = g / n_guide,
+                               * so the bin of any xi lies in [guide[g], guide[g + 1]] */
+    int n_guide;              /* about n / 4 */
     distrib_alias *alias;     /* n cells after distrib1d_alias_build, else NULL */
 } distrib1d;
 
@@ -114,6 +127,9 @@ typedef struct distrib2d {
     double *cond_cdf;         /* n_outer rows of n_inner + 1 entries: the conditional CDF of
                                * column o is cond_cdf + o * (n_inner + 1); a column of weight 0
                                * gets a uniform one (never used: its marginal is 0) */
+    int32_t *cond_guide;      /* n_outer rows of n_guide_inner + 1 entries: the guide of
+                               * each column, as distrib1d.guide */
+    int n_guide_inner;
     double total;             /* sum of all weights used */
     int n_bad;                /* weights that were NaN, +-Inf or negative (used as 0) */
     int fell_back_to_uniform; /* 1 if every weight was 0 and the grid is uniform */

@@ -459,6 +459,79 @@ START_TEST(test_distrib1d_zero_bins_are_never_chosen_over_a_sweep_of_xi)
 }
 END_TEST
 
+/* The bin of x by definition: the first i with cdf[i + 1] > x, by a plain linear scan. */
+static int linear_bin(const double *cdf, int n, double x)
+{
+    if (!(x >= 0.0)) x = 0.0;
+    if (x >= 1.0) x = nextafter(1.0, 0.0);
+    int i = 0;
+    while (i < n - 1 && !(cdf[i + 1] > x)) i++;
+    return i;
+}
+
+/* Probe point k of n + m + 2002: every CDF value, every guide point g / m, a grid of 2001. */
+static double probe_point(const double *cdf, int n, int m, int k)
+{
+    if (k <= n) return cdf[k];
+    k -= n + 1;
+    if (k < m) return (double)k / m;
+    return (k - m) / 2000.0;
+}
+
+/* Compare the 1D search, and the 2D search within a column, with linear_bin at every probe
+ * point and 3 ulps either side. */
+static long count_search_disagreements(const double *w, int n)
+{
+    distrib1d d = {0};
+    distrib2d d2 = {0};
+    error err = {0};
+    double *w2 = malloc(2 * (size_t)n * sizeof *w2); /* column 1 = w, column 0 = all ones */
+    ck_assert_ptr_nonnull(w2);
+    for (int i = 0; i < n; i++) {
+        w2[i] = 1.0;
+        w2[n + i] = w[i];
+    }
+    ck_assert_int_eq(distrib1d_init(&d, w, n, &err), 0);
+    ck_assert_int_eq(distrib2d_init(&d2, w2, 2, n, &err), 0);
+    const double *col = d2.cond_cdf + (size_t)(n + 1);
+    long bad = 0;
+    for (int k = 0; k < n + d.n_guide + 2002; k++) {
+        double x = probe_point(d.cdf, n, d.n_guide, k);
+        for (int u = 0; u < 3; u++) x = nextafter(x, -1.0);
+        for (int u = 0; u < 7; u++, x = nextafter(x, 2.0)) {
+            bad += distrib1d_sample(&d, x, NULL, NULL) != linear_bin(d.cdf, n, x);
+            int o, i;
+            distrib2d_sample(&d2, 1.0, x, &o, &i, NULL, NULL, NULL);
+            bad += o != 1 || i != linear_bin(col, n, x);
+        }
+    }
+    distrib1d_free(&d);
+    distrib2d_free(&d2);
+    free(w2);
+    return bad;
+}
+
+/* Catches a guide table (the search's shortcut, 1D and 2D) that starts past the right bin,
+ * e.g. when x * m rounds across a guide boundary, or stops short of it. */
+START_TEST(test_distrib1d_search_agrees_with_a_linear_scan)
+{
+    double w[1000];
+    for (int i = 0; i < 12; i++) w[i] = 1.0; /* CDF steps on thirds: 1/3 is not a double */
+    ck_assert_int_eq(count_search_disagreements(w, 12), 0);
+    for (int n = 1; n <= 9; n++) { /* every small size, so m and n / m vary */
+        for (int i = 0; i < n; i++) w[i] = (i * 7 % 3 == 0) ? 0.0 : 0.1 * (i + 1);
+        w[n - 1] = 1.0;
+        ck_assert_int_eq(count_search_disagreements(w, n), 0);
+    }
+    pcg32 rng = pcg32_seeded(13);
+    for (int i = 0; i < 1000; i++) {
+        double u = pcg32_double(&rng);
+        w[i] = u < 0.3 ? 0.0 : u < 0.31 ? 1e4 * u : u; /* zeros and a few bright bins */
+    }
+    ck_assert_int_eq(count_search_disagreements(w, 1000), 0);
+}
+END_TEST
+
 /* Catches a search or remap that is not monotone (which would break stratified sampling). */
 START_TEST(test_distrib1d_inversion_is_monotone_in_xi)
 {
@@ -984,6 +1057,7 @@ Suite *distrib_suite(void)
     tcase_add_test(tc, test_distrib1d_edge_xi_give_the_first_and_last_nonzero_bins);
     tcase_add_test(tc, test_distrib1d_xi_of_one_reaches_a_tiny_last_bin);
     tcase_add_test(tc, test_distrib1d_zero_bins_are_never_chosen_over_a_sweep_of_xi);
+    tcase_add_test(tc, test_distrib1d_search_agrees_with_a_linear_scan);
     tcase_add_test(tc, test_distrib1d_inversion_is_monotone_in_xi);
     tcase_add_test(tc, test_distrib1d_all_zero_weights_fall_back_to_uniform);
     tcase_add_test(tc, test_distrib1d_bad_weights_are_counted_and_used_as_zero);
