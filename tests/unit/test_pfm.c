@@ -1,0 +1,225 @@
+/* test_pfm.c - Portable Float Map reading and writing. */
+#include <dirent.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "envtex/imageio.h"
+#include "envtex/pfm.h"
+#include "unit.h"
+
+/* ---- test folder helpers (each test makes and removes its own mkdtemp folder) ------------- */
+
+static char dir[64];
+
+static void make_dir(void)
+{
+    strcpy(dir, "/tmp/envtex_test_XXXXXX");
+    ck_assert_ptr_nonnull(mkdtemp(dir));
+}
+
+static void remove_dir(void)
+{
+    DIR *d = opendir(dir);
+    ck_assert_ptr_nonnull(d);
+    char p[512];
+    for (struct dirent *e; (e = readdir(d));) {
+        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..")) continue;
+        snprintf(p, sizeof p, "%s/%s", dir, e->d_name);
+        unlink(p);
+    }
+    closedir(d);
+    ck_assert_int_eq(rmdir(dir), 0);
+}
+
+/* Entries of the test folder whose name contains `part` (".tmp." finds left-over temporaries). */
+static int count_files(const char *part)
+{
+    DIR *d = opendir(dir);
+    ck_assert_ptr_nonnull(d);
+    int n = 0;
+    for (struct dirent *e; (e = readdir(d));)
+        if (e->d_name[0] != '.' && strstr(e->d_name, part)) n++;
+    closedir(d);
+    return n;
+}
+
+static const char *in_dir(const char *name)
+{
+    static char buf[4][256];
+    static int i;
+    i = (i + 1) % 4;
+    snprintf(buf[i], sizeof buf[i], "%s/%s", dir, name);
+    return buf[i];
+}
+
+static void write_bytes(const char *path, const void *data, size_t n)
+{
+    FILE *f = fopen(path, "wb");
+    ck_assert_ptr_nonnull(f);
+    ck_assert_uint_eq(fwrite(data, 1, n, f), n);
+    ck_assert_int_eq(fclose(f), 0);
+}
+
+/* The whole file (caller frees). */
+static unsigned char *slurp(const char *path, size_t *n)
+{
+    unsigned char *d = NULL;
+    error err = {0};
+    ck_assert_msg(imageio_read_all(path, &d, n, &err) == 0, "%s", err.msg);
+    return d;
+}
+
+static void little_float(unsigned char *p, float v)
+{
+    uint32_t u;
+    memcpy(&u, &v, 4);
+    for (int i = 0; i < 4; i++) p[i] = (unsigned char)(u >> (8 * i));
+}
+
+START_TEST(test_pfm_roundtrip_is_bit_exact_including_nan_and_inf)
+{
+    make_dir();
+    image im = {0}, back = {0};
+    error err = {0};
+    ck_assert_int_eq(image_alloc(&im, 5, 3, &err), 0);
+    for (int i = 0; i < 45; i++) im.px[i] = (float)(i - 20) * 0.123f * powf(10.0f, (float)(i % 7 - 3));
+    im.px[4] = NAN;
+    im.px[7] = INFINITY;
+    im.px[8] = -0.0f;
+    ck_assert_int_eq(pfm_write(in_dir("a.pfm"), &im, &err), 0);
+    ck_assert_msg(pfm_read(in_dir("a.pfm"), &back, &err) == 0, "%s", err.msg);
+    ck_assert_int_eq(back.w, 5);
+    ck_assert_int_eq(back.h, 3);
+    ck_assert_int_eq(memcmp(im.px, back.px, sizeof(float) * 45), 0);
+    ck_assert_int_eq(count_files(".tmp."), 0);
+    image_free(&im);
+    image_free(&back);
+    remove_dir();
+}
+END_TEST
+
+START_TEST(test_pfm_rows_are_stored_bottom_to_top)
+{
+    make_dir();
+    /* 1 x 2 colour, little endian: the first stored row is the BOTTOM one */
+    unsigned char d[12 + 24];
+    memcpy(d, "PF\n1 2\n-1.0\n", 12);
+    float v[6] = {1, 2, 3, 4, 5, 6};
+    for (int i = 0; i < 6; i++) little_float(d + 12 + 4 * i, v[i]);
+    write_bytes(in_dir("rows.pfm"), d, sizeof d);
+    image im = {0};
+    error err = {0};
+    ck_assert_msg(pfm_read(in_dir("rows.pfm"), &im, &err) == 0, "%s", err.msg);
+    ck_assert(image_px(&im, 0, 0)[0] == 4.0f); /* top row = last stored */
+    ck_assert(image_px(&im, 0, 1)[2] == 3.0f);
+    image_free(&im);
+    remove_dir();
+}
+END_TEST
+
+START_TEST(test_big_endian_grey_pfm_is_replicated)
+{
+    make_dir();
+    unsigned char d[11 + 8];
+    memcpy(d, "Pf\n2 1\n1.0\n", 11);
+    float v[2] = {0.5f, -2.0f};
+    for (int i = 0; i < 2; i++) { /* big endian: most significant byte first */
+        uint32_t u;
+        memcpy(&u, &v[i], 4);
+        for (int k = 0; k < 4; k++) d[11 + 4 * i + k] = (unsigned char)(u >> (24 - 8 * k));
+    }
+    write_bytes(in_dir("g.pfm"), d, sizeof d);
+    image im = {0};
+    error err = {0};
+    ck_assert_msg(imageio_read(in_dir("g.pfm"), &im, &err) == 0, "%s", err.msg);
+    ck_assert(im.px[0] == 0.5f && im.px[1] == 0.5f && im.px[2] == 0.5f);
+    ck_assert(im.px[3] == -2.0f && im.px[5] == -2.0f);
+    image_free(&im);
+    remove_dir();
+}
+END_TEST
+
+START_TEST(test_absurd_pfm_size_is_refused_before_allocation)
+{
+    make_dir();
+    const char *h = "PF\n100000 100000\n-1.0\n";
+    write_bytes(in_dir("big.pfm"), h, strlen(h));
+    image im = {0};
+    error err = {0};
+    ck_assert_int_eq(pfm_read(in_dir("big.pfm"), &im, &err), -1);
+    ck_assert_ptr_nonnull(strstr(err.msg, "over the limit"));
+    ck_assert_ptr_null(im.px);
+    const char *z = "PF\n2 2\n0\n";
+    write_bytes(in_dir("zero.pfm"), z, strlen(z));
+    ck_assert_int_eq(pfm_read(in_dir("zero.pfm"), &im, &err), -1); /* scale 0: no byte order */
+    const char *m = "P6\n2 2\n255\n";
+    write_bytes(in_dir("ppm.pfm"), m, strlen(m));
+    ck_assert_int_eq(pfm_read(in_dir("ppm.pfm"), &im, &err), -1);
+    ck_assert_ptr_nonnull(strstr(err.msg, "not a PFM"));
+    remove_dir();
+}
+END_TEST
+
+START_TEST(test_truncated_pfm_is_an_error_at_every_offset)
+{
+    make_dir();
+    image im = {0};
+    error err = {0};
+    ck_assert_int_eq(image_alloc(&im, 4, 4, &err), 0);
+    ck_assert_int_eq(pfm_write(in_dir("full.pfm"), &im, &err), 0);
+    size_t n;
+    unsigned char *d = slurp(in_dir("full.pfm"), &n);
+    size_t cuts[] = {0, 1, 2, 5, 9, 12, n / 2, n - 1};
+    for (size_t i = 0; i < sizeof cuts / sizeof cuts[0]; i++) {
+        write_bytes(in_dir("cut.pfm"), d, cuts[i]);
+        image back = {0};
+        ck_assert_msg(pfm_read(in_dir("cut.pfm"), &back, &err) == -1, "cut at %zu", cuts[i]);
+        ck_assert_ptr_null(back.px);
+    }
+    free(d);
+    image_free(&im);
+    remove_dir();
+}
+END_TEST
+
+START_TEST(test_failed_pfm_write_leaves_the_old_file_byte_identical)
+{
+    make_dir();
+    image im = {0}, empty = {0};
+    error err = {0};
+    ck_assert_int_eq(image_alloc(&im, 3, 2, &err), 0);
+    im.px[0] = 7.0f;
+    ck_assert_int_eq(pfm_write(in_dir("keep.pfm"), &im, &err), 0);
+    size_t nb, na;
+    unsigned char *before = slurp(in_dir("keep.pfm"), &nb);
+    ck_assert_int_eq(pfm_write(in_dir("keep.pfm"), &empty, &err), -1);
+    ck_assert_int_eq(pfm_write(in_dir("missing/keep.pfm"), &im, &err), -1);
+    unsigned char *after = slurp(in_dir("keep.pfm"), &na);
+    ck_assert_uint_eq(na, nb);
+    ck_assert_int_eq(memcmp(before, after, nb), 0);
+    ck_assert_int_eq(count_files(".tmp."), 0);
+    free(before);
+    free(after);
+    image_free(&im);
+    remove_dir();
+}
+END_TEST
+
+Suite *pfm_suite(void)
+{
+    Suite *s = suite_create("pfm");
+    TCase *tc = tcase_create("pfm");
+    tcase_add_test(tc, test_pfm_roundtrip_is_bit_exact_including_nan_and_inf);
+    tcase_add_test(tc, test_pfm_rows_are_stored_bottom_to_top);
+    tcase_add_test(tc, test_big_endian_grey_pfm_is_replicated);
+    tcase_add_test(tc, test_absurd_pfm_size_is_refused_before_allocation);
+    tcase_add_test(tc, test_truncated_pfm_is_an_error_at_every_offset);
+    tcase_add_test(tc, test_failed_pfm_write_leaves_the_old_file_byte_identical);
+    suite_add_tcase(s, tc);
+    return s;
+}
+
+UNIT_MAIN(pfm_suite)
