@@ -28,14 +28,20 @@ static inline double fade(double t) { return t * t * t * (t * (t * 6.0 - 15.0) +
 
 static inline double lerp(double t, double a, double b) { return a + t * (b - a); }
 
-/* g . (x, y, z) for the gradient g picked by the low 4 bits of the hash: the 12 vectors from the
- * centre of a cube to its edge midpoints, (+-1, +-1, 0) and permutations, with 4 repeated. */
+/* The 12 gradients from the centre of a cube to its edge midpoints, (+-1, +-1, 0) and
+ * permutations, padded to 16 with 4 of them repeated, indexed by hash & 15: exactly the vectors
+ * Perlin's grad() selects with its branches, as a table so the hot path has no unpredictable
+ * branch.  Each product is exact (components are 0 or +-1), so the dot product rounds exactly as
+ * his u + v does. */
+static const double gradients[16][3] = {
+    {1, 1, 0}, {-1, 1, 0}, {1, -1, 0}, {-1, -1, 0}, {1, 0, 1}, {-1, 0, 1}, {1, 0, -1}, {-1, 0, -1},
+    {0, 1, 1}, {0, -1, 1}, {0, 1, -1}, {0, -1, -1}, {1, 1, 0}, {0, -1, 1}, {-1, 1, 0}, {0, -1, -1}};
+
+/* g . (x, y, z) for the gradient g picked by the low 4 bits of the hash */
 static inline double grad(int hash, double x, double y, double z)
 {
-    int h = hash & 15;
-    double u = h < 8 ? x : y;
-    double v = h < 4 ? y : (h == 12 || h == 14) ? x : z;
-    return ((h & 1) ? -u : u) + ((h & 2) ? -v : v);
+    const double *g = gradients[hash & 15];
+    return g[0] * x + g[1] * y + g[2] * z;
 }
 
 /* floor(x) mod 256 for an integer-valued fl, any magnitude: fl / 256 is exact (a power of two),

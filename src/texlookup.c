@@ -31,10 +31,9 @@ int texlookup_wrap(int i, int n, wrap_mode wrap)
  * there.  2^30 leaves room for the + 1 of a bilinear neighbour without reaching INT_MAX. */
 #define WRAP_INT_SAFE 0x1p30
 
-int texlookup_wrap_floor(double x, int n, wrap_mode wrap)
+/* An integer-valued double f (already floored) wrapped into [0, n). */
+static inline int wrap_integer(double f, int n, wrap_mode wrap)
 {
-    assert(n >= 1);
-    double f = floor(x);
     if (fabs(f) < WRAP_INT_SAFE) return texlookup_wrap((int)f, n, wrap); /* false for NaN */
     if (isnan(f)) return 0;
     if (wrap == WRAP_CLAMP) return f < 0 ? 0 : n - 1;
@@ -45,6 +44,12 @@ int texlookup_wrap_floor(double x, int n, wrap_mode wrap)
     if (r < 0) r += period;     /* [0, period) */
     if (wrap == WRAP_MIRROR && r >= n) r = period - 1 - r;
     return (int)r;
+}
+
+int texlookup_wrap_floor(double x, int n, wrap_mode wrap)
+{
+    assert(n >= 1);
+    return wrap_integer(floor(x), n, wrap);
 }
 
 static const char *const wrap_names[] = {"repeat", "clamp", "mirror"};
@@ -81,8 +86,8 @@ rgb texlookup_bilinear(const image *im, uv2 st, wrap_mode wrap)
     double fx = x - x0, fy = y - y0; /* [0, 1]; NaN for a non-finite coordinate */
     if (!(fx >= 0.0)) fx = 0.0;
     if (!(fy >= 0.0)) fy = 0.0;
-    int i0 = texlookup_wrap_floor(x0, w, wrap), i1 = texlookup_wrap_floor(x0 + 1.0, w, wrap);
-    int j0 = texlookup_wrap_floor(y0, h, wrap), j1 = texlookup_wrap_floor(y0 + 1.0, h, wrap);
+    int i0 = wrap_integer(x0, w, wrap), i1 = wrap_integer(x0 + 1.0, w, wrap);
+    int j0 = wrap_integer(y0, h, wrap), j1 = wrap_integer(y0 + 1.0, h, wrap);
     const float *r0 = image_px(im, 0, h - 1 - j0); /* row of j0 (rows counted from the top) */
     const float *r1 = image_px(im, 0, h - 1 - j1);
     const float *c00 = r0 + 3 * i0, *c10 = r0 + 3 * i1, *c01 = r1 + 3 * i0, *c11 = r1 + 3 * i1;
