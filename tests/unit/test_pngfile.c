@@ -1,0 +1,315 @@
+/* test_pngfile.c - PNG reading (every colour type, sRGB decoded) and writing. */
+#include <dirent.h>
+#include <math.h>
+#include <png.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "envtex/imageio.h"
+#include "envtex/pngfile.h"
+#include "envtex/tonemap.h"
+#include "unit.h"
+
+/* ---- test folder helpers (each test makes and removes its own mkdtemp folder) ------------- */
+
+static char dir[64];
+
+static void make_dir(void)
+{
+    strcpy(dir, "/tmp/envtex_test_XXXXXX");
+    ck_assert_ptr_nonnull(mkdtemp(dir));
+}
+
+static void remove_dir(void)
+{
+    DIR *d = opendir(dir);
+    ck_assert_ptr_nonnull(d);
+    char p[512];
+    for (struct dirent *e; (e = readdir(d));) {
+        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..")) continue;
+        snprintf(p, sizeof p, "%s/%s", dir, e->d_name);
+        unlink(p);
+    }
+    closedir(d);
+    ck_assert_int_eq(rmdir(dir), 0);
+}
+
+/* Entries of the test folder whose name contains `part` (".tmp." finds left-over temporaries). */
+static int count_files(const char *part)
+{
+    DIR *d = opendir(dir);
+    ck_assert_ptr_nonnull(d);
+    int n = 0;
+    for (struct dirent *e; (e = readdir(d));)
+        if (e->d_name[0] != '.' && strstr(e->d_name, part)) n++;
+    closedir(d);
+    return n;
+}
+
+static const char *in_dir(const char *name)
+{
+    static char buf[4][256];
+    static int i;
+    i = (i + 1) % 4;
+    snprintf(buf[i], sizeof buf[i], "%s/%s", dir, name);
+    return buf[i];
+}
+
+static void write_bytes(const char *path, const void *data, size_t n)
+{
+    FILE *f = fopen(path, "wb");
+    ck_assert_ptr_nonnull(f);
+    ck_assert_uint_eq(fwrite(data, 1, n, f), n);
+    ck_assert_int_eq(fclose(f), 0);
+}
+
+/* The whole file (caller frees). */
+static unsigned char *slurp(const char *path, size_t *n)
+{
+    unsigned char *d = NULL;
+    error err = {0};
+    ck_assert_msg(imageio_read_all(path, &d, n, &err) == 0, "%s", err.msg);
+    return d;
+}
+
+/* Write a PNG with libpng directly: rows of raw samples (big endian for 16 bit). */
+static void write_raw_png(const char *path, int w, int h, int type, int depth, int interlace,
+                          const unsigned char *data, size_t rowbytes)
+{
+    FILE *f = fopen(path, "wb");
+    ck_assert_ptr_nonnull(f);
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
+    png_infop info = png_create_info_struct(png);
+    ck_assert(!setjmp(png_jmpbuf(png)));
+    png_init_io(png, f);
+    png_set_IHDR(png, info, (png_uint_32)w, (png_uint_32)h, depth, type, interlace,
+                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    if (type == PNG_COLOR_TYPE_PALETTE) {
+        png_color pal[2] = {{255, 0, 0}, {0, 0, 255}};
+        png_set_PLTE(png, info, pal, 2);
+    }
+    png_write_info(png, info);
+    png_bytep rows[64];
+    for (int y = 0; y < h; y++) rows[y] = (png_bytep)data + (size_t)y * rowbytes;
+    png_write_image(png, rows);
+    png_write_end(png, NULL);
+    png_destroy_write_struct(&png, &info);
+    fclose(f);
+}
+
+static float dec8(int v) { return (float)tonemap_srgb_decode(v / 255.0); }
+
+START_TEST(test_png_roundtrip_is_within_8bit_quantization)
+{
+    make_dir();
+    image im = {0}, back = {0};
+    error err = {0};
+    ck_assert_int_eq(image_alloc(&im, 16, 9, &err), 0);
+    for (int i = 0; i < 16 * 9 * 3; i++) im.px[i] = (float)((i * 37) % 101) / 100.0f;
+    ck_assert_int_eq(pngfile_write(in_dir("a.png"), &im, NULL, &err), 0);
+    ck_assert_msg(pngfile_read(in_dir("a.png"), &back, &err) == 0, "%s", err.msg);
+    ck_assert_int_eq(back.w, 16);
+    ck_assert_int_eq(back.h, 9);
+    double worst = 0.0; /* in encoded units: rounding to 8 bits is within half a step */
+    for (int i = 0; i < 16 * 9 * 3; i++)
+        worst = fmax(worst, fabs(tonemap_srgb_encode(back.px[i]) - tonemap_srgb_encode(im.px[i])));
+    ck_assert_double_le(worst, 0.5 / 255.0 + 1e-6);
+    ck_assert_int_eq(count_files(".tmp."), 0);
+    image_free(&im);
+    image_free(&back);
+    remove_dir();
+}
+END_TEST
+
+START_TEST(test_every_colour_type_decodes_to_linear_rgb)
+{
+    make_dir();
+    image im = {0};
+    error err = {0};
+    /* grey 8: 0, 128, 255 */
+    unsigned char g8[3] = {0, 128, 255};
+    write_raw_png(in_dir("g8.png"), 3, 1, PNG_COLOR_TYPE_GRAY, 8, PNG_INTERLACE_NONE, g8, 3);
+    ck_assert_msg(pngfile_read(in_dir("g8.png"), &im, &err) == 0, "%s", err.msg);
+    ck_assert(im.px[3] == dec8(128) && im.px[4] == dec8(128) && im.px[5] == dec8(128));
+    ck_assert(im.px[6] == 1.0f && im.px[0] == 0.0f);
+    image_free(&im);
+    /* grey 1 bit: 1 0 1 */
+    unsigned char g1[1] = {0xA0};
+    write_raw_png(in_dir("g1.png"), 3, 1, PNG_COLOR_TYPE_GRAY, 1, PNG_INTERLACE_NONE, g1, 1);
+    ck_assert_msg(pngfile_read(in_dir("g1.png"), &im, &err) == 0, "%s", err.msg);
+    ck_assert(im.px[0] == 1.0f && im.px[3] == 0.0f && im.px[8] == 1.0f);
+    image_free(&im);
+    /* grey + alpha: alpha dropped */
+    unsigned char ga[4] = {255, 0, 128, 255};
+    write_raw_png(in_dir("ga.png"), 2, 1, PNG_COLOR_TYPE_GRAY_ALPHA, 8, PNG_INTERLACE_NONE, ga, 4);
+    ck_assert_msg(pngfile_read(in_dir("ga.png"), &im, &err) == 0, "%s", err.msg);
+    ck_assert(im.px[0] == 1.0f && im.px[3] == dec8(128));
+    image_free(&im);
+    /* RGBA 8 */
+    unsigned char rgba[8] = {255, 0, 64, 7, 1, 2, 3, 255};
+    write_raw_png(in_dir("rgba.png"), 2, 1, PNG_COLOR_TYPE_RGBA, 8, PNG_INTERLACE_NONE, rgba, 8);
+    ck_assert_msg(pngfile_read(in_dir("rgba.png"), &im, &err) == 0, "%s", err.msg);
+    ck_assert(im.px[0] == 1.0f && im.px[1] == 0.0f && im.px[2] == dec8(64) && im.px[5] == dec8(3));
+    image_free(&im);
+    /* RGB 16: 65535 -> 1, 32768 -> decode(32768 / 65535) */
+    unsigned char rgb16[6] = {0xff, 0xff, 0x80, 0x00, 0x00, 0x00};
+    write_raw_png(in_dir("rgb16.png"), 1, 1, PNG_COLOR_TYPE_RGB, 16, PNG_INTERLACE_NONE, rgb16, 6);
+    ck_assert_msg(pngfile_read(in_dir("rgb16.png"), &im, &err) == 0, "%s", err.msg);
+    ck_assert(im.px[0] == 1.0f && im.px[2] == 0.0f);
+    ck_assert(im.px[1] == (float)tonemap_srgb_decode(32768.0 / 65535.0));
+    image_free(&im);
+    /* palette: index 1 is blue */
+    unsigned char pal[2] = {1, 0};
+    write_raw_png(in_dir("pal.png"), 2, 1, PNG_COLOR_TYPE_PALETTE, 8, PNG_INTERLACE_NONE, pal, 2);
+    ck_assert_msg(pngfile_read(in_dir("pal.png"), &im, &err) == 0, "%s", err.msg);
+    ck_assert(im.px[0] == 0.0f && im.px[2] == 1.0f && im.px[3] == 1.0f && im.px[5] == 0.0f);
+    image_free(&im);
+    remove_dir();
+}
+END_TEST
+
+START_TEST(test_interlaced_png_reads_like_a_plain_one)
+{
+    make_dir();
+    unsigned char d[20 * 20 * 3];
+    for (size_t i = 0; i < sizeof d; i++) d[i] = (unsigned char)(i * 13);
+    write_raw_png(in_dir("i.png"), 20, 20, PNG_COLOR_TYPE_RGB, 8, PNG_INTERLACE_ADAM7, d, 60);
+    write_raw_png(in_dir("p.png"), 20, 20, PNG_COLOR_TYPE_RGB, 8, PNG_INTERLACE_NONE, d, 60);
+    image a = {0}, b = {0};
+    error err = {0};
+    ck_assert_msg(pngfile_read(in_dir("i.png"), &a, &err) == 0, "%s", err.msg);
+    ck_assert_msg(pngfile_read(in_dir("p.png"), &b, &err) == 0, "%s", err.msg);
+    ck_assert_int_eq(memcmp(a.px, b.px, sizeof(float) * 20 * 20 * 3), 0);
+    ck_assert(image_px(&a, 19, 19)[2] == dec8(d[sizeof d - 1]));
+    image_free(&a);
+    image_free(&b);
+    remove_dir();
+}
+END_TEST
+
+/* CRC-32 of PNG chunks (ISO 3309), bit by bit: tests only. */
+static uint32_t crc32_png(const unsigned char *p, size_t n)
+{
+    uint32_t c = 0xffffffffu;
+    for (size_t i = 0; i < n; i++) {
+        c ^= p[i];
+        for (int k = 0; k < 8; k++) c = c & 1 ? 0xedb88320u ^ (c >> 1) : c >> 1;
+    }
+    return c ^ 0xffffffffu;
+}
+
+START_TEST(test_png_claiming_40000_by_40000_is_refused_before_allocation)
+{
+    make_dir();
+    unsigned char px[3] = {1, 2, 3};
+    write_raw_png(in_dir("one.png"), 1, 1, PNG_COLOR_TYPE_RGB, 8, PNG_INTERLACE_NONE, px, 3);
+    size_t n;
+    unsigned char *d = slurp(in_dir("one.png"), &n);
+    /* IHDR: length at 8, "IHDR" at 12, width at 16, height at 20, CRC after 13 data bytes */
+    ck_assert_int_eq(memcmp(d + 12, "IHDR", 4), 0);
+    unsigned char big[4] = {0, 0, 0x9c, 0x40}; /* 40000 */
+    memcpy(d + 16, big, 4);
+    memcpy(d + 20, big, 4);
+    uint32_t c = crc32_png(d + 12, 17);
+    unsigned char cb[4] = {(unsigned char)(c >> 24), (unsigned char)(c >> 16), (unsigned char)(c >> 8), (unsigned char)c};
+    memcpy(d + 29, cb, 4);
+    write_bytes(in_dir("big.png"), d, n);
+    image im = {0};
+    error err = {0};
+    ck_assert_int_eq(pngfile_read(in_dir("big.png"), &im, &err), -1);
+    ck_assert_msg(strstr(err.msg, "over the limit") != NULL, "%s", err.msg);
+    ck_assert_ptr_null(im.px);
+    free(d);
+    remove_dir();
+}
+END_TEST
+
+START_TEST(test_truncated_and_corrupt_png_are_errors)
+{
+    make_dir();
+    unsigned char d0[32 * 32 * 3];
+    for (size_t i = 0; i < sizeof d0; i++) d0[i] = (unsigned char)((i * 7919) >> 3);
+    write_raw_png(in_dir("full.png"), 32, 32, PNG_COLOR_TYPE_RGB, 8, PNG_INTERLACE_NONE, d0, 96);
+    size_t n;
+    unsigned char *d = slurp(in_dir("full.png"), &n);
+    error err = {0};
+    size_t cuts[] = {0, 4, 8, 20, 33, 40, n / 2, n - 13, n - 1};
+    for (size_t i = 0; i < sizeof cuts / sizeof cuts[0]; i++) {
+        write_bytes(in_dir("cut.png"), d, cuts[i]);
+        image im = {0};
+        int r = pngfile_read(in_dir("cut.png"), &im, &err);
+        /* cutting only into the IEND chunk leaves every pixel readable; anything earlier fails */
+        if (cuts[i] < n - 12) ck_assert_msg(r == -1, "cut at %zu of %zu read", cuts[i], n);
+        if (r == -1) ck_assert_ptr_null(im.px);
+        image_free(&im);
+    }
+    d[50] ^= 0x55; /* a flipped byte in the image data: CRC error */
+    write_bytes(in_dir("flip.png"), d, n);
+    image im = {0};
+    ck_assert_int_eq(pngfile_read(in_dir("flip.png"), &im, &err), -1);
+    ck_assert_ptr_nonnull(strstr(err.msg, "PNG"));
+    free(d);
+    remove_dir();
+}
+END_TEST
+
+START_TEST(test_failed_png_write_leaves_the_old_file_byte_identical)
+{
+    make_dir();
+    image im = {0}, empty = {0};
+    error err = {0};
+    ck_assert_int_eq(image_alloc(&im, 4, 4, &err), 0);
+    ck_assert_int_eq(pngfile_write(in_dir("keep.png"), &im, NULL, &err), 0);
+    size_t nb, na;
+    unsigned char *before = slurp(in_dir("keep.png"), &nb);
+    ck_assert_int_eq(pngfile_write(in_dir("keep.png"), &empty, NULL, &err), -1);
+    empty.w = 5; /* a size without pixels fails validation too */
+    ck_assert_int_eq(pngfile_write(in_dir("keep.png"), &empty, NULL, &err), -1);
+    ck_assert_int_eq(pngfile_write(in_dir("gone/keep.png"), &im, NULL, &err), -1);
+    unsigned char *after = slurp(in_dir("keep.png"), &na);
+    ck_assert_uint_eq(na, nb);
+    ck_assert_int_eq(memcmp(before, after, nb), 0);
+    ck_assert_int_eq(count_files(".tmp."), 0);
+    free(before);
+    free(after);
+    image_free(&im);
+    remove_dir();
+}
+END_TEST
+
+START_TEST(test_png_write_applies_the_tone_mapping_it_is_given)
+{
+    make_dir();
+    image im = {0}, back = {0};
+    error err = {0};
+    ck_assert_int_eq(image_alloc(&im, 1, 1, &err), 0);
+    im.px[0] = 0.25f; /* exposure +2 EV: 1.0, white */
+    tonemap_params tm = tonemap_defaults();
+    tm.exposure = 2.0;
+    ck_assert_int_eq(pngfile_write(in_dir("e.png"), &im, &tm, &err), 0);
+    ck_assert_int_eq(pngfile_read(in_dir("e.png"), &back, &err), 0);
+    ck_assert(back.px[0] == 1.0f && back.px[1] == 0.0f);
+    image_free(&im);
+    image_free(&back);
+    remove_dir();
+}
+END_TEST
+
+Suite *pngfile_suite(void)
+{
+    Suite *s = suite_create("pngfile");
+    TCase *tc = tcase_create("pngfile");
+    tcase_add_test(tc, test_png_roundtrip_is_within_8bit_quantization);
+    tcase_add_test(tc, test_every_colour_type_decodes_to_linear_rgb);
+    tcase_add_test(tc, test_interlaced_png_reads_like_a_plain_one);
+    tcase_add_test(tc, test_png_claiming_40000_by_40000_is_refused_before_allocation);
+    tcase_add_test(tc, test_truncated_and_corrupt_png_are_errors);
+    tcase_add_test(tc, test_failed_png_write_leaves_the_old_file_byte_identical);
+    tcase_add_test(tc, test_png_write_applies_the_tone_mapping_it_is_given);
+    suite_add_tcase(s, tc);
+    return s;
+}
+
+UNIT_MAIN(pngfile_suite)
