@@ -1,0 +1,207 @@
+/* test_triangle.c - Moller-Trumbore: barycentrics, inclusive edges and vertices, no cracks
+ * along a shared edge, parallel and degenerate cases, two-sided hits, the (tmin, tmax) interval. */
+#include "envtex/triangle.h"
+
+#include "envtex/rng.h"
+#include "unit.h"
+
+static ray make_ray(vec3 o, vec3 d) { return (ray){o, d, 0.0, INFINITY}; }
+
+static const vec3 P0 = {0, 0, 0}, P1 = {1, 0, 0}, P2 = {0, 1, 0};
+
+/* A ray straight down onto the z = 0 plane at (x, y). */
+static ray down_at(double x, double y) { return make_ray(vec3_make(x, y, 2), vec3_make(0, 0, -1)); }
+
+START_TEST(test_triangle_hit_at_the_centroid_has_barycentrics_one_third)
+{
+    double t, b1, b2;
+    ray r = down_at(1.0 / 3, 1.0 / 3);
+    ck_assert_int_eq(triangle_intersect(P0, P1, P2, &r, &t, &b1, &b2), 1);
+    ck_assert_near(t, 2, 1e-15);
+    ck_assert_near(b1, 1.0 / 3, 1e-15);
+    ck_assert_near(b2, 1.0 / 3, 1e-15);
+    /* b1 weights p1, b2 weights p2: p = b0 p0 + b1 p1 + b2 p2 at an off-centre point */
+    vec3 q0 = {1, 2, 3}, q1 = {4, 0, 3}, q2 = {2, 5, 3};
+    vec3 p = vec3_add(vec3_add(vec3_scale(q0, 0.2), vec3_scale(q1, 0.5)), vec3_scale(q2, 0.3));
+    r = make_ray(vec3_add(p, vec3_make(0.3, -0.2, 4)), vec3_make(-0.3, 0.2, -4));
+    ck_assert_int_eq(triangle_intersect(q0, q1, q2, &r, &t, &b1, &b2), 1);
+    ck_assert_near(t, 1, 1e-14);
+    ck_assert_near(b1, 0.5, 1e-14);
+    ck_assert_near(b2, 0.3, 1e-14);
+}
+END_TEST
+
+START_TEST(test_triangle_edges_and_vertices_are_inside)
+{
+    double t, b1, b2;
+    const double pts[][2] = {{0, 0}, {1, 0}, {0, 1},          /* vertices */
+                             {0.5, 0}, {0, 0.5}, {0.5, 0.5},  /* edge midpoints */
+                             {0.25, 0}, {0, 0.75}, {0.75, 0.25}};
+    for (unsigned i = 0; i < sizeof pts / sizeof pts[0]; i++) {
+        ray r = down_at(pts[i][0], pts[i][1]);
+        ck_assert_msg(triangle_intersect(P0, P1, P2, &r, &t, &b1, &b2) == 1, "missed (%g, %g)",
+                      pts[i][0], pts[i][1]);
+    }
+    /* just outside each edge misses (1e-9 is far beyond the 1e-12 tolerance) */
+    const double out[][2] = {{0.5, -1e-9}, {-1e-9, 0.5}, {0.5 + 1e-9, 0.5 + 1e-9}, {1 + 1e-9, 0}, {-1e-9, -1e-9}};
+    for (unsigned i = 0; i < sizeof out / sizeof out[0]; i++) {
+        ray r = down_at(out[i][0], out[i][1]);
+        ck_assert_msg(triangle_intersect(P0, P1, P2, &r, &t, &b1, &b2) == 0, "hit (%g, %g)",
+                      out[i][0], out[i][1]);
+    }
+}
+END_TEST
+
+START_TEST(test_triangle_rays_across_a_shared_edge_find_no_crack)
+{
+    /* Two triangles sharing the diagonal edge a-c of a quad, with awkward coordinates. */
+    rng g;
+    rng_seed(&g, 31, 0);
+    for (int quad = 0; quad < 20; quad++) {
+        vec3 a = vec3_make(rng_uniform(&g) * 10 - 5, rng_uniform(&g) * 10 - 5, rng_uniform(&g)),
+             b = vec3_add(a, vec3_make(3.1 + rng_uniform(&g), 0.3, 0.7)),
+             c = vec3_add(a, vec3_make(2.9, 3.7 + rng_uniform(&g), -0.4)),
+             d = vec3_add(a, vec3_make(-0.2, 3.3, 0.5 * rng_uniform(&g)));
+        vec3 eye = vec3_make(1.3, -0.7, 20);
+        for (int i = 0; i <= 2000; i++) {
+            /* points exactly on the shared edge (as exactly as doubles allow) */
+            double s = i / 2000.0;
+            vec3 on = vec3_add(vec3_scale(a, 1 - s), vec3_scale(c, s));
+            ray r = make_ray(eye, vec3_sub(on, eye));
+            double t, b1, b2;
+            int h1 = triangle_intersect(a, b, c, &r, &t, &b1, &b2);
+            int h2 = triangle_intersect(a, c, d, &r, &t, &b1, &b2);
+            ck_assert_msg(h1 || h2, "quad %d: crack at s = %.17g", quad, s);
+        }
+        /* and a sweep across the edge, ray by ray, in steps of ~1e-15 of the quad size */
+        vec3 mid = vec3_scale(vec3_add(a, c), 0.5), across = vec3_sub(b, d);
+        for (int i = -500; i <= 500; i++) {
+            vec3 p = vec3_madd(mid, across, i * 1e-15);
+            ray r = make_ray(eye, vec3_sub(p, eye));
+            double t, b1, b2;
+            int h1 = triangle_intersect(a, b, c, &r, &t, &b1, &b2);
+            int h2 = triangle_intersect(a, c, d, &r, &t, &b1, &b2);
+            ck_assert_msg(h1 || h2, "quad %d: crack %d steps across the edge", quad, i);
+        }
+    }
+}
+END_TEST
+
+START_TEST(test_triangle_parallel_ray_misses)
+{
+    double t, b1, b2;
+    /* in the plane of the triangle, through its interior */
+    ray r = make_ray(vec3_make(-1, 0.25, 0), vec3_make(1, 0, 0));
+    ck_assert_int_eq(triangle_intersect(P0, P1, P2, &r, &t, &b1, &b2), 0);
+    /* parallel above it */
+    r.o.z = 1;
+    ck_assert_int_eq(triangle_intersect(P0, P1, P2, &r, &t, &b1, &b2), 0);
+}
+END_TEST
+
+START_TEST(test_triangle_degenerate_triangles_are_never_hit)
+{
+    rng g;
+    rng_seed(&g, 32, 0);
+    /* two equal corners, all three equal, and three collinear points (exactly representable) */
+    vec3 tris[][3] = {{{0, 0, 0}, {0, 0, 0}, {1, 1, 0}},
+                      {{1, 1, 1}, {1, 1, 1}, {1, 1, 1}},
+                      {{0, 0, 0}, {1, 1, 0}, {2, 2, 0}},
+                      {{-1, 0.5, 2}, {0, 0.5, 2}, {4, 0.5, 2}}};
+    for (unsigned k = 0; k < sizeof tris / sizeof tris[0]; k++)
+        for (int i = 0; i < 20000; i++) {
+            vec3 o = vec3_make(rng_uniform(&g) * 6 - 3, rng_uniform(&g) * 6 - 3, rng_uniform(&g) * 6 - 3);
+            vec3 target = vec3_add(tris[k][i % 3], vec3_scale(vec3_sub(tris[k][(i + 1) % 3], tris[k][i % 3]), rng_uniform(&g)));
+            ray r = make_ray(o, vec3_sub(target, o)); /* aimed exactly at the segment */
+            double t, b1, b2;
+            ck_assert_msg(triangle_intersect(tris[k][0], tris[k][1], tris[k][2], &r, &t, &b1, &b2) == 0,
+                          "degenerate triangle %u hit", k);
+        }
+}
+END_TEST
+
+START_TEST(test_triangle_is_hit_from_the_back_too)
+{
+    double t, b1, b2;
+    ray r = make_ray(vec3_make(0.25, 0.25, -3), vec3_make(0, 0, 1)); /* below, against the normal */
+    ck_assert_int_eq(triangle_intersect(P0, P1, P2, &r, &t, &b1, &b2), 1);
+    ck_assert_near(t, 3, 1e-15);
+    ck_assert_near(b1, 0.25, 1e-15);
+    ck_assert_near(b2, 0.25, 1e-15);
+}
+END_TEST
+
+START_TEST(test_triangle_hit_respects_tmin_and_tmax_and_misses_behind)
+{
+    double t = 7, b1, b2;
+    ray r = down_at(0.2, 0.2);
+    r.tmax = 2; /* open interval: t = 2 is not a hit */
+    ck_assert_int_eq(triangle_intersect(P0, P1, P2, &r, &t, &b1, &b2), 0);
+    r.tmax = 2.5;
+    r.tmin = 2;
+    ck_assert_int_eq(triangle_intersect(P0, P1, P2, &r, &t, &b1, &b2), 0);
+    r.tmin = 1.5;
+    ck_assert_int_eq(triangle_intersect(P0, P1, P2, &r, &t, &b1, &b2), 1);
+    ck_assert_near(t, 2, 1e-15);
+    ray behind = make_ray(vec3_make(0.2, 0.2, -1), vec3_make(0, 0, -1));
+    t = 7;
+    ck_assert_int_eq(triangle_intersect(P0, P1, P2, &behind, &t, &b1, &b2), 0);
+    ck_assert(t == 7); /* outputs untouched on a miss */
+}
+END_TEST
+
+START_TEST(test_triangle_nan_ray_misses)
+{
+    double t, b1, b2;
+    ray r = make_ray(vec3_make(0.2, 0.2, 1), vec3_make(NAN, 0, -1));
+    ck_assert_int_eq(triangle_intersect(P0, P1, P2, &r, &t, &b1, &b2), 0);
+    r = make_ray(vec3_make(NAN, 0.2, 1), vec3_make(0, 0, -1));
+    ck_assert_int_eq(triangle_intersect(P0, P1, P2, &r, &t, &b1, &b2), 0);
+    r = make_ray(vec3_make(0.2, 0.2, 1), vec3_make(0, 0, 0));
+    ck_assert_int_eq(triangle_intersect(P0, P1, P2, &r, &t, &b1, &b2), 0);
+}
+END_TEST
+
+START_TEST(test_triangle_random_hits_reproduce_the_aimed_point)
+{
+    rng g;
+    rng_seed(&g, 33, 0);
+    for (int i = 0; i < 20000; i++) {
+        vec3 q[3];
+        for (int k = 0; k < 3; k++)
+            q[k] = vec3_make(rng_uniform(&g) * 4 - 2, rng_uniform(&g) * 4 - 2, rng_uniform(&g) * 4 - 2);
+        double w1 = rng_uniform(&g), w2 = rng_uniform(&g);
+        if (w1 + w2 > 1) w1 = 1 - w1, w2 = 1 - w2;
+        vec3 p = vec3_add(q[0], vec3_add(vec3_scale(vec3_sub(q[1], q[0]), w1), vec3_scale(vec3_sub(q[2], q[0]), w2)));
+        vec3 o = vec3_make(rng_uniform(&g) * 10 - 5, rng_uniform(&g) * 10 - 5, 6);
+        ray r = make_ray(o, vec3_sub(p, o)); /* t = 1 at p */
+        vec3 n = vec3_cross(vec3_sub(q[1], q[0]), vec3_sub(q[2], q[0]));
+        double cosang = fabs(vec3_dot(vec3_normalize(n), vec3_normalize(r.d)));
+        if (cosang < 0.05 || vec3_length(n) < 0.05) continue; /* ill-conditioned: skip */
+        double t, b1, b2;
+        ck_assert_int_eq(triangle_intersect(q[0], q[1], q[2], &r, &t, &b1, &b2), 1);
+        ck_assert_near(t, 1, 1e-11);
+        ck_assert_near(b1, w1, 1e-10);
+        ck_assert_near(b2, w2, 1e-10);
+    }
+}
+END_TEST
+
+Suite *triangle_suite(void)
+{
+    Suite *s = suite_create("triangle");
+    TCase *tc = tcase_create("core");
+    tcase_add_test(tc, test_triangle_hit_at_the_centroid_has_barycentrics_one_third);
+    tcase_add_test(tc, test_triangle_edges_and_vertices_are_inside);
+    tcase_add_test(tc, test_triangle_rays_across_a_shared_edge_find_no_crack);
+    tcase_add_test(tc, test_triangle_parallel_ray_misses);
+    tcase_add_test(tc, test_triangle_degenerate_triangles_are_never_hit);
+    tcase_add_test(tc, test_triangle_is_hit_from_the_back_too);
+    tcase_add_test(tc, test_triangle_hit_respects_tmin_and_tmax_and_misses_behind);
+    tcase_add_test(tc, test_triangle_nan_ray_misses);
+    tcase_add_test(tc, test_triangle_random_hits_reproduce_the_aimed_point);
+    suite_add_tcase(s, tc);
+    return s;
+}
+
+UNIT_MAIN(triangle_suite)
