@@ -1,0 +1,76 @@
+/* angular.c - Debevec's angular map (see include/envtex/angular.h). */
+#include "envtex/angular.h"
+
+#include <assert.h>
+
+/* d / |d| for a finite non-zero d, else -1.  Divides by the largest |component| first, so the
+ * length of a huge or subnormal vector neither overflows nor underflows. */
+static int unit_direction(vec3 d, vec3 *out)
+{
+    if (!vec3_is_finite(d)) return -1;
+    double m = vec3_max_abs(d);
+    if (m == 0) return -1;
+    d = vec3_make(d.x / m, d.y / m, d.z / m);
+    *out = vec3_scale(d, 1.0 / vec3_length(d)); /* length in [1, sqrt 3]: no zero division */
+    return 0;
+}
+
+/* How far rho may exceed 1 and still count as the rim: a few ulps of 1, the rounding of
+ * sqrt(a^2 + b^2) for a rim point computed with cos / sin or by angular_dir_to_uv. */
+#define ANGULAR_RIM_SLACK 1e-15
+
+int angular_dir_to_uv(vec3 d, uv2 *uv)
+{
+    vec3 r;
+    if (unit_direction(d, &r)) return -1;
+    double s = sqrt(r.y * r.y + r.z * r.z); /* sin theta */
+    if (s == 0) {                           /* on the axis: the centre, or the rim's top */
+        *uv = r.x > 0 ? (uv2){0.5, 0.5} : (uv2){0.5, 0.0};
+        return 0;
+    }
+    double theta = atan2(s, r.x);             /* angle from +x, exact near 0 and pi */
+    double k = theta / M_PI / s;              /* rho / sin theta, rho = theta / pi */
+    double a = r.y * k, b = r.z * k;          /* (a, b) = (y, z) / |(y, z)| * rho */
+    uv->u = fmin(fmax(0.5 * (a + 1.0), 0.0), 1.0); /* a = 2u - 1, clamped against rounding */
+    uv->v = fmin(fmax(0.5 * (1.0 - b), 0.0), 1.0); /* b = 1 - 2v */
+    return 0;
+}
+
+int angular_uv_to_dir(uv2 uv, vec3 *d)
+{
+    double a = 2.0 * uv.u - 1.0, b = 1.0 - 2.0 * uv.v;
+    double rho = sqrt(a * a + b * b);
+    if (!(rho <= 1.0 + ANGULAR_RIM_SLACK)) return -1; /* outside the disc (or NaN) */
+    if (rho == 0) {                                   /* the centre: no azimuth needed */
+        *d = vec3_make(1.0, 0.0, 0.0);
+        return 0;
+    }
+    double theta = M_PI * fmin(rho, 1.0);             /* theta = pi rho */
+    double k = sin(theta) / rho;
+    *d = vec3_make(cos(theta), a * k, b * k); /* (cos theta, sin theta a/rho, sin theta b/rho) */
+    return 0;
+}
+
+rgb angular_lookup_bilinear(const image *probe, vec3 d)
+{
+    assert(probe->w > 0 && probe->h > 0);
+    uv2 uv;
+    if (angular_dir_to_uv(d, &uv)) return rgb_gray(0.0);
+    int w = probe->w, h = probe->h;
+    /* texel centres at integers: x, y in [-0.5, size - 0.5] */
+    double x = uv.u * w - 0.5, y = uv.v * h - 0.5;
+    double x0 = floor(x), y0 = floor(y);
+    double ax = x - x0, ay = y - y0;
+    int i0 = (int)x0, j0 = (int)y0;
+    int i1 = i0 + 1, j1 = j0 + 1;
+    if (i0 < 0) i0 = 0; /* clamp at the image edges */
+    if (j0 < 0) j0 = 0;
+    if (i1 > w - 1) i1 = w - 1;
+    if (j1 > h - 1) j1 = h - 1;
+    rgb c00 = image_get(probe, i0, j0), c10 = image_get(probe, i1, j0);
+    rgb c01 = image_get(probe, i0, j1), c11 = image_get(probe, i1, j1);
+    /* L = (1-ax)(1-ay) c00 + ax (1-ay) c10 + (1-ax) ay c01 + ax ay c11 */
+    rgb top = rgb_add(rgb_scale(c00, 1.0 - ax), rgb_scale(c10, ax));
+    rgb bottom = rgb_add(rgb_scale(c01, 1.0 - ax), rgb_scale(c11, ax));
+    return rgb_add(rgb_scale(top, 1.0 - ay), rgb_scale(bottom, ay));
+}
