@@ -97,16 +97,20 @@ static void guide_build(const double *cdf, int n, int32_t *guide, int m)
     guide[m] = n - 1;
 }
 
-/* cdf_search sped up by the guide: the same bin, bit for bit.  x * m may round across a
- * boundary, so the interval [lo, hi] is widened until cdf[lo] <= x < cdf[hi + 1] holds; then
- * the first bin in it with cdf[i + 1] > x is also the first overall. */
+/* cdf_search sped up by the guide: the same bin, bit for bit, found in [lo, hi] once
+ * cdf[lo] <= x < cdf[hi + 1]; the first bin there with cdf[i + 1] > x is the first overall.
+ *   lo: x * m can round UP to g for x an ulp below g / m (m = 6, g = 5 does), so a CDF step
+ *       in (x, g / m] would be missed: step lo back while cdf[lo] > x.
+ *   hi: never needs widening.  g = floor(fl(x m)) gives x m < g + 1, so x < (g + 1) / m, and
+ *       x >= fl((g + 1) / m) only if x is that very double; either way the bin of x is at or
+ *       before guide[g + 1]. */
 static int guide_search(const double *cdf, int n, const int32_t *guide, int m, double x)
 {
     int g = (int)(x * (double)m);
     if (g > m - 1) g = m - 1;
     int lo = guide[g], hi = guide[g + 1];
     while (lo > 0 && cdf[lo] > x) lo--;
-    while (hi < n - 1 && cdf[hi + 1] <= x) hi++;
+    assert(hi <= n - 1 && cdf[hi + 1] > x);
     return lo + cdf_search(cdf + lo, hi - lo + 1, x);
 }
 

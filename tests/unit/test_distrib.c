@@ -479,8 +479,8 @@ static double probe_point(const double *cdf, int n, int m, int k)
 }
 
 /* Compare the 1D search, and the 2D search within a column, with linear_bin at every probe
- * point and 3 ulps either side. */
-static long count_search_disagreements(const double *w, int n)
+ * point and 3 ulps either side (only near `only` if it is >= 0). */
+static long count_search_disagreements_near(const double *w, int n, double only)
 {
     distrib1d d = {0};
     distrib2d d2 = {0};
@@ -495,8 +495,8 @@ static long count_search_disagreements(const double *w, int n)
     ck_assert_int_eq(distrib2d_init(&d2, w2, 2, n, &err), 0);
     const double *col = d2.cond_cdf + (size_t)(n + 1);
     long bad = 0;
-    for (int k = 0; k < n + d.n_guide + 2002; k++) {
-        double x = probe_point(d.cdf, n, d.n_guide, k);
+    for (int k = 0; k < (only >= 0.0 ? 1 : n + d.n_guide + 2002); k++) {
+        double x = only >= 0.0 ? only : probe_point(d.cdf, n, d.n_guide, k);
         for (int u = 0; u < 3; u++) x = nextafter(x, -1.0);
         for (int u = 0; u < 7; u++, x = nextafter(x, 2.0)) {
             bad += distrib1d_sample(&d, x, NULL, NULL) != linear_bin(d.cdf, n, x);
@@ -509,6 +509,11 @@ static long count_search_disagreements(const double *w, int n)
     distrib2d_free(&d2);
     free(w2);
     return bad;
+}
+
+static long count_search_disagreements(const double *w, int n)
+{
+    return count_search_disagreements_near(w, n, -1.0);
 }
 
 /* Catches a guide table (the search's shortcut, 1D and 2D) that starts past the right bin,
@@ -529,6 +534,26 @@ START_TEST(test_distrib1d_search_agrees_with_a_linear_scan)
         w[i] = u < 0.3 ? 0.0 : u < 0.31 ? 1e4 * u : u; /* zeros and a few bright bins */
     }
     ck_assert_int_eq(count_search_disagreements(w, 1000), 0);
+
+    /* A CDF step at c = g/m (m guide entries), or one ulp above: x * m rounds across the guide
+     * boundary for x an ulp below g/m (e.g. m = 6, g = 5) or at the step above it, and the
+     * guide's interval must be widened.  Weights {c, 0, ..., 0, 1 - c} put cdf[1] at c. */
+    long exact_steps = 0, bad = 0;
+    for (int m = 2; m <= 48; m++) {
+        for (int g = 1; g < m; g++) {
+            for (int up = 0; up < 2; up++) {
+                double c = (double)g / m, v[4 * 48] = {0};
+                if (up) c = nextafter(c, 1.0);
+                v[0] = c;
+                v[4 * m - 1] = 1.0 - c;
+                if (c / (c + (1.0 - c)) != c) continue; /* 1 - c rounded: step not at c */
+                exact_steps++;
+                bad += count_search_disagreements_near(v, 4 * m, c);
+            }
+        }
+    }
+    ck_assert_int_gt(exact_steps, 1000);
+    ck_assert_int_eq(bad, 0);
 }
 END_TEST
 
