@@ -1,0 +1,200 @@
+/* test_compare.c - image metrics, threshold verdicts and the difference picture. */
+#include <math.h>
+#include <string.h>
+
+#include "envtex/compare.h"
+#include "envtex/tonemap.h"
+#include "unit.h"
+
+static void grey(image *im, int w, int h, float v)
+{
+    error err = {0};
+    ck_assert_int_eq(image_alloc(im, w, h, &err), 0);
+    for (int i = 0; i < 3 * w * h; i++) im->px[i] = v;
+}
+
+START_TEST(test_equal_images_have_zero_error_and_infinite_psnr)
+{
+    image a = {0}, b = {0};
+    grey(&a, 4, 3, 0.5f);
+    grey(&b, 4, 3, 0.5f);
+    compare_result m;
+    error err = {0};
+    ck_assert_int_eq(compare_metrics(&a, &b, &m, &err), 0);
+    ck_assert(m.rmse == 0.0 && m.relmse == 0.0 && m.max_abs == 0.0);
+    ck_assert(isinf(m.psnr) && m.psnr > 0);
+    ck_assert_int_eq(m.pixels, 12);
+    image_free(&a);
+    image_free(&b);
+}
+END_TEST
+
+START_TEST(test_metrics_of_one_changed_channel_are_the_hand_computed_ones)
+{
+    image a = {0}, ref = {0};
+    grey(&a, 2, 2, 0.0f);
+    grey(&ref, 2, 2, 0.0f);
+    image_px(&ref, 1, 1)[1] = 0.5f;
+    image_px(&a, 1, 1)[1] = 0.6f; /* one of 12 values off by 0.1 */
+    compare_result m;
+    error err = {0};
+    ck_assert_int_eq(compare_metrics(&a, &ref, &m, &err), 0);
+    ck_assert_near(m.rmse, sqrt(0.01 / 12.0), 1e-7);
+    ck_assert_near(m.psnr, -10.0 * log10(0.01 / 12.0), 1e-4);
+    ck_assert_near(m.relmse, 0.01 / (0.25 + COMPARE_RELMSE_EPSILON) / 12.0, 1e-7);
+    ck_assert_near(m.max_abs, 0.1, 1e-6);
+    ck_assert_int_eq(m.max_x, 1);
+    ck_assert_int_eq(m.max_y, 1);
+    image_free(&a);
+    image_free(&ref);
+}
+END_TEST
+
+START_TEST(test_relmse_epsilon_guards_black_reference_pixels)
+{
+    image a = {0}, ref = {0};
+    grey(&a, 1, 1, 0.1f);
+    grey(&ref, 1, 1, 0.0f); /* ref^2 = 0: without the epsilon this divides by zero */
+    compare_result m;
+    error err = {0};
+    ck_assert_int_eq(compare_metrics(&a, &ref, &m, &err), 0);
+    ck_assert(isfinite(m.relmse));
+    ck_assert_near(m.relmse, 0.01 / COMPARE_RELMSE_EPSILON, 1e-6);
+    image_free(&a);
+    image_free(&ref);
+}
+END_TEST
+
+START_TEST(test_nonfinite_pixels_are_counted_and_left_out)
+{
+    image a = {0}, ref = {0};
+    grey(&a, 3, 1, 0.25f);
+    grey(&ref, 3, 1, 0.25f);
+    a.px[0] = NAN;
+    ref.px[8] = INFINITY;
+    compare_result m;
+    error err = {0};
+    ck_assert_int_eq(compare_metrics(&a, &ref, &m, &err), 0);
+    ck_assert_int_eq(m.nonfinite, 1);
+    ck_assert_int_eq(m.ref_nonfinite, 1);
+    ck_assert_int_eq(m.pixels, 1);
+    ck_assert(m.rmse == 0.0);
+    a.px[3] = a.px[6] = NAN; /* nothing left to compare: the metrics are undefined */
+    ck_assert_int_eq(compare_metrics(&a, &ref, &m, &err), 0);
+    ck_assert(isnan(m.rmse) && isnan(m.psnr));
+    image_free(&a);
+    image_free(&ref);
+}
+END_TEST
+
+START_TEST(test_different_sizes_are_an_error_and_a_failed_verdict)
+{
+    image a = {0}, ref = {0}, d = {0};
+    grey(&a, 2, 2, 0.0f);
+    grey(&ref, 2, 3, 0.0f);
+    compare_result m;
+    error err = {0};
+    ck_assert_int_eq(compare_metrics(&a, &ref, &m, &err), -1);
+    ck_assert_ptr_nonnull(strstr(err.msg, "sizes differ"));
+    compare_thresholds_params p = compare_thresholds_defaults();
+    compare_verdict v;
+    ck_assert_int_eq(compare_thresholds(&a, &ref, &p, &v), -1);
+    ck_assert_int_eq(v.pass, 0);
+    ck_assert_ptr_nonnull(strstr(v.why, "sizes differ"));
+    ck_assert_int_eq(compare_diff_image(&a, &ref, &d, &err), -1);
+    ck_assert_ptr_null(d.px);
+    image_free(&a);
+    image_free(&ref);
+}
+END_TEST
+
+START_TEST(test_threshold_verdicts_follow_the_percent_hard_and_nan_rules)
+{
+    image a = {0}, ref = {0};
+    grey(&a, 10, 10, 0.5f);
+    grey(&ref, 10, 10, 0.5f);
+    image_px(&a, 3, 4)[2] = 0.51f; /* 1 pixel of 100 off by 0.01 */
+    compare_thresholds_params p = compare_thresholds_defaults();
+    compare_verdict v;
+    ck_assert_int_eq(compare_thresholds(&a, &ref, &p, &v), -1); /* 1% > 0.02% */
+    ck_assert_int_eq(v.failed, 1);
+    ck_assert_near(v.failed_percent, 1.0, 1e-12);
+    ck_assert_int_eq(v.max_x, 3);
+    ck_assert_int_eq(v.max_y, 4);
+    p.fail_percent = 2.0;
+    ck_assert_int_eq(compare_thresholds(&a, &ref, &p, &v), 0);
+    ck_assert_int_eq(v.pass, 1);
+    p.hard_thresh = 0.005; /* but no pixel may differ more than 0.005 */
+    ck_assert_int_eq(compare_thresholds(&a, &ref, &p, &v), -1);
+    ck_assert_int_eq(v.hard_failed, 1);
+    p.hard_thresh = INFINITY;
+    image_px(&a, 0, 0)[0] = NAN;
+    ck_assert_int_eq(compare_thresholds(&a, &ref, &p, &v), -1);
+    ck_assert_int_eq(v.nonfinite, 1);
+    ck_assert_ptr_nonnull(strstr(v.why, "NaN"));
+    image_free(&a);
+    image_free(&ref);
+}
+END_TEST
+
+START_TEST(test_relative_mode_forgives_bright_pixels_only)
+{
+    image a = {0}, ref = {0};
+    grey(&a, 2, 1, 10.0f);
+    grey(&ref, 2, 1, 10.0f);
+    image_px(&a, 0, 0)[0] = 10.05f; /* 0.5% of a bright value */
+    compare_thresholds_params p = compare_thresholds_defaults();
+    p.fail_percent = 0.0;
+    p.fail_relative = 0.01;
+    compare_verdict v;
+    ck_assert_int_eq(compare_thresholds(&a, &ref, &p, &v), 0);
+    image_px(&ref, 1, 0)[1] = 0.1f;
+    image_px(&a, 1, 0)[1] = 0.15f; /* 0.05 on a dim value: 40% relative */
+    ck_assert_int_eq(compare_thresholds(&a, &ref, &p, &v), -1);
+    ck_assert_int_eq(v.failed, 1);
+    image_free(&a);
+    image_free(&ref);
+}
+END_TEST
+
+START_TEST(test_difference_image_uses_one_colour_per_decade)
+{
+    image a = {0}, ref = {0}, d = {0};
+    grey(&ref, 6, 1, 0.5f);
+    grey(&a, 6, 1, 0.5f);
+    float diffs[5] = {0.0f, 1e-3f, 1e-2f, 1e-1f, 2.0f};
+    for (int x = 0; x < 5; x++) image_px(&a, x, 0)[1] += diffs[x];
+    image_px(&a, 5, 0)[0] = NAN;
+    error err = {0};
+    ck_assert_int_eq(compare_diff_image(&a, &ref, &d, &err), 0);
+    static const uint8_t want[6][3] = {{0, 0, 0}, {0, 0, 255}, {0, 255, 0}, {255, 255, 0}, {255, 0, 0}, {255, 0, 255}};
+    tonemap_params tm = tonemap_defaults(); /* what imageio_write uses for a .png */
+    for (int x = 0; x < 6; x++) {
+        uint8_t o[3];
+        tonemap_pixel(&tm, image_get(&d, x, 0), o);
+        for (int k = 0; k < 3; k++)
+            ck_assert_msg(abs(o[k] - want[x][k]) <= 1, "pixel %d channel %d: %d, want %d", x, k, o[k], want[x][k]);
+    }
+    image_free(&a);
+    image_free(&ref);
+    image_free(&d);
+}
+END_TEST
+
+Suite *compare_suite(void)
+{
+    Suite *s = suite_create("compare");
+    TCase *tc = tcase_create("compare");
+    tcase_add_test(tc, test_equal_images_have_zero_error_and_infinite_psnr);
+    tcase_add_test(tc, test_metrics_of_one_changed_channel_are_the_hand_computed_ones);
+    tcase_add_test(tc, test_relmse_epsilon_guards_black_reference_pixels);
+    tcase_add_test(tc, test_nonfinite_pixels_are_counted_and_left_out);
+    tcase_add_test(tc, test_different_sizes_are_an_error_and_a_failed_verdict);
+    tcase_add_test(tc, test_threshold_verdicts_follow_the_percent_hard_and_nan_rules);
+    tcase_add_test(tc, test_relative_mode_forgives_bright_pixels_only);
+    tcase_add_test(tc, test_difference_image_uses_one_colour_per_decade);
+    suite_add_tcase(s, tc);
+    return s;
+}
+
+UNIT_MAIN(compare_suite)
