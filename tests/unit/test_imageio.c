@@ -1,0 +1,242 @@
+/* test_imageio.c - reading by magic bytes, writing by extension, atomic temporary files. */
+#include <dirent.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "envtex/imageio.h"
+#include "unit.h"
+
+/* ---- test folder helpers (each test makes and removes its own mkdtemp folder) ------------- */
+
+static char dir[64];
+
+static void make_dir(void)
+{
+    strcpy(dir, "/tmp/envtex_test_XXXXXX");
+    ck_assert_ptr_nonnull(mkdtemp(dir));
+}
+
+static void remove_dir(void)
+{
+    DIR *d = opendir(dir);
+    ck_assert_ptr_nonnull(d);
+    char p[512];
+    for (struct dirent *e; (e = readdir(d));) {
+        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..")) continue;
+        snprintf(p, sizeof p, "%s/%s", dir, e->d_name);
+        unlink(p);
+    }
+    closedir(d);
+    ck_assert_int_eq(rmdir(dir), 0);
+}
+
+/* Entries of the test folder whose name contains `part` (".tmp." finds left-over temporaries). */
+static int count_files(const char *part)
+{
+    DIR *d = opendir(dir);
+    ck_assert_ptr_nonnull(d);
+    int n = 0;
+    for (struct dirent *e; (e = readdir(d));)
+        if (e->d_name[0] != '.' && strstr(e->d_name, part)) n++;
+    closedir(d);
+    return n;
+}
+
+static const char *in_dir(const char *name)
+{
+    static char buf[4][256];
+    static int i;
+    i = (i + 1) % 4;
+    snprintf(buf[i], sizeof buf[i], "%s/%s", dir, name);
+    return buf[i];
+}
+
+static void write_bytes(const char *path, const void *data, size_t n)
+{
+    FILE *f = fopen(path, "wb");
+    ck_assert_ptr_nonnull(f);
+    ck_assert_uint_eq(fwrite(data, 1, n, f), n);
+    ck_assert_int_eq(fclose(f), 0);
+}
+
+/* The whole file (caller frees). */
+static unsigned char *slurp(const char *path, size_t *n)
+{
+    unsigned char *d = NULL;
+    error err = {0};
+    ck_assert_msg(imageio_read_all(path, &d, n, &err) == 0, "%s", err.msg);
+    return d;
+}
+
+static void fill(image *im)
+{
+    error err = {0};
+    ck_assert_int_eq(image_alloc(im, 12, 10, &err), 0);
+    for (int i = 0; i < 12 * 10 * 3; i++) im->px[i] = (float)(i % 17) / 16.0f;
+}
+
+START_TEST(test_every_extension_writes_and_reads_back)
+{
+    make_dir();
+    image im = {0};
+    error err = {0};
+    fill(&im);
+    /* tolerance per format: exact floats; RGBE 1/256 of the pixel's brightest channel (1 here at
+     * most); 8-bit sRGB about 1/255 near white in linear terms */
+    const char *names[] = {"a.exr", "b.PFM", "c.hdr", "d.Png", "e.EXR"};
+    double tol[] = {0.0, 0.0, 1.0 / 256.0, 0.01, 0.0};
+    for (int f = 0; f < 5; f++) {
+        ck_assert(imageio_can_write(names[f]));
+        ck_assert_msg(imageio_write(in_dir(names[f]), &im, NULL, &err) == 0, "%s: %s", names[f], err.msg);
+        image back = {0};
+        ck_assert_msg(imageio_read(in_dir(names[f]), &back, &err) == 0, "%s: %s", names[f], err.msg);
+        ck_assert_int_eq(back.w, 12);
+        ck_assert_int_eq(back.h, 10);
+        double worst = 0.0;
+        for (int i = 0; i < 12 * 10 * 3; i++) worst = fmax(worst, fabs(back.px[i] - im.px[i]));
+        ck_assert_msg(worst <= tol[f], "%s: error %g", names[f], worst);
+        image_free(&back);
+    }
+    ck_assert_int_eq(count_files(".tmp."), 0);
+    image_free(&im);
+    remove_dir();
+}
+END_TEST
+
+START_TEST(test_reading_goes_by_magic_bytes_not_the_name)
+{
+    make_dir();
+    image im = {0}, back = {0};
+    error err = {0};
+    fill(&im);
+    ck_assert_int_eq(imageio_write(in_dir("x.pfm"), &im, NULL, &err), 0);
+    ck_assert_int_eq(rename(in_dir("x.pfm"), in_dir("looks_like.png")), 0);
+    ck_assert_msg(imageio_read(in_dir("looks_like.png"), &back, &err) == 0, "%s", err.msg);
+    ck_assert_int_eq(memcmp(back.px, im.px, sizeof(float) * 360), 0);
+    image_free(&back);
+    image_free(&im);
+    remove_dir();
+}
+END_TEST
+
+START_TEST(test_unknown_missing_empty_and_folder_inputs_are_clear_errors)
+{
+    make_dir();
+    image im = {0};
+    error err = {0};
+    ck_assert_int_eq(imageio_read(in_dir("missing.exr"), &im, &err), -1);
+    ck_assert_str_eq(err.msg, "cannot open: No such file or directory");
+    ck_assert_str_eq(err.file, in_dir("missing.exr"));
+    ck_assert_int_eq(imageio_read(dir, &im, &err), -1);
+    ck_assert_str_eq(err.msg, "cannot open: Is a directory");
+    write_bytes(in_dir("empty.exr"), "", 0);
+    ck_assert_int_eq(imageio_read(in_dir("empty.exr"), &im, &err), -1);
+    ck_assert_str_eq(err.msg, "file is empty");
+    write_bytes(in_dir("gif.exr"), "GIF89a\1\0\1\0", 10);
+    ck_assert_int_eq(imageio_read(in_dir("gif.exr"), &im, &err), -1);
+    ck_assert_ptr_nonnull(strstr(err.msg, "unknown image format"));
+    write_bytes(in_dir("short"), "\x76\x2f", 2); /* half an EXR magic */
+    ck_assert_int_eq(imageio_read(in_dir("short"), &im, &err), -1);
+    ck_assert_ptr_null(im.px);
+    remove_dir();
+}
+END_TEST
+
+START_TEST(test_truncated_files_of_every_format_are_errors)
+{
+    make_dir();
+    image im = {0};
+    error err = {0};
+    fill(&im);
+    const char *names[] = {"t.exr", "t.pfm", "t.hdr", "t.png"};
+    for (int f = 0; f < 4; f++) {
+        ck_assert_int_eq(imageio_write(in_dir(names[f]), &im, NULL, &err), 0);
+        size_t n;
+        unsigned char *d = slurp(in_dir(names[f]), &n);
+        size_t cuts[] = {3, 12, n / 2, n - 13};
+        for (size_t i = 0; i < 4; i++) {
+            write_bytes(in_dir("cut"), d, cuts[i]);
+            image back = {0};
+            ck_assert_msg(imageio_read(in_dir("cut"), &back, &err) == -1, "%s cut at %zu", names[f], cuts[i]);
+            ck_assert_ptr_null(back.px);
+        }
+        free(d);
+    }
+    image_free(&im);
+    remove_dir();
+}
+END_TEST
+
+START_TEST(test_unknown_extension_and_invalid_images_write_nothing)
+{
+    make_dir();
+    image im = {0}, empty = {0};
+    error err = {0};
+    fill(&im);
+    ck_assert(!imageio_can_write("out.jpg"));
+    ck_assert(!imageio_can_write("out"));
+    ck_assert(!imageio_can_write("dir.exr/out"));
+    ck_assert_int_eq(imageio_write(in_dir("out.jpg"), &im, NULL, &err), -1);
+    ck_assert_ptr_nonnull(strstr(err.msg, ".exr"));
+    ck_assert_int_eq(imageio_write(in_dir("out.exr"), &empty, NULL, &err), -1);
+    ck_assert_int_eq(count_files("out"), 0);
+    image_free(&im);
+    remove_dir();
+}
+END_TEST
+
+START_TEST(test_temporary_files_live_beside_the_target_and_commit_by_rename)
+{
+    make_dir();
+    char tmp[ERROR_FILE_MAX];
+    error err = {0};
+    int fd = imageio_tmp_open(in_dir("t.bin"), tmp, &err);
+    ck_assert_int_ge(fd, 0);
+    ck_assert_int_eq(strncmp(tmp, in_dir("t.bin.tmp."), strlen(in_dir("t.bin.tmp."))), 0);
+    ck_assert_int_eq((int)write(fd, "abc", 3), 3);
+    ck_assert_int_eq(close(fd), 0);
+    struct stat st;
+    ck_assert_int_eq(stat(tmp, &st), 0);
+    mode_t mask = umask(0);
+    umask(mask);
+    ck_assert_int_eq((int)(st.st_mode & 0777), (int)(0666 & ~mask)); /* not mkstemp's 0600 */
+    ck_assert_int_eq(imageio_tmp_commit(tmp, in_dir("t.bin"), &err), 0);
+    size_t n;
+    unsigned char *d = slurp(in_dir("t.bin"), &n);
+    ck_assert_uint_eq(n, 3);
+    free(d);
+    fd = imageio_tmp_open(in_dir("t.bin"), tmp, &err);
+    ck_assert_int_ge(fd, 0);
+    close(fd);
+    imageio_tmp_abandon(tmp);
+    ck_assert_int_eq(count_files(".tmp."), 0);
+    ck_assert_int_eq(imageio_tmp_open(in_dir("no/t.bin"), tmp, &err), -1);
+    ck_assert_ptr_nonnull(strstr(err.msg, "No such file or directory"));
+    char longpath[ERROR_FILE_MAX + 10];
+    memset(longpath, 'a', sizeof longpath - 1);
+    longpath[sizeof longpath - 1] = '\0';
+    ck_assert_int_eq(imageio_tmp_open(longpath, tmp, &err), -1);
+    ck_assert_ptr_nonnull(strstr(err.msg, "too long"));
+    remove_dir();
+}
+END_TEST
+
+Suite *imageio_suite(void)
+{
+    Suite *s = suite_create("imageio");
+    TCase *tc = tcase_create("imageio");
+    tcase_add_test(tc, test_every_extension_writes_and_reads_back);
+    tcase_add_test(tc, test_reading_goes_by_magic_bytes_not_the_name);
+    tcase_add_test(tc, test_unknown_missing_empty_and_folder_inputs_are_clear_errors);
+    tcase_add_test(tc, test_truncated_files_of_every_format_are_errors);
+    tcase_add_test(tc, test_unknown_extension_and_invalid_images_write_nothing);
+    tcase_add_test(tc, test_temporary_files_live_beside_the_target_and_commit_by_rename);
+    suite_add_tcase(s, tc);
+    return s;
+}
+
+UNIT_MAIN(imageio_suite)
