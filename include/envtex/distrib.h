@@ -15,9 +15,9 @@
  * Two ways to sample the same distribution:
  *   - inversion by binary search over the CDF (`*_sample`): O(log n) (a guide table, the
  *     cutpoint method, first narrows the search to ~5 bins, so a search of a table too big for
- *     the cache costs ~2 cache misses, not log2 n), and MONOTONE: a larger xi
- *     never gives a smaller bin, and within one bin the remapped value grows with xi.  Stratified
- *     or low-discrepancy inputs stay stratified, so use this one for them;
+ *     the cache costs ~2 cache misses, not log2 n), and MONOTONE: a larger xi never gives a
+ *     smaller bin, and within one bin the remapped value grows with xi.  Stratified or
+ *     low-discrepancy inputs stay stratified, so use this one for them;
  *   - the alias method of Walker, built in O(n) with Vose's algorithm (`*_sample_alias`, after
  *     `*_alias_build`): O(1), but it scrambles the order of xi, so it does NOT preserve
  *     stratification; use it for independent random numbers.
@@ -47,11 +47,11 @@
  * 10^3 times brighter than the sky, float CDF steps put the pmf of the dim cells after the sun
  * off by up to 5%; at 10^5 some dim cells get a zero-width step and are NEVER sampled although
  * their weight is positive (a biased estimator); at 10^8 (a real sun) 2553 of 4096 cells vanish.
- * In double the CDF of an 8192 x 4096 grid (33.5M cells) is 268 MB and the normalization error
- * is ~1e-13; guide tables add 1 byte a cell.  Alias tables take 8 bytes a cell: a float
- * threshold and an int32 alias.  The
- * float threshold changes the probability an alias table actually samples by at most
- * ~6e-8 relative to the pmf it reports; that is far below Monte Carlo noise.
+ * In double the CDF of an 8192 x 4096 grid (33.5M cells) is 268 MB, its last entries are
+ * exactly 1 and the pmf sums to 1 within rounding (tested: < 1e-6); guide tables add 1 byte a
+ * cell.  Alias tables take 8 bytes a cell: a float threshold and an int32 alias.  The float
+ * threshold changes the probability an alias table actually samples by at most ~6e-8 relative
+ * to the pmf it reports; that is far below Monte Carlo noise.
  *
  * Speed (one core, -O2): building 4096 x 2048 takes ~0.06 s (+0.1 s for the alias tables),
  * 8192 x 4096 ~0.35 s.  A 2D sample costs ~20-50 ns while the tables sit in cache; on a table
