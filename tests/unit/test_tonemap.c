@@ -53,6 +53,8 @@ START_TEST(test_reinhard_and_aces_curves_give_their_formula_values)
     ck_assert_int_eq(o[0], 191);
     ck_assert_int_eq(o[1], 128);
     ck_assert_int_eq(o[2], 255);
+    px(&tm, -1.0, -0.5, 0.0, o); /* 1 + x = 0 at x = -1: negatives must be 0 before dividing */
+    ck_assert(o[0] == 0 && o[1] == 0 && o[2] == 0);
     tm.op = TONEMAP_ACES;
     px(&tm, 1.0, 0.1, 100.0, o);
     ck_assert_int_eq(o[0], 205); /* 2.54 / 3.16 = 0.80380 -> 204.97 */
