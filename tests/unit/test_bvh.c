@@ -12,6 +12,16 @@
 #include "envtex/triangle.h"
 #include "unit.h"
 
+/* Checks for long loops: every passing ck_assert costs a system call (Check records the last
+ * passing line), which would dominate the run time; these report failures only. */
+#define EXPECT(c) do { if (!(c)) ck_abort_msg("failed: %s", #c); } while (0)
+#define EXPECT_MSG(c, ...) do { if (!(c)) ck_abort_msg(__VA_ARGS__); } while (0)
+#define EXPECT_INT_EQ(a, b) do { long long a_ = (a), b_ = (b); \
+        if (a_ != b_) ck_abort_msg("%s == %lld, %s == %lld", #a, a_, #b, b_); } while (0)
+#define EXPECT_NEAR(a, b, tol) do { double a_ = (a), b_ = (b), t_ = (tol); \
+        if (!(fabs(a_ - b_) <= t_)) \
+            ck_abort_msg("%s == %.17g, %s == %.17g, tolerance %g", #a, a_, #b, b_, t_); } while (0)
+
 static double sym(rng *g) { return 2 * rng_uniform(g) - 1; }
 
 static vec3 random_unit(rng *g)
@@ -30,7 +40,7 @@ static void scene_alloc(scene *sc, long ns, long nt)
     sc->materials = calloc(2, sizeof *sc->materials);
     sc->spheres = calloc((size_t)(ns > 0 ? ns : 1), sizeof *sc->spheres);
     sc->triangles = calloc((size_t)(nt > 0 ? nt : 1), sizeof *sc->triangles);
-    ck_assert(sc->materials && sc->spheres && sc->triangles);
+    EXPECT(sc->materials && sc->spheres && sc->triangles);
     sc->materials[0] = sc->materials[1] = scene_default_material();
     sc->n_spheres = ns;
     sc->n_triangles = nt;
@@ -41,7 +51,7 @@ static void set_sphere(scene_sphere *s, vec3 c, double r, mat4 xf, int material)
     s->center = c;
     s->radius = r;
     s->xf = xf;
-    ck_assert_int_eq(mat4_inverse(xf, &s->inv), 0);
+    EXPECT_INT_EQ(mat4_inverse(xf, &s->inv), 0);
     s->material = material;
 }
 
@@ -126,7 +136,7 @@ static void check_against_brute_force(const scene *sc, int n_rays, uint64_t seed
 {
     error err = {0};
     bvh b;
-    ck_assert_int_eq(bvh_build(&b, sc, &err), 0);
+    EXPECT_INT_EQ(bvh_build(&b, sc, &err), 0);
     rng g;
     rng_seed(&g, seed, 1);
     int hits = 0;
@@ -138,26 +148,26 @@ static void check_against_brute_force(const scene *sc, int n_rays, uint64_t seed
         hit h;
         memset(&h, 0, sizeof h);
         int got = bvh_intersect(&b, sc, &r, &h);
-        ck_assert_msg(got == want, "ray %d: bvh %s, brute force %s (t = %g)", i, got ? "hit" : "missed",
+        EXPECT_MSG(got == want, "ray %d: bvh %s, brute force %s (t = %g)", i, got ? "hit" : "missed",
                       want ? "hit" : "missed", tb);
-        ck_assert_int_eq(bvh_occluded(&b, sc, &r), want);
+        EXPECT_INT_EQ(bvh_occluded(&b, sc, &r), want);
         if (!want) continue;
         hits++;
         /* same t bit for bit: the same intersection routine on the same numbers */
-        ck_assert_msg(h.t == tb, "ray %d: bvh t = %.17g, brute force t = %.17g", i, h.t, tb);
+        EXPECT_MSG(h.t == tb, "ray %d: bvh t = %.17g, brute force t = %.17g", i, h.t, tb);
         long id = h.is_sphere ? h.prim : h.prim + sc->n_spheres;
         if (id != idb) {
             /* a tie (two triangles through one edge): the bvh's primitive must give the same t */
             double t2 = 0, b1, b2;
             const scene_triangle *tr = &sc->triangles[h.prim];
-            ck_assert_msg(!h.is_sphere && triangle_intersect(tr->p[0], tr->p[1], tr->p[2], &r, &t2, &b1, &b2) && t2 == tb,
+            EXPECT_MSG(!h.is_sphere && triangle_intersect(tr->p[0], tr->p[1], tr->p[2], &r, &t2, &b1, &b2) && t2 == tb,
                           "ray %d: bvh hit primitive %ld, brute force %ld", i, id, idb);
         }
         int mat = h.is_sphere ? sc->spheres[h.prim].material : sc->triangles[h.prim].material;
-        ck_assert_int_eq(h.material, mat);
+        EXPECT_INT_EQ(h.material, mat);
         vec3 p = vec3_madd(r.o, r.d, h.t);
-        ck_assert(vec3_length(vec3_sub(p, h.p)) < 1e-9 * (1 + vec3_length(p)));
-        ck_assert_near(vec3_length(h.ng), 1, 1e-12);
+        EXPECT(vec3_length(vec3_sub(p, h.p)) < 1e-9 * (1 + vec3_length(p)));
+        EXPECT_NEAR(vec3_length(h.ng), 1, 1e-12);
     }
     if (n_rays >= 1000) ck_assert_int_gt(hits, n_rays / 10); /* the test saw real work */
     bvh_free(&b);
@@ -169,9 +179,9 @@ START_TEST(test_bvh_with_3_primitives_builds_no_tree_and_matches_brute_force)
     random_scene(&sc, 3, 41);
     error err = {0};
     bvh b;
-    ck_assert_int_eq(bvh_build(&b, &sc, &err), 0);
-    ck_assert_int_eq(b.is_tree, 0);
-    ck_assert_int_eq(b.n_nodes, 1);
+    EXPECT_INT_EQ(bvh_build(&b, &sc, &err), 0);
+    EXPECT_INT_EQ(b.is_tree, 0);
+    EXPECT_INT_EQ(b.n_nodes, 1);
     bvh_free(&b);
     check_against_brute_force(&sc, 3000, 41);
     scene_free(&sc);
@@ -184,14 +194,14 @@ START_TEST(test_bvh_is_a_tree_only_above_bvh_min_prims)
     bvh b;
     scene sc;
     random_scene(&sc, BVH_MIN_PRIMS, 42);
-    ck_assert_int_eq(bvh_build(&b, &sc, &err), 0);
-    ck_assert_int_eq(b.is_tree, 0);
+    EXPECT_INT_EQ(bvh_build(&b, &sc, &err), 0);
+    EXPECT_INT_EQ(b.is_tree, 0);
     bvh_free(&b);
     scene_free(&sc);
     random_scene(&sc, BVH_MIN_PRIMS + 1, 42);
-    ck_assert_int_eq(bvh_build(&b, &sc, &err), 0);
-    ck_assert_int_eq(b.is_tree, 1);
-    ck_assert_int_eq(b.n_prims, BVH_MIN_PRIMS + 1);
+    EXPECT_INT_EQ(bvh_build(&b, &sc, &err), 0);
+    EXPECT_INT_EQ(b.is_tree, 1);
+    EXPECT_INT_EQ(b.n_prims, BVH_MIN_PRIMS + 1);
     bvh_free(&b);
     bvh_free(&b); /* twice: safe */
     scene_free(&sc);
@@ -213,15 +223,15 @@ START_TEST(test_bvh_with_1000_primitives_matches_brute_force)
     random_scene(&sc, 1000, 44);
     error err = {0};
     bvh b;
-    ck_assert_int_eq(bvh_build(&b, &sc, &err), 0);
-    ck_assert_int_eq(b.is_tree, 1);
+    EXPECT_INT_EQ(bvh_build(&b, &sc, &err), 0);
+    EXPECT_INT_EQ(b.is_tree, 1);
     ck_assert_int_le(b.n_nodes, 2 * 1000 - 1);
     ck_assert_int_le(b.depth, BVH_MAX_DEPTH);
     /* every primitive appears exactly once in leaf order */
     char *seen = calloc(1000, 1);
     for (long i = 0; i < b.n_prims; i++) {
         ck_assert_uint_lt(b.prims[i], 1000);
-        ck_assert(!seen[b.prims[i]]);
+        EXPECT(!seen[b.prims[i]]);
         seen[b.prims[i]] = 1;
     }
     free(seen);
@@ -276,7 +286,7 @@ START_TEST(test_bvh_of_a_geometric_series_stays_within_the_depth_limit)
         set_sphere(&sc.spheres[k], vec3_make(ldexp(1, -k), 0, 0), ldexp(0.1, -k), mat4_identity(), 0);
     error err = {0};
     bvh b;
-    ck_assert_int_eq(bvh_build(&b, &sc, &err), 0);
+    EXPECT_INT_EQ(bvh_build(&b, &sc, &err), 0);
     ck_assert_int_le(b.depth, BVH_MAX_DEPTH);
     rng g;
     rng_seed(&g, 48, 0);
@@ -289,11 +299,11 @@ START_TEST(test_bvh_of_a_geometric_series_stays_within_the_depth_limit)
         long idb = -1;
         int want = brute_closest(&sc, &r, &tb, &idb);
         hit h;
-        ck_assert_int_eq(want, 1);
-        ck_assert_int_eq(bvh_intersect(&b, &sc, &r, &h), 1);
-        ck_assert(h.t == tb);
-        ck_assert_int_eq(h.prim, idb);
-        ck_assert_int_eq(bvh_occluded(&b, &sc, &r), 1);
+        EXPECT_INT_EQ(want, 1);
+        EXPECT_INT_EQ(bvh_intersect(&b, &sc, &r, &h), 1);
+        EXPECT(h.t == tb);
+        EXPECT_INT_EQ(h.prim, idb);
+        EXPECT_INT_EQ(bvh_occluded(&b, &sc, &r), 1);
     }
     bvh_free(&b);
     scene_free(&sc);
@@ -306,12 +316,12 @@ START_TEST(test_bvh_of_an_empty_scene_never_hits)
     scene_alloc(&sc, 0, 0);
     error err = {0};
     bvh b;
-    ck_assert_int_eq(bvh_build(&b, &sc, &err), 0);
-    ck_assert_int_eq(b.is_tree, 0);
+    EXPECT_INT_EQ(bvh_build(&b, &sc, &err), 0);
+    EXPECT_INT_EQ(b.is_tree, 0);
     ray r = {vec3_make(0, 0, 0), vec3_make(0, 0, 1), 0.0, INFINITY};
     hit h;
-    ck_assert_int_eq(bvh_intersect(&b, &sc, &r, &h), 0);
-    ck_assert_int_eq(bvh_occluded(&b, &sc, &r), 0);
+    EXPECT_INT_EQ(bvh_intersect(&b, &sc, &r, &h), 0);
+    EXPECT_INT_EQ(bvh_occluded(&b, &sc, &r), 0);
     bvh_free(&b);
     scene_free(&sc);
 }
@@ -325,28 +335,28 @@ START_TEST(test_bvh_triangle_hit_fills_barycentrics_and_normals)
     *t = (scene_triangle){{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 0, 0}}, 0, 1};
     error err = {0};
     bvh b;
-    ck_assert_int_eq(bvh_build(&b, &sc, &err), 0);
+    EXPECT_INT_EQ(bvh_build(&b, &sc, &err), 0);
     ray r = {vec3_make(0.25, 0.5, 3), vec3_make(0, 0, -1), 0.0, INFINITY};
     hit h;
-    ck_assert_int_eq(bvh_intersect(&b, &sc, &r, &h), 1);
-    ck_assert_near(h.bary.u, 0.25, 1e-15);
-    ck_assert_near(h.bary.v, 0.5, 1e-15);
-    ck_assert_near(h.ng.z, 1, 1e-15); /* counter-clockwise seen from +z: normal +z */
-    ck_assert_near(h.ns.z, 1, 1e-15);
-    ck_assert_int_eq(h.prim, 0);
-    ck_assert_int_eq(h.is_sphere, 0);
-    ck_assert_int_eq(h.material, 1);
+    EXPECT_INT_EQ(bvh_intersect(&b, &sc, &r, &h), 1);
+    EXPECT_NEAR(h.bary.u, 0.25, 1e-15);
+    EXPECT_NEAR(h.bary.v, 0.5, 1e-15);
+    EXPECT_NEAR(h.ng.z, 1, 1e-15); /* counter-clockwise seen from +z: normal +z */
+    EXPECT_NEAR(h.ns.z, 1, 1e-15);
+    EXPECT_INT_EQ(h.prim, 0);
+    EXPECT_INT_EQ(h.is_sphere, 0);
+    EXPECT_INT_EQ(h.material, 1);
     /* trinormal: the shading normal interpolates the vertex normals, and the geometric normal
      * turns to their side */
     t->has_normals = 1;
     t->n[0] = t->n[1] = t->n[2] = vec3_make(0, 0, -1);
     t->n[1] = vec3_normalize(vec3_make(1, 0, -1));
-    ck_assert_int_eq(bvh_intersect(&b, &sc, &r, &h), 1);
+    EXPECT_INT_EQ(bvh_intersect(&b, &sc, &r, &h), 1);
     vec3 want = vec3_normalize(vec3_add(vec3_scale(vec3_make(0, 0, -1), 0.75),
                                         vec3_scale(vec3_normalize(vec3_make(1, 0, -1)), 0.25)));
-    ck_assert_near(h.ns.x, want.x, 1e-15);
-    ck_assert_near(h.ns.z, want.z, 1e-15);
-    ck_assert_near(h.ng.z, -1, 1e-15);
+    EXPECT_NEAR(h.ns.x, want.x, 1e-15);
+    EXPECT_NEAR(h.ns.z, want.z, 1e-15);
+    EXPECT_NEAR(h.ng.z, -1, 1e-15);
     bvh_free(&b);
     scene_free(&sc);
 }

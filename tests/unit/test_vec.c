@@ -5,6 +5,16 @@
 #include "envtex/rng.h"
 #include "unit.h"
 
+/* Checks for long loops: every passing ck_assert costs a system call (Check records the last
+ * passing line), which would dominate the run time; these report failures only. */
+#define EXPECT(c) do { if (!(c)) ck_abort_msg("failed: %s", #c); } while (0)
+#define EXPECT_MSG(c, ...) do { if (!(c)) ck_abort_msg(__VA_ARGS__); } while (0)
+#define EXPECT_INT_EQ(a, b) do { long long a_ = (a), b_ = (b); \
+        if (a_ != b_) ck_abort_msg("%s == %lld, %s == %lld", #a, a_, #b, b_); } while (0)
+#define EXPECT_NEAR(a, b, tol) do { double a_ = (a), b_ = (b), t_ = (tol); \
+        if (!(fabs(a_ - b_) <= t_)) \
+            ck_abort_msg("%s == %.17g, %s == %.17g, tolerance %g", #a, a_, #b, b_, t_); } while (0)
+
 /* A uniformly distributed unit vector (z uniform in [-1,1], phi uniform). */
 static vec3 random_unit(rng *r)
 {
@@ -15,36 +25,36 @@ static vec3 random_unit(rng *r)
 
 static void assert_orthonormal(vec3 n, vec3 t, vec3 b, double tol)
 {
-    ck_assert_near(vec3_length(t), 1, tol);
-    ck_assert_near(vec3_length(b), 1, tol);
-    ck_assert_near(vec3_dot(t, b), 0, tol);
-    ck_assert_near(vec3_dot(t, n), 0, tol);
-    ck_assert_near(vec3_dot(b, n), 0, tol);
+    EXPECT_NEAR(vec3_length(t), 1, tol);
+    EXPECT_NEAR(vec3_length(b), 1, tol);
+    EXPECT_NEAR(vec3_dot(t, b), 0, tol);
+    EXPECT_NEAR(vec3_dot(t, n), 0, tol);
+    EXPECT_NEAR(vec3_dot(b, n), 0, tol);
     /* right-handed: t x b = n */
     vec3 c = vec3_cross(t, b);
-    ck_assert_near(c.x, n.x, tol);
-    ck_assert_near(c.y, n.y, tol);
-    ck_assert_near(c.z, n.z, tol);
+    EXPECT_NEAR(c.x, n.x, tol);
+    EXPECT_NEAR(c.y, n.y, tol);
+    EXPECT_NEAR(c.z, n.z, tol);
 }
 
 START_TEST(test_vec_cross_of_x_and_y_is_z_and_anticommutes)
 {
     vec3 z = vec3_cross(vec3_make(1, 0, 0), vec3_make(0, 1, 0));
-    ck_assert(z.x == 0 && z.y == 0 && z.z == 1);
+    EXPECT(z.x == 0 && z.y == 0 && z.z == 1);
     vec3 x = vec3_cross(vec3_make(0, 1, 0), vec3_make(0, 0, 1));
-    ck_assert(x.x == 1 && x.y == 0 && x.z == 0);
+    EXPECT(x.x == 1 && x.y == 0 && x.z == 0);
     vec3 y = vec3_cross(vec3_make(0, 0, 1), vec3_make(1, 0, 0));
-    ck_assert(y.x == 0 && y.y == 1 && y.z == 0);
+    EXPECT(y.x == 0 && y.y == 1 && y.z == 0);
     rng r;
     rng_seed(&r, 1, 0);
     for (int i = 0; i < 1000; i++) {
         vec3 a = vec3_scale(random_unit(&r), 3), b = random_unit(&r);
         vec3 c = vec3_cross(a, b), d = vec3_cross(b, a);
-        ck_assert(c.x == -d.x && c.y == -d.y && c.z == -d.z);
-        ck_assert_near(vec3_dot(c, a), 0, 1e-14); /* perpendicular to both */
-        ck_assert_near(vec3_dot(c, b), 0, 1e-14);
+        EXPECT(c.x == -d.x && c.y == -d.y && c.z == -d.z);
+        EXPECT_NEAR(vec3_dot(c, a), 0, 1e-14); /* perpendicular to both */
+        EXPECT_NEAR(vec3_dot(c, b), 0, 1e-14);
         /* |a x b|^2 + (a.b)^2 = |a|^2 |b|^2 (Lagrange) */
-        ck_assert_near(vec3_length2(c) + pow(vec3_dot(a, b), 2), vec3_length2(a) * vec3_length2(b), 1e-13);
+        EXPECT_NEAR(vec3_length2(c) + pow(vec3_dot(a, b), 2), vec3_length2(a) * vec3_length2(b), 1e-13);
     }
 }
 END_TEST
@@ -53,18 +63,18 @@ START_TEST(test_vec_reflect_mirrors_about_the_normal_and_keeps_length)
 {
     /* a ray going down onto the floor bounces up: (1,-1,0) -> (1,1,0) */
     vec3 r0 = vec3_reflect(vec3_make(1, -1, 0), vec3_make(0, 1, 0));
-    ck_assert(r0.x == 1 && r0.y == 1 && r0.z == 0);
+    EXPECT(r0.x == 1 && r0.y == 1 && r0.z == 0);
     rng r;
     rng_seed(&r, 2, 0);
     for (int i = 0; i < 1000; i++) {
         vec3 d = random_unit(&r), n = random_unit(&r);
         vec3 m = vec3_reflect(d, n);
-        ck_assert_near(vec3_length(m), 1, 1e-14);
-        ck_assert_near(vec3_dot(m, n), -vec3_dot(d, n), 1e-14); /* normal part flips */
+        EXPECT_NEAR(vec3_length(m), 1, 1e-14);
+        EXPECT_NEAR(vec3_dot(m, n), -vec3_dot(d, n), 1e-14); /* normal part flips */
         vec3 back = vec3_reflect(m, n);                          /* an involution */
-        ck_assert_near(back.x, d.x, 1e-14);
-        ck_assert_near(back.y, d.y, 1e-14);
-        ck_assert_near(back.z, d.z, 1e-14);
+        EXPECT_NEAR(back.x, d.x, 1e-14);
+        EXPECT_NEAR(back.y, d.y, 1e-14);
+        EXPECT_NEAR(back.z, d.z, 1e-14);
     }
 }
 END_TEST
@@ -72,14 +82,14 @@ END_TEST
 START_TEST(test_vec_normalize_leaves_zero_alone_and_makes_unit_length)
 {
     vec3 z = vec3_normalize(vec3_make(0, 0, 0));
-    ck_assert(z.x == 0 && z.y == 0 && z.z == 0);
+    EXPECT(z.x == 0 && z.y == 0 && z.z == 0);
     vec3 n = vec3_normalize(vec3_make(3, 0, 4));
-    ck_assert_near(n.x, 0.6, 1e-15);
-    ck_assert_near(n.z, 0.8, 1e-15);
-    ck_assert(vec3_max_abs(vec3_make(-5, 2, 3)) == 5);
-    ck_assert(!vec3_is_finite(vec3_make(0, NAN, 0)));
-    ck_assert(!rgb_is_finite(rgb_make(0, 0, INFINITY)));
-    ck_assert(vec3_get(vec3_make(1, 2, 3), 2) == 3);
+    EXPECT_NEAR(n.x, 0.6, 1e-15);
+    EXPECT_NEAR(n.z, 0.8, 1e-15);
+    EXPECT(vec3_max_abs(vec3_make(-5, 2, 3)) == 5);
+    EXPECT(!vec3_is_finite(vec3_make(0, NAN, 0)));
+    EXPECT(!rgb_is_finite(rgb_make(0, 0, INFINITY)));
+    EXPECT(vec3_get(vec3_make(1, 2, 3), 2) == 3);
 }
 END_TEST
 
@@ -113,7 +123,7 @@ START_TEST(test_vec_basis_is_orthonormal_at_and_near_the_south_pole)
         }
     vec3 t, b;
     vec3_basis(vec3_make(0, 0, -0.0), &t, &b); /* not unit, but must stay finite */
-    ck_assert(vec3_is_finite(t) && vec3_is_finite(b));
+    EXPECT(vec3_is_finite(t) && vec3_is_finite(b));
     vec3 axes[] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}};
     for (int i = 0; i < 4; i++) {
         vec3_basis(axes[i], &t, &b);
@@ -126,12 +136,12 @@ START_TEST(test_rgb_helpers_work_channel_by_channel)
 {
     rgb a = rgb_make(1, 2, 3), k = rgb_make(0.5, 0.25, 2);
     rgb m = rgb_mul(a, k);
-    ck_assert(m.r == 0.5 && m.g == 0.5 && m.b == 6);
+    EXPECT(m.r == 0.5 && m.g == 0.5 && m.b == 6);
     rgb f = rgb_fma(a, k, a); /* a + k a */
-    ck_assert(f.r == 1.5 && f.g == 2.5 && f.b == 9);
-    ck_assert(rgb_avg(a) == 2 && rgb_max(a) == 3);
-    ck_assert(rgb_is_black(rgb_gray(0)) && !rgb_is_black(rgb_make(0, 0, 1e-300)));
-    ck_assert_near(rgb_luminance(rgb_gray(1)), 1, 1e-15); /* weights sum to one */
+    EXPECT(f.r == 1.5 && f.g == 2.5 && f.b == 9);
+    EXPECT(rgb_avg(a) == 2 && rgb_max(a) == 3);
+    EXPECT(rgb_is_black(rgb_gray(0)) && !rgb_is_black(rgb_make(0, 0, 1e-300)));
+    EXPECT_NEAR(rgb_luminance(rgb_gray(1)), 1, 1e-15); /* weights sum to one */
 }
 END_TEST
 
