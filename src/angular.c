@@ -5,16 +5,6 @@
 
 /* d / |d| for a finite non-zero d, else -1.  Divides by the largest |component| first, so the
  * length of a huge or subnormal vector neither overflows nor underflows. */
-static int unit_direction(vec3 d, vec3 *out)
-{
-    if (!vec3_is_finite(d)) return -1;
-    double m = vec3_max_abs(d);
-    if (m == 0) return -1;
-    d = vec3_make(d.x / m, d.y / m, d.z / m);
-    *out = vec3_scale(d, 1.0 / vec3_length(d)); /* length in [1, sqrt 3]: no zero division */
-    return 0;
-}
-
 /* How far rho may exceed 1 and still count as the rim: a few ulps of 1, the rounding of
  * sqrt(a^2 + b^2) for a rim point computed with cos / sin or by angular_dir_to_uv. */
 #define ANGULAR_RIM_SLACK 1e-15
@@ -22,7 +12,7 @@ static int unit_direction(vec3 d, vec3 *out)
 int angular_dir_to_uv(vec3 d, uv2 *uv)
 {
     vec3 r;
-    if (unit_direction(d, &r)) return -1;
+    if (vec3_unit_direction(d, &r)) return -1;
     double s = sqrt(r.y * r.y + r.z * r.z); /* sin theta */
     if (s == 0) {                           /* on the axis: the centre, or the rim's top */
         *uv = r.x > 0 ? (uv2){0.5, 0.5} : (uv2){0.5, 0.0};

@@ -5,22 +5,12 @@
 
 /* d / |d| for a finite non-zero d, else -1.  Divides by the largest |component| first, so the
  * length of a huge or subnormal vector neither overflows nor underflows. */
-static int unit_direction(vec3 d, vec3 *out)
-{
-    if (!vec3_is_finite(d)) return -1;
-    double m = vec3_max_abs(d);
-    if (m == 0) return -1;
-    d = vec3_make(d.x / m, d.y / m, d.z / m);
-    *out = vec3_scale(d, 1.0 / vec3_length(d)); /* length in [1, sqrt 3]: no zero division */
-    return 0;
-}
-
 static int valid_height(double h) { return isfinite(h) && h > 0; }
 
 int cylindrical_dir_to_uv(vec3 d, double max_height, uv2 *uv)
 {
     vec3 n;
-    if (!valid_height(max_height) || unit_direction(d, &n)) return -1;
+    if (!valid_height(max_height) || vec3_unit_direction(d, &n)) return -1;
     double s = sqrt(n.x * n.x + n.y * n.y);   /* sin theta: distance from the axis */
     if (s == 0) return -1;                    /* a pole: infinitely high on the cylinder */
     double zc = n.z / s;                      /* z_cyl = z / sqrt(x^2 + y^2) = cot theta */

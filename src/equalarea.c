@@ -5,20 +5,10 @@
 
 /* d / |d| for a finite non-zero d, else -1.  Divides by the largest |component| first, so the
  * length of a huge or subnormal vector neither overflows nor underflows. */
-static int unit_direction(vec3 d, vec3 *out)
-{
-    if (!vec3_is_finite(d)) return -1;
-    double m = vec3_max_abs(d);
-    if (m == 0) return -1;
-    d = vec3_make(d.x / m, d.y / m, d.z / m);
-    *out = vec3_scale(d, 1.0 / vec3_length(d)); /* length in [1, sqrt 3]: no zero division */
-    return 0;
-}
-
 int equalarea_dir_to_uv(vec3 d, uv2 *uv)
 {
     vec3 n;
-    if (unit_direction(d, &n)) return -1;
+    if (vec3_unit_direction(d, &n)) return -1;
     double s2 = n.x * n.x + n.y * n.y;                      /* sin^2 theta */
     double one_minus_z = n.z > 0 ? s2 / (1.0 + n.z) : 1.0 - n.z; /* 1 - z = (1 - z^2)/(1 + z) */
     double phi = s2 > 0 ? atan2(n.y, n.x) : 0.0;            /* phi = atan2(y, x); 0 at the poles */

@@ -3,9 +3,8 @@
 
 int latlong_dir_to_uv(vec3 d, uv2 *uv)
 {
-    if (!vec3_is_finite(d)) return -1;
+    if (vec3_unit_direction(d, &d)) return -1; /* any finite non-zero length */
     double rxy = sqrt(d.x * d.x + d.y * d.y);
-    if (rxy == 0 && d.z == 0) return -1;
     double theta = atan2(rxy, d.z);                    /* theta = acos(z / |d|), stable form */
     double phi = rxy > 0 ? atan2(d.y, d.x) : 0.0;      /* phi = atan2(y, x), 0 at the poles */
     if (phi < 0) phi += 2 * M_PI;                      /* wrap to [0, 2 pi) */

@@ -5,20 +5,10 @@
 
 /* d / |d| for a finite non-zero d, else -1.  Divides by the largest |component| first, so the
  * length of a huge or subnormal vector neither overflows nor underflows. */
-static int unit_direction(vec3 d, vec3 *out)
-{
-    if (!vec3_is_finite(d)) return -1;
-    double m = vec3_max_abs(d);
-    if (m == 0) return -1;
-    d = vec3_make(d.x / m, d.y / m, d.z / m);
-    *out = vec3_scale(d, 1.0 / vec3_length(d)); /* length in [1, sqrt 3]: no zero division */
-    return 0;
-}
-
 int mirrorball_dir_to_uv(vec3 d, uv2 *uv)
 {
     vec3 r;
-    if (unit_direction(d, &r)) return -1;
+    if (vec3_unit_direction(d, &r)) return -1;
     /* n = (r + V) / |r + V| with V = +x, and |r + V|^2 = 2 (1 + r_x).  Behind the ball 1 + r_x
      * cancels; use 1 + r_x = (1 - r_x^2) / (1 - r_x) = (r_y^2 + r_z^2) / (1 - r_x) there. */
     double s2 = r.y * r.y + r.z * r.z;

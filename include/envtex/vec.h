@@ -48,6 +48,21 @@ static inline double vec3_max_abs(vec3 a)
     double x = fabs(a.x), y = fabs(a.y), z = fabs(a.z);
     return x > y ? (x > z ? x : z) : (y > z ? y : z);
 }
+/* Unit vector along d for ANY finite non-zero d: divides by the largest |component| first, so
+ * neither 1e200 (x^2 overflows) nor 1e-200 (x^2 underflows to 0) breaks it.  Returns -1 (out
+ * untouched) for a zero, infinite or NaN d, else 0.  The public direction functions of the
+ * envmap representations use it to reject what has no direction. */
+static inline int vec3_unit_direction(vec3 d, vec3 *out)
+{
+    if (!(isfinite(d.x) && isfinite(d.y) && isfinite(d.z))) return -1;
+    double x = fabs(d.x), y = fabs(d.y), z = fabs(d.z);
+    double m = x > y ? (x > z ? x : z) : (y > z ? y : z);
+    if (m == 0) return -1;
+    d = (vec3){d.x / m, d.y / m, d.z / m};
+    double l = sqrt(d.x * d.x + d.y * d.y + d.z * d.z); /* in [1, sqrt 3]: no zero division */
+    *out = (vec3){d.x / l, d.y / l, d.z / l};
+    return 0;
+}
 static inline double vec3_get(vec3 a, int axis) { return axis == 0 ? a.x : axis == 1 ? a.y : a.z; }
 /* Component-wise min / max.  Ternaries, not fmin/fmax: those are library calls at -O2 (they
  * must honour NaN), and bounding-box code calls these millions of times. */
