@@ -630,6 +630,31 @@ static int cmd_envmiss(parser *p)
     return 0;
 }
 
+static int cmd_envsampling(parser *p)
+{
+    static const char *const w[] = {"uniform", "cdf", "cdf-sintheta", "mediancut"}; /* enum order */
+    int k;
+    if (arg_word(p, w, 4, &k)) return -1;
+    if (k != ENVSAMPLING_MEDIANCUT && p->ntok > 2)
+        return fail(p, "'envsampling %s' takes no count (only 'mediancut N' does)", w[k]);
+    if (p->ntok > 2) {
+        long n;
+        if (arg_int(p, 2, 1, SCENE_MAX_MEDIANCUT, &n)) return -1;
+        p->sc->mediancut_lights = (int)n;
+    }
+    p->sc->envsampling = (envsampling_mode)k;
+    return 0;
+}
+
+static int cmd_envsampler(parser *p)
+{
+    static const char *const w[] = {"binary", "alias"}; /* envsampler_kind order */
+    int k;
+    if (arg_word(p, w, 2, &k)) return -1;
+    p->sc->envsampler = (envsampler_kind)k;
+    return 0;
+}
+
 static int cmd_envmap(parser *p)
 {
     scene_envmap *e = &p->sc->envmap;
@@ -704,6 +729,8 @@ static const command commands[] = {
     {"envmap", cmd_envmap, 1, 2},
     {"envmiss", cmd_envmiss, 1, 1},
     {"ior", cmd_ior, 1, 1},
+    {"envsampling", cmd_envsampling, 1, 2},
+    {"envsampler", cmd_envsampler, 1, 1},
 };
 
 /* ---- lines ------------------------------------------------------------------------------ */
@@ -796,6 +823,9 @@ static void scene_init(scene *sc)
     sc->nee = NEE_OFF;
     sc->importancesampling = SAMPLING_HEMISPHERE;
     sc->envmiss = ENVMISS_ENVMAP;
+    sc->envsampling = ENVSAMPLING_CDF;
+    sc->mediancut_lights = 64;
+    sc->envsampler = ENVSAMPLER_BINARY;
     sc->envmap.scale = 1.0;
     sc->envmap.xf = mat4_identity();
     sc->envmap.inv = mat4_identity();

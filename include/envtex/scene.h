@@ -82,6 +82,16 @@ typedef enum integrator_kind {
 typedef enum nee_mode { NEE_OFF, NEE_ON, NEE_MIS } nee_mode;
 typedef enum sampling_kind { SAMPLING_HEMISPHERE, SAMPLING_COSINE, SAMPLING_BRDF } sampling_kind;
 typedef enum envmiss_mode { ENVMISS_ENVMAP, ENVMISS_BLACK } envmiss_mode;
+/* `envsampling MODE [N]`: how the envmap is sampled as a light (envlight.h) */
+typedef enum envsampling_mode {
+    ENVSAMPLING_UNIFORM,      /* uniform directions on the sphere */
+    ENVSAMPLING_CDF,          /* the lecture's 2D CDF in (u = cos theta, v = phi); default */
+    ENVSAMPLING_CDF_SINTHETA, /* PBRT: rows uniform in theta, weights times sin theta */
+    ENVSAMPLING_MEDIANCUT     /* the map reduced to N point lights (median cut) */
+} envsampling_mode;
+/* `envsampler binary|alias`: CDF inversion by binary search or Walker/Vose alias tables */
+typedef enum envsampler_kind { ENVSAMPLER_BINARY, ENVSAMPLER_ALIAS } envsampler_kind;
+#define SCENE_MAX_MEDIANCUT 65536
 
 typedef struct scene_envmap {
     int present;        /* 0: no envmap (rays that leave see black) */
@@ -110,6 +120,9 @@ typedef struct scene {
     sampling_kind importancesampling;
     double gamma;              /* 0: not given (PNG gets the sRGB curve) */
     envmiss_mode envmiss;
+    envsampling_mode envsampling; /* default ENVSAMPLING_CDF */
+    int mediancut_lights;      /* N of `envsampling mediancut N`, default 64 */
+    envsampler_kind envsampler; /* default ENVSAMPLER_BINARY */
     scene_envmap envmap;
     /* geometry, materials, lights: arrays owned by the scene */
     material *materials; int n_materials;
