@@ -1,0 +1,263 @@
+/* test_render.c - the pixel loop: deterministic per seed, pixel centres at spp 1, jittered and
+ * averaged samples above, unimplemented integrators refused by name, non-finite pixels counted. */
+#include "envtex/render.h"
+
+#include <string.h>
+
+#include "envtex/bvh.h"
+#include "envtex/camera.h"
+#include "envtex/genenv.h"
+#include "envtex/raytracer.h"
+#include "unit.h"
+
+static void load(scene *sc, const char *text)
+{
+    scene_load_opts o = scene_load_defaults();
+    o.load_images = 0;
+    error err = {0};
+    if (scene_load_string(text, "render.test", &o, sc, &err)) ck_abort_msg("scene: line %d: %s", err.line, err.msg);
+}
+
+static void set_env(scene *sc, genenv_kind kind)
+{
+    genenv_params p = genenv_defaults();
+    p.width = 128;
+    error err = {0};
+    image_free(&sc->envmap.img);
+    ck_assert_int_eq(genenv_make(kind, &p, &sc->envmap.img, &err), 0);
+    sc->envmap.present = 1;
+    sc->envmap.scale = 1;
+    sc->envmap.xf = sc->envmap.inv = mat4_identity();
+}
+
+/* A mirror ball and a diffuse ball under a light, in the axes environment: edges everywhere, so
+ * jittered samples change pixels. */
+static const char *balls =
+    "size 24 16\n"
+    "camera 0 -5 1  0 0 0  0 0 1  45\n"
+    "directional 1 -1 2  0.8 0.8 0.8\n"
+    "ambient 0 0 0\n"
+    "brdf mirror\nspecular 0.9 0.9 0.9\nsphere -1 0 0 1\n"
+    "brdf phong\nspecular 0 0 0\ndiffuse 0.6 0.5 0.4\nsphere 1.2 0 0 0.8\n";
+
+static int render(const scene *sc, int spp, uint64_t seed, image *out, render_stats *st)
+{
+    render_opts o = render_defaults();
+    o.spp = spp;
+    o.seed = seed;
+    error err = {0};
+    int rc = render_scene(sc, &o, out, st, &err);
+    if (rc) ck_abort_msg("render: %s", err.msg);
+    return rc;
+}
+
+START_TEST(test_render_same_seed_gives_bit_identical_images)
+{
+    scene sc;
+    load(&sc, balls);
+    set_env(&sc, GENENV_AXES);
+    image a, b;
+    render_stats sa, sb;
+    render(&sc, 4, 1234, &a, &sa);
+    render(&sc, 4, 1234, &b, &sb);
+    ck_assert_int_eq(a.w, 24);
+    ck_assert_int_eq(a.h, 16);
+    ck_assert_mem_eq(a.px, b.px, sizeof(float) * 3 * 24 * 16);
+    ck_assert_int_eq(sa.spp, 4);
+    ck_assert_int_eq(sa.rays, sb.rays);
+    ck_assert_int_gt(sa.rays, 24 * 16 * 4 - 1);
+    ck_assert_int_eq(sa.nonfinite_pixels, 0);
+    ck_assert_int_eq(sa.prims, 2);
+    ck_assert_int_eq(sa.bvh_is_tree, 0);
+    image_free(&a);
+    image_free(&b);
+    scene_free(&sc);
+}
+END_TEST
+
+START_TEST(test_render_different_seeds_give_different_images)
+{
+    scene sc;
+    load(&sc, balls);
+    set_env(&sc, GENENV_AXES);
+    image a, b;
+    render_stats st;
+    render(&sc, 4, 1, &a, &st);
+    render(&sc, 4, 2, &b, &st);
+    ck_assert(memcmp(a.px, b.px, sizeof(float) * 3 * 24 * 16) != 0);
+    /* but they are the same picture: the mean differs little */
+    double ma = 0, mb = 0;
+    for (int i = 0; i < 24 * 16 * 3; i++) ma += a.px[i], mb += b.px[i];
+    ck_assert_near(ma / (24 * 16 * 3), mb / (24 * 16 * 3), 0.02);
+    image_free(&a);
+    image_free(&b);
+    scene_free(&sc);
+}
+END_TEST
+
+START_TEST(test_render_spp_1_traces_through_pixel_centres)
+{
+    scene sc;
+    load(&sc, balls);
+    set_env(&sc, GENENV_AXES);
+    image img, img2;
+    render_stats st;
+    render(&sc, 1, 99, &img, &st);
+    render(&sc, 1, 7, &img2, &st); /* no randomness at all at spp 1 */
+    ck_assert_mem_eq(img.px, img2.px, sizeof(float) * 3 * 24 * 16);
+    bvh accel;
+    error err = {0};
+    ck_assert_int_eq(bvh_build(&accel, &sc, &err), 0);
+    raytracer rt;
+    raytracer_init(&rt, &sc, &accel);
+    camera cam;
+    camera_init(&cam, sc.eye, sc.center, sc.up, sc.fovy, sc.width, sc.height);
+    for (int y = 0; y < 16; y++)
+        for (int x = 0; x < 24; x++) {
+            rgb want = raytracer_trace(&rt, camera_ray(&cam, x + 0.5, y + 0.5));
+            rgb got = image_get(&img, x, y);
+            ck_assert_msg(got.r == (float)want.r && got.g == (float)want.g && got.b == (float)want.b,
+                          "pixel (%d, %d) is not the pixel-centre ray", x, y);
+        }
+    bvh_free(&accel);
+    image_free(&img);
+    image_free(&img2);
+    scene_free(&sc);
+}
+END_TEST
+
+START_TEST(test_render_spp_0_takes_the_scenes_spp)
+{
+    scene sc;
+    char text[1024];
+    snprintf(text, sizeof text, "%sspp 3\n", balls);
+    load(&sc, text);
+    image img;
+    render_stats st;
+    render(&sc, 0, 5, &img, &st);
+    ck_assert_int_eq(st.spp, 3);
+    image_free(&img);
+    render(&sc, 2, 5, &img, &st); /* the option overrides the scene */
+    ck_assert_int_eq(st.spp, 2);
+    image_free(&img);
+    scene_free(&sc);
+}
+END_TEST
+
+START_TEST(test_render_of_a_constant_environment_is_that_constant)
+{
+    /* an empty scene in a constant environment: every sample sees L, so every pixel is L
+     * whatever the jitter (tests the box filter's 1 / spp) */
+    scene sc;
+    load(&sc, "size 8 6\ncamera 0 0 0  1 0 0  0 0 1  60\n");
+    genenv_params p = genenv_defaults();
+    p.width = 16;
+    p.value = 0.625;
+    error err = {0};
+    ck_assert_int_eq(genenv_make(GENENV_CONSTANT, &p, &sc.envmap.img, &err), 0);
+    sc.envmap.present = 1;
+    sc.envmap.scale = 2;
+    sc.envmap.xf = sc.envmap.inv = mat4_identity();
+    image img;
+    render_stats st;
+    render(&sc, 5, 3, &img, &st);
+    for (int i = 0; i < 8 * 6 * 3; i++) ck_assert_msg(img.px[i] == 1.25f, "px[%d] = %g", i, img.px[i]);
+    ck_assert_int_eq(st.prims, 0);
+    image_free(&img);
+    scene_free(&sc);
+}
+END_TEST
+
+START_TEST(test_render_refuses_unimplemented_integrators_by_name)
+{
+    const char *names[] = {"analyticdirect", "direct", "pathtracer"};
+    for (int i = 0; i < 3; i++) {
+        scene sc;
+        char text[1024];
+        snprintf(text, sizeof text, "%sintegrator %s\n", balls, names[i]);
+        load(&sc, text);
+        image img;
+        memset(&img, 0x55, sizeof img);
+        render_stats st;
+        error err = {0};
+        ck_assert_int_eq(render_scene(&sc, NULL, &img, &st, &err), -1);
+        ck_assert_msg(strstr(err.msg, names[i]) != NULL, "message '%s' does not name '%s'", err.msg, names[i]);
+        ck_assert_str_eq(err.file, "render.test");
+        ck_assert_ptr_null(img.px); /* nothing to free */
+        ck_assert_int_eq(img.w, 0);
+        scene_free(&sc);
+    }
+}
+END_TEST
+
+START_TEST(test_render_counts_nonfinite_pixels)
+{
+    /* an envmap with a NaN texel: the pixels whose lookups touch it are NaN, and counted */
+    scene sc;
+    load(&sc, "size 9 9\ncamera 0 0 0  1 0 0  0 0 1  30\n"); /* looking at +x: u = 0 */
+    set_env(&sc, GENENV_CONSTANT);
+    image *m = &sc.envmap.img;
+    image_set(m, 0, m->h / 2, rgb_make(NAN, 0, 0)); /* just right of phi = 0, below the horizon */
+    image img;
+    render_stats st;
+    render(&sc, 1, 0, &img, &st);
+    long nan_pixels = 0;
+    for (int y = 0; y < 9; y++)
+        for (int x = 0; x < 9; x++) nan_pixels += !rgb_is_finite(image_get(&img, x, y));
+    ck_assert_int_gt(nan_pixels, 0);
+    ck_assert_int_lt(nan_pixels, 81);
+    ck_assert_int_eq(st.nonfinite_pixels, nan_pixels);
+    image_free(&img);
+    /* and an all-NaN environment makes every pixel count */
+    for (int i = 0; i < m->w * m->h * 3; i++) m->px[i] = NAN;
+    render(&sc, 2, 0, &img, &st);
+    ck_assert_int_eq(st.nonfinite_pixels, 81);
+    image_free(&img);
+    scene_free(&sc);
+}
+END_TEST
+
+static int rows_seen;
+static void count_rows(void *ctx, int done, int rows)
+{
+    ck_assert_int_eq(done, ++rows_seen);
+    ck_assert_int_eq(rows, 16);
+    ck_assert_ptr_eq(ctx, &rows_seen);
+}
+
+START_TEST(test_render_reports_progress_after_every_row)
+{
+    scene sc;
+    load(&sc, balls);
+    render_opts o = render_defaults();
+    o.progress = count_rows;
+    o.progress_ctx = &rows_seen;
+    rows_seen = 0;
+    image img;
+    render_stats st;
+    error err = {0};
+    ck_assert_int_eq(render_scene(&sc, &o, &img, &st, &err), 0);
+    ck_assert_int_eq(rows_seen, 16);
+    image_free(&img);
+    scene_free(&sc);
+}
+END_TEST
+
+Suite *render_suite(void)
+{
+    Suite *s = suite_create("render");
+    TCase *tc = tcase_create("core");
+    tcase_set_timeout(tc, 60); /* generous for sanitizer builds; the tests take well under 1 s */
+    tcase_add_test(tc, test_render_same_seed_gives_bit_identical_images);
+    tcase_add_test(tc, test_render_different_seeds_give_different_images);
+    tcase_add_test(tc, test_render_spp_1_traces_through_pixel_centres);
+    tcase_add_test(tc, test_render_spp_0_takes_the_scenes_spp);
+    tcase_add_test(tc, test_render_of_a_constant_environment_is_that_constant);
+    tcase_add_test(tc, test_render_refuses_unimplemented_integrators_by_name);
+    tcase_add_test(tc, test_render_counts_nonfinite_pixels);
+    tcase_add_test(tc, test_render_reports_progress_after_every_row);
+    suite_add_tcase(s, tc);
+    return s;
+}
+
+UNIT_MAIN(render_suite)
