@@ -163,6 +163,21 @@ START_TEST(test_latlong_zero_and_nan_directions_are_rejected)
 }
 END_TEST
 
+START_TEST(test_latlong_accepts_directions_of_any_nonzero_length)
+{
+    /* the contract says any non-zero length: x^2 + y^2 must neither underflow nor overflow */
+    uv2 uv = to_uv(vec3_make(1e-200, 1e-200, 0)); /* x^2 underflows to 0 */
+    EXPECT_NEAR(uv.u, 0.125, 1e-15);
+    EXPECT_NEAR(uv.v, 0.5, 1e-15);
+    uv = to_uv(vec3_make(1e-200, 0, 1e-200));
+    EXPECT_NEAR(uv.v, 0.25, 1e-15);
+    uv = to_uv(vec3_make(1e300, 0, 1e300)); /* x^2 overflows to inf */
+    EXPECT_NEAR(uv.v, 0.25, 1e-15);
+    uv = to_uv(vec3_make(-3e-320, 0, 0)); /* a denormal */
+    EXPECT_NEAR(uv.u, 0.5, 1e-15);
+}
+END_TEST
+
 START_TEST(test_latlong_bilinear_wraps_across_the_phi_seam)
 {
     /* first column 1, last column 3, the rest 10: at phi = 0 (+x) the seam lies halfway
@@ -262,6 +277,7 @@ Suite *latlong_suite(void)
     tcase_add_test(tc, test_latlong_roundtrip_is_exact_near_the_poles);
     tcase_add_test(tc, test_latlong_seam_gives_u_in_0_to_1_never_1);
     tcase_add_test(tc, test_latlong_zero_and_nan_directions_are_rejected);
+    tcase_add_test(tc, test_latlong_accepts_directions_of_any_nonzero_length);
     tcase_add_test(tc, test_latlong_bilinear_wraps_across_the_phi_seam);
     tcase_add_test(tc, test_latlong_bilinear_clamps_at_the_poles);
     tcase_add_test(tc, test_latlong_lookups_at_texel_centres_return_the_texel);
