@@ -193,6 +193,25 @@ START_TEST(test_raytracer_facing_mirrors_sum_emission_over_exactly_maxdepth_boun
 }
 END_TEST
 
+START_TEST(test_raytracer_unlimited_depth_stops_where_the_branch_weight_is_negligible)
+{
+    /* maxdepth -1: the facing mirrors' series runs until ks^k <= RAYTRACER_MIN_WEIGHT (or
+     * RAYTRACER_UNLIMITED_DEPTH), so the centre pixel is E (1 + ks + ... + ks^K) */
+    fixture f;
+    char text[2048];
+    snprintf(text, sizeof text, "%smaxdepth -1\n", facing_mirrors);
+    load(&f.sc, text);
+    fixture_start(&f);
+    ck_assert_int_eq(f.rt.maxdepth, RAYTRACER_UNLIMITED_DEPTH);
+    int K = 0;
+    while (K < RAYTRACER_UNLIMITED_DEPTH && pow(0.5, K + 1) > RAYTRACER_MIN_WEIGHT) K++;
+    double sum = (1 - pow(0.5, K + 1)) / (1 - 0.5);
+    assert_rgb_near(pixel(&f, 16, 16), rgb_make(0.1 * sum, 0.2 * sum, 0.4 * sum), 1e-12);
+    ck_assert_near(sum, 2, 1e-8); /* and that is the infinite series' value, 2, to 1e-8 */
+    fixture_end(&f);
+}
+END_TEST
+
 START_TEST(test_raytracer_envmiss_black_removes_the_escaping_light_between_mirrors)
 {
     fixture a, b;
@@ -353,6 +372,7 @@ Suite *raytracer_suite(void)
     tcase_add_test(tc, test_raytracer_envmiss_black_darkens_reflections_but_not_the_background);
     tcase_add_test(tc, test_raytracer_maxdepth_0_shows_no_reflection);
     tcase_add_test(tc, test_raytracer_facing_mirrors_sum_emission_over_exactly_maxdepth_bounces);
+    tcase_add_test(tc, test_raytracer_unlimited_depth_stops_where_the_branch_weight_is_negligible);
     tcase_add_test(tc, test_raytracer_envmiss_black_removes_the_escaping_light_between_mirrors);
     tcase_add_test(tc, test_raytracer_whitted_lighting_matches_the_hand_computation);
     tcase_add_test(tc, test_raytracer_shadowed_point_is_ambient_only);
