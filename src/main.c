@@ -184,12 +184,27 @@ static int cmd_render(int argc, char **argv)
             fprintf(stderr, "envtex: built BVH: %ld nodes, depth %d, %.3f s\n", st.bvh_nodes, st.bvh_depth, st.build_seconds);
         else
             fprintf(stderr, "envtex: no BVH (%ld primitives <= %d: tested linearly)\n", st.prims, BVH_MIN_PRIMS);
-        if (sc.envmap.present)
-            fprintf(stderr, "envtex: envmap %s: %dx%d lat-long, scale %g, %.1f MB; no sampling tables (not needed by 'raytracer')\n",
-                    sc.envmap.path, sc.envmap.img.w, sc.envmap.img.h, sc.envmap.scale,
+        static const char *modes[] = {"uniform", "cdf", "cdf-sintheta", "mediancut"};
+        if (sc.envmap.present) {
+            fprintf(stderr, "envtex: envmap %s: %dx%d, scale %g, %.1f MB\n", sc.envmap.path,
+                    sc.envmap.img.w, sc.envmap.img.h, sc.envmap.scale,
                     sc.envmap.img.w * (double)sc.envmap.img.h * 12 / 1e6);
-        else
+            if (st.envlight_built && st.envlight_mode != ENVSAMPLING_UNIFORM)
+                fprintf(stderr, "envtex: envmap sampling: '%s' tables (%s) built in %.3f s%s\n",
+                        modes[st.envlight_mode], sc.envsampler == ENVSAMPLER_ALIAS ? "alias" : "binary search",
+                        st.envlight_seconds, st.envlight_fell_back ? " (black map: uniform fallback)" : "");
+            else
+                fprintf(stderr, "envtex: envmap sampling: no tables (the '%s' integrator%s does not sample the envmap)\n",
+                        scene_integrator_name(sc.integrator),
+                        sc.integrator == INTEGRATOR_PATHTRACER ? " without next-event estimation" : "");
+            if (st.envlight_points) fprintf(stderr, "envtex: median cut: %d point lights\n", st.envlight_points);
+            if (st.envlight_bad_texels)
+                fprintf(stderr, "envtex: warning: envmap %s: %ld NaN, Inf or negative texel values (used as 0)\n",
+                        sc.envmap.path, st.envlight_bad_texels);
+        } else {
             fprintf(stderr, "envtex: no envmap\n");
+        }
+        if (st.lights) fprintf(stderr, "envtex: %d lights to sample (chosen by power)\n", st.lights);
     }
     if (st.nonfinite_pixels)
         fprintf(stderr, "envtex: warning: %s: %ld pixels are NaN or Inf\n", scene_path, st.nonfinite_pixels);

@@ -6,7 +6,7 @@
 
 #include "envtex/bvh.h"
 #include "envtex/camera.h"
-#include "envtex/raytracer.h"
+#include "envtex/integrator.h"
 #include "envtex/rng.h"
 
 render_opts render_defaults(void)
@@ -30,10 +30,6 @@ int render_scene(const scene *sc, const render_opts *opts, image *out, render_st
     memset(stats, 0, sizeof *stats);
     out->w = out->h = 0;
     out->px = NULL;
-    if (sc->integrator != INTEGRATOR_RAYTRACER)
-        return error_set(err, sc->path, 0,
-                         "integrator '%s' is not implemented yet; this version renders only 'raytracer'",
-                         scene_integrator_name(sc->integrator));
     int spp = opts->spp > 0 ? opts->spp : sc->spp;
     if (spp < 1 || spp > SCENE_MAX_SPP)
         return error_set(err, sc->path, 0, "spp %d is out of range [1, %d]", spp, SCENE_MAX_SPP);
@@ -41,16 +37,20 @@ int render_scene(const scene *sc, const render_opts *opts, image *out, render_st
     bvh accel;
     double t0 = now_seconds();
     if (bvh_build(&accel, sc, err)) return -1;
+    integrator it;
+    if (integrator_init(&it, sc, &accel, err)) {
+        bvh_free(&accel);
+        return -1;
+    }
     stats->build_seconds = now_seconds() - t0;
     if (image_alloc(out, sc->width, sc->height, err)) {
+        integrator_free(&it);
         bvh_free(&accel);
         return error_prefix(err, "%s: output image", sc->path);
     }
 
     camera cam;
     camera_init(&cam, sc->eye, sc->center, sc->up, sc->fovy, sc->width, sc->height);
-    raytracer rt;
-    raytracer_init(&rt, sc, &accel);
 
     double t1 = now_seconds();
     for (int y = 0; y < sc->height; y++) {
@@ -64,7 +64,7 @@ int render_scene(const scene *sc, const render_opts *opts, image *out, render_st
                     jx = rng_uniform(&r);
                     jy = rng_uniform(&r);
                 }
-                sum = rgb_add(sum, raytracer_trace(&rt, camera_ray(&cam, x + jx, y + jy)));
+                sum = rgb_add(sum, integrator_radiance(&it, camera_ray(&cam, x + jx, y + jy), &r));
             }
             rgb c = rgb_scale(sum, 1.0 / spp);
             if (!rgb_is_finite(c)) stats->nonfinite_pixels++;
@@ -73,12 +73,22 @@ int render_scene(const scene *sc, const render_opts *opts, image *out, render_st
         if (opts->progress) opts->progress(opts->progress_ctx, y + 1, sc->height);
     }
     stats->seconds = now_seconds() - t1;
-    stats->rays = rt.rays;
+    stats->rays = it.rays + it.rt.rays;
+    stats->envlight_built = it.has_envlight;
+    if (it.has_envlight) {
+        stats->envlight_mode = it.el.mode;
+        stats->envlight_seconds = it.el.build_seconds;
+        stats->envlight_bad_texels = it.el.n_bad;
+        stats->envlight_fell_back = it.el.fell_back;
+        stats->envlight_points = it.el.n_points;
+    }
+    stats->lights = it.has_lights ? it.ls.n : 0;
     stats->spp = spp;
     stats->prims = accel.n_prims;
     stats->bvh_is_tree = accel.is_tree;
     stats->bvh_nodes = accel.n_nodes;
     stats->bvh_depth = accel.depth;
+    integrator_free(&it);
     bvh_free(&accel);
     return 0;
 }

@@ -41,6 +41,13 @@ typedef struct render_stats {
     int bvh_is_tree;
     long bvh_nodes;
     int bvh_depth;
+    int envlight_built;        /* environment sampling tables were built */
+    int envlight_mode;         /* envsampling_mode used (uniform after a black-map fallback) */
+    double envlight_seconds;   /* time to build them */
+    long envlight_bad_texels;  /* NaN / Inf / negative texel channels, treated as 0 */
+    int envlight_fell_back;    /* the map was black: sampling fell back to uniform */
+    int envlight_points;       /* median cut: point lights made */
+    int lights;                /* lights the sampling integrators choose among */
 } render_stats;
 
 render_opts render_defaults(void);

@@ -1,0 +1,18 @@
+/* direct.h - `integrator direct` (CSE 168 hw2): direct lighting only.  At the first non-delta
+ * hit:  L = Le + sum over lights of (1/N) sum_j f(wo, wi_j) cos(theta_j) Li(wi_j) V / pdf(wi_j)
+ * with N = `lightsamples` samples per light (`lightstratify on`: a sqrt(N) x sqrt(N) grid), the
+ * environment included (sampled as `envsampling` says).  Perfect mirror and glass surfaces are
+ * followed (up to maxdepth bounces) to the first surface that can be lit.
+ */
+#ifndef ENVTEX_DIRECT_H
+#define ENVTEX_DIRECT_H
+
+#include "envtex/integrator.h"
+
+rgb direct_radiance(integrator *it, ray r, rng *g);
+
+/* Estimate of the light arriving at surface s from every light, for outgoing wo: the sum above
+ * without Le.  Shared with analytic tests. */
+rgb direct_lighting(integrator *it, const surface *s, vec3 wo, rng *g);
+
+#endif

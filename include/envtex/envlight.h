@@ -1,0 +1,90 @@
+/* envlight.h - the environment as a light (lecture slides 16-23): "we effectively have millions
+ * of lights: importance sample the environment map, extend next-event estimation to envmaps".
+ *
+ * The light is the lat-long map taken as piecewise constant: each texel (c, r) has radiance
+ * L(c, r) over its solid angle dOmega_r = (cos theta_r - cos theta_{r+1}) 2 pi / W.  In the
+ * lecture's parameterization u = cos theta, v = phi we have d(omega) = du dv, so a texel is a
+ * rectangle in (u, v) and no sin theta appears anywhere.  Sampling modes (`envsampling`):
+ *
+ *   uniform       directions uniform on the sphere, pdf = 1 / (4 pi)
+ *   cdf           p(c, r) = L_avg(c, r) dOmega_r / |L|, |L| = sum of L_avg dOmega (the power);
+ *                 a marginal CDF over columns (phi), then a conditional CDF over rows within the
+ *                 column; the direction is uniform in (cos theta, phi) inside the texel, so
+ *                 pdf(omega) = p(c, r) / dOmega_r = L_avg(omega) / |L|: the pdf cancels the light
+ *   cdf-sintheta  PBRT's way: weights L_avg sin(theta_r centre), rows uniform in theta:
+ *                 pdf(omega) = p(c, r) W H / (2 pi^2 sin theta)
+ *   mediancut N   the map cut into N strata of equal energy (Debevec 2005), each a point light
+ *                 at its energy centroid carrying the stratum's whole power; only the shadow
+ *                 ray is jittered inside the stratum (envlight_mediancut_*)
+ *
+ * L_avg is the average of the colour channels, so a sample's estimate L_c / pdf =
+ * |L| L_c / L_avg: exact for grey light, and coloured light still converges (the ratio
+ * L_c / L_avg is bounded wherever L_avg > 0).  Texels that are NaN, Inf or negative are
+ * counted (n_bad) and treated as 0 everywhere, for lighting and sampling alike.  An all-black
+ * map falls back to uniform sampling (fell_back).
+ *
+ *     envlight el;
+ *     if (envlight_build(&el, &env, ENVSAMPLING_CDF, ENVSAMPLER_BINARY, 0, &err)) ...
+ *     envlight_sample_result s;
+ *     if (envlight_sample(&el, xi1, xi2, &s)) ... s.wi, s.L, s.pdf ...
+ *     double pdf = envlight_pdf(&el, wi);   // for MIS, of a direction found another way
+ *     envlight_free(&el);
+ */
+#ifndef ENVTEX_ENVLIGHT_H
+#define ENVTEX_ENVLIGHT_H
+
+#include "envtex/distrib.h"
+#include "envtex/envmap.h"
+
+typedef struct envlight_point {
+    vec3 dir;        /* world-space unit direction of the stratum's energy centroid */
+    rgb power;       /* integral of L over the stratum (W/m^2 of irradiance at normal incidence) */
+    int c0, c1, r0, r1; /* the stratum: columns [c0, c1), rows [r0, r1) */
+} envlight_point;
+
+typedef struct envlight {
+    const envmap *env;
+    envsampling_mode mode;
+    envsampler_kind sampler;
+    int w, h;
+    float *clean;        /* the map as used for lighting: w * h * 3, bad texels zeroed, scaled */
+    distrib2d table;     /* cdf and cdf-sintheta: outer = columns (phi), inner = rows */
+    double power;        /* |L| = sum over texels of L_avg dOmega (after scale) */
+    long n_bad;          /* NaN / Inf / negative texel channels found */
+    int fell_back;       /* 1 if the map was black and sampling is uniform */
+    envlight_point *points; int n_points; /* mediancut */
+    distrib1d point_choice; /* mediancut: choose a point light by power */
+    double build_seconds;
+} envlight;
+
+/* Build the tables `mode` needs (nothing for uniform).  `mediancut_n` is used for mediancut.
+ * The envmap must stay alive and unchanged while the envlight is used. */
+int envlight_build(envlight *el, const envmap *env, envsampling_mode mode, envsampler_kind sampler,
+                   int mediancut_n, error *err);
+void envlight_free(envlight *el);
+
+/* Radiance arriving from world direction wi as the sampling integrators see it: the texel's
+ * value (piecewise constant), scaled, bad texels as 0. */
+rgb envlight_radiance(const envlight *el, vec3 wi);
+
+typedef struct envlight_sample_result {
+    vec3 wi;     /* world direction towards the environment */
+    rgb L;       /* envlight_radiance(wi) */
+    double pdf;  /* per steradian, > 0 */
+} envlight_sample_result;
+
+/* Sample a direction with (xi1, xi2) in [0,1)^2 (modes uniform, cdf, cdf-sintheta).  With
+ * stratified inputs use ENVSAMPLER_BINARY or pass force_inversion = 1: the alias method does not
+ * keep strata.  Returns 0 if nothing can be sampled (never for a valid table). */
+int envlight_sample(const envlight *el, double xi1, double xi2, int force_inversion,
+                    envlight_sample_result *out);
+
+/* pdf (per steradian) that envlight_sample returns wi. */
+double envlight_pdf(const envlight *el, vec3 wi);
+
+/* mediancut: pick point light k with probability power_avg(k) / sum (xi in [0,1)); the shadow
+ * direction is jittered inside its stratum with (xi1, xi2).  *prob = the pick probability. */
+int envlight_mediancut_pick(const envlight *el, double xi, double xi1, double xi2, int *k,
+                            vec3 *shadow_dir, double *prob);
+
+#endif

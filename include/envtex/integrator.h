@@ -1,0 +1,77 @@
+/* integrator.h - which renderer runs (`integrator raytracer|analyticdirect|direct|pathtracer`)
+ * and the context they share, built once per render with only what the scene needs: lights and
+ * environment sampling tables exist only for integrators that sample lights (direct, and the
+ * path tracer with next-event estimation); `raytracer` and `analyticdirect` build none.
+ *
+ *     integrator it;
+ *     if (integrator_init(&it, sc, &accel, &err)) ...
+ *     rgb L = integrator_radiance(&it, camera_ray(&cam, x, y), &r);
+ *     integrator_free(&it);
+ *
+ * The sampling integrators see the environment two ways (docs/environment-lighting.md): along
+ * camera rays and chains of perfect mirror / glass bounces, where no other strategy competes,
+ * it is looked up bilinearly (the smooth reflection map); after any other bounce it is the
+ * piecewise-constant light of envlight.h, so that light sampling (whose pdf = L / |L| is
+ * constant over a texel) and BRDF sampling estimate exactly the same integral.
+ */
+#ifndef ENVTEX_INTEGRATOR_H
+#define ENVTEX_INTEGRATOR_H
+
+#include "envtex/brdf.h"
+#include "envtex/bvh.h"
+#include "envtex/envlight.h"
+#include "envtex/envmap.h"
+#include "envtex/lights.h"
+#include "envtex/raytracer.h"
+#include "envtex/rng.h"
+
+/* maxdepth -1 ("unlimited", for Russian roulette) stops at this many bounces */
+#define INTEGRATOR_UNLIMITED_DEPTH 1000
+
+typedef struct integrator {
+    const scene *sc;
+    const bvh *accel;
+    envmap env;
+    envlight el;
+    int has_envlight;   /* el built (the scene samples its envmap) */
+    lights ls;
+    int has_lights;     /* ls built */
+    int maxdepth;       /* resolved: -1 becomes INTEGRATOR_UNLIMITED_DEPTH */
+    raytracer rt;       /* integrator raytracer */
+    long long rays;     /* rays traced by the sampling integrators */
+    double build_seconds;
+} integrator;
+
+int integrator_init(integrator *it, const scene *sc, const bvh *accel, error *err);
+void integrator_free(integrator *it);
+
+/* Radiance along a camera ray. */
+rgb integrator_radiance(integrator *it, ray r, rng *g);
+
+/* ---- shared by the integrators ---------------------------------------------------------- */
+
+typedef struct scene_hit {
+    int kind;        /* 0: nothing, 1: geometry (h, s valid), 2: a quad light (light, t valid) */
+    hit h;
+    surface s;
+    int light;
+    double t;
+} scene_hit;
+
+/* Nearest of the geometry (BVH) and the quad lights along r; fills the shading surface with
+ * normals turned towards the ray's origin. */
+void integrator_intersect(integrator *it, const ray *r, scene_hit *out);
+
+/* 1 if the shadow ray is blocked by geometry. */
+int integrator_occluded(integrator *it, const ray *shadow);
+
+/* power heuristic with beta = 2: w = (nf pf)^2 / ((nf pf)^2 + (ng pg)^2) */
+static inline double integrator_power_heuristic(double nf, double pf, double ng, double pg)
+{
+    double f = nf * pf, g = ng * pg;
+    if (!(f > 0)) return 0;
+    if (isinf(f)) return 1;
+    return f * f / (f * f + g * g);
+}
+
+#endif

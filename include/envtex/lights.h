@@ -1,0 +1,65 @@
+/* lights.h - the scene's lights for next-event estimation (CSE 168 hw2-hw4 and lecture slide
+ * 17: "extend next-event estimation to envmaps"): quad lights, point and directional lights,
+ * and the environment (envlight.h), one set that the sampling integrators share.
+ *
+ * Choosing a light: with probability proportional to its power, estimated as
+ *   quad: pi A L_avg;  point: 4 pi I_avg;  directional: pi R^2 E_avg;  envmap: pi R^2 |L|
+ * where R is the radius of the scene's bounding sphere (a distant light's power is what falls
+ * on the scene).  A quad light emits on the side of ac x ab (FORMAT.md) and is visible to
+ * camera and BRDF rays (lights_intersect_quad); shadow rays are not blocked by quad lights.
+ *
+ *     lights ls;
+ *     lights_build(&ls, sc, el, radius, &err);
+ *     int k; double prob; lights_pick(&ls, xi, &k, &prob);
+ *     light_sample s; if (lights_sample(&ls, k, p, xi1, xi2, stratified, &s)) ... trace s.shadow ...
+ */
+#ifndef ENVTEX_LIGHTS_H
+#define ENVTEX_LIGHTS_H
+
+#include "envtex/distrib.h"
+#include "envtex/envlight.h"
+#include "envtex/ray.h"
+#include "envtex/scene.h"
+
+typedef struct lights {
+    const scene *sc;
+    const envlight *env;  /* NULL: no environment light */
+    int n;                /* sc->n_lights, plus 1 for the environment (last index) */
+    distrib1d choose;     /* pick a light by power */
+    double radius;
+} lights;
+
+typedef struct light_sample {
+    vec3 wi;        /* unit direction from the shading point towards the light (shading) */
+    rgb Li;         /* radiance (area and env lights) or, for delta lights, irradiance at normal
+                     * incidence (intensity / attenuation, power of a median-cut stratum) */
+    double pdf;     /* per steradian, of this light's sampling; 0 for delta lights */
+    int is_delta;   /* point, directional, median-cut: no density, not reachable by BRDF rays */
+    ray shadow;     /* the visibility ray: blocked means no light */
+} light_sample;
+
+int lights_build(lights *ls, const scene *sc, const envlight *env, double scene_radius, error *err);
+void lights_free(lights *ls);
+
+/* Pick a light with probability proportional to its power (xi in [0,1)). 0 if there are none. */
+int lights_pick(const lights *ls, double xi, int *k, double *prob);
+double lights_pick_prob(const lights *ls, int k);
+static inline int lights_env_index(const lights *ls) { return ls->env ? ls->n - 1 : -1; }
+
+/* Sample light k from shading point p (geometric normal ng, for the shadow ray's offset) with
+ * (xi1, xi2) in [0,1)^2, possibly stratified, and xi3 in [0,1) (median cut jitter).
+ * `stratified`: (xi1, xi2) come from a stratified grid (the envmap then uses CDF inversion even
+ * with alias tables; median cut picks its stratum with xi1).  Returns 0 if the sample carries
+ * nothing. */
+int lights_sample(const lights *ls, int k, vec3 p, vec3 ng, double xi1, double xi2, double xi3,
+                  int stratified, light_sample *out);
+
+/* Nearest quad light hit by r with t in (r->tmin, r->tmax): 1, its index (into sc->lights) and
+ * t.  Quads are two-sided for visibility; lights_quad_radiance tells the emitting side. */
+int lights_intersect_quad(const lights *ls, const ray *r, int *k, double *t);
+/* Radiance leaving quad k towards direction -d (d: the ray's direction): L on the emitting side. */
+rgb lights_quad_radiance(const lights *ls, int k, vec3 d);
+/* pdf per steradian of lights_sample(k) producing the point at distance t along unit wi from p. */
+double lights_quad_pdf(const lights *ls, int k, vec3 wi, double t);
+
+#endif

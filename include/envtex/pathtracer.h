@@ -1,0 +1,23 @@
+/* pathtracer.h - `integrator pathtracer` (CSE 168 hw3-hw4, lecture slides 16-23).
+ *
+ * Paths start at the camera and bounce with `importancesampling hemisphere|cosine|brdf`.
+ * A path of k bounces that reaches a light (a quad light or, leaving the scene, the envmap)
+ * carries L = Le prod (f cos / pdf).  `maxdepth` d allows paths of at most d bounces
+ * (-1: unlimited, with `russianroulette on` to end them: survival probability = the largest
+ * component of the throughput, clamped to 1).  `nexteventestimation`:
+ *   off  light is found only by hitting it;
+ *   on   at every bounce one light is picked by power and sampled (`lightsamples` samples,
+ *        stratified with `lightstratify on`); hitting a light after a non-delta bounce adds
+ *        nothing, so no path is counted twice;
+ *   mis  both, weighted by the power heuristic (beta = 2), for quad lights and the envmap.
+ * All three converge to the same image (tested).  Geometry with `emission` is not sampled as a
+ * light and always counts when hit.
+ */
+#ifndef ENVTEX_PATHTRACER_H
+#define ENVTEX_PATHTRACER_H
+
+#include "envtex/integrator.h"
+
+rgb pathtracer_radiance(integrator *it, ray r, rng *g);
+
+#endif

@@ -1,0 +1,323 @@
+/* envlight.c - the environment as a light: numerical-CDF importance sampling in
+ * (u = cos theta, v = phi), PBRT's sin-theta variant, uniform sampling and median cut
+ * (see include/envtex/envlight.h). */
+#include "envtex/envlight.h"
+
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "envtex/latlong.h"
+#include "envtex/sampling.h"
+
+/* A texel as the light sees it: NaN, Inf and negative channels are 0, then scaled. */
+static inline double clean(float v) { return isfinite(v) && v > 0 ? (double)v : 0.0; }
+
+static inline rgb texel(const envlight *el, int c, int r)
+{
+    const float *p = image_px(el->env->img, c, r);
+    double s = el->env->scale;
+    return rgb_make(clean(p[0]) * s, clean(p[1]) * s, clean(p[2]) * s);
+}
+
+/* cos theta at the top edge of row r: row r spans theta in [pi r / h, pi (r + 1) / h] */
+static inline double cos_edge(int r, int h) { return cos(M_PI * r / h); }
+
+/* solid angle of a texel in row r: (cos theta_r - cos theta_{r+1}) 2 pi / w */
+static inline double texel_omega(const envlight *el, int r)
+{
+    return (cos_edge(r, el->h) - cos_edge(r + 1, el->h)) * 2 * M_PI / el->w;
+}
+
+/* world direction -> the texel that holds it (nearest), in the envmap frame */
+static int world_to_texel(const envlight *el, vec3 wi, int *c, int *r, double *sin_theta)
+{
+    uv2 uv;
+    vec3 d = envmap_to_frame(el->env, wi);
+    if (latlong_dir_to_uv(d, &uv)) return -1;
+    int x = (int)(uv.u * el->w), y = (int)(uv.v * el->h);
+    *c = x < el->w ? x : el->w - 1;
+    *r = y < el->h ? y : el->h - 1;
+    if (sin_theta) *sin_theta = sin(M_PI * uv.v);
+    return 0;
+}
+
+rgb envlight_radiance(const envlight *el, vec3 wi)
+{
+    int c, r;
+    if (!el->env->present || world_to_texel(el, wi, &c, &r, NULL)) return rgb_gray(0);
+    return texel(el, c, r);
+}
+
+/* ---- median cut (Debevec 2005): strata of equal energy ------------------------------------ */
+
+typedef struct region { int c0, c1, r0, r1; double energy; } region;
+
+/* energy of columns [c0,c1) x rows [r0,r1) from the summed-area table S ((w+1) x (h+1)) */
+static double sat_sum(const double *S, int h, int c0, int c1, int r0, int r1)
+{
+    int H = h + 1;
+    return S[c1 * H + r1] - S[c0 * H + r1] - S[c1 * H + r0] + S[c0 * H + r0];
+}
+
+/* Split region g in two halves of (about) equal energy across its longer side, measured in
+ * angle: the phi side is shortened by sin theta at the region's middle.  0 if it cannot split. */
+static int split_region(const envlight *el, const double *S, const region *g, region *a, region *b)
+{
+    int cw = g->c1 - g->c0, rh = g->r1 - g->r0;
+    if (cw < 2 && rh < 2) return 0;
+    double mid_theta = M_PI * 0.5 * (g->r0 + g->r1) / el->h;
+    double phi_len = cw * 2 * M_PI / el->w * sin(mid_theta), theta_len = rh * M_PI / el->h;
+    int by_cols = rh < 2 || (cw >= 2 && phi_len >= theta_len);
+    *a = *b = *g;
+    double half = 0.5 * g->energy;
+    if (by_cols) {
+        int lo = g->c0 + 1, hi = g->c1 - 1; /* first cut k with energy of [c0, k) >= half */
+        while (lo < hi) {
+            int m = lo + (hi - lo) / 2;
+            if (sat_sum(S, el->h, g->c0, m, g->r0, g->r1) >= half) hi = m;
+            else lo = m + 1;
+        }
+        a->c1 = b->c0 = lo;
+    } else {
+        int lo = g->r0 + 1, hi = g->r1 - 1;
+        while (lo < hi) {
+            int m = lo + (hi - lo) / 2;
+            if (sat_sum(S, el->h, g->c0, g->c1, g->r0, m) >= half) hi = m;
+            else lo = m + 1;
+        }
+        a->r1 = b->r0 = lo;
+    }
+    a->energy = sat_sum(S, el->h, a->c0, a->c1, a->r0, a->r1);
+    b->energy = sat_sum(S, el->h, b->c0, b->c1, b->r0, b->r1);
+    return 1;
+}
+
+/* max-heap of regions by energy */
+static void heap_push(region *hp, int *n, region g)
+{
+    int i = (*n)++;
+    hp[i] = g;
+    while (i > 0 && hp[(i - 1) / 2].energy < hp[i].energy) {
+        region t = hp[i]; hp[i] = hp[(i - 1) / 2]; hp[(i - 1) / 2] = t;
+        i = (i - 1) / 2;
+    }
+}
+
+static region heap_pop(region *hp, int *n)
+{
+    region top = hp[0];
+    hp[0] = hp[--*n];
+    int i = 0;
+    for (;;) {
+        int l = 2 * i + 1, r = l + 1, m = i;
+        if (l < *n && hp[l].energy > hp[m].energy) m = l;
+        if (r < *n && hp[r].energy > hp[m].energy) m = r;
+        if (m == i) break;
+        region t = hp[i]; hp[i] = hp[m]; hp[m] = t;
+        i = m;
+    }
+    return top;
+}
+
+static int build_mediancut(envlight *el, const double *energy, int n_lights, error *err)
+{
+    int w = el->w, h = el->h, H = h + 1;
+    int status = -1;
+    double *S = calloc((size_t)(w + 1) * (size_t)H, sizeof *S);
+    region *heap = malloc((size_t)n_lights * sizeof *heap), *done = malloc((size_t)n_lights * sizeof *done);
+    double *wts = malloc((size_t)n_lights * sizeof *wts);
+    if (!S || !heap || !done || !wts) {
+        error_set(err, NULL, 0, "out of memory for median cut of a %d x %d map", w, h);
+        goto cleanup;
+    }
+    /* summed-area table: S[c][r] = energy of columns [0,c) x rows [0,r) */
+    for (int c = 0; c < w; c++)
+        for (int r = 0; r < h; r++)
+            S[(c + 1) * H + r + 1] = energy[(size_t)c * h + r] + S[c * H + r + 1] + S[(c + 1) * H + r] - S[c * H + r];
+    int n_heap = 0, n_done = 0;
+    heap_push(heap, &n_heap, (region){0, w, 0, h, sat_sum(S, h, 0, w, 0, h)});
+    /* split the most energetic region until there are n_lights (or nothing splits) */
+    while (n_heap > 0 && n_heap + n_done < n_lights) {
+        region g = heap_pop(heap, &n_heap), a, b;
+        if (g.energy <= 0 || !split_region(el, S, &g, &a, &b)) { done[n_done++] = g; continue; }
+        heap_push(heap, &n_heap, a);
+        heap_push(heap, &n_heap, b);
+    }
+    while (n_heap > 0) done[n_done++] = heap_pop(heap, &n_heap);
+    el->points = calloc((size_t)n_done, sizeof *el->points);
+    if (!el->points) { error_set(err, NULL, 0, "out of memory for %d median-cut lights", n_done); goto cleanup; }
+    mat4 to_world;
+    if (mat4_inverse(el->env->to_env, &to_world)) to_world = mat4_identity();
+    for (int k = 0; k < n_done; k++) {
+        const region *g = &done[k];
+        envlight_point *pt = &el->points[k];
+        vec3 centroid = vec3_make(0, 0, 0);
+        rgb power = rgb_gray(0);
+        for (int c = g->c0; c < g->c1; c++)
+            for (int r = g->r0; r < g->r1; r++) {
+                double om = texel_omega(el, r);
+                rgb L = texel(el, c, r);
+                power = rgb_madd(power, L, om); /* power = sum of L dOmega over the stratum */
+                vec3 d = latlong_uv_to_dir((uv2){(c + 0.5) / w, (r + 0.5) / h});
+                centroid = vec3_madd(centroid, d, rgb_avg(L) * om);
+            }
+        if (vec3_length2(centroid) == 0) /* a black stratum: its centre */
+            centroid = latlong_uv_to_dir((uv2){0.5 * (g->c0 + g->c1) / w, 0.5 * (g->r0 + g->r1) / h});
+        pt->dir = vec3_normalize(mat4_dir(&to_world, vec3_normalize(centroid)));
+        pt->power = power;
+        pt->c0 = g->c0; pt->c1 = g->c1; pt->r0 = g->r0; pt->r1 = g->r1;
+        wts[k] = rgb_avg(power);
+    }
+    el->n_points = n_done;
+    if (distrib1d_init(&el->point_choice, wts, n_done, err)) goto cleanup;
+    status = 0;
+cleanup:
+    free(S);
+    free(heap);
+    free(done);
+    free(wts);
+    return status;
+}
+
+int envlight_build(envlight *el, const envmap *env, envsampling_mode mode, envsampler_kind sampler,
+                   int mediancut_n, error *err)
+{
+    memset(el, 0, sizeof *el);
+    el->env = env;
+    el->mode = mode;
+    el->sampler = sampler;
+    if (!env->present || !env->img) return error_set(err, NULL, 0, "no lat-long environment map to sample");
+    /* Sampled directions go back to the world through the transpose of to_env: the transform
+     * must be a rotation (a `scale` before `envmap` would distort the pdf). */
+    mat4 m = env->to_env, mmt = mat4_mul(m, mat4_transpose(m));
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            if (fabs(mmt.m[i][j] - (i == j)) > 1e-6)
+                return error_set(err, NULL, 0, "the envmap's transform is not a rotation, so it cannot be sampled "
+                                 "as a light (use only 'rotate' before 'envmap')");
+    clock_t t0 = clock();
+    int w = el->w = env->img->w, h = el->h = env->img->h;
+    /* energy of each texel, column-major (outer = column = phi, inner = row = u): the pmf of
+     * the lecture's cdf mode.  p(c, r) = L_avg(c, r) dOmega_r / |L| */
+    double *energy = malloc((size_t)w * (size_t)h * sizeof *energy);
+    if (!energy) return error_set(err, NULL, 0, "out of memory for the sampling table of a %d x %d map", w, h);
+    double power = 0;
+    for (int r = 0; r < h; r++) {
+        double om = texel_omega(el, r);
+        /* PBRT's weights: L sin(theta at the row centre) (rows uniform in theta) */
+        double sin_c = sin(M_PI * (r + 0.5) / h);
+        for (int c = 0; c < w; c++) {
+            const float *p = image_px(env->img, c, r);
+            for (int k = 0; k < 3; k++) el->n_bad += !(isfinite(p[k]) && p[k] >= 0);
+            double L = rgb_avg(texel(el, c, r));
+            power += L * om; /* |L| = sum L_avg dOmega, in double */
+            energy[(size_t)c * h + r] = L * (mode == ENVSAMPLING_CDF_SINTHETA ? sin_c : om);
+        }
+    }
+    el->power = power;
+    int status = 0;
+    if (!(power > 0)) {
+        el->fell_back = 1; /* all black: nothing to importance sample */
+        el->mode = mode == ENVSAMPLING_MEDIANCUT ? ENVSAMPLING_MEDIANCUT : ENVSAMPLING_UNIFORM;
+    }
+    if (el->mode == ENVSAMPLING_CDF || el->mode == ENVSAMPLING_CDF_SINTHETA) {
+        status = distrib2d_init(&el->table, energy, w, h, err);
+        if (!status && sampler == ENVSAMPLER_ALIAS) status = distrib2d_alias_build(&el->table, err);
+    } else if (el->mode == ENVSAMPLING_MEDIANCUT) {
+        if (el->fell_back) for (size_t i = 0; i < (size_t)w * h; i++) energy[i] = 1; /* equal strata */
+        status = build_mediancut(el, energy, mediancut_n > 0 ? mediancut_n : 64, err);
+    }
+    free(energy);
+    if (status) envlight_free(el);
+    el->build_seconds = (double)(clock() - t0) / CLOCKS_PER_SEC;
+    return status;
+}
+
+void envlight_free(envlight *el)
+{
+    distrib2d_free(&el->table);
+    distrib1d_free(&el->point_choice);
+    free(el->points);
+    el->points = NULL;
+    el->n_points = 0;
+}
+
+/* envmap frame -> world for sampled directions */
+static vec3 frame_to_world(const envlight *el, vec3 d)
+{
+    mat4 to_world;
+    /* the inverse of a rotation is its transpose: no matrix inversion per sample */
+    to_world = mat4_transpose(el->env->to_env);
+    return vec3_normalize(mat4_dir(&to_world, d));
+}
+
+double envlight_pdf(const envlight *el, vec3 wi)
+{
+    int c, r;
+    double sin_t;
+    switch (el->mode) {
+    case ENVSAMPLING_UNIFORM: return 1 / (4 * M_PI);
+    case ENVSAMPLING_CDF:
+        if (world_to_texel(el, wi, &c, &r, NULL)) return 0;
+        return distrib2d_pmf(&el->table, c, r) / texel_omega(el, r); /* p(omega) = p(c,r) / dOmega */
+    case ENVSAMPLING_CDF_SINTHETA:
+        if (world_to_texel(el, wi, &c, &r, &sin_t) || !(sin_t > 0)) return 0;
+        /* p(omega) = p(theta, phi) / sin theta, p(theta, phi) = p(c,r) W H / (2 pi^2) */
+        return distrib2d_pmf(&el->table, c, r) * el->w * el->h / (2 * M_PI * M_PI * sin_t);
+    default: return 0; /* median cut has no density */
+    }
+}
+
+int envlight_sample(const envlight *el, double xi1, double xi2, int force_inversion, envlight_sample_result *out)
+{
+    vec3 d;
+    if (el->mode == ENVSAMPLING_UNIFORM) {
+        d = sampling_uniform_sphere(xi1, xi2);
+    } else if (el->mode == ENVSAMPLING_CDF || el->mode == ENVSAMPLING_CDF_SINTHETA) {
+        int c, r;
+        double pmf, rc, rr;
+        if (el->sampler == ENVSAMPLER_ALIAS && !force_inversion)
+            distrib2d_sample_alias(&el->table, xi1, xi2, &c, &r, &pmf, &rc, &rr);
+        else
+            distrib2d_sample(&el->table, xi1, xi2, &c, &r, &pmf, &rc, &rr);
+        double phi = 2 * M_PI * (c + rc) / el->w; /* uniform in phi inside the column */
+        double cos_t, sin_t;
+        if (el->mode == ENVSAMPLING_CDF) {
+            /* uniform in u = cos theta inside the row: d(omega) = du dv */
+            double u0 = cos_edge(r, el->h), u1 = cos_edge(r + 1, el->h);
+            cos_t = u0 + rr * (u1 - u0);
+            sin_t = sqrt(fmax(0.0, 1 - cos_t * cos_t));
+        } else {
+            double theta = M_PI * (r + rr) / el->h; /* uniform in theta: PBRT */
+            cos_t = cos(theta);
+            sin_t = sin(theta);
+        }
+        d = vec3_make(sin_t * cos(phi), sin_t * sin(phi), cos_t);
+    } else {
+        return 0;
+    }
+    out->wi = el->mode == ENVSAMPLING_UNIFORM ? d : frame_to_world(el, d);
+    /* L and pdf both from the direction, through the same texel lookup: L / pdf is consistent
+     * even when rounding puts a sample on the neighbouring texel */
+    out->pdf = envlight_pdf(el, out->wi);
+    out->L = envlight_radiance(el, out->wi);
+    return out->pdf > 0;
+}
+
+int envlight_mediancut_pick(const envlight *el, double xi, double xi1, double xi2, int *k, vec3 *shadow_dir,
+                            double *prob)
+{
+    if (el->n_points == 0) return 0;
+    double pmf;
+    int i = distrib1d_sample(&el->point_choice, xi, &pmf, NULL);
+    const envlight_point *pt = &el->points[i];
+    /* jitter inside the stratum, uniform in (cos theta, phi): for the shadow ray only */
+    double u0 = cos_edge(pt->r0, el->h), u1 = cos_edge(pt->r1, el->h);
+    double cos_t = u0 + xi1 * (u1 - u0), sin_t = sqrt(fmax(0.0, 1 - cos_t * cos_t));
+    double phi = 2 * M_PI * (pt->c0 + xi2 * (pt->c1 - pt->c0)) / el->w;
+    *shadow_dir = frame_to_world(el, vec3_make(sin_t * cos(phi), sin_t * sin(phi), cos_t));
+    *k = i;
+    *prob = pmf;
+    return pmf > 0;
+}

@@ -1,0 +1,127 @@
+/* integrator.c - the shared context of the integrators (see include/envtex/integrator.h). */
+#include "envtex/integrator.h"
+
+#include <string.h>
+#include <time.h>
+
+#include "envtex/analyticdirect.h"
+#include "envtex/direct.h"
+#include "envtex/pathtracer.h"
+#include "envtex/sphere.h"
+
+/* Radius of a sphere around the scene's geometry and lights: the "R" that converts a distant
+ * light's radiance or irradiance into the power it delivers to the scene. */
+static double scene_radius(const scene *sc)
+{
+    vec3 lo = vec3_make(INFINITY, INFINITY, INFINITY), hi = vec3_neg(lo);
+    for (long i = 0; i < sc->n_spheres; i++) {
+        vec3 a, b;
+        sphere_bounds(&sc->spheres[i], &a, &b);
+        lo = vec3_min(lo, a);
+        hi = vec3_max(hi, b);
+    }
+    for (long i = 0; i < sc->n_triangles; i++)
+        for (int k = 0; k < 3; k++) {
+            lo = vec3_min(lo, sc->triangles[i].p[k]);
+            hi = vec3_max(hi, sc->triangles[i].p[k]);
+        }
+    for (int i = 0; i < sc->n_lights; i++)
+        if (sc->lights[i].kind == LIGHT_QUAD) {
+            const scene_light *l = &sc->lights[i];
+            vec3 c[4] = {l->pos, vec3_add(l->pos, l->ab), vec3_add(l->pos, l->ac),
+                         vec3_add(vec3_add(l->pos, l->ab), l->ac)};
+            for (int k = 0; k < 4; k++) {
+                lo = vec3_min(lo, c[k]);
+                hi = vec3_max(hi, c[k]);
+            }
+        }
+    if (!(hi.x >= lo.x)) return 1.0; /* nothing in the scene */
+    double r = 0.5 * vec3_length(vec3_sub(hi, lo));
+    return r > 0 ? r : 1.0;
+}
+
+int integrator_init(integrator *it, const scene *sc, const bvh *accel, error *err)
+{
+    memset(it, 0, sizeof *it);
+    it->sc = sc;
+    it->accel = accel;
+    envmap_init(&it->env, sc);
+    it->maxdepth = sc->maxdepth < 0 ? INTEGRATOR_UNLIMITED_DEPTH : sc->maxdepth;
+    if (sc->integrator == INTEGRATOR_RAYTRACER) {
+        raytracer_init(&it->rt, sc, accel);
+        return 0;
+    }
+    clock_t t0 = clock();
+    int samples_lights = sc->integrator == INTEGRATOR_DIRECT ||
+                         (sc->integrator == INTEGRATOR_PATHTRACER && sc->nee != NEE_OFF);
+    /* The envmap lights the scene unless `envmiss black` makes it a background only. */
+    int env_lights = it->env.present && sc->envmiss == ENVMISS_ENVMAP && sc->integrator != INTEGRATOR_ANALYTICDIRECT;
+    if (env_lights) {
+        /* tables only for an integrator that samples the envmap; otherwise just the
+         * piecewise-constant lookup (mode uniform builds no table) */
+        envsampling_mode mode = samples_lights ? sc->envsampling : ENVSAMPLING_UNIFORM;
+        if (envlight_build(&it->el, &it->env, mode, sc->envsampler, sc->mediancut_lights, err))
+            return error_prefix(err, "%s: envmap %s", sc->path, sc->envmap.path);
+        it->has_envlight = 1;
+    }
+    if (lights_build(&it->ls, sc, it->has_envlight && samples_lights ? &it->el : NULL, scene_radius(sc), err)) {
+        integrator_free(it);
+        return -1;
+    }
+    it->has_lights = 1;
+    it->build_seconds = (double)(clock() - t0) / CLOCKS_PER_SEC;
+    return 0;
+}
+
+void integrator_free(integrator *it)
+{
+    if (it->has_envlight) envlight_free(&it->el);
+    if (it->has_lights) lights_free(&it->ls);
+    it->has_envlight = it->has_lights = 0;
+}
+
+rgb integrator_radiance(integrator *it, ray r, rng *g)
+{
+    switch (it->sc->integrator) {
+    case INTEGRATOR_RAYTRACER: return raytracer_trace(&it->rt, r);
+    case INTEGRATOR_ANALYTICDIRECT: return analyticdirect_radiance(it, r, g);
+    case INTEGRATOR_DIRECT: return direct_radiance(it, r, g);
+    default: return pathtracer_radiance(it, r, g);
+    }
+}
+
+void integrator_intersect(integrator *it, const ray *r, scene_hit *out)
+{
+    it->rays++;
+    ray rr = *r;
+    out->kind = 0;
+    if (bvh_intersect(it->accel, it->sc, &rr, &out->h)) {
+        out->kind = 1;
+        rr.tmax = out->h.t;
+    }
+    int k;
+    double t;
+    if (it->has_lights && lights_intersect_quad(&it->ls, &rr, &k, &t)) {
+        out->kind = 2;
+        out->light = k;
+        out->t = t;
+        return;
+    }
+    if (out->kind != 1) return;
+    /* the shading frame, turned towards the ray's origin (two-sided surfaces) */
+    const hit *h = &out->h;
+    surface *s = &out->s;
+    int outside = vec3_dot(r->d, h->ng) < 0;
+    s->p = h->p;
+    s->ng = outside ? h->ng : vec3_neg(h->ng);
+    s->n = outside ? h->ns : vec3_neg(h->ns);
+    if (vec3_dot(s->n, r->d) > 0) s->n = s->ng; /* interpolated normal facing away: use ng */
+    s->entering = outside;
+    brdf_surface_from_material(s, &it->sc->materials[h->material]);
+}
+
+int integrator_occluded(integrator *it, const ray *shadow)
+{
+    it->rays++;
+    return bvh_occluded(it->accel, it->sc, shadow);
+}

@@ -1,0 +1,117 @@
+/* pathtracer.c - `integrator pathtracer` with next-event estimation and MIS
+ * (see include/envtex/pathtracer.h). */
+#include "envtex/pathtracer.h"
+
+/* Next-event estimation at surface s: `lightsamples` samples of one light picked by power
+ * (each sample picks its own light).  With MIS each is weighted against BRDF sampling. */
+static rgb next_event(integrator *it, const surface *s, vec3 wo, rng *g, int mis)
+{
+    const scene *sc = it->sc;
+    const lights *ls = &it->ls;
+    rgb sum = rgb_gray(0);
+    int n = sc->lightsamples;
+    int m = sc->lightstratify ? (int)sqrt((double)n) : 0;
+    while (m > 0 && (m + 1) * (m + 1) <= n) m++;
+    for (int j = 0; j < n; j++) {
+        double xc = rng_uniform(g), xi1 = rng_uniform(g), xi2 = rng_uniform(g), xi3 = rng_uniform(g);
+        int strat = m > 0 && j < m * m;
+        if (strat) {
+            xi1 = ((j % m) + xi1) / m;
+            xi2 = ((j / m) + xi2) / m;
+        }
+        int k;
+        double pick;
+        if (!lights_pick(ls, xc, &k, &pick)) break;
+        light_sample l;
+        if (!lights_sample(ls, k, s->p, s->ng, xi1, xi2, xi3, strat, &l)) continue;
+        double cos_i = vec3_dot(s->n, l.wi);
+        if (cos_i <= 0 || vec3_dot(s->ng, l.shadow.d) <= 0) continue;
+        rgb f = brdf_eval(s, wo, l.wi);
+        if (rgb_is_black(f)) continue;
+        if (integrator_occluded(it, &l.shadow)) continue;
+        rgb c;
+        if (l.is_delta) {
+            c = rgb_scale(rgb_mul(f, l.Li), cos_i / pick); /* f cos E / P(pick) */
+        } else {
+            double pl = pick * l.pdf; /* pdf of this sample among all lights */
+            double w = 1;
+            if (mis) w = integrator_power_heuristic(n, pl, 1, brdf_pdf(s, wo, l.wi, sc->importancesampling));
+            c = rgb_scale(rgb_mul(f, l.Li), w * cos_i / pl); /* f cos Li / pdf, MIS weighted */
+        }
+        sum = rgb_add(sum, c);
+    }
+    return rgb_scale(sum, 1.0 / n);
+}
+
+rgb pathtracer_radiance(integrator *it, ray r, rng *g)
+{
+    const scene *sc = it->sc;
+    nee_mode nee = it->has_lights && it->ls.n > 0 ? sc->nee : NEE_OFF;
+    int n_light = sc->lightsamples;
+    rgb L = rgb_gray(0), beta = rgb_gray(1);
+    int specular_chain = 1;  /* only camera and perfect-specular bounces so far */
+    int last_delta = 1;      /* the ray came from the camera or a perfect-specular bounce */
+    double brdf_pdf_prev = 0; /* pdf of the last BRDF sample (non-delta), for MIS */
+    for (int bounce = 0;; bounce++) {
+        scene_hit sh;
+        integrator_intersect(it, &r, &sh);
+        /* light found by following the path: counted unless next-event estimation has
+         * already counted it (nee on), or weighted against it (mis) */
+        int counts = last_delta || nee == NEE_OFF; /* NEE never samples from a delta bounce */
+        if (sh.kind == 0) {
+            rgb Le;
+            if (specular_chain) {
+                Le = bounce > 0 && sc->envmiss == ENVMISS_BLACK ? rgb_gray(0) : envmap_radiance(&it->env, r.d);
+            } else if (!it->has_envlight) {
+                Le = rgb_gray(0);
+            } else {
+                Le = envlight_radiance(&it->el, r.d);
+                if (!counts) {
+                    int ke = lights_env_index(&it->ls);
+                    if (nee == NEE_MIS && ke >= 0 && it->el.mode != ENVSAMPLING_MEDIANCUT) {
+                        double pl = lights_pick_prob(&it->ls, ke) * envlight_pdf(&it->el, r.d);
+                        Le = rgb_scale(Le, integrator_power_heuristic(1, brdf_pdf_prev, n_light, pl));
+                    } else if (ke >= 0) {
+                        Le = rgb_gray(0); /* sampled by NEE (median cut: only by NEE) */
+                    }
+                }
+            }
+            return rgb_fma(L, beta, Le);
+        }
+        if (sh.kind == 2) {
+            rgb Le = lights_quad_radiance(&it->ls, sh.light, r.d);
+            if (!counts) {
+                if (nee == NEE_MIS) {
+                    vec3 d = vec3_normalize(r.d);
+                    double t = sh.t * vec3_length(r.d);
+                    double pl = lights_pick_prob(&it->ls, sh.light) * lights_quad_pdf(&it->ls, sh.light, d, t);
+                    Le = rgb_scale(Le, integrator_power_heuristic(1, brdf_pdf_prev, n_light, pl));
+                } else {
+                    Le = rgb_gray(0);
+                }
+            }
+            return rgb_fma(L, beta, Le);
+        }
+        const surface *s = &sh.s;
+        vec3 wo = vec3_neg(vec3_normalize(r.d));
+        L = rgb_fma(L, beta, s->emission); /* emissive geometry is not a sampled light */
+        if (bounce >= it->maxdepth) break; /* a path may have at most maxdepth bounces */
+        int delta = brdf_is_delta(s);
+        if (!delta && nee != NEE_OFF) L = rgb_fma(L, beta, next_event(it, s, wo, g, nee == NEE_MIS));
+        brdf_sample_result bs;
+        double xi1 = rng_uniform(g), xi2 = rng_uniform(g), xi3 = rng_uniform(g);
+        if (!brdf_sample(s, wo, sc->importancesampling, xi1, xi2, xi3, &bs)) break;
+        beta = rgb_mul(beta, bs.weight);
+        specular_chain = specular_chain && bs.is_delta;
+        last_delta = bs.is_delta;
+        brdf_pdf_prev = bs.pdf;
+        if (sc->russianroulette) {
+            /* survive with q = min(1, largest throughput component); divide by q if it does */
+            double q = fmin(1.0, rgb_max(beta));
+            if (!(rng_uniform(g) < q)) break;
+            beta = rgb_scale(beta, 1 / q);
+        }
+        r = ray_spawn(s->p, s->ng, bs.wi);
+    }
+    return L;
+}

@@ -1,0 +1,69 @@
+/* sampling.c - direction samplers and their pdfs (see include/envtex/sampling.h). */
+#include "envtex/sampling.h"
+
+/* Largest double below 1: xi = 1 - 2^-53 must still give a valid direction. */
+static double clamp01(double x) { return x < 0 ? 0 : x > 0x1.fffffffffffffp-1 ? 0x1.fffffffffffffp-1 : x; }
+
+static vec3 from_cos(double cos_t, double phi)
+{
+    double sin_t = sqrt(fmax(0.0, 1 - cos_t * cos_t));
+    return vec3_make(sin_t * cos(phi), sin_t * sin(phi), cos_t);
+}
+
+vec3 sampling_uniform_sphere(double xi1, double xi2)
+{
+    return from_cos(1 - 2 * clamp01(xi1), 2 * M_PI * clamp01(xi2)); /* z = 1 - 2 xi1 */
+}
+
+double sampling_uniform_sphere_pdf(void) { return 1 / (4 * M_PI); }
+
+vec3 sampling_uniform_hemisphere(double xi1, double xi2)
+{
+    return from_cos(clamp01(xi1), 2 * M_PI * clamp01(xi2)); /* z uniform in [0, 1) */
+}
+
+double sampling_uniform_hemisphere_pdf(double cos_theta) { return cos_theta >= 0 ? 1 / (2 * M_PI) : 0; }
+
+vec3 sampling_cosine_hemisphere(double xi1, double xi2)
+{
+    return from_cos(sqrt(1 - clamp01(xi1)), 2 * M_PI * clamp01(xi2)); /* cos^2 uniform: pdf cos/pi */
+}
+
+double sampling_cosine_hemisphere_pdf(double cos_theta) { return cos_theta > 0 ? cos_theta / M_PI : 0; }
+
+vec3 sampling_phong_lobe(double s, double xi1, double xi2)
+{
+    /* CDF of cos(alpha) under pdf (s+1)/(2 pi) cos^s: P(cos <= c) = 1 - c^(s+1); invert with
+     * 1 - xi1 -> xi1.  pow(0, 1/(s+1)) is 0: the sample lies on the lobe's equator. */
+    return from_cos(pow(1 - clamp01(xi1), 1 / (s + 1)), 2 * M_PI * clamp01(xi2));
+}
+
+double sampling_phong_lobe_pdf(double s, double cos_alpha)
+{
+    return cos_alpha > 0 ? (s + 1) / (2 * M_PI) * pow(cos_alpha, s) : 0;
+}
+
+vec3 sampling_ggx_half(double alpha, double xi1, double xi2)
+{
+    xi1 = clamp01(xi1);
+    /* tan^2(theta_h) = alpha^2 xi1 / (1 - xi1)  ->  cos^2 = (1 - xi1) / (1 + (alpha^2 - 1) xi1) */
+    double cos2 = (1 - xi1) / (1 + (alpha * alpha - 1) * xi1);
+    return from_cos(sqrt(fmax(0.0, cos2)), 2 * M_PI * clamp01(xi2));
+}
+
+double sampling_ggx_d(double alpha, double cos_theta)
+{
+    if (cos_theta <= 0) return 0;
+    double c2 = cos_theta * cos_theta, a2 = alpha * alpha;
+    /* alpha^2 / (pi cos^4 (alpha^2 + tan^2)^2) = alpha^2 / (pi (alpha^2 cos^2 + sin^2)^2) */
+    double den = a2 * c2 + (1 - c2);
+    if (!(den > 0)) return 0; /* alpha = 0 at the exact normal: a delta, not a density */
+    return a2 / (M_PI * den * den);
+}
+
+vec3 sampling_to_world(vec3 l, vec3 n)
+{
+    vec3 t, b;
+    vec3_basis(n, &t, &b);
+    return vec3_add(vec3_add(vec3_scale(t, l.x), vec3_scale(b, l.y)), vec3_scale(n, l.z));
+}
