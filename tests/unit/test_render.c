@@ -1,5 +1,5 @@
 /* test_render.c - the pixel loop: deterministic per seed, pixel centres at spp 1, jittered and
- * averaged samples above, every integrator runs, non-finite pixels counted. */
+ * averaged samples above, every integrator runs, a bad spp refused, non-finite pixels counted. */
 #include "envtex/render.h"
 
 #include <string.h>
@@ -189,6 +189,25 @@ START_TEST(test_render_runs_every_integrator_and_a_black_map_stays_finite)
 }
 END_TEST
 
+START_TEST(test_render_refuses_an_out_of_range_spp_naming_the_scene)
+{
+    scene sc;
+    load(&sc, balls);
+    render_opts o = render_defaults();
+    o.spp = SCENE_MAX_SPP + 1;
+    image img;
+    memset(&img, 0x55, sizeof img);
+    render_stats st;
+    error err = {0};
+    ck_assert_int_eq(render_scene(&sc, &o, &img, &st, &err), -1);
+    ck_assert_str_eq(err.file, "render.test");
+    ck_assert_ptr_nonnull(strstr(err.msg, "spp"));
+    ck_assert_ptr_null(img.px); /* nothing to free */
+    ck_assert_int_eq(img.w, 0);
+    scene_free(&sc);
+}
+END_TEST
+
 START_TEST(test_render_counts_nonfinite_pixels)
 {
     /* an envmap with a NaN texel: the pixels whose lookups touch it are NaN, and counted */
@@ -253,6 +272,7 @@ Suite *render_suite(void)
     tcase_add_test(tc, test_render_spp_0_takes_the_scenes_spp);
     tcase_add_test(tc, test_render_of_a_constant_environment_is_that_constant);
     tcase_add_test(tc, test_render_runs_every_integrator_and_a_black_map_stays_finite);
+    tcase_add_test(tc, test_render_refuses_an_out_of_range_spp_naming_the_scene);
     tcase_add_test(tc, test_render_counts_nonfinite_pixels);
     tcase_add_test(tc, test_render_reports_progress_after_every_row);
     suite_add_tcase(s, tc);
