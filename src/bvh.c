@@ -10,6 +10,25 @@
 
 typedef struct build_prim { vec3 lo, hi, c; } build_prim;
 
+/* A box must never cull a hit its primitives' own tests accept.  Triangles accept points up to
+ * TRIANGLE_EDGE_EPS (barycentric) outside their edges, and the rounding of both tests grows
+ * with the coordinates' size, so each primitive's box is padded by BVH_BOX_PAD_REL times its
+ * extent plus its distance from the origin: 1e-9 is far beyond both (1e-12 and ~1e-16
+ * relative) and changes no traversal measurably. */
+#define BVH_BOX_PAD_REL 1e-9
+/* The slab test's own rounding: each t = (lo - o) * (1 / d) is within 2 ulp of the exact
+ * value, so the far end of each slab interval is widened by 2 gamma(3) = 6 eps / (1 - 3 eps),
+ * eps = 2^-53 (pbrt-v3, section 3.9.2, "robust ray-bounds intersections"). */
+#define BVH_SLAB_SLACK (6 * 0x1p-53 / (1 - 3 * 0x1p-53))
+
+static void pad_box(vec3 *lo, vec3 *hi)
+{
+    double m = fmax(vec3_max_abs(*lo), vec3_max_abs(*hi));
+    double pad = BVH_BOX_PAD_REL * (m + vec3_max_abs(vec3_sub(*hi, *lo)));
+    *lo = vec3_sub(*lo, vec3_make(pad, pad, pad));
+    *hi = vec3_add(*hi, vec3_make(pad, pad, pad));
+}
+
 typedef struct builder {
     bvh *b;
     build_prim *bp;
@@ -155,6 +174,7 @@ int bvh_build(bvh *b, const scene *sc, error *err)
             p->lo = vec3_min(t->p[0], vec3_min(t->p[1], t->p[2]));
             p->hi = vec3_max(t->p[0], vec3_max(t->p[1], t->p[2]));
         }
+        pad_box(&p->lo, &p->hi);
         p->c = vec3_scale(vec3_add(p->lo, p->hi), 0.5);
         b->prims[i] = (unsigned)i;
     }
@@ -192,19 +212,23 @@ void bvh_free(bvh *b)
     memset(b, 0, sizeof *b);
 }
 
-/* Slab test: does the ray cross the box for some t in (tmin, tmax)? */
+/* Slab test: does the ray cross the box for some t in (tmin, tmax)?  Conservative: the far
+ * end of each slab is widened by BVH_SLAB_SLACK, so rounding never culls a ray through a face. */
 static inline int box_hit(const bvh_node *nd, vec3 o, vec3 inv, double tmin, double tmax)
 {
     double t0 = (nd->lo.x - o.x) * inv.x, t1 = (nd->hi.x - o.x) * inv.x;
     if (t0 > t1) { double t = t0; t0 = t1; t1 = t; }
+    t1 += fabs(t1) * BVH_SLAB_SLACK;
     tmin = t0 > tmin ? t0 : tmin;
     tmax = t1 < tmax ? t1 : tmax;
     t0 = (nd->lo.y - o.y) * inv.y; t1 = (nd->hi.y - o.y) * inv.y;
     if (t0 > t1) { double t = t0; t0 = t1; t1 = t; }
+    t1 += fabs(t1) * BVH_SLAB_SLACK;
     tmin = t0 > tmin ? t0 : tmin;
     tmax = t1 < tmax ? t1 : tmax;
     t0 = (nd->lo.z - o.z) * inv.z; t1 = (nd->hi.z - o.z) * inv.z;
     if (t0 > t1) { double t = t0; t0 = t1; t1 = t; }
+    t1 += fabs(t1) * BVH_SLAB_SLACK;
     tmin = t0 > tmin ? t0 : tmin;
     tmax = t1 < tmax ? t1 : tmax;
     /* NaN (0 * inf for a ray in a slab's plane) fails both compares and keeps the old bound */

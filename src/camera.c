@@ -9,6 +9,7 @@ void camera_init(camera *c, vec3 eye, vec3 center, vec3 up, double fovy_degrees,
     c->eye = eye;
     c->w = vec3_normalize(vec3_sub(eye, center));        /* w = (eye - center) / |...| */
     c->u = vec3_normalize(vec3_cross(up, c->w));         /* u = up x w / |...|        */
+    assert(vec3_length2(c->u) > 0); /* eye != center and up not parallel to the view */
     c->v = vec3_cross(c->w, c->u);                       /* v = w x u                 */
     c->tan_half_y = tan(fovy_degrees * M_PI / 360.0);    /* tan(fovy / 2)             */
     c->tan_half_x = c->tan_half_y * (double)width / (double)height;

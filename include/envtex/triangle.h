@@ -17,6 +17,12 @@
  * for any sane coordinates while widening each triangle by an invisible amount. */
 #define TRIANGLE_EDGE_EPS 1e-12
 
+/* Corners typed as collinear are rarely collinear in binary: rounding leaves a sliver whose
+ * normal is noise.  A triangle is treated as degenerate when |d . (e1 x e2)| is below this
+ * fraction of its bound |d| |e1| |e2| - a corner angle (or a grazing angle) under 1e-10 rad,
+ * which no modelled surface has and no pixel can show. */
+#define TRIANGLE_DEGENERATE_EPS 1e-10
+
 /* 1 if the ray meets the triangle at t in (r->tmin, r->tmax), with barycentrics b1, b2 of p1, p2. */
 int triangle_intersect(vec3 p0, vec3 p1, vec3 p2, const ray *r, double *t, double *b1, double *b2);
 

@@ -362,6 +362,42 @@ START_TEST(test_bvh_triangle_hit_fills_barycentrics_and_normals)
 }
 END_TEST
 
+START_TEST(test_bvh_agrees_with_brute_force_on_rays_through_a_silhouette_edge)
+{
+    /* 40 triangles fanned like the pages of a half-open book around a shared spine on the x
+     * axis: the spine is the lower y and z face of every box in the tree.  Rays aimed exactly
+     * at the spine from outside the fan hit it (edges are inside, triangle.h); the boxes must not
+     * cull, by rounding in the slab test, what the triangles accept. */
+    const int n = 40;
+    scene sc;
+    scene_alloc(&sc, 0, n);
+    for (int k = 0; k < n; k++) {
+        double th = 0.5 * M_PI * (k + 0.5) / n;
+        sc.triangles[k] = (scene_triangle){{{-5.1, 0, 0}, {4.7, 0, 0}, {0.3, 5 * cos(th), 5 * sin(th)}}, {{0, 0, 0}}, 0, 0};
+    }
+    error err = {0};
+    bvh b;
+    ck_assert_int_eq(bvh_build(&b, &sc, &err), 0);
+    ck_assert_int_eq(b.is_tree, 1);
+    rng g;
+    rng_seed(&g, 49, 0);
+    for (int k = 0; k < 5000; k++) {
+        vec3 target = vec3_make(-5 + 9.6 * rng_uniform(&g), 0, 0);
+        vec3 o = vec3_make(10 * sym(&g), -1 - 9 * rng_uniform(&g), -1 - 9 * rng_uniform(&g));
+        ray r = {o, vec3_sub(target, o), 0.0, INFINITY};
+        double tb = 0;
+        long idb = -1;
+        int want = brute_closest(&sc, &r, &tb, &idb);
+        hit h;
+        EXPECT_MSG(bvh_intersect(&b, &sc, &r, &h) == want, "ray %d: the bvh missed the spine", k);
+        EXPECT_INT_EQ(bvh_occluded(&b, &sc, &r), want);
+        if (want) EXPECT(h.t == tb);
+    }
+    bvh_free(&b);
+    scene_free(&sc);
+}
+END_TEST
+
 Suite *bvh_suite(void)
 {
     Suite *s = suite_create("bvh");
@@ -376,6 +412,7 @@ Suite *bvh_suite(void)
     tcase_add_test(tc, test_bvh_of_a_geometric_series_stays_within_the_depth_limit);
     tcase_add_test(tc, test_bvh_of_an_empty_scene_never_hits);
     tcase_add_test(tc, test_bvh_triangle_hit_fills_barycentrics_and_normals);
+    tcase_add_test(tc, test_bvh_agrees_with_brute_force_on_rays_through_a_silhouette_edge);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -3,6 +3,8 @@
  * (right = look x up), and an `up` that is not perpendicular still gives an orthonormal frame. */
 #include "envtex/camera.h"
 
+#include <signal.h>
+
 #include "unit.h"
 
 static double angle_between(vec3 a, vec3 b)
@@ -112,6 +114,21 @@ START_TEST(test_camera_rays_are_unit_and_linear_in_the_image_plane)
 }
 END_TEST
 
+/* Programmer errors are asserts (camera.h): the scene parser refuses these cameras. */
+START_TEST(test_camera_with_eye_at_the_centre_asserts)
+{
+    camera c;
+    camera_init(&c, vec3_make(1, 2, 3), vec3_make(1, 2, 3), vec3_make(0, 1, 0), 45, 8, 8);
+}
+END_TEST
+
+START_TEST(test_camera_with_up_along_the_view_asserts)
+{
+    camera c;
+    camera_init(&c, vec3_make(0, 0, 5), vec3_make(0, 0, 0), vec3_make(0, 0, 2), 45, 8, 8);
+}
+END_TEST
+
 Suite *camera_suite(void)
 {
     Suite *s = suite_create("camera");
@@ -121,6 +138,10 @@ Suite *camera_suite(void)
     tcase_add_test(tc, test_camera_row_0_is_at_the_top_and_x_grows_to_the_right);
     tcase_add_test(tc, test_camera_frame_is_orthonormal_for_a_slanted_up);
     tcase_add_test(tc, test_camera_rays_are_unit_and_linear_in_the_image_plane);
+#ifndef NDEBUG
+    tcase_add_test_raise_signal(tc, test_camera_with_eye_at_the_centre_asserts, SIGABRT);
+    tcase_add_test_raise_signal(tc, test_camera_with_up_along_the_view_asserts, SIGABRT);
+#endif
     suite_add_tcase(s, tc);
     return s;
 }

@@ -130,6 +130,26 @@ START_TEST(test_triangle_degenerate_triangles_are_never_hit)
 }
 END_TEST
 
+START_TEST(test_triangle_slivers_left_by_rounding_collinear_corners_are_never_hit)
+{
+    /* a, a + 0.3 v, a + 0.7 v: collinear as typed, a sliver of ~1e-17 area once rounded, whose
+     * "normal" is noise; a ray aimed at the segment must not hit it */
+    rng g;
+    rng_seed(&g, 34, 0);
+    for (int k = 0; k < 500; k++) {
+        vec3 a = vec3_make(rng_uniform(&g), rng_uniform(&g), rng_uniform(&g));
+        vec3 v = vec3_make(rng_uniform(&g) - 0.5, rng_uniform(&g) - 0.5, rng_uniform(&g) - 0.5);
+        vec3 b = vec3_madd(a, v, 0.3), c = vec3_madd(a, v, 0.7);
+        for (int i = 0; i < 100; i++) {
+            vec3 o = vec3_make(rng_uniform(&g) * 4 - 2, rng_uniform(&g) * 4 - 2, rng_uniform(&g) * 4 - 2);
+            ray r = make_ray(o, vec3_sub(vec3_madd(a, v, 0.1 + 0.5 * rng_uniform(&g)), o));
+            double t, b1, b2;
+            EXPECT_MSG(!triangle_intersect(a, b, c, &r, &t, &b1, &b2), "sliver %d hit by ray %d", k, i);
+        }
+    }
+}
+END_TEST
+
 START_TEST(test_triangle_is_hit_from_the_back_too)
 {
     double t, b1, b2;
@@ -206,6 +226,7 @@ Suite *triangle_suite(void)
     tcase_add_test(tc, test_triangle_rays_across_a_shared_edge_find_no_crack);
     tcase_add_test(tc, test_triangle_parallel_ray_misses);
     tcase_add_test(tc, test_triangle_degenerate_triangles_are_never_hit);
+    tcase_add_test(tc, test_triangle_slivers_left_by_rounding_collinear_corners_are_never_hit);
     tcase_add_test(tc, test_triangle_is_hit_from_the_back_too);
     tcase_add_test(tc, test_triangle_hit_respects_tmin_and_tmax_and_misses_behind);
     tcase_add_test(tc, test_triangle_nan_ray_misses);
