@@ -20,20 +20,14 @@ static inline rgb texel(const envlight *el, int c, int r)
     return rgb_make(clean(p[0]) * s, clean(p[1]) * s, clean(p[2]) * s);
 }
 
-/* cos theta at the top edge of row r: row r spans theta in [pi r / h, pi (r + 1) / h] */
-static inline double cos_edge(int r, int h) { return cos(M_PI * r / h); }
-
-/* solid angle of a texel in row r: (cos theta_r - cos theta_{r+1}) 2 pi / w */
-static inline double texel_omega(const envlight *el, int r)
-{
-    return (cos_edge(r, el->h) - cos_edge(r + 1, el->h)) * 2 * M_PI / el->w;
-}
+/* solid angle of a texel in row r: (cos theta_r - cos theta_{r+1}) 2 pi / w (tabulated) */
+static inline double texel_omega(const envlight *el, int r) { return el->row_omega[r]; }
 
 /* world direction -> the texel that holds it (nearest), in the envmap frame */
 static int world_to_texel(const envlight *el, vec3 wi, int *c, int *r, double *sin_theta)
 {
     uv2 uv;
-    vec3 d = envmap_to_frame(el->env, wi);
+    vec3 d = el->identity ? wi : envmap_to_frame(el->env, wi);
     if (latlong_dir_to_uv(d, &uv)) return -1;
     int x = (int)(uv.u * el->w), y = (int)(uv.v * el->h);
     *c = x < el->w ? x : el->w - 1;
@@ -198,10 +192,26 @@ int envlight_build(envlight *el, const envmap *env, envsampling_mode mode, envsa
                                  "as a light (use only 'rotate' before 'envmap')");
     clock_t t0 = clock();
     int w = el->w = env->img->w, h = el->h = env->img->h;
+    el->to_world = mat4_transpose(m);
+    el->identity = 1;
+    for (int i = 0; i < 4; i++)
+        for (int j = 0; j < 4; j++) el->identity &= m.m[i][j] == (i == j);
+    el->cos_edge = malloc((size_t)(h + 1) * sizeof *el->cos_edge);
+    el->row_omega = malloc((size_t)h * sizeof *el->row_omega);
+    if (!el->cos_edge || !el->row_omega) {
+        envlight_free(el);
+        return error_set(err, NULL, 0, "out of memory for a %d-row map", h);
+    }
+    /* row r spans theta in [pi r / h, pi (r + 1) / h]: u = cos theta from 1 down to -1 */
+    for (int r = 0; r <= h; r++) el->cos_edge[r] = r == 0 ? 1.0 : r == h ? -1.0 : cos(M_PI * r / h);
+    for (int r = 0; r < h; r++) el->row_omega[r] = (el->cos_edge[r] - el->cos_edge[r + 1]) * 2 * M_PI / w;
     /* energy of each texel, column-major (outer = column = phi, inner = row = u): the pmf of
      * the lecture's cdf mode.  p(c, r) = L_avg(c, r) dOmega_r / |L| */
     double *energy = malloc((size_t)w * (size_t)h * sizeof *energy);
-    if (!energy) return error_set(err, NULL, 0, "out of memory for the sampling table of a %d x %d map", w, h);
+    if (!energy) {
+        envlight_free(el);
+        return error_set(err, NULL, 0, "out of memory for the sampling table of a %d x %d map", w, h);
+    }
     double power = 0;
     for (int r = 0; r < h; r++) {
         double om = texel_omega(el, r);
@@ -239,17 +249,17 @@ void envlight_free(envlight *el)
     distrib2d_free(&el->table);
     distrib1d_free(&el->point_choice);
     free(el->points);
+    free(el->cos_edge);
+    free(el->row_omega);
     el->points = NULL;
+    el->cos_edge = el->row_omega = NULL;
     el->n_points = 0;
 }
 
-/* envmap frame -> world for sampled directions */
+/* envmap frame -> world for sampled directions (the inverse of a rotation is its transpose) */
 static vec3 frame_to_world(const envlight *el, vec3 d)
 {
-    mat4 to_world;
-    /* the inverse of a rotation is its transpose: no matrix inversion per sample */
-    to_world = mat4_transpose(el->env->to_env);
-    return vec3_normalize(mat4_dir(&to_world, d));
+    return el->identity ? d : vec3_normalize(mat4_dir(&el->to_world, d));
 }
 
 double envlight_pdf(const envlight *el, vec3 wi)
@@ -271,37 +281,38 @@ double envlight_pdf(const envlight *el, vec3 wi)
 
 int envlight_sample(const envlight *el, double xi1, double xi2, int force_inversion, envlight_sample_result *out)
 {
-    vec3 d;
     if (el->mode == ENVSAMPLING_UNIFORM) {
-        d = sampling_uniform_sphere(xi1, xi2);
-    } else if (el->mode == ENVSAMPLING_CDF || el->mode == ENVSAMPLING_CDF_SINTHETA) {
-        int c, r;
-        double pmf, rc, rr;
-        if (el->sampler == ENVSAMPLER_ALIAS && !force_inversion)
-            distrib2d_sample_alias(&el->table, xi1, xi2, &c, &r, &pmf, &rc, &rr);
-        else
-            distrib2d_sample(&el->table, xi1, xi2, &c, &r, &pmf, &rc, &rr);
-        double phi = 2 * M_PI * (c + rc) / el->w; /* uniform in phi inside the column */
-        double cos_t, sin_t;
-        if (el->mode == ENVSAMPLING_CDF) {
-            /* uniform in u = cos theta inside the row: d(omega) = du dv */
-            double u0 = cos_edge(r, el->h), u1 = cos_edge(r + 1, el->h);
-            cos_t = u0 + rr * (u1 - u0);
-            sin_t = sqrt(fmax(0.0, 1 - cos_t * cos_t));
-        } else {
-            double theta = M_PI * (r + rr) / el->h; /* uniform in theta: PBRT */
-            cos_t = cos(theta);
-            sin_t = sin(theta);
-        }
-        d = vec3_make(sin_t * cos(phi), sin_t * sin(phi), cos_t);
-    } else {
-        return 0;
+        out->wi = sampling_uniform_sphere(xi1, xi2); /* uniform in any frame */
+        out->pdf = 1 / (4 * M_PI);
+        out->L = envlight_radiance(el, out->wi);
+        return 1;
     }
-    out->wi = el->mode == ENVSAMPLING_UNIFORM ? d : frame_to_world(el, d);
-    /* L and pdf both from the direction, through the same texel lookup: L / pdf is consistent
-     * even when rounding puts a sample on the neighbouring texel */
-    out->pdf = envlight_pdf(el, out->wi);
-    out->L = envlight_radiance(el, out->wi);
+    if (el->mode != ENVSAMPLING_CDF && el->mode != ENVSAMPLING_CDF_SINTHETA) return 0;
+    int c, r;
+    double pmf, rc, rr;
+    if (el->sampler == ENVSAMPLER_ALIAS && !force_inversion)
+        distrib2d_sample_alias(&el->table, xi1, xi2, &c, &r, &pmf, &rc, &rr);
+    else
+        distrib2d_sample(&el->table, xi1, xi2, &c, &r, &pmf, &rc, &rr);
+    double phi = 2 * M_PI * (c + rc) / el->w; /* uniform in phi inside the column */
+    double cos_t, sin_t;
+    if (el->mode == ENVSAMPLING_CDF) {
+        /* uniform in u = cos theta inside the row: d(omega) = du dv, so pdf = p(c,r) / dOmega */
+        double u0 = el->cos_edge[r], u1 = el->cos_edge[r + 1];
+        cos_t = u0 + rr * (u1 - u0);
+        sin_t = sqrt(fmax(0.0, 1 - cos_t * cos_t));
+        out->pdf = pmf / texel_omega(el, r);
+    } else {
+        double theta = M_PI * (r + rr) / el->h; /* uniform in theta: PBRT */
+        cos_t = cos(theta);
+        sin_t = sin(theta);
+        /* p(omega) = p(c,r) W H / (2 pi^2 sin theta) */
+        out->pdf = sin_t > 0 ? pmf * el->w * el->h / (2 * M_PI * M_PI * sin_t) : 0;
+    }
+    out->wi = frame_to_world(el, vec3_make(sin_t * cos(phi), sin_t * sin(phi), cos_t));
+    /* L and pdf of the sampled texel itself (envlight_pdf / envlight_radiance of wi agree
+     * except on texel edges, a set of measure zero) */
+    out->L = texel(el, c, r);
     return out->pdf > 0;
 }
 
@@ -313,7 +324,7 @@ int envlight_mediancut_pick(const envlight *el, double xi, double xi1, double xi
     int i = distrib1d_sample(&el->point_choice, xi, &pmf, NULL);
     const envlight_point *pt = &el->points[i];
     /* jitter inside the stratum, uniform in (cos theta, phi): for the shadow ray only */
-    double u0 = cos_edge(pt->r0, el->h), u1 = cos_edge(pt->r1, el->h);
+    double u0 = el->cos_edge[pt->r0], u1 = el->cos_edge[pt->r1];
     double cos_t = u0 + xi1 * (u1 - u0), sin_t = sqrt(fmax(0.0, 1 - cos_t * cos_t));
     double phi = 2 * M_PI * (pt->c0 + xi2 * (pt->c1 - pt->c0)) / el->w;
     *shadow_dir = frame_to_world(el, vec3_make(sin_t * cos(phi), sin_t * sin(phi), cos_t));

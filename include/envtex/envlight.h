@@ -52,6 +52,10 @@ typedef struct envlight {
     double power;        /* |L| = sum over texels of L_avg dOmega (after scale) */
     long n_bad;          /* NaN / Inf / negative texel channels found */
     int fell_back;       /* 1 if the map was black and sampling is uniform */
+    double *cos_edge;    /* h + 1 entries: cos theta at the top edge of each row (and the bottom) */
+    double *row_omega;   /* h entries: solid angle of one texel of each row */
+    int identity;        /* the envmap transform is the identity: skip the matrix per sample */
+    mat4 to_world;       /* envmap frame -> world (the transpose of env->to_env, a rotation) */
     envlight_point *points; int n_points; /* mediancut */
     distrib1d point_choice; /* mediancut: choose a point light by power */
     double build_seconds;

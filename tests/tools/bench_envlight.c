@@ -1,0 +1,95 @@
+/* bench_envlight.c - microbenchmarks of environment sampling (make bench):
+ *   - sample + pdf of a 2048 x 1024 sun map, ns per call (median of repeats), alias and binary;
+ *   - table build time of a 4096 x 2048 map (cdf mode; alias tables on top).
+ * The map is the procedural sun sky (a sun 10^5 times the sky), the case sampling is for. */
+#include <stdio.h>
+#include <stdlib.h>
+#include <time.h>
+
+#include "envtex/envlight.h"
+#include "envtex/genenv.h"
+#include "envtex/rng.h"
+
+static double now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+static int cmp(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+static double median(double *v, int n)
+{
+    qsort(v, (size_t)n, sizeof *v, cmp);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+static int make_env(int w, image *img, envmap *env, error *err)
+{
+    genenv_params p = genenv_defaults();
+    p.width = w;
+    if (genenv_make(GENENV_SUN, &p, img, err)) return -1;
+    env->present = 1;
+    env->img = img;
+    env->scale = 1;
+    env->to_env = mat4_identity();
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    int repeats = argc > 1 ? atoi(argv[1]) : 7;
+    if (repeats < 1) repeats = 1;
+    error err = {0};
+    image img = {0};
+    envmap env = {0};
+    if (make_env(2048, &img, &env, &err)) goto fail;
+    const int n = 1 << 20;
+    static const char *names[] = {"binary", "alias"};
+    double result[2];
+    for (int s = 0; s < 2; s++) {
+        envlight el;
+        if (envlight_build(&el, &env, ENVSAMPLING_CDF, (envsampler_kind)s, 0, &err)) goto fail;
+        double t[64], sink = 0;
+        for (int k = 0; k < repeats && k < 64; k++) {
+            rng g;
+            rng_seed(&g, 1, (uint64_t)k);
+            double t0 = now();
+            for (int i = 0; i < n; i++) {
+                envlight_sample_result r;
+                envlight_sample(&el, rng_uniform(&g), rng_uniform(&g), 0, &r); /* sample + pdf + L */
+                sink += r.pdf;
+            }
+            t[k] = (now() - t0) / n * 1e9;
+        }
+        result[s] = median(t, repeats < 64 ? repeats : 64);
+        printf("envlight sample+pdf 2048x1024 sun, %-6s: median %6.1f ns per sample (%d repeats of %d)%s\n",
+               names[s], result[s], repeats, n, sink < 0 ? "!" : "");
+        envlight_free(&el);
+    }
+    printf("envlight alias / binary time ratio: %.2f (target: alias <= 30 ns)\n", result[1] / result[0]);
+    image_free(&img);
+    if (make_env(4096, &img, &env, &err)) goto fail;
+    for (int s = 0; s < 2; s++) {
+        double t[64];
+        for (int k = 0; k < repeats && k < 64; k++) {
+            envlight el;
+            double t0 = now();
+            if (envlight_build(&el, &env, ENVSAMPLING_CDF, (envsampler_kind)s, 0, &err)) goto fail;
+            t[k] = now() - t0;
+            envlight_free(&el);
+        }
+        printf("envlight tables 4096x2048, %-6s: median %.3f s to build (target <= 0.5 s)\n", names[s],
+               median(t, repeats < 64 ? repeats : 64));
+    }
+    image_free(&img);
+    return 0;
+fail:
+    error_print(&err, stderr);
+    return 1;
+}
