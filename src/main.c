@@ -212,8 +212,8 @@ static int cmd_render(int argc, char **argv)
     tm.gamma = sc.gamma;
     if (imageio_write(out_path, &img, &tm, &err)) goto done;
 
-    printf("time_s=%.3f spp=%d rays=%lld mrays_per_s=%.3f nonfinite=%ld", st.seconds, st.spp, st.rays,
-           st.seconds > 0 ? st.rays / st.seconds / 1e6 : 0.0, st.nonfinite_pixels);
+    printf("time_s=%.3f spp=%d rays=%lld mrays_per_s=%.3f nonfinite=%ld build_s=%.3f", st.seconds, st.spp,
+           st.rays, st.seconds > 0 ? st.rays / st.seconds / 1e6 : 0.0, st.nonfinite_pixels, st.build_seconds);
     if (ref_path) {
         compare_result cr;
         if (compare_metrics(&img, &ref, &cr, &err)) {
