@@ -6,6 +6,8 @@
 #   make bench      benchmarks (medians of repeated runs)
 #   make update-golden   re-render the golden references (look at them before committing)
 #   make deps       install the Debian packages envtex needs (apt-get, as root or via sudo)
+#   make fuzz       libFuzzer on every parser, FUZZ_SECONDS each (needs clang; docs/robustness.md)
+#   make valgrind   every data scene and the bad-input catalogue under valgrind
 #
 # User CFLAGS / LDFLAGS are respected; the project's own flags live in ET_CFLAGS.
 
@@ -104,3 +106,70 @@ clean:
 	rm -rf build build-asan envtex out
 
 -include $(LIB_OBJ:.o=.d) $(BUILD)/obj/main.d
+
+# ---- hostile input (docs/robustness.md) ----------------------------------------------------
+# Fuzz targets: tests/fuzz/fuzz_NAME.c, one per parser.  `make test` builds each with the
+# project's compiler and tests/fuzz/replay.c (a plain main) into $(BUILD)/fuzz/fuzz_NAME, and
+# tests/fuzz/run-tests replays the seed corpora and the regression inputs through them.
+FUZZ_SRC = $(wildcard tests/fuzz/fuzz_*.c)
+FUZZ_NAMES = $(FUZZ_SRC:tests/fuzz/fuzz_%.c=%)
+FUZZ_REPLAY_BIN = $(FUZZ_NAMES:%=$(BUILD)/fuzz/fuzz_%)
+
+$(BUILD)/fuzz/fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/fuzz.c tests/fuzz/replay.c tests/fuzz/fuzz.h \
+		tests/fuzz/fuzz_image.h $(BUILD)/libenvtex.a
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -Itests/fuzz -o $@ $< tests/fuzz/fuzz.c tests/fuzz/replay.c \
+		$(BUILD)/libenvtex.a $(LDFLAGS) $(PKG_LIBS)
+
+test: $(FUZZ_REPLAY_BIN)
+
+# `make fuzz [FUZZ_SECONDS=60] [FUZZ_TARGETS="scene exr"]`: libFuzzer, one target at a time,
+# each for FUZZ_SECONDS.  New inputs go to build-fuzz/corpus/NAME, crashes to
+# build-fuzz/crashes/ (keep each one under tests/fuzz/regressions/NAME/ once it is fixed).
+FUZZ_SECONDS ?= 60
+FUZZ_TARGETS ?= $(FUZZ_NAMES)
+FUZZ_CC ?= clang
+FUZZ_BUILD = build-fuzz
+FUZZ_SAN = -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+FUZZ_MAX_LEN_scene = 8192
+FUZZ_MAX_LEN_DEFAULT = 65536
+
+fuzz:
+	@command -v $(FUZZ_CC) >/dev/null 2>&1 || { echo "envtex: make fuzz needs clang and libFuzzer; run: sudo apt-get install -y clang libclang-rt-14-dev" >&2; exit 1; }
+	@$(MAKE) --no-print-directory BUILD=$(FUZZ_BUILD) CC=$(FUZZ_CC) \
+		CFLAGS="-O1 -g -fsanitize=fuzzer-no-link $(FUZZ_SAN)" $(FUZZ_BUILD)/libenvtex.a
+	@mkdir -p $(FUZZ_BUILD)/crashes
+	@set -e; for t in $(FUZZ_TARGETS); do \
+		$(FUZZ_CC) $(ET_CFLAGS) $(PKG_CFLAGS) -O1 -g -fsanitize=fuzzer $(FUZZ_SAN) -Itests/fuzz \
+			-o $(FUZZ_BUILD)/fuzz_$$t tests/fuzz/fuzz_$$t.c tests/fuzz/fuzz.c \
+			$(FUZZ_BUILD)/libenvtex.a $(PKG_LIBS); \
+	done
+	@set -e; for t in $(FUZZ_TARGETS); do \
+		case $$t in scene) len=$(FUZZ_MAX_LEN_scene);; *) len=$(FUZZ_MAX_LEN_DEFAULT);; esac; \
+		mkdir -p $(FUZZ_BUILD)/corpus/$$t; \
+		seeds=""; for d in tests/fuzz/corpus/$$t tests/fuzz/regressions/$$t; do [ -d $$d ] && seeds="$$seeds $$d"; done; \
+		echo "fuzz: $$t for $(FUZZ_SECONDS) s (max_len $$len)"; \
+		$(FUZZ_BUILD)/fuzz_$$t -max_total_time=$(FUZZ_SECONDS) -max_len=$$len -rss_limit_mb=2048 \
+			-timeout=10 -print_final_stats=1 -artifact_prefix=$(FUZZ_BUILD)/crashes/$$t- \
+			$(FUZZ_BUILD)/corpus/$$t $$seeds 2>$(FUZZ_BUILD)/fuzz_$$t.log \
+			|| { tail -n 40 $(FUZZ_BUILD)/fuzz_$$t.log; echo "fuzz: $$t found a crash (see $(FUZZ_BUILD)/crashes/)"; exit 1; }; \
+		grep -E '^(stat::number_of_executed_units|Done)' $(FUZZ_BUILD)/fuzz_$$t.log || true; \
+	done
+
+# `make valgrind`: every data scene rendered under valgrind (no errors, no leaks), then the
+# bad-input catalogue (tests/bad) with envtex run under valgrind.
+VALGRIND = valgrind -q --error-exitcode=99 --leak-check=full --errors-for-leak-kinds=definite,indirect
+valgrind: $(BUILD)/envtex
+	@command -v valgrind >/dev/null 2>&1 || { echo "envtex: make valgrind needs valgrind; run: sudo apt-get install -y valgrind" >&2; exit 1; }
+	@set -e; tmp=$$(mktemp -d); trap 'rm -rf "$$tmp"' EXIT; \
+	for s in data/scenes/*.test; do \
+		echo "valgrind: $$s"; \
+		$(VALGRIND) $(BUILD)/envtex render $$s -o $$tmp/out.exr --quiet --spp 1 >/dev/null; \
+	done
+	@BUILD=$(BUILD) ENVTEX=$(BUILD)/envtex WRAP="$(VALGRIND)" tests/bad/run-tests
+
+clean: clean-fuzz
+clean-fuzz:
+	rm -rf $(FUZZ_BUILD)
+
+.PHONY: fuzz valgrind clean-fuzz

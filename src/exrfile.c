@@ -87,6 +87,14 @@ static const char *exr_why(const exr_stream *s, exr_result_t r)
 
 /* ---- reading ------------------------------------------------------------------------------- */
 
+/* The most any OpenEXR compression expands (unpacked / packed bytes of a chunk), with a wide
+ * margin: zlib (ZIP, ZIPS, PXR24) at most 1032 : 1 (1376 : 1 counting PXR24's 24-bit floats),
+ * RLE 64 : 1, B44 about 11 : 1, PIZ's run-length Huffman codes about 450 : 1. */
+#define EXR_MAX_EXPANSION 4096.0
+/* A display window larger than the data window is padded with black; beyond this many pixels
+ * (4096 x 4096) the padding must be backed by a data window that large. */
+#define EXR_MAX_PADDING_PIXELS (1L << 24)
+
 /* Which channels feed r, g, b: indices into the channel list; grey = 1 when only Y is read. */
 typedef struct exr_pick {
     int idx[3];
@@ -230,6 +238,45 @@ fail:
                      exr_why(s, r));
 }
 
+/* Before anything is allocated, the header's claims must fit in the file (docs/robustness.md):
+ * every chunk lies inside the file, and the chunks together cannot decode to more than
+ * EXR_MAX_EXPANSION times their stored size (exactly their size when uncompressed).  So the data
+ * window of a 100-byte file cannot ask for gigabytes: a truncated or forged file is refused
+ * here, not after a 3 GB allocation.  One pass over the chunk headers (the library reads the
+ * chunk table once and a few bytes per chunk). */
+static int check_claims(exr_context_t ctx, exr_storage_t storage, exr_compression_t comp,
+                        const exr_attr_box2i_t *dw, int32_t tile_w, int32_t tile_h, int32_t lines,
+                        exr_stream *s, const char *path, error *err)
+{
+    double packed = 0.0, unpacked = 0.0; /* sums of bytes, double: no overflow */
+    long data_w = (long)dw->max.x - dw->min.x + 1, data_h = (long)dw->max.y - dw->min.y + 1;
+    long ntx = 1, nty = (data_h + lines - 1) / lines;
+    if (storage == EXR_STORAGE_TILED) {
+        ntx = (data_w + tile_w - 1) / tile_w;
+        nty = (data_h + tile_h - 1) / tile_h;
+    }
+    for (long ty = 0; ty < nty; ty++)
+        for (long tx = 0; tx < ntx; tx++) {
+            exr_chunk_info_t ci;
+            exr_result_t r = storage == EXR_STORAGE_TILED
+                                 ? exr_read_tile_chunk_info(ctx, 0, (int)tx, (int)ty, 0, 0, &ci)
+                                 : exr_read_scanline_chunk_info(ctx, 0, (int)(dw->min.y + ty * lines), &ci);
+            if (r != EXR_ERR_SUCCESS)
+                return error_set(err, path, 0, "bad OpenEXR chunk %ld of %ld: %s", ty * ntx + tx + 1,
+                                 ntx * nty, exr_why(s, r));
+            if (ci.data_offset > (uint64_t)s->size || ci.packed_size > (uint64_t)s->size - ci.data_offset)
+                return error_set(err, path, 0, "truncated OpenEXR file: chunk %ld of %ld ends past the end of the file",
+                                 ty * ntx + tx + 1, ntx * nty);
+            packed += (double)ci.packed_size;
+            unpacked += (double)ci.unpacked_size;
+        }
+    double most = comp == EXR_COMPRESSION_NONE ? packed : EXR_MAX_EXPANSION * packed;
+    if (unpacked > most)
+        return error_set(err, path, 0, "corrupt or truncated OpenEXR file: %ld x %ld pixels need %.0f bytes, "
+                         "more than its %.0f bytes of chunks can hold", data_w, data_h, unpacked, packed);
+    return 0;
+}
+
 int exrfile_read(const char *path, image *out, error *err)
 {
     out->w = out->h = 0;
@@ -312,6 +359,13 @@ int exrfile_read(const char *path, image *out, error *err)
         }
         t.buf_w = (int)data_w;
         if (lines > data_h) lines = (int32_t)data_h;
+    }
+    if (check_claims(ctx, storage, comp, &dw, tile_w, tile_h, lines, &s, path, err)) goto done;
+    if (disp_w * disp_h > data_w * data_h && disp_w * disp_h > EXR_MAX_PADDING_PIXELS) {
+        error_set(err, path, 0, "display window %ld x %ld is far larger than the data window %ld x %ld "
+                  "(envtex pads a data window with at most %ld pixels of black)",
+                  disp_w, disp_h, data_w, data_h, EXR_MAX_PADDING_PIXELS);
+        goto done;
     }
     if (image_alloc(&im, (int)disp_w, (int)disp_h, err)) { error_prefix(err, "%s", path); goto done; }
     t.im = &im;

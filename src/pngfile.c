@@ -8,13 +8,18 @@
 #include "envtex/pngfile.h"
 
 #include <errno.h>
+#include <math.h>
 #include <png.h>
 #include <setjmp.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "envtex/imageio.h"
+
+/* Deflate's largest expansion: a 258-byte match coded in 2 bits is 1032 : 1 (RFC 1951). */
+#define PNG_MAX_INFLATE_RATIO 1032.0
 
 typedef struct png_job {
     const char *path;
@@ -49,6 +54,17 @@ static int read_body(png_job *job, error *err)
     int depth, type, interlace;
     png_get_IHDR(job->png, job->info, &w, &h, &depth, &type, &interlace, NULL, NULL);
     if (image_check_size((long)w, (long)h, job->path, err)) return -1; /* before any pixel memory */
+    /* The pixels are deflated, and deflate expands at most PNG_MAX_INFLATE_RATIO times, so the
+     * file size bounds the size a PNG can truly have: a 100-byte file that claims 16384 x 16384
+     * is refused before 3 GB are allocated.  raw = h (1 + ceil(w channels depth / 8)), the
+     * filtered rows of a non-interlaced image (an interlaced one has more). */
+    struct stat st;
+    double raw = (double)h * (1.0 + ceil((double)w * png_get_channels(job->png, job->info) * depth / 8.0));
+    if (fstat(fileno(job->f), &st) == 0 && raw > PNG_MAX_INFLATE_RATIO * (double)st.st_size)
+        return error_set(err, job->path, 0,
+                         "corrupt or truncated PNG: %u x %u pixels need %.0f bytes of image data, "
+                         "more than a %lld-byte file can hold", (unsigned)w, (unsigned)h, raw,
+                         (long long)st.st_size);
 
     /* every layout to 8- or 16-bit RGB */
     if (type == PNG_COLOR_TYPE_PALETTE) png_set_palette_to_rgb(job->png);

@@ -15,6 +15,9 @@
  * and Radiance itself uses 1e-32 as its "black" cut-off. */
 #define RGBE_BLACK 1e-32
 
+/* The fewest bytes a scanline can take: one 4-byte pixel (flat) or the 4-byte RLE marker. */
+#define RGBE_MIN_SCANLINE_BYTES 4L
+
 void rgbe_to_float(const unsigned char in[4], float c[3])
 {
     if (in[3] == 0) {
@@ -168,6 +171,14 @@ int rgbe_read(const char *path, image *out, error *err)
         goto done;
     }
     if (image_check_size(w, h, path, err)) goto done;
+    /* Every scanline takes at least RGBE_MIN_SCANLINE_BYTES (a pixel, or the RLE marker), so
+     * the file size bounds the height before the image is allocated: a 100-byte file that
+     * claims 16384 x 16384 is refused here instead of costing 3 GB. */
+    if ((size_t)h > (n - at) / RGBE_MIN_SCANLINE_BYTES) {
+        error_set(err, path, 0, "truncated Radiance file: %ld scanlines need at least %ld bytes, the file has %zu after its header",
+                  h, h * RGBE_MIN_SCANLINE_BYTES, n - at);
+        goto done;
+    }
     if (image_alloc(&im, (int)w, (int)h, err)) { error_prefix(err, "%s", path); goto done; }
     scan = malloc((size_t)w * 4);
     if (!scan) {

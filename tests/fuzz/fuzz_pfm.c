@@ -1,0 +1,5 @@
+/* fuzz_pfm.c - libFuzzer target for pfm_read (include/envtex/pfm.h); see tests/fuzz/README.md. */
+#include "envtex/pfm.h"
+#include "fuzz_image.h"
+
+FUZZ_IMAGE_TARGET(pfm_read)
