@@ -8,15 +8,47 @@
 void envmap_init(envmap *env, const scene *sc)
 {
     memset(env, 0, sizeof *env);
-    if (!sc->envmap.present || sc->envmap.img.w == 0) return;
+    const scene_envmap *e = &sc->envmap;
+    if (!e->present) return;
+    if (e->kind == CONVERT_CUBE ? e->cube.size == 0 : e->img.w == 0) return;
     env->present = 1;
-    env->img = &sc->envmap.img;
-    env->scale = sc->envmap.scale;
-    env->to_env = sc->envmap.inv;
+    env->kind = e->kind;
+    if (e->kind == CONVERT_CUBE) env->cube = &e->cube;
+    else env->img = &e->img;
+    if (e->kind == CONVERT_CYLINDRICAL)
+        env->max_height = e->max_height > 0 ? e->max_height
+                                            : convert_cylindrical_height(e->img.w, e->img.h);
+    env->scale = e->scale;
+    env->to_env = e->inv;
+}
+
+convert_env envmap_view(const envmap *env)
+{
+    convert_env v;
+    v.kind = env->kind;
+    v.img = env->img;
+    v.cube = env->cube;
+    v.max_height = env->max_height;
+    return v;
 }
 
 rgb envmap_radiance(const envmap *env, vec3 d)
 {
     if (!env->present) return rgb_gray(0);
-    return rgb_scale(latlong_lookup_bilinear(env->img, envmap_to_frame(env, d)), env->scale);
+    vec3 f = envmap_to_frame(env, d);
+    /* the common case without the dispatch */
+    if (env->kind == CONVERT_LATLONG) return rgb_scale(latlong_lookup_bilinear(env->img, f), env->scale);
+    convert_env v = envmap_view(env);
+    return rgb_scale(convert_lookup(&v, f), env->scale);
+}
+
+int envmap_to_latlong(const envmap *env, int width, int samples, image *out, error *err)
+{
+    memset(out, 0, sizeof *out);
+    if (!env->present) return error_set(err, NULL, 0, "no environment map to convert");
+    convert_env v = envmap_view(env);
+    convert_map m;
+    if (convert_resample(&v, CONVERT_LATLONG, width, samples, &m, err)) return -1;
+    *out = m.img; /* the map's only allocation moves to the caller */
+    return 0;
 }

@@ -65,7 +65,7 @@ typedef struct parser {
     /* bookkeeping */
     long max_prims;            /* SCENE_MAX_PRIMS unless the options lower it */
     int seen_size, warned_order;
-    char envmap_token[1024];   /* the envmap file name as written, for messages */
+    char envmap_token[CUBEMAP_FACES][1024]; /* the envmap file name(s) as written, for messages */
 } parser;
 
 /* ---- messages --------------------------------------------------------------------------- */
@@ -655,26 +655,82 @@ static int cmd_envsampler(parser *p)
     return 0;
 }
 
+/* Token i of an `envmap` line as a file name into dst (relative names are relative to the scene
+ * file's folder; absolute ones are kept), remembering the token as written for messages. */
+static int envmap_file(parser *p, int i, char *dst, size_t size, char *token, size_t token_size)
+{
+    const char *file = p->tok[i];
+    size_t n = strlen(file);
+    if (n >= token_size)
+        return fail(p, "'envmap' file name is longer than %zu bytes", token_size - 1);
+    const char *base = file[0] == '/' ? "" : p->base;
+    int w = snprintf(dst, size, "%s%s", base, file);
+    if (w < 0 || (size_t)w >= size)
+        return fail(p, "'envmap' path '%s%s' is longer than %zu bytes", base, file, size - 1);
+    memcpy(token, file, n + 1);
+    return 0;
+}
+
+/* 1 if token i reads as a number (finite or not: arg_nonneg then names what is wrong). */
+static int token_is_number(const parser *p, int i)
+{
+    char *end;
+    (void)strtod(p->tok[i], &end);
+    return end != p->tok[i] && *end == '\0';
+}
+
+/* `envmap FILE [SCALE] [latlong|cube|cross|mirrorball|angular|cylindrical|equalarea]` or
+ * `envmap cube PX NX PY NY PZ NZ [SCALE]`.  The images are read by finish(). */
 static int cmd_envmap(parser *p)
 {
     scene_envmap *e = &p->sc->envmap;
+    int nargs = p->ntok - 1;
     if (e->present) return fail(p, "envmap given twice (first at line %d)", e->line);
+    if (nargs == 0)
+        return fail(p, "'envmap' takes FILE [SCALE] [REPRESENTATION] or cube PX NX PY NY PZ NZ "
+                       "[SCALE], got no arguments");
     double scale = 1.0;
-    if (p->ntok == 3 && arg_nonneg(p, 2, 1, &scale)) return -1;
+    int six = strcmp(p->tok[1], "cube") == 0 && nargs > 1;
+    if (six) {
+        if (nargs != 7 && nargs != 8)
+            return fail(p, "'envmap cube' takes six face files PX NX PY NY PZ NZ and an optional "
+                           "scale, got %d argument%s", nargs - 1, nargs == 2 ? "" : "s");
+        if (nargs == 8 && arg_nonneg(p, 8, 1, &scale)) return -1;
+    } else {
+        int i = 2;
+        if (i <= nargs && token_is_number(p, i)) {
+            if (arg_nonneg(p, i, 1, &scale)) return -1;
+            i++;
+        }
+        if (i <= nargs) {
+            convert_kind kind;
+            if (convert_kind_parse(p->tok[i], &kind))
+                return fail(p, "'envmap' representation must be 'latlong', 'cube', 'cross', "
+                               "'mirrorball', 'angular', 'cylindrical' or 'equalarea', got '%s'",
+                            p->tok[i]);
+            e->kind = kind;
+            e->kind_given = 1;
+            i++;
+        }
+        if (i <= nargs)
+            return fail(p, "'envmap FILE' takes a scale and a representation at most, got '%s' "
+                           "after them", p->tok[i]);
+    }
     const mat4 *inv;
     if (xf_inverse(p, &inv)) return -1;
-    const char *file = p->tok[1];
-    size_t n = strlen(file);
-    if (n >= sizeof p->envmap_token)
-        return fail(p, "'envmap' file name is longer than %zu bytes",
-                    sizeof p->envmap_token - 1);
-    /* relative names are relative to the scene file's folder; absolute ones are kept */
-    const char *base = file[0] == '/' ? "" : p->base;
-    int w = snprintf(e->path, sizeof e->path, "%s%s", base, file);
-    if (w < 0 || (size_t)w >= sizeof e->path)
-        return fail(p, "'envmap' path '%s%s' is longer than %zu bytes", base, file,
-                    sizeof e->path - 1);
-    memcpy(p->envmap_token, file, n + 1);
+    if (six) {
+        for (int f = 0; f < CUBEMAP_FACES; f++)
+            if (envmap_file(p, 2 + f, e->face_path[f], sizeof e->face_path[f], p->envmap_token[f],
+                            sizeof p->envmap_token[f]))
+                return -1;
+        memcpy(e->path, e->face_path[0], sizeof e->path);
+        e->kind = CONVERT_CUBE;
+        e->kind_given = 1;
+        e->six_files = 1;
+    } else if (envmap_file(p, 1, e->path, sizeof e->path, p->envmap_token[0],
+                           sizeof p->envmap_token[0])) {
+        return -1;
+    }
     e->present = 1;
     e->scale = scale;
     e->xf = p->xf;
@@ -726,7 +782,7 @@ static const command commands[] = {
     {"brdf", cmd_brdf, 1, 1},
     {"roughness", cmd_roughness, 1, 1},
     {"gamma", cmd_gamma, 1, 1},
-    {"envmap", cmd_envmap, 1, 2},
+    {"envmap", cmd_envmap, 0, MAX_TOKENS - 2}, /* cmd_envmap checks the two forms itself */
     {"envmiss", cmd_envmiss, 1, 1},
     {"ior", cmd_ior, 1, 1},
     {"envsampling", cmd_envsampling, 1, 2},
@@ -789,6 +845,54 @@ static int run_line(parser *p)
     return c->run(p);
 }
 
+/* An envmap image problem, reported at the `envmap` line: "envmap 'TOKEN' (PATH): why" (the
+ * resolved path only when it differs from the token). */
+static int envmap_error(parser *p, int face, const char *why)
+{
+    scene_envmap *e = &p->sc->envmap;
+    const char *token = p->envmap_token[face];
+    const char *path = e->six_files ? e->face_path[face] : e->path;
+    if (strcmp(token, path) == 0)
+        return error_set(p->err, p->name, e->line, "envmap '%s': %s", token, why);
+    return error_set(p->err, p->name, e->line, "envmap '%s' (%s): %s", token, path, why);
+}
+
+/* Read the envmap image(s) and settle the representation: six faces, or one image whose kind
+ * was named or is detected from its shape (convert_kind_detect); a cross is split into faces. */
+static int load_envmap(parser *p)
+{
+    scene_envmap *e = &p->sc->envmap;
+    error ie;
+    memset(&ie, 0, sizeof ie);
+    if (e->six_files) {
+        for (int f = 0; f < CUBEMAP_FACES; f++) {
+            image *im = &e->cube.face[f];
+            if (imageio_read(e->face_path[f], im, &ie)) return envmap_error(p, f, ie.msg);
+            char why[128];
+            if (im->w != im->h) {
+                snprintf(why, sizeof why, "a cube face must be square, not %d x %d", im->w, im->h);
+                return envmap_error(p, f, why);
+            }
+            if (im->w != e->cube.face[0].w) {
+                snprintf(why, sizeof why, "cube faces differ in size: %d x %d here, %d x %d for +X",
+                         im->w, im->h, e->cube.face[0].w, e->cube.face[0].h);
+                return envmap_error(p, f, why);
+            }
+        }
+        e->cube.size = e->cube.face[0].w;
+        return 0;
+    }
+    if (imageio_read(e->path, &e->img, &ie)) return envmap_error(p, 0, ie.msg);
+    if (!e->kind_given && convert_kind_detect(e->img.w, e->img.h, &e->kind, &ie))
+        return envmap_error(p, 0, ie.msg);
+    if (e->kind == CONVERT_CUBE) {
+        if (cubemap_from_cross(&e->img, &e->cube, &ie)) return envmap_error(p, 0, ie.msg);
+        image_free(&e->img);
+    }
+    if (e->kind == CONVERT_CYLINDRICAL) e->max_height = convert_cylindrical_height(e->img.w, e->img.h);
+    return 0;
+}
+
 /* After the last line: what a renderer needs, then the envmap image. */
 static int finish(parser *p)
 {
@@ -798,17 +902,7 @@ static int finish(parser *p)
     if (!sc->has_camera) return error_set(p->err, p->name, 0, "no 'camera' command");
     if (p->depth > 0)
         warn(p, "%d 'pushTransform' without 'popTransform' at the end of the file", p->depth);
-    if (sc->envmap.present && p->opts->load_images) {
-        error ie;
-        memset(&ie, 0, sizeof ie);
-        if (imageio_read(sc->envmap.path, &sc->envmap.img, &ie)) {
-            if (strcmp(p->envmap_token, sc->envmap.path) == 0)
-                return error_set(p->err, p->name, sc->envmap.line, "envmap '%s': %s",
-                                 p->envmap_token, ie.msg);
-            return error_set(p->err, p->name, sc->envmap.line, "envmap '%s' (%s): %s",
-                             p->envmap_token, sc->envmap.path, ie.msg);
-        }
-    }
+    if (sc->envmap.present && p->opts->load_images && load_envmap(p)) return -1;
     return 0;
 }
 
@@ -987,6 +1081,7 @@ void scene_free(scene *sc)
     free(sc->triangles);
     free(sc->lights);
     image_free(&sc->envmap.img);
+    cubemap_free(&sc->envmap.cube);
     memset(sc, 0, sizeof *sc);
 }
 

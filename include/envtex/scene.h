@@ -17,6 +17,7 @@
 
 #include <stdint.h>
 
+#include "envtex/convert.h"
 #include "envtex/error.h"
 #include "envtex/image.h"
 #include "envtex/transform.h"
@@ -93,12 +94,25 @@ typedef enum envsampling_mode {
 typedef enum envsampler_kind { ENVSAMPLER_BINARY, ENVSAMPLER_ALIAS } envsampler_kind;
 #define SCENE_MAX_MEDIANCUT 65536
 
+/* `envmap FILE [SCALE] [latlong|cube|cross|mirrorball|angular|cylindrical|equalarea]` or
+ * `envmap cube PX NX PY NY PZ NZ [SCALE]` (docs/scene-format.md).  Without a keyword the
+ * representation is detected from the image's shape when scene_load reads it (2:1 lat-long,
+ * 4:3 or 3:4 a cube cross; a square image needs the keyword). */
 typedef struct scene_envmap {
     int present;        /* 0: no envmap (rays that leave see black) */
-    char path[1024];    /* resolved path (relative to the scene file's folder) */
+    char path[1024];    /* resolved path (relative to the scene file's folder); the +X face
+                           of the six-file form */
     double scale;       /* radiance multiplier, default 1 */
     mat4 xf, inv;       /* envmap frame -> world (transform current at `envmap`) and inverse */
-    image img;          /* the lat-long map, loaded by scene_load; owned */
+    convert_kind kind;  /* the representation: CONVERT_LATLONG (0) unless named or detected */
+    int kind_given;     /* 1: the line named it (keyword or six-file form); 0: detect */
+    int six_files;      /* 1: `envmap cube PX NX PY NY PZ NZ` */
+    char face_path[CUBEMAP_FACES][1024]; /* six_files: resolved paths, +X -X +Y -Y +Z -Z */
+    image img;          /* the map for every kind but cube (lat-long, mirror ball, ...), loaded
+                           by scene_load; owned */
+    cubemap cube;       /* kind CONVERT_CUBE: the faces (six files, or a cross split); owned */
+    double max_height;  /* kind CONVERT_CYLINDRICAL: half height h of the cylinder, set when
+                           loaded to convert_cylindrical_height (pi H / W: square texels) */
     int line;           /* line of the `envmap` command, for messages */
 } scene_envmap;
 

@@ -1,6 +1,7 @@
 /* test_scene.c - the scene-file parser: every command's effect and default, the transform
  * order, material deduplication, and every error path at its FILE:LINE naming its token. */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -93,8 +94,9 @@ static const bad_case bad_cases[] = {
     {"size 10 10 10\n", 3, "'size' takes 2 arguments, got 3"},
     {"pushTransform x\n", 3, "'x'"},
     {"output\n", 3, "'output' takes 1 argument, got 0"},
-    {"envmap\n", 3, "'envmap' takes 1 or 2 arguments, got 0"},
-    {"envmap a.exr 1 c\n", 3, "from 'c'"},
+    {"envmap\n", 3, "'envmap' takes FILE [SCALE] [REPRESENTATION] or cube PX NX PY NY PZ NZ"},
+    {"envmap a.exr 1 c\n", 3, "'envmap' representation must be 'latlong', 'cube', 'cross', "
+                              "'mirrorball', 'angular', 'cylindrical' or 'equalarea', got 'c'"},
     {"quadLight 0 0 0 1 0 0 0 1 0 1 1\n", 3, "'quadLight' takes 12 arguments, got 11"},
     /* image size */
     {"size 0 10\n", 3, "'0'"},
@@ -168,6 +170,14 @@ static const bad_case bad_cases[] = {
     {"envmap a.exr\nenvmap b.exr\n", 4, "envmap given twice (first at line 3)"},
     {"envmap sky.exr 0\n", 3, "'envmap' argument 2 must be > 0, got '0'"},
     {"envmap sky.exr nan\n", 3, "'nan'"},
+    {"envmap sky.exr fisheye\n", 3, "got 'fisheye'"},
+    {"envmap sky.exr mirrorball 2\n", 3, "got '2' after them"},
+    {"envmap sky.exr 2 angular extra\n", 3, "got 'extra' after them"},
+    {"envmap cube px.exr nx.exr py.exr\n", 3, "'envmap cube' takes six face files PX NX PY NY PZ NZ "
+                                              "and an optional scale, got 3 arguments"},
+    {"envmap cube a b c d e f 0\n", 3, "'envmap' argument 8 must be > 0, got '0'"},
+    {"envmap cube a b c d e f 1 2\n", 3, "got 8 arguments"},
+    {"scale 1 0 1\nenvmap cube a b c d e f\n", 4, "'envmap' needs the inverse"},
 };
 
 /* a loop test: Check passes the case index as _i */
@@ -825,6 +835,207 @@ START_TEST(test_a_readable_envmap_is_loaded_when_images_are_on)
 }
 END_TEST
 
+START_TEST(test_envmap_keyword_names_the_representation_after_an_optional_scale)
+{
+    static const struct { const char *line; convert_kind kind; double scale; } cases[] = {
+        {"envmap p.exr mirrorball\n", CONVERT_MIRRORBALL, 1},
+        {"envmap p.exr 3 angular\n", CONVERT_ANGULAR, 3},
+        {"envmap p.exr 0.5 latlong\n", CONVERT_LATLONG, 0.5},
+        {"envmap p.exr cross\n", CONVERT_CUBE, 1},  /* one image: a cross */
+        {"envmap p.exr cube\n", CONVERT_CUBE, 1},   /* the same */
+        {"envmap p.exr cylindrical\n", CONVERT_CYLINDRICAL, 1},
+        {"envmap p.exr 2 equalarea\n", CONVERT_EQUALAREA, 2},
+    };
+    for (unsigned i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char text[256];
+        snprintf(text, sizeof text, HEAD "%s", cases[i].line);
+        scene sc;
+        load_ok(text, &sc);
+        ck_assert_int_eq(sc.envmap.kind, cases[i].kind);
+        ck_assert_int_eq(sc.envmap.kind_given, 1);
+        ck_assert_int_eq(sc.envmap.six_files, 0);
+        ck_assert_double_eq(sc.envmap.scale, cases[i].scale);
+        ck_assert_str_eq(sc.envmap.path, "p.exr");
+        scene_free(&sc);
+    }
+    /* no keyword: detected when the image is read; a file named "cube" alone is a file */
+    scene sc;
+    load_ok(HEAD "envmap cube\n", &sc);
+    ck_assert_int_eq(sc.envmap.kind_given, 0);
+    ck_assert_int_eq(sc.envmap.six_files, 0);
+    ck_assert_str_eq(sc.envmap.path, "cube");
+    scene_free(&sc);
+}
+END_TEST
+
+START_TEST(test_envmap_cube_takes_six_faces_relative_to_the_scene_folder)
+{
+    scene_load_opts o = scene_load_defaults();
+    o.load_images = 0;
+    scene sc;
+    error err = {0};
+    ck_assert_int_eq(scene_load_string(HEAD "envmap cube px.exr nx.exr py.exr ny.exr pz.exr "
+                                            "/abs/nz.exr 2\n", "dir/x.test", &o, &sc, &err), 0);
+    ck_assert_int_eq(sc.envmap.kind, CONVERT_CUBE);
+    ck_assert_int_eq(sc.envmap.six_files, 1);
+    ck_assert_int_eq(sc.envmap.kind_given, 1);
+    ck_assert_double_eq(sc.envmap.scale, 2);
+    ck_assert_str_eq(sc.envmap.face_path[0], "dir/px.exr");
+    ck_assert_str_eq(sc.envmap.face_path[3], "dir/ny.exr");
+    ck_assert_str_eq(sc.envmap.face_path[5], "/abs/nz.exr");
+    ck_assert_str_eq(sc.envmap.path, "dir/px.exr");
+    scene_free(&sc);
+    /* without the scale */
+    load_ok(HEAD "envmap cube a b c d e f\n", &sc);
+    ck_assert_double_eq(sc.envmap.scale, 1);
+    ck_assert_str_eq(sc.envmap.face_path[4], "e");
+    scene_free(&sc);
+}
+END_TEST
+
+/* A folder with images for the loading tests below. */
+typedef struct img_dir { char dir[64]; char scene[128]; } img_dir;
+
+static void img_dir_make(img_dir *d)
+{
+    snprintf(d->dir, sizeof d->dir, "/tmp/test_scene_XXXXXX");
+    ck_assert_ptr_nonnull(mkdtemp(d->dir));
+    snprintf(d->scene, sizeof d->scene, "%s/x.test", d->dir);
+}
+
+/* Write a w x h PFM named `name` in the folder, every texel `value`. */
+static void img_write(const img_dir *d, const char *name, int w, int h, double value)
+{
+    char path[256];
+    snprintf(path, sizeof path, "%s/%s", d->dir, name);
+    image im = {0};
+    error err = {0};
+    ck_assert_int_eq(image_alloc(&im, w, h, &err), 0);
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) image_set(&im, x, y, rgb_gray(value));
+    ck_assert_msg(imageio_write(path, &im, NULL, &err) == 0, "%s", err.msg);
+    image_free(&im);
+}
+
+/* Load a scene of HEAD + `line` from the folder with images on: 0 or -1 and *err. */
+static int img_scene_load(const img_dir *d, const char *line, scene *sc, error *err)
+{
+    FILE *f = fopen(d->scene, "w");
+    ck_assert_ptr_nonnull(f);
+    fputs(HEAD, f);
+    fputs(line, f);
+    fclose(f);
+    return scene_load(d->scene, NULL, sc, err);
+}
+
+static void img_dir_remove(img_dir *d)
+{
+    char cmd[160];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", d->dir);
+    ck_assert_int_eq(system(cmd), 0);
+}
+
+START_TEST(test_envmap_representation_is_detected_from_the_image_shape)
+{
+    img_dir d;
+    img_dir_make(&d);
+    img_write(&d, "ll.pfm", 8, 4, 1);
+    img_write(&d, "hcross.pfm", 8, 6, 2);
+    img_write(&d, "vcross.pfm", 6, 8, 3);
+    scene sc;
+    error err = {0};
+    ck_assert_msg(img_scene_load(&d, "envmap ll.pfm\n", &sc, &err) == 0, "%s", err.msg);
+    ck_assert_int_eq(sc.envmap.kind, CONVERT_LATLONG);
+    ck_assert_int_eq(sc.envmap.img.w, 8);
+    scene_free(&sc);
+    /* a 4:3 cross is split into six 2 x 2 faces; the cross itself is not kept */
+    ck_assert_msg(img_scene_load(&d, "envmap hcross.pfm\n", &sc, &err) == 0, "%s", err.msg);
+    ck_assert_int_eq(sc.envmap.kind, CONVERT_CUBE);
+    ck_assert_int_eq(sc.envmap.cube.size, 2);
+    ck_assert_ptr_null(sc.envmap.img.px);
+    ck_assert_double_eq(image_get(&sc.envmap.cube.face[CUBEMAP_POS_Z], 1, 1).r, 2);
+    scene_free(&sc);
+    ck_assert_ptr_null(sc.envmap.cube.face[0].px);
+    ck_assert_msg(img_scene_load(&d, "envmap vcross.pfm 2\n", &sc, &err) == 0, "%s", err.msg);
+    ck_assert_int_eq(sc.envmap.kind, CONVERT_CUBE);
+    ck_assert_int_eq(sc.envmap.cube.size, 2);
+    ck_assert_double_eq(sc.envmap.scale, 2);
+    scene_free(&sc);
+    /* a keyword overrides the shape: a 2:1 image read as an equal-area map */
+    ck_assert_msg(img_scene_load(&d, "envmap ll.pfm equalarea\n", &sc, &err) == 0, "%s", err.msg);
+    ck_assert_int_eq(sc.envmap.kind, CONVERT_EQUALAREA);
+    ck_assert_int_eq(sc.envmap.img.w, 8);
+    scene_free(&sc);
+    img_dir_remove(&d);
+}
+END_TEST
+
+START_TEST(test_a_square_envmap_without_a_keyword_is_an_error_naming_file_and_line)
+{
+    img_dir d;
+    img_dir_make(&d);
+    img_write(&d, "probe.pfm", 8, 8, 1);
+    img_write(&d, "wide.pfm", 9, 3, 1);
+    scene sc;
+    error err = {0};
+    ck_assert_int_eq(img_scene_load(&d, "# a probe\nenvmap probe.pfm\n", &sc, &err), -1);
+    ck_assert_str_eq(err.file, d.scene);
+    ck_assert_int_eq(err.line, 4);
+    ck_assert_msg(strstr(err.msg, "envmap 'probe.pfm'") && strstr(err.msg, "square image (8 x 8)") &&
+                      strstr(err.msg, "mirrorball") && strstr(err.msg, "angular"),
+                  "%s", err.msg);
+    ck_assert_ptr_null(sc.envmap.img.px);
+    ck_assert_int_eq(img_scene_load(&d, "envmap wide.pfm\n", &sc, &err), -1);
+    ck_assert_int_eq(err.line, 3);
+    ck_assert_msg(strstr(err.msg, "cannot tell the representation of a 9 x 3 image"), "%s", err.msg);
+    /* named, both load */
+    ck_assert_msg(img_scene_load(&d, "envmap probe.pfm mirrorball\n", &sc, &err) == 0, "%s", err.msg);
+    ck_assert_int_eq(sc.envmap.kind, CONVERT_MIRRORBALL);
+    scene_free(&sc);
+    ck_assert_msg(img_scene_load(&d, "envmap wide.pfm cylindrical\n", &sc, &err) == 0, "%s", err.msg);
+    ck_assert_int_eq(sc.envmap.kind, CONVERT_CYLINDRICAL);
+    ck_assert_double_eq_tol(sc.envmap.max_height, M_PI * 3 / 9, 1e-15); /* square horizon texels */
+    scene_free(&sc);
+    /* "cross" on an image that is not one: the splitter's reason */
+    ck_assert_int_eq(img_scene_load(&d, "envmap probe.pfm cross\n", &sc, &err), -1);
+    ck_assert_int_eq(err.line, 3);
+    ck_assert_msg(strstr(err.msg, "envmap 'probe.pfm'") && strstr(err.msg, "8 x 8"), "%s", err.msg);
+    img_dir_remove(&d);
+}
+END_TEST
+
+START_TEST(test_six_cube_faces_load_and_a_bad_face_is_named)
+{
+    img_dir d;
+    img_dir_make(&d);
+    static const char *const names[6] = {"px.pfm", "nx.pfm", "py.pfm", "ny.pfm", "pz.pfm", "nz.pfm"};
+    for (int f = 0; f < 6; f++) img_write(&d, names[f], 4, 4, f + 1);
+    img_write(&d, "small.pfm", 2, 2, 1);
+    img_write(&d, "flat.pfm", 4, 2, 1);
+    scene sc;
+    error err = {0};
+    ck_assert_msg(img_scene_load(&d, "envmap cube px.pfm nx.pfm py.pfm ny.pfm pz.pfm nz.pfm 2\n",
+                                 &sc, &err) == 0, "%s", err.msg);
+    ck_assert_int_eq(sc.envmap.kind, CONVERT_CUBE);
+    ck_assert_int_eq(sc.envmap.cube.size, 4);
+    for (int f = 0; f < 6; f++) ck_assert_double_eq(image_get(&sc.envmap.cube.face[f], 3, 0).g, f + 1);
+    scene_free(&sc);
+    /* faces of different sizes, a face that is not square, a missing face: each named */
+    ck_assert_int_eq(img_scene_load(&d, "envmap cube px.pfm nx.pfm py.pfm small.pfm pz.pfm nz.pfm\n",
+                                    &sc, &err), -1);
+    ck_assert_int_eq(err.line, 3);
+    ck_assert_msg(strstr(err.msg, "'small.pfm'") && strstr(err.msg, "differ in size"), "%s", err.msg);
+    ck_assert_ptr_null(sc.envmap.cube.face[0].px);
+    ck_assert_int_eq(img_scene_load(&d, "envmap cube px.pfm nx.pfm py.pfm ny.pfm flat.pfm nz.pfm\n",
+                                    &sc, &err), -1);
+    ck_assert_msg(strstr(err.msg, "'flat.pfm'") && strstr(err.msg, "square, not 4 x 2"), "%s", err.msg);
+    ck_assert_int_eq(img_scene_load(&d, "envmap cube px.pfm nx.pfm py.pfm ny.pfm pz.pfm gone.pfm\n",
+                                    &sc, &err), -1);
+    ck_assert_msg(strstr(err.msg, "'gone.pfm'") && strstr(err.msg, "No such file"), "%s", err.msg);
+    img_dir_remove(&d);
+}
+END_TEST
+
 START_TEST(test_a_100k_triangle_mesh_parses_with_one_material)
 {
     enum { N = 225 }; /* N x N vertices, 2 (N-1)^2 = 100352 triangles */
@@ -907,6 +1118,11 @@ Suite *scene_suite(void)
     tcase_add_test(cmds, test_envmap_paths_are_relative_to_the_scene_folder);
     tcase_add_test(cmds, test_scene_load_resolves_envmap_beside_a_scene_file);
     tcase_add_test(cmds, test_a_readable_envmap_is_loaded_when_images_are_on);
+    tcase_add_test(cmds, test_envmap_keyword_names_the_representation_after_an_optional_scale);
+    tcase_add_test(cmds, test_envmap_cube_takes_six_faces_relative_to_the_scene_folder);
+    tcase_add_test(cmds, test_envmap_representation_is_detected_from_the_image_shape);
+    tcase_add_test(cmds, test_a_square_envmap_without_a_keyword_is_an_error_naming_file_and_line);
+    tcase_add_test(cmds, test_six_cube_faces_load_and_a_bad_face_is_named);
     tcase_add_test(cmds, test_a_100k_triangle_mesh_parses_with_one_material);
     tcase_add_test(cmds, test_scene_free_is_safe_twice_and_on_a_zeroed_scene);
     suite_add_tcase(s, cmds);
