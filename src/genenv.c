@@ -11,7 +11,7 @@ genenv_params genenv_defaults(void)
     p.width = 512;
     p.value = 1.0;
     p.sun_ratio = 1e5;
-    p.sun_radius_deg = 1.5;
+    p.sun_radius_deg = 0.5;
     p.sun_elevation_deg = 35;
     p.sun_azimuth_deg = 60;
     return p;

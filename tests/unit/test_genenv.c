@@ -106,6 +106,7 @@ START_TEST(test_genenv_sun_disc_carries_sun_ratio_times_the_sky_mean)
     genenv_params p = genenv_defaults();
     p.width = 512;
     p.sun_ratio = 1e4;
+    p.sun_radius_deg = 1.5; /* wide enough that some texels lie wholly inside the disc */
     image sky = make(GENENV_SKY, &p), sun = make(GENENV_SUN, &p);
     double mean = power(&sky) / (4 * M_PI);
     /* the disc's extra power over the sky is (L_sun - L_sky) times its solid angle */
