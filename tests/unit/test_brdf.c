@@ -1,0 +1,261 @@
+/* test_brdf.c - the course's BRDFs, their sampling and pdfs (include/envtex/brdf.h).
+ *
+ * brdf_sample is tested against brdf_pdf with a chi-square test over equal solid-angle bins
+ * (sphchisq.h) plus one bin for "the sample failed" (a lobe sample below the surface), whose
+ * probability is 1 minus the pdf's integral over the upper hemisphere: so the test catches a
+ * sampler and a pdf that disagree, and a pdf that does not integrate to what is really sampled.
+ * Also: the pdf returned with a sample is brdf_pdf at that direction and the weight is
+ * f cos / pdf; f is reciprocal; reflectance stays below 1 when kd + ks <= 1; the delta BRDFs.
+ */
+#include "envtex/brdf.h"
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "chisq.h"
+#include "envtex/rng.h"
+#include "envtex/sampling.h"
+#include "sphchisq.h"
+#include "unit.h"
+
+#define N_SAMPLES 200000L /* per chi-square test */
+#define N_U 16
+#define N_PHI 32
+#define GL_SUB 12         /* quadrature sub-intervals per bin (see test_sampling.c) */
+#define PDF_REL_TOL 1e-5  /* the pdf returned with a sample against brdf_pdf (issue 4) */
+#define RECIP_TOL 1e-12   /* f(wo, wi) = f(wi, wo): the same formulas, a few roundings */
+
+typedef struct brdf_case {
+    const char *name;
+    brdf_kind kind;
+    sampling_kind strategy;
+    double kd, ks, shininess, roughness;
+    double wo_theta_deg; /* viewer elevation from the normal */
+} brdf_case;
+
+static const brdf_case cases[] = {
+    {"phong s=1", BRDF_PHONG, SAMPLING_BRDF, 0.3, 0.5, 1, 0, 40},
+    {"phong s=10", BRDF_PHONG, SAMPLING_BRDF, 0.3, 0.5, 10, 0, 40},
+    {"phong s=50", BRDF_PHONG, SAMPLING_BRDF, 0.2, 0.7, 50, 0, 60},
+    {"phong s=200 specular only", BRDF_PHONG, SAMPLING_BRDF, 0.0, 0.9, 200, 0, 20},
+    {"ggx alpha=0.1", BRDF_GGX, SAMPLING_BRDF, 0.3, 0.5, 0, 0.1, 40},
+    {"ggx alpha=0.3", BRDF_GGX, SAMPLING_BRDF, 0.3, 0.5, 0, 0.3, 60},
+    {"ggx alpha=0.7 (t clamped to 0.25)", BRDF_GGX, SAMPLING_BRDF, 0.8, 0.1, 0, 0.7, 30},
+    {"ggx alpha=1 specular only", BRDF_GGX, SAMPLING_BRDF, 0.0, 0.9, 0, 1.0, 75},
+    {"hemisphere", BRDF_PHONG, SAMPLING_HEMISPHERE, 0.3, 0.5, 10, 0, 40},
+    {"cosine", BRDF_GGX, SAMPLING_COSINE, 0.3, 0.5, 0, 0.3, 40},
+};
+#define N_CASES ((int)(sizeof cases / sizeof cases[0]))
+#define N_CHISQ_TESTS N_CASES
+
+static surface make_surface(const brdf_case *c)
+{
+    surface s = {0};
+    s.p = vec3_make(0, 0, 0);
+    s.ng = s.n = vec3_make(0, 0, 1);
+    s.entering = 1;
+    s.kind = c->kind;
+    s.kd = rgb_gray(c->kd);
+    s.ks = rgb_gray(c->ks);
+    s.shininess = c->shininess;
+    s.roughness = c->roughness;
+    s.ior = 1.5;
+    return s;
+}
+
+static vec3 wo_of(double theta_deg)
+{
+    double t = theta_deg * M_PI / 180;
+    return vec3_make(sin(t) * cos(0.7), sin(t) * sin(0.7), cos(t));
+}
+
+typedef struct pdf_ctx { const surface *s; vec3 wo; sampling_kind strategy; } pdf_ctx;
+
+static double pdf_of(void *ctx, vec3 w)
+{
+    const pdf_ctx *c = ctx;
+    return brdf_pdf(c->s, c->wo, w, c->strategy);
+}
+
+START_TEST(test_brdf_samples_fit_brdf_pdf)
+{
+    static double prob[SPH_MAX_BINS + 1];
+    static long obs[SPH_MAX_BINS + 1];
+    const brdf_case *c = &cases[_i];
+    surface s = make_surface(c);
+    vec3 wo = wo_of(c->wo_theta_deg);
+    pdf_ctx ctx = {&s, wo, c->strategy};
+    sph_grid g = sph_grid_make(N_U, N_PHI);
+    g.sub = GL_SUB;
+    double total = sph_expected(&g, pdf_of, &ctx, prob);
+    ck_assert_msg(total <= 1 + 1e-4, "%s: pdf integrates to %.9f > 1", c->name, total);
+    int nb = sph_add_reject_bin(&g, prob, total), reject = sph_n_bins(&g);
+    for (int k = 0; k < nb; k++) obs[k] = 0;
+    rng r;
+    rng_seed(&r, 100 + (uint64_t)_i, 3);
+    long pdf_mismatch = 0, weight_mismatch = 0;
+    for (long i = 0; i < N_SAMPLES; i++) {
+        double xi1 = rng_uniform(&r), xi2 = rng_uniform(&r), xi3 = rng_uniform(&r);
+        brdf_sample_result bs;
+        if (!brdf_sample(&s, wo, c->strategy, xi1, xi2, xi3, &bs)) {
+            obs[reject]++;
+            continue;
+        }
+        obs[sph_bin(&g, bs.wi)]++;
+        /* the pdf returned with the sample is brdf_pdf there; the weight is f cos / pdf */
+        double p = brdf_pdf(&s, wo, bs.wi, c->strategy);
+        pdf_mismatch += !(fabs(bs.pdf - p) <= PDF_REL_TOL * p);
+        double w = brdf_eval(&s, wo, bs.wi).g * bs.wi.z / p;
+        weight_mismatch += !(fabs(bs.weight.g - w) <= PDF_REL_TOL * w);
+    }
+    ck_assert_msg(pdf_mismatch == 0, "%s: %ld samples' pdf differs from brdf_pdf", c->name, pdf_mismatch);
+    ck_assert_msg(weight_mismatch == 0, "%s: %ld weights differ from f cos / pdf", c->name, weight_mismatch);
+    chisq_result res = chisq_test(obs, prob, nb, N_SAMPLES);
+    ck_assert_msg(chisq_accept(&res, N_CHISQ_TESTS), "%s: X^2 = %g, dof %d, p = %g, stray %ld (rejected %ld, expected %g)",
+                  c->name, res.stat, res.dof, res.p, res.stray, obs[reject], prob[reject] * N_SAMPLES);
+}
+END_TEST
+
+/* f(wo, wi) = f(wi, wo) for Phong (r(wo).wi = r(wi).wo) and GGX (h and G symmetric; Schlick
+ * uses wi.h = wo.h) */
+START_TEST(test_brdf_eval_is_reciprocal)
+{
+    rng r;
+    rng_seed(&r, 7, 0);
+    int bad = 0;
+    for (int ci = 0; ci < N_CASES; ci++) {
+        surface s = make_surface(&cases[ci]);
+        for (int i = 0; i < 200; i++) {
+            vec3 a = sampling_uniform_hemisphere(rng_uniform(&r), rng_uniform(&r));
+            vec3 b = sampling_uniform_hemisphere(rng_uniform(&r), rng_uniform(&r));
+            rgb f1 = brdf_eval(&s, a, b), f2 = brdf_eval(&s, b, a);
+            bad += !(fabs(f1.r - f2.r) <= RECIP_TOL * fmax(1, f1.r));
+        }
+    }
+    ck_assert_int_eq(bad, 0);
+}
+END_TEST
+
+/* directional albedo = integral of f cos over the hemisphere <= kd + ks <= 1 for Phong at every
+ * viewing angle (the (s + 2) / (2 pi) normalization), estimated with cosine-weighted samples on
+ * a fine stratified grid; and exactly kd for a diffuse surface */
+START_TEST(test_brdf_phong_albedo_never_exceeds_kd_plus_ks)
+{
+    const double view[] = {0, 30, 60, 85};
+    const double shin[] = {1, 10, 100};
+    enum { G = 200 };
+    for (int si = 0; si < 3; si++)
+        for (int vi = 0; vi < 4; vi++) {
+            brdf_case c = {"", BRDF_PHONG, SAMPLING_BRDF, 0.4, 0.6, shin[si], 0, view[vi]};
+            surface s = make_surface(&c);
+            vec3 wo = wo_of(view[vi]);
+            double sum = 0; /* f cos / (cos / pi) = pi f over a G x G stratified grid */
+            for (int i = 0; i < G; i++)
+                for (int j = 0; j < G; j++) {
+                    vec3 wi = sampling_cosine_hemisphere((i + 0.5) / G, (j + 0.5) / G);
+                    sum += M_PI * brdf_eval(&s, wo, wi).r;
+                }
+            double albedo = sum / (G * G);
+            ck_assert_msg(albedo <= 1.0 + 2e-3, "phong s=%g at %g deg: albedo %g > kd + ks", shin[si], view[vi], albedo);
+            ck_assert_msg(albedo >= 0.4 - 1e-3, "phong s=%g at %g deg: albedo %g < kd", shin[si], view[vi], albedo);
+        }
+    brdf_case d = {"", BRDF_PHONG, SAMPLING_BRDF, 0.7, 0.0, 1, 0, 0};
+    surface s = make_surface(&d);
+    ck_assert_near(brdf_eval(&s, wo_of(10), wo_of(50)).r, 0.7 / M_PI, 1e-15);
+}
+END_TEST
+
+/* t = avg(ks) / (avg(ks) + avg(kd)); GGX clamps t to 0.25; a black surface gives 0, not NaN */
+START_TEST(test_brdf_specular_probability_follows_the_course)
+{
+    brdf_case c = {"", BRDF_PHONG, SAMPLING_BRDF, 0.6, 0.2, 10, 0, 0};
+    surface s = make_surface(&c);
+    ck_assert_near(brdf_specular_probability(&s), 0.25, 1e-15);
+    s.kd = rgb_make(0.9, 0.0, 0.3); /* averages: kd 0.4, ks 0.2 */
+    ck_assert_near(brdf_specular_probability(&s), 0.2 / 0.6, 1e-15);
+    s.kind = BRDF_GGX;
+    s.kd = rgb_gray(0.9);
+    s.ks = rgb_gray(0.1);
+    ck_assert_near(brdf_specular_probability(&s), 0.25, 1e-15); /* 0.1 clamped up */
+    s.ks = rgb_gray(0);
+    ck_assert(brdf_specular_probability(&s) == 0); /* no specular lobe: never sampled */
+    s.kd = rgb_gray(0);
+    double t = brdf_specular_probability(&s);
+    ck_assert(t == 0);
+}
+END_TEST
+
+/* below the surface f and every pdf are 0; a sample never goes below */
+START_TEST(test_brdf_is_zero_below_the_surface)
+{
+    for (int ci = 0; ci < N_CASES; ci++) {
+        surface s = make_surface(&cases[ci]);
+        vec3 wo = wo_of(cases[ci].wo_theta_deg), below = vec3_normalize(vec3_make(0.3, 0.2, -0.5));
+        ck_assert(rgb_is_black(brdf_eval(&s, wo, below)));
+        ck_assert(rgb_is_black(brdf_eval(&s, below, wo)));
+        ck_assert(brdf_pdf(&s, wo, below, cases[ci].strategy) == 0);
+    }
+}
+END_TEST
+
+/* a mirror reflects exactly with weight ks; glass returns the reflection or the refraction with
+ * weight 1, reflecting with probability F; neither has a pdf or an f */
+START_TEST(test_brdf_delta_surfaces_reflect_and_refract_exactly)
+{
+    brdf_case c = {"", BRDF_MIRROR, SAMPLING_BRDF, 0, 0.8, 0, 0, 0};
+    surface s = make_surface(&c);
+    s.ks = rgb_make(0.8, 0.5, 0.2);
+    vec3 wo = wo_of(50), r = vec3_make(-wo.x, -wo.y, wo.z);
+    brdf_sample_result bs;
+    ck_assert(brdf_sample(&s, wo, SAMPLING_BRDF, 0.3, 0.6, 0.9, &bs));
+    ck_assert(bs.is_delta && bs.pdf == 0);
+    ck_assert(vec3_length(vec3_sub(bs.wi, r)) < 1e-15);
+    ck_assert(bs.weight.r == 0.8 && bs.weight.g == 0.5 && bs.weight.b == 0.2);
+    ck_assert(rgb_is_black(brdf_eval(&s, wo, r)) && brdf_pdf(&s, wo, r, SAMPLING_BRDF) == 0);
+
+    s.kind = BRDF_GLASS;
+    s.ior = 1.5;
+    long n = 20000, refl = 0, bad = 0;
+    rng g;
+    rng_seed(&g, 5, 0);
+    for (long i = 0; i < n; i++) {
+        ck_assert(brdf_sample(&s, wo, SAMPLING_BRDF, 0.5, 0.5, rng_uniform(&g), &bs));
+        bad += !(bs.weight.r == 1 && bs.weight.g == 1 && bs.weight.b == 1 && bs.is_delta);
+        if (bs.wi.z > 0) {
+            refl++;
+            bad += vec3_length(vec3_sub(bs.wi, r)) > 1e-15;
+        } else {
+            /* Snell: sin(theta_t) = sin(theta_i) / 1.5, in the plane of incidence */
+            double st = sqrt(bs.wi.x * bs.wi.x + bs.wi.y * bs.wi.y);
+            bad += fabs(st - sin(50 * M_PI / 180) / 1.5) > 1e-12;
+            bad += fabs(bs.wi.x * wo.y - bs.wi.y * wo.x) > 1e-12 || bs.wi.x * wo.x > 0;
+        }
+    }
+    ck_assert_int_eq(bad, 0);
+    /* Fresnel at 50 degrees, n = 1.5 (unpolarized): Rs = 0.1147, Rp = 0.0186 -> F = 0.0667 */
+    double ci = cos(50 * M_PI / 180), ct = sqrt(1 - pow(sin(50 * M_PI / 180) / 1.5, 2));
+    double rs = pow((ci - 1.5 * ct) / (ci + 1.5 * ct), 2), rp = pow((1.5 * ci - ct) / (1.5 * ci + ct), 2);
+    double F = 0.5 * (rs + rp), se = sqrt(F * (1 - F) / n);
+    ck_assert_msg(fabs((double)refl / n - F) < 4 * se, "reflected %g, want F = %g", (double)refl / n, F);
+}
+END_TEST
+
+Suite *brdf_suite(void)
+{
+    Suite *s = suite_create("brdf");
+    TCase *tc = tcase_create("sampling");
+    tcase_set_timeout(tc, 60); /* generous for sanitizer builds */
+    tcase_add_loop_test(tc, test_brdf_samples_fit_brdf_pdf, 0, N_CASES);
+    suite_add_tcase(s, tc);
+    tc = tcase_create("eval");
+    tcase_set_timeout(tc, 60);
+    tcase_add_test(tc, test_brdf_eval_is_reciprocal);
+    tcase_add_test(tc, test_brdf_phong_albedo_never_exceeds_kd_plus_ks);
+    tcase_add_test(tc, test_brdf_specular_probability_follows_the_course);
+    tcase_add_test(tc, test_brdf_is_zero_below_the_surface);
+    tcase_add_test(tc, test_brdf_delta_surfaces_reflect_and_refract_exactly);
+    suite_add_tcase(s, tc);
+    return s;
+}
+
+UNIT_MAIN(brdf_suite)
