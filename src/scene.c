@@ -15,6 +15,8 @@
 #include <string.h>
 
 #include "envtex/imageio.h"
+#include "envtex/obj.h"
+#include "envtex/perlin.h"
 
 /* A command has at most 12 arguments (quadLight); a few more slots let us name the first extra
  * token in "takes N arguments, got M" messages. */
@@ -34,6 +36,7 @@
 #define QUAD_PARALLEL_EPS 1e-12
 
 typedef struct vertex_normal { vec3 p, n; } vertex_normal;
+typedef struct vertex_tex { vec3 p; uv2 st; } vertex_tex;
 
 typedef struct parser {
     scene *sc;
@@ -59,9 +62,12 @@ typedef struct parser {
     long n_verts, cap_verts;
     vertex_normal *vnorms;
     long n_vnorms, cap_vnorms;
+    vertex_tex *vtex;          /* `vertextex`: a third list, for `tritex` */
+    long n_vtex, cap_vtex;
     /* capacities of the scene's arrays */
     long cap_spheres, cap_tris;
     long cap_lights, cap_materials;
+    long cap_textures;
     /* bookkeeping */
     long max_prims;            /* SCENE_MAX_PRIMS unless the options lower it */
     int seen_size, warned_order;
@@ -232,7 +238,12 @@ static int material_equal(const material *a, const material *b)
     return rgb_equal(a->ambient, b->ambient) && rgb_equal(a->diffuse, b->diffuse) &&
            rgb_equal(a->specular, b->specular) && rgb_equal(a->emission, b->emission) &&
            a->shininess == b->shininess && a->brdf == b->brdf && a->roughness == b->roughness &&
-           a->ior == b->ior;
+           a->ior == b->ior && a->diffusemap == b->diffusemap &&
+           a->specularmap == b->specularmap && a->roughnessmap == b->roughnessmap &&
+           a->emissionmap == b->emissionmap && a->bumpmap == b->bumpmap &&
+           a->displacementmap == b->displacementmap && a->bump_strength == b->bump_strength &&
+           a->displacement_scale == b->displacement_scale && a->texmapping == b->texmapping &&
+           a->texmapping_given == b->texmapping_given && a->texfilter == b->texfilter;
 }
 
 /* Index of the current material state: the last stored one if nothing changed since, else a
@@ -401,6 +412,11 @@ static int add_triangle(parser *p, const scene_triangle *t)
     scene_triangle *d = &sc->triangles[sc->n_triangles++];
     *d = *t;
     d->material = m;
+    if (!d->has_st) { /* st = (b1, b2): the corners' barycentric coordinates */
+        d->st[0] = (uv2){0, 0};
+        d->st[1] = (uv2){1, 0};
+        d->st[2] = (uv2){0, 1};
+    }
     return 0;
 }
 
@@ -410,7 +426,10 @@ static int cmd_tri(parser *p)
     if (tri_indices(p, p->n_verts, "vertices", idx)) return -1;
     scene_triangle t;
     memset(&t, 0, sizeof t);
-    for (int k = 0; k < 3; k++) t.p[k] = mat4_point(&p->xf, p->verts[idx[k]]);
+    for (int k = 0; k < 3; k++) {
+        t.q[k] = p->verts[idx[k]];
+        t.p[k] = mat4_point(&p->xf, t.q[k]);
+    }
     return add_triangle(p, &t);
 }
 
@@ -425,6 +444,7 @@ static int cmd_trinormal(parser *p)
     t.has_normals = 1;
     for (int k = 0; k < 3; k++) {
         const vertex_normal *v = &p->vnorms[idx[k]];
+        t.q[k] = v->p;
         t.p[k] = mat4_point(&p->xf, v->p);
         vec3 n = mat4_normal(inv, v->n); /* n' = (M^-1)^T n */
         double len = vec3_length(n);
@@ -739,6 +759,255 @@ static int cmd_envmap(parser *p)
     return 0;
 }
 
+/* ---- texture mapping (envtex) ----------------------------------------------------------- */
+
+/* A file name token resolved against the scene file's folder (absolute names are kept). */
+static int scene_relative_path(parser *p, const char *file, char *dst, size_t size)
+{
+    const char *base = file[0] == '/' ? "" : p->base;
+    int w = snprintf(dst, size, "%s%s", base, file);
+    if (w < 0 || (size_t)w >= size)
+        return fail(p, "'%s' path '%s%s' is longer than %zu bytes", p->tok[0], base, file,
+                    size - 1);
+    return 0;
+}
+
+static int cmd_vertextex(parser *p)
+{
+    double v[5];
+    if (arg_nums(p, 1, 5, v)) return -1;
+    if (p->n_vtex >= p->max_prims)
+        return fail(p, "more than %ld textured vertices", p->max_prims);
+    if (grow(p, (void **)&p->vtex, &p->cap_vtex, p->n_vtex + 1, sizeof *p->vtex)) return -1;
+    p->vtex[p->n_vtex++] = (vertex_tex){vec3_make(v[0], v[1], v[2]), {v[3], v[4]}};
+    return 0;
+}
+
+static int cmd_tritex(parser *p)
+{
+    long idx[3];
+    if (tri_indices(p, p->n_vtex, "textured vertices", idx)) return -1;
+    scene_triangle t;
+    memset(&t, 0, sizeof t);
+    t.has_st = 1;
+    for (int k = 0; k < 3; k++) {
+        const vertex_tex *v = &p->vtex[idx[k]];
+        t.q[k] = v->p;
+        t.p[k] = mat4_point(&p->xf, v->p);
+        t.st[k] = v->st;
+    }
+    return add_triangle(p, &t);
+}
+
+/* `obj FILE`: every triangle of the mesh, under the current transform and material.  Corners
+ * with vt give st (all three needed), with vn give normals (all three, each non-degenerate under
+ * the transform, else the triangle is flat shaded). */
+static int cmd_obj(parser *p)
+{
+    char path[1024];
+    if (scene_relative_path(p, p->tok[1], path, sizeof path)) return -1;
+    obj_mesh m;
+    error oe;
+    memset(&oe, 0, sizeof oe);
+    if (obj_load(path, p->max_prims, &m, &oe)) {
+        if (oe.line > 0) return fail(p, "obj '%s': %s:%d: %s", p->tok[1], oe.file, oe.line, oe.msg);
+        return fail(p, "obj '%s': %s: %s", p->tok[1], oe.file, oe.msg);
+    }
+    int rc = -1;
+    if (m.n_tris > p->max_prims - p->sc->n_triangles) {
+        fail(p, "obj '%s' has %ld triangles: more than %ld triangles in the scene", p->tok[1],
+             m.n_tris, p->max_prims);
+        goto done;
+    }
+    if (m.n_ignored > 0)
+        warn(p, "obj '%s': %ld statement%s ignored (the first, '%s', at %s:%d)", p->tok[1],
+             m.n_ignored, m.n_ignored == 1 ? "" : "s", m.first_ignored, path,
+             m.first_ignored_line);
+    const mat4 *inv = NULL;
+    if (m.n_vn > 0 && xf_inverse(p, &inv)) goto done;
+    if (m.n_tris > 0 && grow(p, (void **)&p->sc->triangles, &p->cap_tris,
+                             p->sc->n_triangles + m.n_tris, sizeof *p->sc->triangles))
+        goto done;
+    for (long i = 0; i < m.n_tris; i++) {
+        const obj_triangle *o = &m.tris[i];
+        scene_triangle t;
+        memset(&t, 0, sizeof t);
+        t.has_st = o->vt[0] >= 0 && o->vt[1] >= 0 && o->vt[2] >= 0;
+        t.has_normals = o->vn[0] >= 0 && o->vn[1] >= 0 && o->vn[2] >= 0;
+        for (int k = 0; k < 3; k++) {
+            t.q[k] = m.v[o->v[k]];
+            t.p[k] = mat4_point(&p->xf, t.q[k]);
+            if (t.has_st) t.st[k] = m.vt[o->vt[k]];
+            if (t.has_normals) {
+                vec3 n = mat4_normal(inv, m.vn[o->vn[k]]); /* n' = (M^-1)^T n */
+                if (vec3_unit_direction(n, &t.n[k])) t.has_normals = 0;
+            }
+        }
+        if (add_triangle(p, &t)) goto done;
+    }
+    rc = 0;
+done:
+    obj_free(&m);
+    return rc;
+}
+
+static int cmd_texmapping(parser *p)
+{
+    static const char *const w[] = {"uv", "planar", "cylindrical", "spherical", "cube"};
+    int k;
+    if (arg_word(p, w, 5, &k)) return -1; /* texmapping_kind order */
+    p->mat.texmapping = (texmapping_kind)k;
+    p->mat.texmapping_given = 1;
+    return 0;
+}
+
+static int cmd_texfilter(parser *p)
+{
+    static const char *const w[] = {"nearest", "bilinear", "trilinear", "ewa"};
+    int k;
+    if (arg_word(p, w, 4, &k)) return -1; /* texture_filter order */
+    p->mat.texfilter = (texture_filter)k;
+    return 0;
+}
+
+/* Index of the texture called `name`, or -1. */
+static int find_texture(const parser *p, const char *name)
+{
+    for (int i = 0; i < p->sc->n_textures; i++)
+        if (strcmp(p->sc->textures[i].name, name) == 0) return i;
+    return -1;
+}
+
+/* The numbers after `texture NAME KIND` for each procedural kind, then two colours. */
+static int texture_params(parser *p, texture_kind kind, scene_texture *st)
+{
+    /* arguments after NAME KIND: checker FREQ, perlin SCALE, fbm / turbulence SCALE OCTAVES,
+     * marble SCALE FREQUENCY AMPLITUDE OCTAVES, wood SCALE RINGS AMPLITUDE; then c0, c1 */
+    static const int nparams[] = {0, 1, 1, 2, 2, 4, 3}; /* texture_kind order */
+    static const char *const usage[] = {
+        "", "FREQUENCY", "SCALE", "SCALE OCTAVES", "SCALE OCTAVES",
+        "SCALE FREQUENCY AMPLITUDE OCTAVES", "SCALE RINGS AMPLITUDE"};
+    int np = nparams[kind], nargs = p->ntok - 1;
+    if (nargs != 2 + np + 6)
+        return fail(p, "'texture NAME %s' takes %s R0 G0 B0 R1 G1 B1 (%d arguments after the "
+                       "kind), got %d", texture_kind_name(kind), usage[kind], np + 6, nargs - 2);
+    rgb c0, c1;
+    if (arg_rgb(p, 3 + np, &c0) || arg_rgb(p, 6 + np, &c1)) return -1;
+    error te;
+    memset(&te, 0, sizeof te);
+    if (kind == TEXTURE_CHECKER) {
+        double f;
+        if (arg_nonneg(p, 3, 1, &f)) return -1;
+        if (texture_init_checker(&st->tex, c0, c1, f, &te)) return fail(p, "%s", te.msg);
+        return 0;
+    }
+    texture_solid_params sp;
+    memset(&sp, 0, sizeof sp);
+    sp.c0 = c0;
+    sp.c1 = c1;
+    if (arg_nonneg(p, 3, 1, &sp.scale)) return -1;
+    long oct = 0;
+    switch (kind) {
+    case TEXTURE_FBM:
+    case TEXTURE_TURBULENCE:
+        if (arg_int(p, 4, 1, PERLIN_MAX_OCTAVES, &oct)) return -1;
+        break;
+    case TEXTURE_MARBLE:
+        if (arg_nonneg(p, 4, 0, &sp.frequency) || arg_num(p, 5, &sp.amplitude) ||
+            arg_int(p, 6, 1, PERLIN_MAX_OCTAVES, &oct))
+            return -1;
+        break;
+    case TEXTURE_WOOD:
+        if (arg_nonneg(p, 4, 0, &sp.rings) || arg_num(p, 5, &sp.amplitude)) return -1;
+        break;
+    default: break;
+    }
+    sp.octaves = (int)oct;
+    if (texture_init_solid(&st->tex, kind, &sp, &te)) return fail(p, "%s", te.msg);
+    return 0;
+}
+
+/* `texture NAME FILE [repeat|clamp|mirror]` or `texture NAME KIND PARAMS... R0 G0 B0 R1 G1 B1`.
+ * A kind keyword wins over a file of that name (write ./checker for the file). */
+static int cmd_texture(parser *p)
+{
+    const char *name = p->tok[1];
+    if (strlen(name) >= SCENE_MAX_TEXTURE_NAME)
+        return fail(p, "'texture' name '%s' is longer than %d bytes", name,
+                    SCENE_MAX_TEXTURE_NAME - 1);
+    int prev = find_texture(p, name);
+    if (prev >= 0)
+        return fail(p, "texture '%s' defined twice (first at line %d)", name,
+                    p->sc->textures[prev].line);
+    if (p->sc->n_textures >= p->max_prims)
+        return fail(p, "more than %ld textures", p->max_prims);
+    scene_texture st;
+    memset(&st, 0, sizeof st);
+    memcpy(st.name, name, strlen(name) + 1);
+    st.line = p->line;
+    st.image = -1;
+    texture_kind kind;
+    if (texture_kind_parse(p->tok[2], &kind) == 0) {
+        if (texture_params(p, kind, &st)) return -1;
+    } else {
+        if (p->ntok - 1 > 3)
+            return fail(p, "'texture NAME FILE' takes a wrap mode at most, got '%s' after it",
+                        p->tok[4]);
+        st.wrap = WRAP_REPEAT;
+        if (p->ntok - 1 == 3 && texlookup_wrap_parse(p->tok[3], &st.wrap))
+            return fail(p, "'texture' wrap mode must be 'repeat', 'clamp' or 'mirror', got '%s'",
+                        p->tok[3]);
+        const char *file = p->tok[2];
+        if (strlen(file) >= sizeof st.token)
+            return fail(p, "'texture' file name is longer than %zu bytes", sizeof st.token - 1);
+        if (scene_relative_path(p, file, st.path, sizeof st.path)) return -1;
+        memcpy(st.token, file, strlen(file) + 1);
+        st.tex.kind = TEXTURE_IMAGE; /* the image is read by load_textures */
+        st.tex.wrap = st.wrap;
+    }
+    scene *sc = p->sc;
+    long cap = p->cap_textures;
+    if (grow(p, (void **)&sc->textures, &cap, (long)sc->n_textures + 1, sizeof *sc->textures))
+        return -1;
+    p->cap_textures = cap;
+    sc->textures[sc->n_textures++] = st;
+    return 0;
+}
+
+/* diffusemap, specularmap, roughnessmap, emissionmap NAME; bumpmap NAME STRENGTH;
+ * displacementmap NAME SCALE: material state naming a texture defined before. */
+static int cmd_map(parser *p)
+{
+    int i = find_texture(p, p->tok[1]);
+    if (i < 0)
+        return fail(p, "'%s': unknown texture '%s' (define it with 'texture' first)", p->tok[0],
+                    p->tok[1]);
+    double amount = 0;
+    if (p->ntok - 1 == 2 && arg_num(p, 2, &amount)) return -1;
+    const char *k = p->tok[0];
+    int ref = i + 1; /* 0 means none */
+    if (strcmp(k, "diffusemap") == 0) p->mat.diffusemap = ref;
+    else if (strcmp(k, "specularmap") == 0) p->mat.specularmap = ref;
+    else if (strcmp(k, "roughnessmap") == 0) p->mat.roughnessmap = ref;
+    else if (strcmp(k, "emissionmap") == 0) p->mat.emissionmap = ref;
+    else if (strcmp(k, "bumpmap") == 0) {
+        p->mat.bumpmap = ref;
+        p->mat.bump_strength = amount;
+    } else {
+        p->mat.displacementmap = ref;
+        p->mat.displacement_scale = amount;
+    }
+    return 0;
+}
+
+static int cmd_nomaps(parser *p)
+{
+    p->mat.diffusemap = p->mat.specularmap = p->mat.roughnessmap = 0;
+    p->mat.emissionmap = p->mat.bumpmap = p->mat.displacementmap = 0;
+    p->mat.bump_strength = p->mat.displacement_scale = 0;
+    return 0;
+}
+
 typedef struct command {
     const char *name;
     int (*run)(parser *p);
@@ -752,6 +1021,19 @@ static const command commands[] = {
     {"vertexnormal", cmd_vertexnormal, 6, 6},
     {"trinormal", cmd_trinormal, 3, 3},
     {"sphere", cmd_sphere, 4, 4},
+    {"vertextex", cmd_vertextex, 5, 5},
+    {"tritex", cmd_tritex, 3, 3},
+    {"obj", cmd_obj, 1, 1},
+    {"texmapping", cmd_texmapping, 1, 1},
+    {"texture", cmd_texture, 2, 12}, /* cmd_texture checks each kind's count */
+    {"texfilter", cmd_texfilter, 1, 1},
+    {"diffusemap", cmd_map, 1, 1},
+    {"specularmap", cmd_map, 1, 1},
+    {"roughnessmap", cmd_map, 1, 1},
+    {"emissionmap", cmd_map, 1, 1},
+    {"bumpmap", cmd_map, 2, 2},
+    {"displacementmap", cmd_map, 2, 2},
+    {"nomaps", cmd_nomaps, 0, 0},
     {"size", cmd_size, 2, 2},
     {"maxdepth", cmd_maxdepth, 1, 1},
     {"output", cmd_output, 1, 1},
@@ -893,6 +1175,55 @@ static int load_envmap(parser *p)
     return 0;
 }
 
+/* Read each image texture's file (once per distinct path, however many textures name it),
+ * then build the mip pyramids the materials' filters need.  Errors are reported at the
+ * `texture` line with the reader's reason. */
+static int load_textures(parser *p)
+{
+    scene *sc = p->sc;
+    int n_images = 0;
+    for (int i = 0; i < sc->n_textures; i++) n_images += sc->textures[i].tex.kind == TEXTURE_IMAGE;
+    if (n_images > 0) {
+        sc->texture_images = calloc((size_t)n_images, sizeof *sc->texture_images);
+        if (!sc->texture_images) return error_set(p->err, p->name, 0, "out of memory for textures");
+    }
+    for (int i = 0; i < sc->n_textures; i++) {
+        scene_texture *t = &sc->textures[i];
+        if (t->tex.kind != TEXTURE_IMAGE) continue;
+        for (int j = 0; j < i && t->image < 0; j++)
+            if (sc->textures[j].image >= 0 && strcmp(sc->textures[j].path, t->path) == 0)
+                t->image = sc->textures[j].image;
+        if (t->image < 0) {
+            error ie;
+            memset(&ie, 0, sizeof ie);
+            image *im = &sc->texture_images[sc->n_texture_images];
+            if (imageio_read(t->path, im, &ie)) {
+                if (strcmp(t->token, t->path) == 0)
+                    return error_set(p->err, p->name, t->line, "texture '%s' file '%s': %s",
+                                     t->name, t->token, ie.msg);
+                return error_set(p->err, p->name, t->line, "texture '%s' file '%s' (%s): %s",
+                                 t->name, t->token, t->path, ie.msg);
+            }
+            t->image = sc->n_texture_images++;
+        }
+        texture_init_image(&t->tex, &sc->texture_images[t->image], t->wrap);
+    }
+    for (int m = 0; m < sc->n_materials; m++) {
+        const material *mt = &sc->materials[m];
+        const int refs[6] = {mt->diffusemap, mt->specularmap, mt->roughnessmap,
+                             mt->emissionmap, mt->bumpmap, mt->displacementmap};
+        for (int k = 0; k < 6; k++) {
+            if (refs[k] <= 0) continue;
+            scene_texture *t = &sc->textures[refs[k] - 1];
+            error ie;
+            memset(&ie, 0, sizeof ie);
+            if (texture_prepare(&t->tex, mt->texfilter, &ie))
+                return error_set(p->err, p->name, t->line, "texture '%s': %s", t->name, ie.msg);
+        }
+    }
+    return 0;
+}
+
 /* After the last line: what a renderer needs, then the envmap image. */
 static int finish(parser *p)
 {
@@ -902,6 +1233,7 @@ static int finish(parser *p)
     if (!sc->has_camera) return error_set(p->err, p->name, 0, "no 'camera' command");
     if (p->depth > 0)
         warn(p, "%d 'pushTransform' without 'popTransform' at the end of the file", p->depth);
+    if (p->opts->load_images && load_textures(p)) return -1;
     if (sc->envmap.present && p->opts->load_images && load_envmap(p)) return -1;
     return 0;
 }
@@ -997,6 +1329,7 @@ done:
     free(p.stack);
     free(p.verts);
     free(p.vnorms);
+    free(p.vtex);
     if (rc) scene_free(out);
     return rc;
 }
@@ -1018,6 +1351,7 @@ material scene_default_material(void)
     m.ambient = rgb_gray(0.2);
     m.brdf = BRDF_PHONG;
     m.ior = 1.5;
+    m.texfilter = TEXFILTER_TRILINEAR; /* no maps (0), default mapping */
     return m;
 }
 
@@ -1080,9 +1414,20 @@ void scene_free(scene *sc)
     free(sc->spheres);
     free(sc->triangles);
     free(sc->lights);
+    for (int i = 0; i < sc->n_textures; i++) texture_free(&sc->textures[i].tex);
+    free(sc->textures);
+    for (int i = 0; i < sc->n_texture_images; i++) image_free(&sc->texture_images[i]);
+    free(sc->texture_images);
     image_free(&sc->envmap.img);
     cubemap_free(&sc->envmap.cube);
     memset(sc, 0, sizeof *sc);
+}
+
+texmapping_kind scene_material_texmapping(const material *m, int is_sphere)
+{
+    if (!m->texmapping_given) return is_sphere ? TEXMAPPING_SPHERICAL : TEXMAPPING_UV;
+    if (is_sphere && m->texmapping == TEXMAPPING_UV) return TEXMAPPING_SPHERICAL;
+    return m->texmapping;
 }
 
 const char *scene_integrator_name(integrator_kind k)

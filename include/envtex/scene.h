@@ -20,6 +20,8 @@
 #include "envtex/convert.h"
 #include "envtex/error.h"
 #include "envtex/image.h"
+#include "envtex/texmapping.h"
+#include "envtex/texture.h"
 #include "envtex/transform.h"
 #include "envtex/vec.h"
 
@@ -32,6 +34,7 @@
 #define SCENE_MAX_PRIMS 50000000L    /* vertices, triangles or spheres */
 #define SCENE_MAX_TRANSFORM_STACK 1024
 #define SCENE_MAX_LINE 65536         /* bytes in one line, without its '\n' */
+#define SCENE_MAX_TEXTURE_NAME 64    /* bytes in a texture's name, with its NUL */
 
 typedef enum brdf_kind {
     BRDF_PHONG, /* course default: Blinn-Phong for `raytracer`, modified Phong for path tracers */
@@ -46,6 +49,14 @@ typedef struct material {
     brdf_kind brdf;
     double roughness; /* GGX alpha */
     double ior;       /* index of refraction for BRDF_GLASS */
+    /* texture maps (envtex; docs/scene-format.md "Textures").  Each map is 0 for none, else 1 +
+     * an index into scene.textures (so a zeroed material has no maps): see scene_map(). */
+    int diffusemap, specularmap, roughnessmap, emissionmap, bumpmap, displacementmap;
+    double bump_strength;      /* `bumpmap NAME STRENGTH`: height units -> world units */
+    double displacement_scale; /* `displacementmap NAME SCALE`: world units per unit of value */
+    texmapping_kind texmapping; /* `texmapping`, used when texmapping_given */
+    int texmapping_given;      /* 0: the object's default (scene_material_texmapping) */
+    texture_filter texfilter;  /* `texfilter`, default TEXFILTER_TRILINEAR */
 } material;
 
 typedef struct scene_sphere {
@@ -60,6 +71,13 @@ typedef struct scene_triangle {
     vec3 n[3];      /* world-space unit vertex normals (trinormal); unused if !has_normals */
     int has_normals;
     int material;
+    uv2 st[3];      /* texture coordinates of the corners: given by `tritex` or an OBJ's vt
+                       (has_st = 1), else (0,0), (1,0), (0,1) so that st = (b1, b2) */
+    int has_st;
+    vec3 q[3];      /* OBJECT-space corners (the vertices as written, before the transform), for
+                       the point-based mappings and solid textures: P_object = sum b_i q_i.
+                       Corners, not a matrix index, because they need no inverse (a triangle
+                       under `scale 1 1 0` still has an object space) */
 } scene_triangle;
 
 typedef enum light_kind { LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_QUAD } light_kind;
@@ -116,6 +134,18 @@ typedef struct scene_envmap {
     int line;           /* line of the `envmap` command, for messages */
 } scene_envmap;
 
+/* `texture NAME FILE [repeat|clamp|mirror]` or `texture NAME KIND PARAMS...` */
+typedef struct scene_texture {
+    char name[SCENE_MAX_TEXTURE_NAME];
+    texture tex;        /* image textures: initialised by scene_load once the image is read
+                           (load_images = 0 leaves tex.img NULL: not for rendering) */
+    int image;          /* index into scene.texture_images, or -1 (procedural, or not loaded) */
+    wrap_mode wrap;     /* image textures */
+    char path[1024];    /* image textures: resolved path (relative to the scene's folder) */
+    char token[1024];   /* the file name as written, for messages */
+    int line;           /* line of the `texture` command */
+} scene_texture;
+
 typedef struct scene {
     /* image and camera */
     int width, height;         /* `size`; required */
@@ -143,6 +173,9 @@ typedef struct scene {
     scene_sphere *spheres; long n_spheres;
     scene_triangle *triangles; long n_triangles;
     scene_light *lights; int n_lights;
+    /* textures (envtex): owned, freed by scene_free */
+    scene_texture *textures; int n_textures;    /* in file order; material maps point here */
+    image *texture_images; int n_texture_images; /* one per distinct file: read once */
     /* where it came from */
     char path[1024];
 } scene;
@@ -182,5 +215,16 @@ material scene_default_material(void);
 
 /* "raytracer", "analyticdirect", "direct" or "pathtracer" (static strings), as in the file. */
 const char *scene_integrator_name(integrator_kind k);
+
+/* The texture of a material map reference (0 = none): NULL, or the texture (owned by sc). */
+static inline const texture *scene_map(const scene *sc, int ref)
+{
+    return ref > 0 && ref <= sc->n_textures ? &sc->textures[ref - 1].tex : NULL;
+}
+
+/* The (s, t) mapping material m uses on a sphere (is_sphere = 1) or a triangle: the one
+ * `texmapping` gave, else spheres spherical and triangles uv.  `texmapping uv` on a sphere is
+ * its natural parameterization, the spherical mapping. */
+texmapping_kind scene_material_texmapping(const material *m, int is_sphere);
 
 #endif

@@ -1077,6 +1077,237 @@ START_TEST(test_scene_free_is_safe_twice_and_on_a_zeroed_scene)
 }
 END_TEST
 
+/* ---- texture mapping (envtex) ----------------------------------------------------------- */
+
+START_TEST(test_tritex_keeps_object_corners_world_corners_and_st)
+{
+    scene sc;
+    load_ok(HEAD "vertextex 0 0 0 0 0\nvertextex 1 0 0 2 0\nvertextex 0 1 0 0 0.5\n"
+                 "translate 0 0 -3\ntritex 0 1 2\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+                 "tri 0 1 2\n", &sc);
+    ck_assert_int_eq(sc.n_triangles, 2);
+    const scene_triangle *t = &sc.triangles[0];
+    ck_assert_int_eq(t->has_st, 1);
+    ck_assert_double_eq(t->st[1].u, 2);
+    ck_assert_double_eq(t->st[2].v, 0.5);
+    assert_vec_near(t->q[1], 1, 0, 0);  /* object space: as written */
+    assert_vec_near(t->p[1], 1, 0, -3); /* world: transformed */
+    /* a plain tri: no st given, defaults make st = (b1, b2); object corners kept */
+    t = &sc.triangles[1];
+    ck_assert_int_eq(t->has_st, 0);
+    ck_assert_double_eq(t->st[1].u, 1);
+    ck_assert_double_eq(t->st[2].v, 1);
+    assert_vec_near(t->q[2], 0, 1, 0);
+    scene_free(&sc);
+    load_fails(HEAD "vertextex 0 0 0 0 0\ntritex 0 0 1\n", 4,
+               "'tritex' vertex index '1' is out of range: 1 textured vertices");
+    load_fails(HEAD "vertextex 0 0 0 0\n", 3, "'vertextex' takes 5 arguments");
+    load_fails(HEAD "vertextex 0 0 0 0 nan\n", 3, "'nan'");
+}
+END_TEST
+
+START_TEST(test_map_commands_are_material_state_stored_once)
+{
+    scene sc;
+    load_ok(HEAD "texture c checker 4 0 0 0 1 1 1\ntexture w wood 2 8 0.5 0.4 0.2 0 0.8 0.5 0.2\n"
+                 "sphere 0 0 0 1\n"
+                 "diffusemap c\nsphere 0 0 0 1\nsphere 1 0 0 1\n"
+                 "bumpmap w 0.25\ntexmapping cube\ntexfilter ewa\nsphere 2 0 0 1\n"
+                 "nomaps\nsphere 3 0 0 1\n", &sc);
+    ck_assert_int_eq(sc.n_textures, 2);
+    ck_assert_int_eq(sc.n_materials, 4);
+    ck_assert_int_eq(sc.spheres[1].material, sc.spheres[2].material); /* dedup still works */
+    const material *m0 = &sc.materials[sc.spheres[0].material];
+    ck_assert_int_eq(m0->diffusemap, 0);
+    ck_assert_ptr_null(scene_map(&sc, m0->diffusemap));
+    ck_assert_int_eq(m0->texfilter, TEXFILTER_TRILINEAR); /* the default */
+    ck_assert_int_eq(scene_material_texmapping(m0, 1), TEXMAPPING_SPHERICAL);
+    ck_assert_int_eq(scene_material_texmapping(m0, 0), TEXMAPPING_UV);
+    const material *m1 = &sc.materials[sc.spheres[1].material];
+    ck_assert_ptr_eq(scene_map(&sc, m1->diffusemap), &sc.textures[0].tex);
+    const material *m2 = &sc.materials[sc.spheres[3].material];
+    ck_assert_ptr_eq(scene_map(&sc, m2->bumpmap), &sc.textures[1].tex);
+    ck_assert_double_eq(m2->bump_strength, 0.25);
+    ck_assert_int_eq(m2->texfilter, TEXFILTER_EWA);
+    ck_assert_int_eq(scene_material_texmapping(m2, 0), TEXMAPPING_CUBE);
+    const material *m3 = &sc.materials[sc.spheres[4].material];
+    ck_assert_int_eq(m3->diffusemap + m3->bumpmap, 0);
+    ck_assert_int_eq(m3->texfilter, TEXFILTER_EWA); /* nomaps clears maps only */
+    ck_assert_int_ne(sc.spheres[4].material, sc.spheres[0].material);
+    scene_free(&sc);
+    /* `texmapping uv` on a sphere is its natural, spherical parameterization */
+    load_ok(HEAD "texmapping uv\ntexture d displace.png\ndisplacementmap d -0.5\nsphere 0 0 0 1\n",
+            &sc);
+    const material *m = &sc.materials[sc.spheres[0].material];
+    ck_assert_int_eq(scene_material_texmapping(m, 1), TEXMAPPING_SPHERICAL);
+    ck_assert_double_eq(m->displacement_scale, -0.5);
+    ck_assert_int_eq(sc.textures[0].tex.kind, TEXTURE_IMAGE);
+    ck_assert_str_eq(sc.textures[0].path, "displace.png");
+    scene_free(&sc);
+}
+END_TEST
+
+START_TEST(test_procedural_textures_take_their_documented_parameters)
+{
+    scene sc;
+    load_ok(HEAD "texture a checker 8 0 0 0 1 1 1\n"
+                 "texture b perlin 3 0 0 0 1 1 1\n"
+                 "texture c fbm 2 6 0 0 0 1 1 1\n"
+                 "texture d turbulence 2 5 0 0 0 1 1 1\n"
+                 "texture e marble 1.5 4 8 6 0.1 0.1 0.1 0.9 0.9 0.9\n"
+                 "texture f wood 2 8 0.5 0.4 0.2 0 0.8 0.5 0.2\n"
+                 "texture g img.exr clamp\n", &sc);
+    ck_assert_int_eq(sc.n_textures, 7);
+    ck_assert_int_eq(sc.textures[0].tex.kind, TEXTURE_CHECKER);
+    ck_assert_double_eq(sc.textures[0].tex.frequency, 8);
+    ck_assert_int_eq(sc.textures[2].tex.solid.octaves, 6);
+    ck_assert_double_eq(sc.textures[3].tex.solid.scale, 2);
+    const texture_solid_params *mb = &sc.textures[4].tex.solid;
+    ck_assert_double_eq(mb->frequency, 4);
+    ck_assert_double_eq(mb->amplitude, 8);
+    ck_assert_int_eq(mb->octaves, 6);
+    ck_assert_double_eq(mb->c1.g, 0.9);
+    ck_assert_double_eq(sc.textures[5].tex.solid.rings, 8);
+    ck_assert_int_eq(sc.textures[6].wrap, WRAP_CLAMP);
+    ck_assert_int_eq(sc.textures[6].line, 9);
+    scene_free(&sc);
+}
+END_TEST
+
+START_TEST(test_texture_errors_name_their_line_and_token)
+{
+    load_fails(HEAD "diffusemap nothing\n", 3, "unknown texture 'nothing'");
+    load_fails(HEAD "texture a checker 8 0 0 0 1 1 1\ntexture a perlin 1 0 0 0 1 1 1\n", 4,
+               "texture 'a' defined twice (first at line 3)");
+    load_fails(HEAD "texture a checker 8 0 0 0 1 1\n", 3, "takes FREQUENCY R0 G0 B0 R1 G1 B1");
+    load_fails(HEAD "texture a checker 0 0 0 0 1 1 1\n", 3, "must be > 0, got '0'");
+    load_fails(HEAD "texture a fbm 1 0 0 0 0 1 1 1\n", 3, "must be in [1, 30], got '0'");
+    load_fails(HEAD "texture a fbm 1 2.5 0 0 0 1 1 1\n", 3, "expected an integer");
+    load_fails(HEAD "texture a wood 1 -8 0 0 0 0 1 1 1\n", 3, "got '-8'");
+    load_fails(HEAD "texture a perlin 1 0 0 0 1 1 -1\n", 3, "got '-1'");
+    load_fails(HEAD "texture a img.png wrap\n", 3, "wrap mode must be 'repeat', 'clamp' or "
+                                                   "'mirror', got 'wrap'");
+    load_fails(HEAD "texture a img.png clamp x\n", 3, "got 'x' after it");
+    load_fails(HEAD "texture a\n", 3, "'texture' takes 2 or 12 arguments");
+    load_fails(HEAD "texmapping sphere\n", 3, "got 'sphere'");
+    load_fails(HEAD "texfilter linear\n", 3, "got 'linear'");
+    load_fails(HEAD "texture t checker 1 0 0 0 1 1 1\nbumpmap t\n", 4, "takes 2 arguments");
+    load_fails(HEAD "texture t checker 1 0 0 0 1 1 1\nbumpmap t abc\n", 4, "'abc'");
+}
+END_TEST
+
+/* Write `text` to dir/name. */
+static void write_file(const char *dir, const char *name, const char *text)
+{
+    char path[512];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    FILE *f = fopen(path, "w");
+    ck_assert_ptr_nonnull(f);
+    fputs(text, f);
+    fclose(f);
+}
+
+static void remove_file(const char *dir, const char *name)
+{
+    char path[512];
+    snprintf(path, sizeof path, "%s/%s", dir, name);
+    unlink(path);
+}
+
+START_TEST(test_obj_meshes_load_under_the_transform_and_material)
+{
+    char dir[] = "/tmp/test_scene_XXXXXX";
+    ck_assert_ptr_nonnull(mkdtemp(dir));
+    write_file(dir, "quad.obj", "o quad\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\n"
+                                "vt 1 1\nvt 0 1\nvn 0 0 2\nf 1/1/1 2/2/1 3/3/1 4/4/1\nf 1 2 4\n");
+    write_file(dir, "bad.obj", "v 0 0 0\nv 1 0 0\nf 1 2 3\n");
+    write_file(dir, "x.test", HEAD "diffuse 1 0 0\nscale 2 2 2\nobj quad.obj\nobj bad.obj\n");
+    char path[512];
+    snprintf(path, sizeof path, "%s/x.test", dir);
+    warnings ws;
+    scene_load_opts o = opts_counting(&ws);
+    scene sc;
+    error err = {0};
+    ck_assert_int_eq(scene_load(path, &o, &sc, &err), -1);
+    /* the scene's FILE:LINE of the obj command, then the obj's own FILE:LINE and reason */
+    ck_assert_str_eq(err.file, path);
+    ck_assert_int_eq(err.line, 6);
+    ck_assert_ptr_nonnull(strstr(err.msg, "obj 'bad.obj': "));
+    ck_assert_ptr_nonnull(strstr(err.msg, "bad.obj:3: index 3 of 'f' is out of range"));
+    write_file(dir, "x.test", HEAD "diffuse 1 0 0\nscale 2 2 2\nobj quad.obj\n");
+    ws.n = 0;
+    ck_assert_msg(scene_load(path, &o, &sc, &err) == 0, "%s", err.msg);
+    ck_assert_int_eq(sc.n_triangles, 3);
+    ck_assert_int_eq(sc.n_materials, 1);
+    ck_assert_double_eq(sc.materials[0].diffuse.r, 1);
+    const scene_triangle *t = &sc.triangles[1]; /* the fan's second: corners 1, 3, 4 */
+    assert_vec_near(t->p[1], 2, 2, 0);
+    assert_vec_near(t->q[1], 1, 1, 0);
+    ck_assert_int_eq(t->has_st, 1);
+    ck_assert_double_eq(t->st[2].v, 1);
+    ck_assert_int_eq(t->has_normals, 1);
+    assert_vec_near(t->n[0], 0, 0, 1); /* normalized after the inverse transpose */
+    ck_assert_int_eq(sc.triangles[2].has_st, 0);
+    ck_assert_int_eq(sc.triangles[2].has_normals, 0);
+    ck_assert_int_eq(ws.n, 1); /* "o quad" skipped: one warning for the file */
+    ck_assert_ptr_nonnull(strstr(ws.last.msg, "ignored"));
+    scene_free(&sc);
+    /* the scene's primitive limit covers the mesh */
+    o.max_prims = 2;
+    ck_assert_int_eq(scene_load(path, &o, &sc, &err), -1);
+    ck_assert_int_eq(err.line, 5);
+    write_file(dir, "x.test", HEAD "obj missing.obj\n");
+    ck_assert_int_eq(scene_load(path, NULL, &sc, &err), -1);
+    ck_assert_int_eq(err.line, 3);
+    ck_assert_ptr_nonnull(strstr(err.msg, "cannot open"));
+    remove_file(dir, "quad.obj");
+    remove_file(dir, "bad.obj");
+    remove_file(dir, "x.test");
+    rmdir(dir);
+}
+END_TEST
+
+START_TEST(test_texture_images_are_read_once_and_pyramids_built_only_when_needed)
+{
+    char dir[] = "/tmp/test_scene_XXXXXX";
+    ck_assert_ptr_nonnull(mkdtemp(dir));
+    char img_path[512], path[512];
+    snprintf(img_path, sizeof img_path, "%s/wood.pfm", dir);
+    snprintf(path, sizeof path, "%s/x.test", dir);
+    image im = {0};
+    error err = {0};
+    ck_assert_int_eq(image_alloc(&im, 4, 2, &err), 0);
+    image_set(&im, 1, 0, rgb_make(0.5, 0.25, 2));
+    ck_assert_msg(imageio_write(img_path, &im, NULL, &err) == 0, "%s", err.msg);
+    image_free(&im);
+    write_file(dir, "x.test", HEAD "texture a wood.pfm\ntexture b wood.pfm mirror\n"
+                                   "texture c wood.pfm clamp\n"
+                                   "texfilter nearest\ndiffusemap a\nsphere 0 0 0 1\n"
+                                   "texfilter trilinear\ndiffusemap b\nsphere 0 0 0 1\n");
+    scene sc;
+    ck_assert_msg(scene_load(path, NULL, &sc, &err) == 0, "%s", err.msg);
+    ck_assert_int_eq(sc.n_texture_images, 1); /* three textures, one file read */
+    ck_assert_ptr_eq(sc.textures[0].tex.img, sc.textures[1].tex.img);
+    ck_assert_double_eq(image_get(sc.textures[2].tex.img, 1, 0).b, 2);
+    ck_assert_int_eq(sc.textures[1].tex.wrap, WRAP_MIRROR);
+    ck_assert_int_eq(sc.textures[0].tex.has_mip, 0); /* nearest needs none */
+    ck_assert_int_eq(sc.textures[1].tex.has_mip, 1); /* trilinear does */
+    ck_assert_int_eq(sc.textures[2].tex.has_mip, 0); /* unused */
+    scene_free(&sc);
+    scene_free(&sc);
+    write_file(dir, "x.test", HEAD "# maps\ntexture a missing.png\n");
+    ck_assert_int_eq(scene_load(path, NULL, &sc, &err), -1);
+    ck_assert_int_eq(err.line, 4);
+    ck_assert_ptr_nonnull(strstr(err.msg, "texture 'a' file 'missing.png' ("));
+    ck_assert_ptr_nonnull(strstr(err.msg, "cannot open"));
+    ck_assert_ptr_null(sc.textures);
+    ck_assert_ptr_null(sc.texture_images);
+    unlink(img_path);
+    remove_file(dir, "x.test");
+    rmdir(dir);
+}
+END_TEST
+
 Suite *scene_suite(void)
 {
     Suite *s = suite_create("scene");
@@ -1126,6 +1357,14 @@ Suite *scene_suite(void)
     tcase_add_test(cmds, test_a_100k_triangle_mesh_parses_with_one_material);
     tcase_add_test(cmds, test_scene_free_is_safe_twice_and_on_a_zeroed_scene);
     suite_add_tcase(s, cmds);
+    TCase *tex = tcase_create("textures");
+    tcase_add_test(tex, test_tritex_keeps_object_corners_world_corners_and_st);
+    tcase_add_test(tex, test_map_commands_are_material_state_stored_once);
+    tcase_add_test(tex, test_procedural_textures_take_their_documented_parameters);
+    tcase_add_test(tex, test_texture_errors_name_their_line_and_token);
+    tcase_add_test(tex, test_obj_meshes_load_under_the_transform_and_material);
+    tcase_add_test(tex, test_texture_images_are_read_once_and_pyramids_built_only_when_needed);
+    suite_add_tcase(s, tex);
     return s;
 }
 
