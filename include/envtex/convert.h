@@ -120,9 +120,9 @@ const image *convert_face_image(const convert_env *env, int face);
  * (their headers), cylindrical (phi width times [z / sqrt(1 + z^2)] between the row's edges),
  * cube (the solid angle of a rectangle on the plane at distance 1, by inclusion-exclusion of
  * F(x, y) = atan2(x y, sqrt(1 + x^2 + y^2))), mirror ball (4 x the area of the texel's square
- * inside the unit disc, computed exactly).  Angular: no closed form; an 8 x 8 midpoint rule
- * over the square (J vanishes at the rim, so the clipped texels are accurate too; the whole
- * disc sums to 4 pi within 1e-5).  Each representation's texels sum to its whole extent: 4 pi,
+ * inside the unit disc, computed exactly).  Angular: no closed form; a midpoint rule of 4 x 4
+ * to 16 x 16 sub-cells over the square (J vanishes at the rim, so the clipped texels are
+ * accurate too; the whole disc sums to 4 pi within 3e-6, relative, from 7 x 7 up).  Each representation's texels sum to its whole extent: 4 pi,
  * or 4 pi sin(atan h) for a cylinder. */
 double convert_texel_solid_angle(const convert_env *env, int face, int c, int r);
 
@@ -134,7 +134,9 @@ rgb convert_power(const convert_env *env);
  * Widths: lat-long, equal-area and cylindrical maps are W x W/2; mirror-ball and angular maps
  * W x W; a cube map has W x W faces.  The default keeps the texels per radian: an input of
  * "equivalent lat-long width" E (lat-long, equal-area, cylindrical: their width; cube: 4 N;
- * disc: 2 W) gives E for the 2:1 kinds, E/4 for cube faces, E/2 for discs (at least 1).
+ * mirror ball: 2 W; angular: 3 W / 2, from the length of the circle that holds the 90-degree
+ * directions) gives E for the 2:1 kinds, E/4 for cube faces, E/2 for a mirror ball, 2E/3 for
+ * an angular map (at least 1).
  * Default samples: K = ceil(2 E_in / E_out) clamped to [4, CONVERT_MAX_SAMPLES], so a texel
  * that shrinks the input still sees every input texel about twice per side. */
 int convert_default_width(const convert_env *in, convert_kind to);
