@@ -2,9 +2,11 @@
  * Every failure prints one line `envtex: FILE:LINE: what is wrong` and exits with status 1.
  *
  *   envtex SCENE                    same as `envtex render SCENE`
- *   envtex render SCENE [-o OUT] [--spp N] [--seed N] [--ref REF] [--quiet] [--verbose] [--strict]
+ *   envtex render SCENE [-o OUT] [--spp N] [--seed N] [--ref REF] [--variance VAR] [--quiet] [--verbose] [--strict]
  *   envtex compare A B [--diff D.png] [--fail-percent P --fail T --hard H]
+ *   envtex compare --test IMG REF VAR [--img-spp N --ref-spp M] [--diff MAP.png]
  *   envtex tonemap IN OUT.png [--exposure EV] [--op clamp|reinhard|aces] [--gamma G]
+ *   envtex convert IN OUT --to KIND [--from KIND] [--width W] [--samples K]
  *   envtex gen-env KIND OUT [--width W] [--value V] [--sun-ratio R] [--sun-radius DEG]
  *                           [--sun-elevation DEG] [--sun-azimuth DEG]
  */
@@ -16,7 +18,9 @@
 
 #include "envtex/bvh.h"
 #include "envtex/compare.h"
+#include "envtex/convert.h"
 #include "envtex/genenv.h"
+#include "envtex/gradetest.h"
 #include "envtex/imageio.h"
 #include "envtex/render.h"
 #include "envtex/scene.h"
@@ -24,10 +28,13 @@
 
 static const char *usage_text =
     "usage: envtex SCENE                         (same as: envtex render SCENE)\n"
-    "       envtex render SCENE [-o OUT.exr|.png|.pfm] [--spp N] [--seed N] [--ref REF]\n"
+    "       envtex render SCENE [-o OUT.exr|.png|.pfm] [--spp N] [--seed N] [--ref REF] [--variance VAR.exr]\n"
     "                           [--quiet] [--verbose] [--strict]\n"
     "       envtex compare A B [--diff DIFF.png] [--fail-percent P] [--fail T] [--hard H]\n"
+    "       envtex compare --test IMG REF VAR [--img-spp N --ref-spp M] [--alpha A] [--max-fail F] [--diff MAP.png]\n"
     "       envtex tonemap IN OUT.png [--exposure EV] [--op clamp|reinhard|aces] [--gamma G]\n"
+    "       envtex convert IN OUT --to latlong|cube|cross|mirrorball|angular|cylindrical|equalarea\n"
+    "                      [--from KIND] [--width W] [--samples K]   (cube: OUT_px.exr ... OUT_nz.exr)\n"
     "       envtex gen-env constant|sky|sun|axes OUT [--width W] [--value V] [--sun-ratio R]\n"
     "                      [--sun-radius DEG] [--sun-elevation DEG] [--sun-azimuth DEG]\n";
 
@@ -130,7 +137,7 @@ static int check_output(const char *path, error *err)
 
 static int cmd_render(int argc, char **argv)
 {
-    const char *scene_path = NULL, *out_path = NULL, *ref_path = NULL;
+    const char *scene_path = NULL, *out_path = NULL, *ref_path = NULL, *var_path = NULL;
     int quiet = 0, verbose = 0, strict = 0;
     render_opts ro = render_defaults();
     for (int i = 0; i < argc; i++) {
@@ -148,6 +155,8 @@ static int cmd_render(int argc, char **argv)
             ro.seed = (uint64_t)n;
         } else if (!strcmp(a, "--ref")) {
             if (!(ref_path = opt_value(argc, argv, &i))) return 1;
+        } else if (!strcmp(a, "--variance")) {
+            if (!(var_path = opt_value(argc, argv, &i))) return 1;
         } else if (!strcmp(a, "--quiet")) quiet = 1;
         else if (!strcmp(a, "--verbose")) verbose = 1;
         else if (!strcmp(a, "--strict")) strict = 1;
@@ -169,8 +178,10 @@ static int cmd_render(int argc, char **argv)
     if (!out_path) out_path = sc.output;
 
     int status = 1;
-    image img = {0}, ref = {0};
+    image img = {0}, ref = {0}, var = {0};
     if (check_output(out_path, &err)) goto done;
+    if (var_path && check_output(var_path, &err)) goto done;
+    if (var_path) ro.variance = &var;
     if (ref_path && imageio_read(ref_path, &ref, &err)) goto done;
     if (!quiet && isatty(STDERR_FILENO)) {
         ro.progress = progress_bar;
@@ -211,6 +222,7 @@ static int cmd_render(int argc, char **argv)
     tonemap_params tm = tonemap_defaults();
     tm.gamma = sc.gamma;
     if (imageio_write(out_path, &img, &tm, &err)) goto done;
+    if (var_path && imageio_write(var_path, &var, NULL, &err)) goto done;
 
     printf("time_s=%.3f spp=%d rays=%lld mrays_per_s=%.3f nonfinite=%ld build_s=%.3f", st.seconds, st.spp,
            st.rays, st.seconds > 0 ? st.rays / st.seconds / 1e6 : 0.0, st.nonfinite_pixels, st.build_seconds);
@@ -229,14 +241,65 @@ done:
     if (status) error_print(&err, stderr);
     image_free(&img);
     image_free(&ref);
+    image_free(&var);
     scene_free(&sc);
     return status;
 }
 
 /* ---- compare ----------------------------------------------------------------------------- */
 
+/* envtex compare --test IMG REF VAR: the noise-aware test (gradetest.h) */
+static int cmd_compare_test(int argc, char **argv)
+{
+    const char *paths[3] = {NULL, NULL, NULL}, *map_path = NULL;
+    int np = 0;
+    gradetest_params p = gradetest_defaults();
+    for (int i = 0; i < argc; i++) {
+        const char *a = argv[i], *v;
+        double *target = NULL;
+        if (!strcmp(a, "--diff")) {
+            if (!(map_path = opt_value(argc, argv, &i))) return 1;
+            continue;
+        }
+        if (!strcmp(a, "--img-spp")) target = &p.img_spp;
+        else if (!strcmp(a, "--ref-spp")) target = &p.ref_spp;
+        else if (!strcmp(a, "--alpha")) target = &p.alpha;
+        else if (!strcmp(a, "--max-fail")) target = &p.max_fail_fraction;
+        if (target) {
+            if (!(v = opt_value(argc, argv, &i))) return 1;
+            if (parse_double(v, target) || !(*target > 0)) return usage_error("option needs a number > 0, got '%s'", v);
+        } else if (a[0] == '-' && a[1]) return usage_error("unknown option '%s'", a);
+        else if (np < 3) paths[np++] = a;
+        else return usage_error("unexpected argument '%s'", a);
+    }
+    if (np < 3) return usage_error("%s", "compare --test needs IMG REF VAR (VAR from 'envtex render --variance')");
+    error err = {0};
+    image im[3] = {{0}}, map = {0};
+    int status = 1;
+    if (map_path && check_output(map_path, &err)) goto done;
+    for (int k = 0; k < 3; k++)
+        if (imageio_read(paths[k], &im[k], &err)) goto done;
+    gradetest_result r;
+    if (gradetest_run(&im[0], &im[1], &im[2], &p, &r, map_path ? &map : NULL, &err)) {
+        error_set(&err, paths[0], 0, "%s", err.msg);
+        goto done;
+    }
+    if (map_path && imageio_write(map_path, &map, NULL, &err)) goto done;
+    printf("%s: %ld of %ld pixels (%.4f%%, allowed %.4f%%) fail |z| > %.2f; image total Z = %.2f "
+           "(allowed |Z| <= %.2f); %ld NaN/Inf: %s\n",
+           r.pass ? "PASS" : "FAIL", r.failed, r.pixels, 100 * r.failed_fraction, 100 * p.max_fail_fraction,
+           r.z_threshold, r.mean_z, p.global_z, r.nonfinite, r.why);
+    status = r.pass ? 0 : 2;
+done:
+    if (status == 1) error_print(&err, stderr);
+    for (int k = 0; k < 3; k++) image_free(&im[k]);
+    image_free(&map);
+    return status;
+}
+
 static int cmd_compare(int argc, char **argv)
 {
+    if (argc > 0 && !strcmp(argv[0], "--test")) return cmd_compare_test(argc - 1, argv + 1);
     const char *a_path = NULL, *b_path = NULL, *diff_path = NULL;
     compare_thresholds_params th = compare_thresholds_defaults();
     int use_thresholds = 0;
@@ -328,6 +391,72 @@ done:
     return status;
 }
 
+/* ---- convert ----------------------------------------------------------------------------- */
+
+/* envtex convert IN OUT --to KIND [--from KIND] [--width W] [--samples K]: resample an
+ * environment into another representation (convert.h).  `cube` reads or writes six files
+ * IN_px.EXT ... IN_nz.EXT; `cross` one horizontal cross image.  Prints one summary line. */
+static int cmd_convert(int argc, char **argv)
+{
+    const char *in = NULL, *out = NULL, *to = NULL, *from = NULL;
+    long width = 0, samples = 0;
+    for (int i = 0; i < argc; i++) {
+        const char *a = argv[i], *v;
+        if (!strcmp(a, "--to")) {
+            if (!(to = opt_value(argc, argv, &i))) return 1;
+        } else if (!strcmp(a, "--from")) {
+            if (!(from = opt_value(argc, argv, &i))) return 1;
+        } else if (!strcmp(a, "--width")) {
+            if (!(v = opt_value(argc, argv, &i))) return 1;
+            if (parse_long(v, 1, IMAGE_MAX_SIDE, &width)) return usage_error("--width needs a whole number from 1 to 32768, got '%s'", v);
+        } else if (!strcmp(a, "--samples")) {
+            if (!(v = opt_value(argc, argv, &i))) return 1;
+            if (parse_long(v, 1, CONVERT_MAX_SAMPLES, &samples)) return usage_error("--samples needs a whole number from 1 to 64, got '%s'", v);
+        } else if (a[0] == '-' && a[1]) return usage_error("unknown option '%s'", a);
+        else if (!in) in = a;
+        else if (!out) out = a;
+        else return usage_error("unexpected argument '%s'", a);
+    }
+    if (!out) return usage_error("%s", "convert needs IN and OUT");
+    convert_kind kind, from_kind;
+    if (!to) return usage_error("%s", "convert needs --to latlong|cube|cross|mirrorball|angular|cylindrical|equalarea");
+    if (convert_kind_parse(to, &kind)) return usage_error("--to must be latlong, cube, cross, mirrorball, angular, cylindrical or equalarea, got '%s'", to);
+    if (from && convert_kind_parse(from, &from_kind)) return usage_error("--from must be latlong, cube, cross, mirrorball, angular, cylindrical or equalarea, got '%s'", from);
+    int six = !strcmp(to, "cube");
+    error err = {0};
+    convert_map src = {0}, dst = {0};
+    int status = 1;
+    /* every output file must be writable before the work starts */
+    for (int f = 0; f < (six ? CUBEMAP_FACES : 1); f++) {
+        char name[ERROR_FILE_MAX];
+        if (six && convert_face_path(out, f, name, sizeof name, &err)) goto done;
+        if (check_output(six ? name : out, &err)) goto done;
+    }
+    if (convert_read(in, from, &src, &err)) goto done;
+    convert_env sv = convert_view(&src);
+    if (convert_resample(&sv, kind, (int)width, (int)samples, &dst, &err)) {
+        char msg[ERROR_MSG_MAX];
+        memcpy(msg, err.msg, sizeof msg);
+        error_set(&err, out, 0, "%s", msg);
+        goto done;
+    }
+    if (kind == CONVERT_CUBE && !six ? convert_write_cross(out, &dst, &err) : convert_write(out, &dst, &err)) goto done;
+    convert_env dv = convert_view(&dst);
+    double p0 = rgb_luminance(convert_power(&sv)), p1 = rgb_luminance(convert_power(&dv));
+    const image *si = convert_face_image(&sv, 0), *di = convert_face_image(&dv, 0);
+    printf("from=%s %dx%d%s to=%s %dx%d%s samples=%d power_in=%.6g power_out=%.6g power_change=%+.4f%%\n",
+           convert_kind_name(src.kind), si->w, si->h, src.kind == CONVERT_CUBE ? "x6" : "",
+           six ? "cube" : to, di->w, di->h, kind == CONVERT_CUBE ? "x6" : "",
+           samples > 0 ? (int)samples : convert_default_samples(&sv, kind, di->w), p0, p1,
+           p0 > 0 ? 100.0 * (p1 / p0 - 1.0) : 0.0);
+    status = 0;
+done:
+    if (status) error_print(&err, stderr);
+    convert_map_free(&src);
+    convert_map_free(&dst);
+    return status;
+}
+
 /* ---- gen-env ----------------------------------------------------------------------------- */
 
 static int cmd_gen_env(int argc, char **argv)
@@ -391,5 +520,6 @@ int main(int argc, char **argv)
     if (!strcmp(cmd, "compare")) return cmd_compare(argc - 2, argv + 2);
     if (!strcmp(cmd, "tonemap")) return cmd_tonemap(argc - 2, argv + 2);
     if (!strcmp(cmd, "gen-env")) return cmd_gen_env(argc - 2, argv + 2);
+    if (!strcmp(cmd, "convert")) return cmd_convert(argc - 2, argv + 2);
     return cmd_render(argc - 1, argv + 1); /* envtex SCENE [options] */
 }

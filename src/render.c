@@ -33,6 +33,8 @@ int render_scene(const scene *sc, const render_opts *opts, image *out, render_st
     int spp = opts->spp > 0 ? opts->spp : sc->spp;
     if (spp < 1 || spp > SCENE_MAX_SPP)
         return error_set(err, sc->path, 0, "spp %d is out of range [1, %d]", spp, SCENE_MAX_SPP);
+    if (opts->variance && spp < 2)
+        return error_set(err, sc->path, 0, "a per-pixel variance needs at least 2 samples per pixel (spp is 1)");
 
     bvh accel;
     double t0 = now_seconds();
@@ -43,7 +45,9 @@ int render_scene(const scene *sc, const render_opts *opts, image *out, render_st
         return -1;
     }
     stats->build_seconds = now_seconds() - t0;
-    if (image_alloc(out, sc->width, sc->height, err)) {
+    if (image_alloc(out, sc->width, sc->height, err) ||
+        (opts->variance && image_alloc(opts->variance, sc->width, sc->height, err))) {
+        image_free(out);
         integrator_free(&it);
         bvh_free(&accel);
         return error_prefix(err, "%s: output image", sc->path);
@@ -57,16 +61,22 @@ int render_scene(const scene *sc, const render_opts *opts, image *out, render_st
         for (int x = 0; x < sc->width; x++) {
             rng r;
             rng_seed(&r, opts->seed, (uint64_t)y * (uint64_t)sc->width + (uint64_t)x);
-            rgb sum = rgb_gray(0);
+            /* Welford's running mean and sum of squared deviations, in double */
+            rgb mean = rgb_gray(0), m2 = rgb_gray(0);
             for (int s = 0; s < spp; s++) {
                 double jx = 0.5, jy = 0.5;
                 if (spp > 1) {
                     jx = rng_uniform(&r);
                     jy = rng_uniform(&r);
                 }
-                sum = rgb_add(sum, integrator_radiance(&it, camera_ray(&cam, x + jx, y + jy), &r));
+                rgb v = integrator_radiance(&it, camera_ray(&cam, x + jx, y + jy), &r);
+                rgb d = rgb_make(v.r - mean.r, v.g - mean.g, v.b - mean.b);
+                mean = rgb_madd(mean, d, 1.0 / (s + 1));         /* mean += (v - mean) / n */
+                m2 = rgb_add(m2, rgb_make(d.r * (v.r - mean.r), d.g * (v.g - mean.g), d.b * (v.b - mean.b)));
             }
-            rgb c = rgb_scale(sum, 1.0 / spp);
+            rgb c = mean;
+            if (opts->variance) /* variance of the mean: M2 / (n - 1) / n */
+                image_set(opts->variance, x, y, rgb_scale(m2, 1.0 / ((double)(spp - 1) * spp)));
             if (!rgb_is_finite(c)) stats->nonfinite_pixels++;
             image_set(out, x, y, c);
         }

@@ -28,6 +28,9 @@ typedef struct render_opts {
     uint64_t seed;             /* default 0 */
     render_progress_fn progress; /* called after each row (may be NULL) */
     void *progress_ctx;
+    image *variance;           /* if not NULL: receives the per-pixel variance of the mean,
+                                * s^2 / spp with s^2 the unbiased sample variance of the pixel's
+                                * samples (needs spp >= 2; allocated here, free with image_free) */
 } render_opts;
 
 typedef struct render_stats {
