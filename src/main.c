@@ -7,7 +7,6 @@
  *   envtex compare --test IMG REF VAR [--img-spp N --ref-spp M] [--diff MAP.png]
  *   envtex tonemap IN OUT.png [--exposure EV] [--op clamp|reinhard|aces] [--gamma G]
  *   envtex convert IN OUT --to KIND [--from KIND] [--width W] [--samples K]
- *   envtex convert IN OUT --to KIND [--from KIND] [--width W] [--samples K]
  *   envtex gen-env KIND OUT [--width W] [--value V] [--sun-ratio R] [--sun-radius DEG]
  *                           [--sun-elevation DEG] [--sun-azimuth DEG]
  */
@@ -19,7 +18,6 @@
 
 #include "envtex/bvh.h"
 #include "envtex/compare.h"
-#include "envtex/convert.h"
 #include "envtex/convert.h"
 #include "envtex/genenv.h"
 #include "envtex/gradetest.h"
@@ -35,8 +33,6 @@ static const char *usage_text =
     "       envtex compare A B [--diff DIFF.png] [--fail-percent P] [--fail T] [--hard H]\n"
     "       envtex compare --test IMG REF VAR [--img-spp N --ref-spp M] [--alpha A] [--max-fail F] [--diff MAP.png]\n"
     "       envtex tonemap IN OUT.png [--exposure EV] [--op clamp|reinhard|aces] [--gamma G]\n"
-    "       envtex convert IN OUT --to latlong|cube|cross|mirrorball|angular|cylindrical|equalarea\n"
-    "                      [--from KIND] [--width W] [--samples K]   (cube: OUT_px.exr ... OUT_nz.exr)\n"
     "       envtex convert IN OUT --to latlong|cube|cross|mirrorball|angular|cylindrical|equalarea\n"
     "                      [--from KIND] [--width W] [--samples K]   (cube: OUT_px.exr ... OUT_nz.exr)\n"
     "       envtex gen-env constant|sky|sun|axes OUT [--width W] [--value V] [--sun-ratio R]\n"
@@ -461,72 +457,6 @@ done:
     return status;
 }
 
-/* ---- convert ----------------------------------------------------------------------------- */
-
-/* envtex convert IN OUT --to KIND [--from KIND] [--width W] [--samples K]: resample an
- * environment into another representation (convert.h).  `cube` reads or writes six files
- * IN_px.EXT ... IN_nz.EXT; `cross` one horizontal cross image.  Prints one summary line. */
-static int cmd_convert(int argc, char **argv)
-{
-    const char *in = NULL, *out = NULL, *to = NULL, *from = NULL;
-    long width = 0, samples = 0;
-    for (int i = 0; i < argc; i++) {
-        const char *a = argv[i], *v;
-        if (!strcmp(a, "--to")) {
-            if (!(to = opt_value(argc, argv, &i))) return 1;
-        } else if (!strcmp(a, "--from")) {
-            if (!(from = opt_value(argc, argv, &i))) return 1;
-        } else if (!strcmp(a, "--width")) {
-            if (!(v = opt_value(argc, argv, &i))) return 1;
-            if (parse_long(v, 1, IMAGE_MAX_SIDE, &width)) return usage_error("--width needs a whole number from 1 to 32768, got '%s'", v);
-        } else if (!strcmp(a, "--samples")) {
-            if (!(v = opt_value(argc, argv, &i))) return 1;
-            if (parse_long(v, 1, CONVERT_MAX_SAMPLES, &samples)) return usage_error("--samples needs a whole number from 1 to 64, got '%s'", v);
-        } else if (a[0] == '-' && a[1]) return usage_error("unknown option '%s'", a);
-        else if (!in) in = a;
-        else if (!out) out = a;
-        else return usage_error("unexpected argument '%s'", a);
-    }
-    if (!out) return usage_error("%s", "convert needs IN and OUT");
-    convert_kind kind, from_kind;
-    if (!to) return usage_error("%s", "convert needs --to latlong|cube|cross|mirrorball|angular|cylindrical|equalarea");
-    if (convert_kind_parse(to, &kind)) return usage_error("--to must be latlong, cube, cross, mirrorball, angular, cylindrical or equalarea, got '%s'", to);
-    if (from && convert_kind_parse(from, &from_kind)) return usage_error("--from must be latlong, cube, cross, mirrorball, angular, cylindrical or equalarea, got '%s'", from);
-    int six = !strcmp(to, "cube");
-    error err = {0};
-    convert_map src = {0}, dst = {0};
-    int status = 1;
-    /* every output file must be writable before the work starts */
-    for (int f = 0; f < (six ? CUBEMAP_FACES : 1); f++) {
-        char name[ERROR_FILE_MAX];
-        if (six && convert_face_path(out, f, name, sizeof name, &err)) goto done;
-        if (check_output(six ? name : out, &err)) goto done;
-    }
-    if (convert_read(in, from, &src, &err)) goto done;
-    convert_env sv = convert_view(&src);
-    if (convert_resample(&sv, kind, (int)width, (int)samples, &dst, &err)) {
-        char msg[ERROR_MSG_MAX];
-        memcpy(msg, err.msg, sizeof msg);
-        error_set(&err, out, 0, "%s", msg);
-        goto done;
-    }
-    if (kind == CONVERT_CUBE && !six ? convert_write_cross(out, &dst, &err) : convert_write(out, &dst, &err)) goto done;
-    convert_env dv = convert_view(&dst);
-    double p0 = rgb_luminance(convert_power(&sv)), p1 = rgb_luminance(convert_power(&dv));
-    const image *si = convert_face_image(&sv, 0), *di = convert_face_image(&dv, 0);
-    printf("from=%s %dx%d%s to=%s %dx%d%s samples=%d power_in=%.6g power_out=%.6g power_change=%+.4f%%\n",
-           convert_kind_name(src.kind), si->w, si->h, src.kind == CONVERT_CUBE ? "x6" : "",
-           six ? "cube" : to, di->w, di->h, kind == CONVERT_CUBE ? "x6" : "",
-           samples > 0 ? (int)samples : convert_default_samples(&sv, kind, di->w), p0, p1,
-           p0 > 0 ? 100.0 * (p1 / p0 - 1.0) : 0.0);
-    status = 0;
-done:
-    if (status) error_print(&err, stderr);
-    convert_map_free(&src);
-    convert_map_free(&dst);
-    return status;
-}
-
 /* ---- gen-env ----------------------------------------------------------------------------- */
 
 static int cmd_gen_env(int argc, char **argv)
@@ -590,7 +520,6 @@ int main(int argc, char **argv)
     if (!strcmp(cmd, "compare")) return cmd_compare(argc - 2, argv + 2);
     if (!strcmp(cmd, "tonemap")) return cmd_tonemap(argc - 2, argv + 2);
     if (!strcmp(cmd, "gen-env")) return cmd_gen_env(argc - 2, argv + 2);
-    if (!strcmp(cmd, "convert")) return cmd_convert(argc - 2, argv + 2);
     if (!strcmp(cmd, "convert")) return cmd_convert(argc - 2, argv + 2);
     return cmd_render(argc - 1, argv + 1); /* envtex SCENE [options] */
 }
