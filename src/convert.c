@@ -7,6 +7,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "envtex/angular.h"
@@ -569,6 +570,12 @@ int convert_write(const char *path, const convert_map *m, error *err)
         if (convert_face_path(path, f, final[f], sizeof final[f], err) ||
             insert_before_extension(final[f], tag, tmp[f], sizeof tmp[f], err))
             return -1;
+    /* a target that exists and is not a regular file (a folder) would fail its rename at the end */
+    for (int f = 0; f < CUBEMAP_FACES; f++) {
+        struct stat st;
+        if (stat(final[f], &st) == 0 && !S_ISREG(st.st_mode))
+            return error_set(err, final[f], 0, "exists and is not a regular file");
+    }
     int written = 0;
     for (; written < CUBEMAP_FACES; written++)
         if (imageio_write(tmp[written], &m->cube.face[written], NULL, err)) break;
