@@ -1,0 +1,184 @@
+/* test_displace.c - tessellation counts and winding, constant heights as offsets along the
+ * normal, area-weighted normals, the sphere's closed surface (volume by the divergence
+ * theorem), its seam's corner coordinates, and limits checked before allocation. */
+#include "envtex/displace.h"
+
+#include "unit.h"
+
+static double constant(void *ctx, vec3 p, vec3 n, uv2 st)
+{
+    (void)p, (void)n, (void)st;
+    return *(const double *)ctx;
+}
+
+/* height = s: checks that the callback sees each vertex's st */
+static double height_s(void *ctx, vec3 p, vec3 n, uv2 st)
+{
+    (void)ctx, (void)p, (void)n;
+    return st.u;
+}
+
+static const vec3 tri_p[3] = {{0, 0, 0}, {2, 0, 0}, {0, 2, 0}};
+static const uv2 tri_st[3] = {{0, 0}, {1, 0}, {0, 1}};
+
+START_TEST(test_a_triangle_at_rate_n_has_n_squared_triangles_wound_like_the_original)
+{
+    displace_mesh m;
+    error err = {0};
+    double h = 0;
+    ck_assert_int_eq(displace_triangle(tri_p, NULL, tri_st, 5, constant, &h, 1, 0, &m, &err), 0);
+    ck_assert_int_eq(m.n_tris, 25);
+    ck_assert_int_eq(m.n_verts, 21);
+    double area = 0;
+    for (long i = 0; i < m.n_tris; i++) {
+        const long *v = m.tris[i].v;
+        vec3 f = vec3_cross(vec3_sub(m.p[v[1]], m.p[v[0]]), vec3_sub(m.p[v[2]], m.p[v[0]]));
+        ck_assert_msg(f.z > 0, "triangle %ld is wound backwards", i);
+        area += 0.5 * f.z;
+    }
+    ck_assert_near(area, 2, 1e-12); /* the pieces tile the original exactly */
+    displace_mesh_free(&m);
+    displace_mesh_free(&m);
+}
+END_TEST
+
+START_TEST(test_a_constant_height_lifts_a_flat_triangle_along_its_normal)
+{
+    displace_mesh m;
+    error err = {0};
+    double h = 0.5;
+    ck_assert_int_eq(displace_triangle(tri_p, NULL, tri_st, 3, constant, &h, 0.2, 0, &m, &err), 0);
+    for (long k = 0; k < m.n_verts; k++) {
+        ck_assert_near(m.p[k].z, 0.1, 1e-15); /* scale * h */
+        ck_assert_near(m.n[k].z, 1, 1e-15);
+    }
+    displace_mesh_free(&m);
+}
+END_TEST
+
+START_TEST(test_a_ramp_height_tilts_the_recomputed_normals)
+{
+    /* z = scale * s = 0.5 * x / 2 on the plane: normal (-0.25, 0, 1) normalized */
+    displace_mesh m;
+    error err = {0};
+    ck_assert_int_eq(displace_triangle(tri_p, NULL, tri_st, 4, height_s, NULL, 0.5, 0, &m, &err), 0);
+    vec3 want = vec3_normalize(vec3_make(-0.25, 0, 1));
+    for (long k = 0; k < m.n_verts; k++)
+        ck_assert_msg(vec3_length(vec3_sub(m.n[k], want)) < 1e-12, "vertex %ld", k);
+    /* the corner st are the interpolated ones */
+    ck_assert_near(m.tris[0].st[1].u, 0.25, 1e-15);
+    displace_mesh_free(&m);
+}
+END_TEST
+
+START_TEST(test_the_sphere_is_closed_outward_and_has_the_documented_counts)
+{
+    displace_mesh m;
+    error err = {0};
+    double h = 0;
+    ck_assert_int_eq(displace_sphere(8, constant, &h, 1, 0, &m, &err), 0);
+    ck_assert_int_eq(m.n_verts, 2 + 7 * 16);
+    ck_assert_int_eq(m.n_tris, 4 * 8 * 7);
+    /* volume = (1/6) sum a . (b x c): only a closed, consistently outward mesh gives a value near
+     * 4 pi / 3 (a flipped or missing triangle shows at once) */
+    double vol = 0;
+    int outward = 0;
+    for (long i = 0; i < m.n_tris; i++) {
+        const long *v = m.tris[i].v;
+        vec3 a = m.p[v[0]], b = m.p[v[1]], c = m.p[v[2]];
+        vol += vec3_dot(a, vec3_cross(b, c)) / 6.0;
+        vec3 f = vec3_cross(vec3_sub(b, a), vec3_sub(c, a));
+        outward += vec3_dot(f, vec3_add(vec3_add(a, b), c)) > 0;
+    }
+    ck_assert_int_eq(outward, m.n_tris);
+    /* inscribed in the unit sphere: a little less than 4 pi / 3 */
+    ck_assert_msg(vol > 0.9 * 4 * M_PI / 3 && vol < 4 * M_PI / 3, "volume %g", vol);
+    /* closed and consistently wound: every directed edge (a, b) has exactly one (b, a) */
+    int unmatched = 0;
+    for (long i = 0; i < m.n_tris; i++)
+        for (int k = 0; k < 3; k++) {
+            long a = m.tris[i].v[k], b = m.tris[i].v[(k + 1) % 3];
+            int twins = 0;
+            for (long j = 0; j < m.n_tris; j++)
+                for (int l = 0; l < 3; l++)
+                    twins += m.tris[j].v[l] == b && m.tris[j].v[(l + 1) % 3] == a;
+            unmatched += twins != 1;
+        }
+    ck_assert_int_eq(unmatched, 0);
+    for (long k = 0; k < m.n_verts; k++)
+        ck_assert_msg(vec3_dot(m.n[k], m.p[k]) > 0.99, "normal of vertex %ld", k);
+    displace_mesh_free(&m);
+}
+END_TEST
+
+START_TEST(test_a_constant_height_grows_the_sphere)
+{
+    displace_mesh m;
+    error err = {0};
+    double h = 2;
+    ck_assert_int_eq(displace_sphere(4, constant, &h, 0.25, 0, &m, &err), 0);
+    for (long k = 0; k < m.n_verts; k++) ck_assert_near(vec3_length(m.p[k]), 1.5, 1e-12);
+    displace_mesh_free(&m);
+}
+END_TEST
+
+START_TEST(test_sphere_corners_at_the_seam_read_s_one_not_zero)
+{
+    displace_mesh m;
+    error err = {0};
+    ck_assert_int_eq(displace_sphere(3, NULL, NULL, 0, 0, &m, &err), 0);
+    int seam = 0;
+    for (long i = 0; i < m.n_tris; i++)
+        for (int k = 0; k < 3; k++) {
+            double s = m.tris[i].st[k].u;
+            ck_assert(s >= 0 && s <= 1);
+            seam += s == 1.0;
+        }
+    ck_assert_int_gt(seam, 0);
+    /* the last segment's triangles span s in [5/6, 1]: none jumps back across the image */
+    for (long i = 0; i < m.n_tris; i++) {
+        double lo = 1, hi = 0;
+        for (int k = 0; k < 3; k++) {
+            lo = fmin(lo, m.tris[i].st[k].u);
+            hi = fmax(hi, m.tris[i].st[k].u);
+        }
+        ck_assert_msg(hi - lo <= 1.0 / 6 + 1e-12, "triangle %ld spans s %g..%g", i, lo, hi);
+    }
+    displace_mesh_free(&m);
+}
+END_TEST
+
+START_TEST(test_limits_and_bad_input_are_errors_before_allocation)
+{
+    displace_mesh m;
+    error err = {0};
+    ck_assert_int_eq(displace_triangle(tri_p, NULL, tri_st, 100, NULL, NULL, 1, 9999, &m, &err), -1);
+    ck_assert_ptr_null(m.p);
+    ck_assert_int_eq(displace_triangle(tri_p, NULL, tri_st, 0, NULL, NULL, 1, 0, &m, &err), -1);
+    ck_assert_int_eq(displace_sphere(1, NULL, NULL, 1, 0, &m, &err), -1);
+    ck_assert_int_eq(displace_sphere(DISPLACE_MAX_RATE, NULL, NULL, 1, 1000, &m, &err), -1);
+    ck_assert_ptr_null(m.tris);
+    const vec3 line[3] = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};
+    ck_assert_int_eq(displace_triangle(line, NULL, tri_st, 2, NULL, NULL, 1, 0, &m, &err), -1);
+    const vec3 nz[3] = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
+    ck_assert_int_eq(displace_triangle(line, nz, tri_st, 2, NULL, NULL, 1, 0, &m, &err), 0);
+    displace_mesh_free(&m);
+}
+END_TEST
+
+Suite *displace_suite(void)
+{
+    Suite *s = suite_create("displace");
+    TCase *tc = tcase_create("core");
+    tcase_add_test(tc, test_a_triangle_at_rate_n_has_n_squared_triangles_wound_like_the_original);
+    tcase_add_test(tc, test_a_constant_height_lifts_a_flat_triangle_along_its_normal);
+    tcase_add_test(tc, test_a_ramp_height_tilts_the_recomputed_normals);
+    tcase_add_test(tc, test_the_sphere_is_closed_outward_and_has_the_documented_counts);
+    tcase_add_test(tc, test_a_constant_height_grows_the_sphere);
+    tcase_add_test(tc, test_sphere_corners_at_the_seam_read_s_one_not_zero);
+    tcase_add_test(tc, test_limits_and_bad_input_are_errors_before_allocation);
+    suite_add_tcase(s, tc);
+    return s;
+}
+
+UNIT_MAIN(displace_suite)
