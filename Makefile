@@ -5,6 +5,7 @@
 #   make asan       the whole test suite under AddressSanitizer + UndefinedBehaviorSanitizer
 #   make bench      benchmarks (medians of repeated runs)
 #   make update-golden   re-render the golden references (look at them before committing)
+#   make docs-images     re-render the pictures in docs/images/ from data/scenes/
 #   make deps       install the Debian packages envtex needs (apt-get, as root or via sudo)
 #   make fuzz       libFuzzer on every parser, FUZZ_SECONDS each (needs clang; docs/robustness.md)
 #   make valgrind   every data scene and the bad-input catalogue under valgrind
@@ -36,7 +37,7 @@ UNIT_BIN = $(UNIT_SRC:tests/unit/%.c=$(BUILD)/tests/%)
 TOOL_SRC = $(wildcard tests/tools/*.c)
 TOOL_BIN = $(TOOL_SRC:tests/tools/%.c=$(BUILD)/tools/%)
 
-.PHONY: all test check run asan bench update-golden clean deps unit golden cli
+.PHONY: all test check run asan bench update-golden clean deps unit golden cli docs-images
 
 all: envtex
 
@@ -79,6 +80,9 @@ asan:
 
 update-golden: $(BUILD)/envtex $(TOOL_BIN)
 	@BUILD=$(BUILD) ENVTEX=$(BUILD)/envtex tests/golden/update
+
+docs-images: $(BUILD)/envtex
+	@BUILD=$(BUILD) ENVTEX=$(BUILD)/envtex docs/make-images.sh
 
 bench: $(BUILD)/envtex $(TOOL_BIN)
 	@BUILD=$(BUILD) ENVTEX=$(BUILD)/envtex tests/bench/run
