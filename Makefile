@@ -142,7 +142,10 @@ FUZZ_MAX_LEN_scene = 8192
 FUZZ_MAX_LEN_DEFAULT = 65536
 
 fuzz:
-	@command -v $(FUZZ_CC) >/dev/null 2>&1 || { echo "envtex: make fuzz needs clang and libFuzzer; run: sudo apt-get install -y clang libclang-rt-14-dev" >&2; exit 1; }
+	@command -v $(FUZZ_CC) >/dev/null 2>&1 && \
+	printf '#include <stddef.h>\nint LLVMFuzzerTestOneInput(const unsigned char *d, size_t n) { (void)d; return (int)n * 0; }\n' | \
+		$(FUZZ_CC) -fsanitize=fuzzer -x c - -o /dev/null 2>/dev/null || \
+		{ echo "envtex: make fuzz needs clang and libFuzzer; run: sudo apt-get install -y clang libclang-rt-14-dev" >&2; exit 1; }
 	@$(MAKE) --no-print-directory BUILD=$(FUZZ_BUILD) CC=$(FUZZ_CC) \
 		CFLAGS="-O1 -g -fsanitize=fuzzer-no-link $(FUZZ_SAN)" $(FUZZ_BUILD)/libenvtex.a
 	@mkdir -p $(FUZZ_BUILD)/crashes
