@@ -268,7 +268,7 @@ START_TEST(test_bvh_of_coincident_primitives_matches_brute_force)
     scene_alloc(&sc, 40, 40);
     for (int i = 0; i < 40; i++) {
         set_sphere(&sc.spheres[i], vec3_make(1, 2, 3), 1 + 0.001 * i, mat4_identity(), 0);
-        sc.triangles[i] = (scene_triangle){{{-5, -5, 0}, {5, -5, 0}, {0, 5, 0.01 * i}}, {{0, 0, 0}}, 0, 1};
+        sc.triangles[i] = (scene_triangle){.p = {{-5, -5, 0}, {5, -5, 0}, {0, 5, 0.01 * i}}, .material = 1};
     }
     check_against_brute_force(&sc, 3000, 47);
     scene_free(&sc);
@@ -332,7 +332,7 @@ START_TEST(test_bvh_triangle_hit_fills_barycentrics_and_normals)
     scene sc;
     scene_alloc(&sc, 0, 1);
     scene_triangle *t = &sc.triangles[0];
-    *t = (scene_triangle){{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {{0, 0, 0}}, 0, 1};
+    *t = (scene_triangle){.p = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, .material = 1};
     error err = {0};
     bvh b;
     EXPECT_INT_EQ(bvh_build(&b, &sc, &err), 0);
@@ -373,7 +373,7 @@ START_TEST(test_bvh_agrees_with_brute_force_on_rays_through_a_silhouette_edge)
     scene_alloc(&sc, 0, n);
     for (int k = 0; k < n; k++) {
         double th = 0.5 * M_PI * (k + 0.5) / n;
-        sc.triangles[k] = (scene_triangle){{{-5.1, 0, 0}, {4.7, 0, 0}, {0.3, 5 * cos(th), 5 * sin(th)}}, {{0, 0, 0}}, 0, 0};
+        sc.triangles[k] = (scene_triangle){.p = {{-5.1, 0, 0}, {4.7, 0, 0}, {0.3, 5 * cos(th), 5 * sin(th)}}};
     }
     error err = {0};
     bvh b;
