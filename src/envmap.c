@@ -14,7 +14,8 @@ void envmap_init(envmap *env, const scene *sc)
     env->present = 1;
     env->kind = e->kind;
     if (e->kind == CONVERT_CUBE) env->cube = &e->cube;
-    else env->img = &e->img;
+    else env->map = &e->img;
+    if (e->kind == CONVERT_LATLONG) env->img = &e->img;
     if (e->kind == CONVERT_CYLINDRICAL)
         env->max_height = e->max_height > 0 ? e->max_height
                                             : convert_cylindrical_height(e->img.w, e->img.h);
@@ -26,7 +27,7 @@ convert_env envmap_view(const envmap *env)
 {
     convert_env v;
     v.kind = env->kind;
-    v.img = env->img;
+    v.img = env->map;
     v.cube = env->cube;
     v.max_height = env->max_height;
     return v;

@@ -21,8 +21,10 @@
 typedef struct envmap {
     int present;          /* 0: black */
     convert_kind kind;    /* the representation (CONVERT_LATLONG unless the scene said otherwise) */
-    const image *img;     /* the map for every kind but CONVERT_CUBE, e.g. the lat-long map
-                             (owned by the scene); NULL for a cube map */
+    const image *img;     /* kind CONVERT_LATLONG: the lat-long map (owned by the scene), which
+                             envlight.h samples directly; NULL for every other kind, whose map
+                             envmap_to_latlong converts first */
+    const image *map;     /* the image of every kind but CONVERT_CUBE (== img for lat-long) */
     const cubemap *cube;  /* kind CONVERT_CUBE: the six faces (owned by the scene); else NULL */
     double max_height;    /* kind CONVERT_CYLINDRICAL: the cylinder's half height h (> 0) */
     double scale;

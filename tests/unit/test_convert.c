@@ -480,6 +480,8 @@ START_TEST(test_a_cylindrical_envmap_gets_its_default_height_and_black_caps)
     envmap env;
     envmap_init(&env, &sc);
     ck_assert_near(env.max_height, M_PI / 2, 1e-15);
+    ck_assert_ptr_null(env.img); /* not a lat-long map: envlight must convert it first */
+    ck_assert_ptr_eq(env.map, &sc.envmap.img);
     ck_assert_near(envmap_radiance(&env, vec3_make(1, 0, 0)).r, 1, 1e-6);
     ck_assert(rgb_is_black(envmap_radiance(&env, vec3_make(0, 0, 1))));
     convert_map_free(&cyl);
