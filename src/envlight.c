@@ -10,6 +10,9 @@
 #include "envtex/latlong.h"
 #include "envtex/sampling.h"
 
+/* cdf-sintheta: the least remapped value inside a row, so that theta > 0 (sin theta > 0) */
+#define ENVLIGHT_POLE_REM 1e-9
+
 /* A texel as the light sees it: NaN, Inf and negative channels are 0, then scaled. */
 static inline double clean(float v) { return isfinite(v) && v > 0 ? (double)v : 0.0; }
 
@@ -146,19 +149,24 @@ static int build_mediancut(envlight *el, const double *energy, int n_lights, err
     for (int k = 0; k < n_done; k++) {
         const region *g = &done[k];
         envlight_point *pt = &el->points[k];
-        vec3 centroid = vec3_make(0, 0, 0);
+        /* the energy centroid in image coordinates (Debevec 2005): a weighted mean of texel
+         * centres, so it lies inside the stratum (the mean 3D direction of a stratum wide in
+         * phi near a pole lies poleward of it, outside) */
+        double sx = 0, sy = 0, se = 0;
         rgb power = rgb_gray(0);
         for (int c = g->c0; c < g->c1; c++)
             for (int r = g->r0; r < g->r1; r++) {
                 double om = texel_omega(el, r);
                 rgb L = texel(el, c, r);
                 power = rgb_madd(power, L, om); /* power = sum of L dOmega over the stratum */
-                vec3 d = latlong_uv_to_dir((uv2){(c + 0.5) / w, (r + 0.5) / h});
-                centroid = vec3_madd(centroid, d, rgb_avg(L) * om);
+                double e = rgb_avg(L) * om;
+                sx += e * (c + 0.5);
+                sy += e * (r + 0.5);
+                se += e;
             }
-        if (vec3_length2(centroid) == 0) /* a black stratum: its centre */
-            centroid = latlong_uv_to_dir((uv2){0.5 * (g->c0 + g->c1) / w, 0.5 * (g->r0 + g->r1) / h});
-        pt->dir = vec3_normalize(mat4_dir(&to_world, vec3_normalize(centroid)));
+        uv2 uv = {0.5 * (g->c0 + g->c1) / w, 0.5 * (g->r0 + g->r1) / h}; /* a black stratum: its centre */
+        if (se > 0) uv = (uv2){sx / se / w, sy / se / h};
+        pt->dir = vec3_normalize(mat4_dir(&to_world, latlong_uv_to_dir(uv)));
         pt->power = power;
         pt->c0 = g->c0; pt->c1 = g->c1; pt->r0 = g->r0; pt->r1 = g->r1;
         wts[k] = rgb_avg(power);
@@ -303,7 +311,10 @@ int envlight_sample(const envlight *el, double xi1, double xi2, int force_invers
         sin_t = sqrt(fmax(0.0, 1 - cos_t * cos_t));
         out->pdf = pmf / texel_omega(el, r);
     } else {
-        double theta = M_PI * (r + rr) / el->h; /* uniform in theta: PBRT */
+        /* uniform in theta: PBRT.  rr = 0 in a lit row 0 (xi at a CDF step) gives theta = 0,
+         * where sin theta = 0 and the density is infinite: start ENVLIGHT_POLE_REM of a row
+         * inside it instead (moves a set of probability 1e-9 by 1e-9 of a row: no bias) */
+        double theta = M_PI * (r + fmax(rr, ENVLIGHT_POLE_REM)) / el->h;
         cos_t = cos(theta);
         sin_t = sin(theta);
         /* p(omega) = p(c,r) W H / (2 pi^2 sin theta) */
