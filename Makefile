@@ -6,6 +6,8 @@
 #   make bench      benchmarks (medians of repeated runs)
 #   make update-golden   re-render the golden references (look at them before committing)
 #   make docs-images     re-render the pictures in docs/images/ from data/scenes/
+#   make starter STEPS="latlong cdf"   an assignment starter tree with those steps as stubs
+#   make test STEP=cdf   only the tests of one lecture step (tests/steps)
 #   make deps       install the Debian packages envtex needs (apt-get, as root or via sudo)
 #   make fuzz       libFuzzer on every parser, FUZZ_SECONDS each (needs clang; docs/robustness.md)
 #   make valgrind   every data scene and the bad-input catalogue under valgrind
@@ -37,7 +39,7 @@ UNIT_BIN = $(UNIT_SRC:tests/unit/%.c=$(BUILD)/tests/%)
 TOOL_SRC = $(wildcard tests/tools/*.c)
 TOOL_BIN = $(TOOL_SRC:tests/tools/%.c=$(BUILD)/tools/%)
 
-.PHONY: all test check run asan bench update-golden clean deps unit golden cli docs-images
+.PHONY: all test check run asan bench update-golden clean deps unit golden cli docs-images starter starter-check
 
 all: envtex
 
@@ -80,6 +82,13 @@ asan:
 
 update-golden: $(BUILD)/envtex $(TOOL_BIN)
 	@BUILD=$(BUILD) ENVTEX=$(BUILD)/envtex tests/golden/update
+
+# assignment starter kits (docs/teaching.md)
+starter:
+	@BUILD=$(BUILD) STEPS="$(STEPS)" tests/starter/make-starter
+
+starter-check:
+	@BUILD=$(BUILD) tests/starter/check
 
 docs-images: $(BUILD)/envtex
 	@BUILD=$(BUILD) ENVTEX=$(BUILD)/envtex docs/make-images.sh

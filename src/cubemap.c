@@ -23,17 +23,23 @@ static uv2 face_st(int f, vec3 d)
 {
     double sc, tc, ma;
     face_axes(f, d, &sc, &tc, &ma);
+    /* STEP(cubemap): "divide by the biggest": s = (sc / |ma| + 1) / 2, t = (tc / |ma| + 1) / 2 (slides 13-14) */
+    /* STUB: (void)sc; (void)tc; (void)ma; return (uv2){0.5, 0.5}; */
     double m = fabs(ma); /* divide, not multiply by 1/|ma|: 1/|ma| overflows for subnormal d */
     return (uv2){0.5 * (sc / m + 1.0), 0.5 * (tc / m + 1.0)};
+    /* END STEP(cubemap) */
 }
 
 /* Major axis with the tie rule x before y before z; d non-zero. */
 static int major_face(vec3 d)
 {
+    /* STEP(cubemap): "take the biggest abs of (x, y, z)": the major axis and its sign pick the face; ties: x before y before z (slides 13-14) */
+    /* STUB: (void)d; return CUBEMAP_POS_X; */
     double ax = fabs(d.x), ay = fabs(d.y), az = fabs(d.z);
     if (ax >= ay && ax >= az) return d.x > 0 ? CUBEMAP_POS_X : CUBEMAP_NEG_X;
     if (ay >= az) return d.y > 0 ? CUBEMAP_POS_Y : CUBEMAP_NEG_Y;
     return d.z > 0 ? CUBEMAP_POS_Z : CUBEMAP_NEG_Z;
+    /* END STEP(cubemap) */
 }
 
 int cubemap_dir_to_face(vec3 d, int *face, uv2 *st)
@@ -50,6 +56,8 @@ int cubemap_dir_to_face(vec3 d, int *face, uv2 *st)
 /* The point (sc, tc, ma = +-1) on face f's plane, not normalized: the table read backwards. */
 static vec3 face_point(int f, uv2 st)
 {
+    /* STEP(cubemap): cube map coordinates back to a point on the face's plane (the face table read backwards; normalized by the caller) (slides 13-14) */
+    /* STUB: (void)f; (void)st; return vec3_make(1, 0, 0); */
     double sc = 2.0 * st.u - 1.0, tc = 2.0 * st.v - 1.0;
     switch (f) {
     case CUBEMAP_POS_X: return vec3_make(1.0, -tc, -sc);
@@ -59,6 +67,7 @@ static vec3 face_point(int f, uv2 st)
     case CUBEMAP_POS_Z: return vec3_make(sc, -tc, 1.0);
     default:            return vec3_make(-sc, -tc, -1.0); /* CUBEMAP_NEG_Z */
     }
+    /* END STEP(cubemap) */
 }
 
 vec3 cubemap_face_to_dir(int face, uv2 st)

@@ -40,6 +40,8 @@ static double weight_at(const double *wd, const float *wf, size_t k, int *n_bad)
 static void cdf_from_weights(double *cdf, const double *wd, const float *wf, size_t off, int n,
                              int *n_bad, double *sum)
 {
+    /* STEP(cdf): the numerical CDF: running sums S_j of the weights in double, cdf[j] = S_j / S_n, cdf[n] = 1 exactly, uniform j / n if the sum is 0 (slides 22-23) */
+    /* STUB: (void)wd; (void)wf; (void)off; (void)n_bad; for (int j = 0; j <= n; j++) cdf[j] = (double)j / (double)n; *sum = 1.0; */
     double s = 0.0;
     cdf[0] = 0.0;
     for (int j = 0; j < n; j++) {
@@ -54,6 +56,7 @@ static void cdf_from_weights(double *cdf, const double *wd, const float *wf, siz
         for (int j = 1; j < n; j++) cdf[j] /= s; /* cdf[j] = S_j / S_n */
     }
     cdf[n] = 1.0;
+    /* END STEP(cdf) */
 }
 
 /* The bin i whose step contains x: the first i with cdf[i + 1] > x (upper bound over
@@ -61,6 +64,8 @@ static void cdf_from_weights(double *cdf, const double *wd, const float *wf, siz
  * because i is the first, so cdf[i + 1] - cdf[i] > 0: zero-width bins are never returned. */
 static int cdf_search(const double *cdf, int n, double x)
 {
+    /* STEP(cdf): invert the CDF by binary search: the first bin i with cdf[i + 1] > x (slides 22-23) */
+    /* STUB: (void)cdf; (void)n; (void)x; return 0; */
     int lo = 0, count = n;
     while (count > 0) {
         int half = count / 2;
@@ -72,6 +77,7 @@ static int cdf_search(const double *cdf, int n, double x)
         }
     }
     return lo;
+    /* END STEP(cdf) */
 }
 
 /* Number of guide entries for n bins: one per DISTRIB_GUIDE_BINS bins (at least 1).  The

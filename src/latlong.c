@@ -4,6 +4,8 @@
 int latlong_dir_to_uv(vec3 d, uv2 *uv)
 {
     if (vec3_unit_direction(d, &d)) return -1; /* any finite non-zero length */
+    /* STEP(latlong): direction -> (u, v): theta = acos z, phi = atan2(y, x) in [0, 2 pi), u = phi / 2 pi, v = theta / pi (slide 12) */
+    /* STUB: uv->u = 0; uv->v = 0; return -1; */
     double rxy = sqrt(d.x * d.x + d.y * d.y);
     double theta = atan2(rxy, d.z);                    /* theta = acos(z / |d|), stable form */
     double phi = rxy > 0 ? atan2(d.y, d.x) : 0.0;      /* phi = atan2(y, x), 0 at the poles */
@@ -13,13 +15,17 @@ int latlong_dir_to_uv(vec3 d, uv2 *uv)
     uv->u = u;
     uv->v = theta / M_PI;
     return 0;
+    /* END STEP(latlong) */
 }
 
 vec3 latlong_uv_to_dir(uv2 uv)
 {
+    /* STEP(latlong): (u, v) -> direction: theta = pi v, phi = 2 pi u, d = (sin theta cos phi, sin theta sin phi, cos theta) (slide 12) */
+    /* STUB: (void)uv; return vec3_make(0, 0, 1); */
     double theta = M_PI * uv.v, phi = 2 * M_PI * uv.u;
     double s = sin(theta);
     return vec3_make(s * cos(phi), s * sin(phi), cos(theta));
+    /* END STEP(latlong) */
 }
 
 rgb latlong_lookup_bilinear(const image *map, vec3 d)

@@ -150,6 +150,8 @@ double mipmap_level_for_footprint(const mipmap *m, double width_in_texels)
 
 rgb mipmap_lookup_trilinear(const mipmap *m, uv2 st, double footprint_width)
 {
+    /* STEP(mipmap): trilinear filtering: level = log2(footprint in texels), bilinear in the two nearest levels, blended by the fraction (slides 36-39) */
+    /* STUB: (void)footprint_width; return texlookup_bilinear(&m->level[0], st, m->wrap); */
     double lod = mipmap_level_for_footprint(m, footprint_width * max_side(&m->level[0]));
     int l = (int)lod;
     double f = lod - l; /* 0 at the top level, so l + 1 is never read past it */
@@ -157,6 +159,7 @@ rgb mipmap_lookup_trilinear(const mipmap *m, uv2 st, double footprint_width)
     if (f <= 0.0) return c0;
     rgb c1 = texlookup_bilinear(&m->level[l + 1], st, m->wrap);
     return rgb_madd(rgb_scale(c0, 1.0 - f), c1, f); /* (1 - f) c0 + f c1 */
+    /* END STEP(mipmap) */
 }
 
 /* ---- EWA ----------------------------------------------------------------------------------- */
@@ -264,4 +267,5 @@ rgb mipmap_lookup_ewa(const mipmap *m, uv2 st, uv2 dst_dx, uv2 dst_dy)
     if (f <= 0.0) return c0;
     rgb c1 = ewa_level(m, l + 1, st, d0, d1);
     return rgb_madd(rgb_scale(c0, 1.0 - f), c1, f); /* (1 - f) c0 + f c1 */
+    /* END STEP(mipmap) */
 }

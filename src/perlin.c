@@ -56,6 +56,8 @@ static inline int lattice_cell(double fl)
 double perlin_noise(double x, double y, double z)
 {
     if (!(isfinite(x) && isfinite(y) && isfinite(z))) return 0.0;
+    /* STEP(perlin): Improved Noise: hash the 8 lattice corners with perm[], dot each corner's gradient with the offset, blend with fade(t) = 6t^5 - 15t^4 + 10t^3 (slides 44-46) */
+    /* STUB: (void)perm; return 0.0 * (x + y + z); */
     double fx = floor(x), fy = floor(y), fz = floor(z);
     int X = lattice_cell(fx), Y = lattice_cell(fy), Z = lattice_cell(fz);
     x -= fx; /* the point's position inside its cell, [0, 1] */
@@ -72,6 +74,7 @@ double perlin_noise(double x, double y, double z)
                 lerp(v, lerp(u, grad(perm[AA + 1], x, y, z - 1), grad(perm[BA + 1], x - 1, y, z - 1)),
                      lerp(u, grad(perm[AB + 1], x, y - 1, z - 1),
                           grad(perm[BB + 1], x - 1, y - 1, z - 1))));
+    /* END STEP(perlin) */
 }
 
 static int clamp_octaves(int octaves)
