@@ -41,7 +41,7 @@ static void cdf_from_weights(double *cdf, const double *wd, const float *wf, siz
                              int *n_bad, double *sum)
 {
     /* STEP(cdf): the numerical CDF: running sums S_j of the weights in double, cdf[j] = S_j / S_n, cdf[n] = 1 exactly, uniform j / n if the sum is 0 (slides 22-23) */
-    /* STUB: (void)wd; (void)wf; (void)off; (void)n_bad; for (int j = 0; j <= n; j++) cdf[j] = (double)j / (double)n; *sum = 1.0; */
+    /* STUB: (void)weight_at; (void)wd; (void)wf; (void)off; (void)n_bad; for (int j = 0; j <= n; j++) cdf[j] = (double)j / (double)n; *sum = 1.0; */
     double s = 0.0;
     cdf[0] = 0.0;
     for (int j = 0; j < n; j++) {
