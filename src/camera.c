@@ -25,3 +25,20 @@ ray camera_ray(const camera *c, double x, double y)
     vec3 d = vec3_sub(vec3_add(vec3_scale(c->u, alpha), vec3_scale(c->v, beta)), c->w);
     return (ray){c->eye, vec3_normalize(d), 0.0, INFINITY};
 }
+
+ray camera_ray_differential(const camera *c, double x, double y, double scale, ray_diff *rd)
+{
+    double alpha = c->tan_half_x * (x - c->width * 0.5) / (c->width * 0.5);
+    double beta = c->tan_half_y * (c->height * 0.5 - y) / (c->height * 0.5);
+    vec3 v = vec3_sub(vec3_add(vec3_scale(c->u, alpha), vec3_scale(c->v, beta)), c->w);
+    double len = vec3_length(v); /* >= 1: the w component alone has length 1 */
+    vec3 d = vec3_normalize(v); /* exactly camera_ray's direction */
+    vec3 dvx = vec3_scale(c->u, scale * c->tan_half_x / (c->width * 0.5));   /* dv/dx */
+    vec3 dvy = vec3_scale(c->v, -scale * c->tan_half_y / (c->height * 0.5)); /* dv/dy */
+    rd->has = 1;
+    rd->dox = rd->doy = vec3_make(0, 0, 0);
+    /* d(v / |v|) = (dv - (d . dv) d) / |v| */
+    rd->ddx = vec3_scale(vec3_madd(dvx, d, -vec3_dot(d, dvx)), 1 / len);
+    rd->ddy = vec3_scale(vec3_madd(dvy, d, -vec3_dot(d, dvy)), 1 / len);
+    return (ray){c->eye, d, 0.0, INFINITY};
+}

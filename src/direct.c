@@ -1,6 +1,8 @@
 /* direct.c - `integrator direct`: direct lighting by light sampling (see include/envtex/direct.h). */
 #include "envtex/direct.h"
 
+#include "envtex/texshade.h"
+
 rgb direct_lighting(integrator *it, const surface *s, vec3 wo, rng *g)
 {
     rgb sum = rgb_gray(0);
@@ -43,12 +45,16 @@ static rgb escaped(integrator *it, vec3 d, int depth)
     return envmap_radiance(&it->env, d); /* bilinear: no other strategy competes here */
 }
 
-rgb direct_radiance(integrator *it, ray r, rng *g)
+rgb direct_radiance(integrator *it, ray r, rng *g) { return direct_radiance_diff(it, r, NULL, g); }
+
+rgb direct_radiance_diff(integrator *it, ray r, const ray_diff *rd0, rng *g)
 {
     rgb L = rgb_gray(0), beta = rgb_gray(1);
+    ray_diff rd = {0};
+    if (rd0) rd = *rd0;
     for (int depth = 0;; depth++) {
         scene_hit sh;
-        integrator_intersect(it, &r, &sh);
+        integrator_intersect_diff(it, &r, &rd, &sh);
         if (sh.kind == 0) return rgb_fma(L, beta, escaped(it, r.d, depth));
         if (sh.kind == 2) return rgb_fma(L, beta, lights_quad_radiance(&it->ls, sh.light, r.d));
         vec3 wo = vec3_neg(vec3_normalize(r.d));
@@ -60,6 +66,9 @@ rgb direct_radiance(integrator *it, ray r, rng *g)
         double xi1 = rng_uniform(g), xi2 = rng_uniform(g), xi3 = rng_uniform(g);
         if (!brdf_sample(&sh.s, wo, it->sc->importancesampling, xi1, xi2, xi3, &bs)) return L;
         beta = rgb_mul(beta, bs.weight);
+        ray_diff next;
+        texshade_delta_diff(&sh.s, &rd, wo, bs.wi, &next); /* the footprint goes on */
+        rd = next;
         r = ray_spawn(sh.s.p, sh.s.ng, bs.wi);
     }
 }

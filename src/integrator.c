@@ -8,6 +8,7 @@
 #include "envtex/direct.h"
 #include "envtex/pathtracer.h"
 #include "envtex/sphere.h"
+#include "envtex/texshade.h"
 
 /* Radius of a sphere around the scene's geometry and lights: the "R" that converts a distant
  * light's radiance or irradiance into the power it delivers to the scene. */
@@ -80,17 +81,24 @@ void integrator_free(integrator *it)
     it->has_envlight = it->has_lights = 0;
 }
 
-rgb integrator_radiance(integrator *it, ray r, rng *g)
+rgb integrator_radiance(integrator *it, ray r, rng *g) { return integrator_radiance_diff(it, r, NULL, g); }
+
+rgb integrator_radiance_diff(integrator *it, ray r, const ray_diff *rd, rng *g)
 {
     switch (it->sc->integrator) {
-    case INTEGRATOR_RAYTRACER: return raytracer_trace(&it->rt, r);
+    case INTEGRATOR_RAYTRACER: return raytracer_trace_diff(&it->rt, r, rd);
     case INTEGRATOR_ANALYTICDIRECT: return analyticdirect_radiance(it, r, g);
-    case INTEGRATOR_DIRECT: return direct_radiance(it, r, g);
-    default: return pathtracer_radiance(it, r, g);
+    case INTEGRATOR_DIRECT: return direct_radiance_diff(it, r, rd, g);
+    default: return pathtracer_radiance_diff(it, r, rd, g);
     }
 }
 
 void integrator_intersect(integrator *it, const ray *r, scene_hit *out)
+{
+    integrator_intersect_diff(it, r, NULL, out);
+}
+
+void integrator_intersect_diff(integrator *it, const ray *r, const ray_diff *rd, scene_hit *out)
 {
     it->rays++;
     ray rr = *r;
@@ -118,6 +126,7 @@ void integrator_intersect(integrator *it, const ray *r, scene_hit *out)
     if (vec3_dot(s->n, r->d) > 0) s->n = s->ng; /* interpolated normal facing away: use ng */
     s->entering = outside;
     brdf_surface_from_material(s, &it->sc->materials[h->material]);
+    texshade_surface(it->sc, h, r, rd, s); /* footprint, then the texture maps */
 }
 
 int integrator_occluded(integrator *it, const ray *shadow)

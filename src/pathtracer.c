@@ -2,6 +2,8 @@
  * (see include/envtex/pathtracer.h). */
 #include "envtex/pathtracer.h"
 
+#include "envtex/texshade.h"
+
 /* Next-event estimation at surface s: `lightsamples` samples of one light picked by power
  * (each sample picks its own light).  With MIS each is weighted against BRDF sampling. */
 static rgb next_event(integrator *it, const surface *s, vec3 wo, rng *g, int mis)
@@ -43,8 +45,15 @@ static rgb next_event(integrator *it, const surface *s, vec3 wo, rng *g, int mis
     return rgb_scale(sum, 1.0 / n);
 }
 
-rgb pathtracer_radiance(integrator *it, ray r, rng *g)
+rgb pathtracer_radiance(integrator *it, ray r, rng *g) { return pathtracer_radiance_diff(it, r, NULL, g); }
+
+/* Ray differentials follow the path while it is a chain of perfect mirror / glass bounces from
+ * the camera; the first diffuse or glossy bounce drops them (raydiff.h: no differential of a
+ * random direction), and textures further on use their no-footprint fallback. */
+rgb pathtracer_radiance_diff(integrator *it, ray r, const ray_diff *rd0, rng *g)
 {
+    ray_diff rd = {0};
+    if (rd0) rd = *rd0;
     const scene *sc = it->sc;
     nee_mode nee = it->has_lights && it->ls.n > 0 ? sc->nee : NEE_OFF;
     int n_light = sc->lightsamples;
@@ -54,7 +63,7 @@ rgb pathtracer_radiance(integrator *it, ray r, rng *g)
     double brdf_pdf_prev = 0; /* pdf of the last BRDF sample (non-delta), for MIS */
     for (int bounce = 0;; bounce++) {
         scene_hit sh;
-        integrator_intersect(it, &r, &sh);
+        integrator_intersect_diff(it, &r, &rd, &sh);
         /* light found by following the path: counted unless next-event estimation has
          * already counted it (nee on), or weighted against it (mis) */
         int counts = last_delta || nee == NEE_OFF; /* NEE never samples from a delta bounce */
@@ -110,6 +119,13 @@ rgb pathtracer_radiance(integrator *it, ray r, rng *g)
             double q = fmin(1.0, rgb_max(beta));
             if (!(rng_uniform(g) < q)) break;
             beta = rgb_scale(beta, 1 / q);
+        }
+        if (bs.is_delta) {
+            ray_diff next;
+            texshade_delta_diff(s, &rd, wo, bs.wi, &next);
+            rd = next;
+        } else {
+            rd.has = 0;
         }
         r = ray_spawn(s->p, s->ng, bs.wi);
     }

@@ -2,6 +2,7 @@
 #include "envtex/raytracer.h"
 
 #include "envtex/fresnel.h"
+#include "envtex/texshade.h"
 
 void raytracer_init(raytracer *rt, const scene *sc, const bvh *accel)
 {
@@ -12,13 +13,15 @@ void raytracer_init(raytracer *rt, const scene *sc, const bvh *accel)
     rt->rays = 0;
 }
 
-static rgb trace(raytracer *rt, ray r, int depth, double weight);
+static rgb trace(raytracer *rt, ray r, const ray_diff *rd, int depth, double weight);
 
-/* Blinn-Phong direct lighting from point and directional lights, with shadow rays. */
-static rgb direct_lights(raytracer *rt, const hit *h, vec3 n, vec3 view, const material *m, int highlight)
+/* Blinn-Phong direct lighting from point and directional lights, with shadow rays.  kd and ks
+ * come from the (textured) surface s, the exponent from the material. */
+static rgb direct_lights(raytracer *rt, const hit *h, const surface *s, vec3 view, int highlight)
 {
     rgb sum = rgb_gray(0);
-    int has_kd = !rgb_is_black(m->diffuse), has_ks = highlight && !rgb_is_black(m->specular);
+    vec3 n = s->n;
+    int has_kd = !rgb_is_black(s->kd), has_ks = highlight && !rgb_is_black(s->ks);
     if (!has_kd && !has_ks) return sum;
     for (int i = 0; i < rt->sc->n_lights; i++) {
         const scene_light *l = &rt->sc->lights[i];
@@ -43,11 +46,11 @@ static rgb direct_lights(raytracer *rt, const hit *h, vec3 n, vec3 view, const m
         if (ndotl <= 0) continue;
         rt->rays++;
         if (bvh_occluded(rt->accel, rt->sc, &shadow)) continue; /* V = 0 */
-        rgb c = rgb_scale(m->diffuse, ndotl);                  /* kd max(N.L, 0) */
+        rgb c = rgb_scale(s->kd, ndotl);                       /* kd max(N.L, 0) */
         if (has_ks) {
             vec3 half = vec3_normalize(vec3_add(ldir, view));  /* H = (L + V) / |L + V| */
             double ndoth = vec3_dot(n, half);
-            if (ndoth > 0) c = rgb_madd(c, m->specular, pow(ndoth, m->shininess)); /* ks (N.H)^s */
+            if (ndoth > 0) c = rgb_madd(c, s->ks, pow(ndoth, s->shininess)); /* ks (N.H)^s */
         }
         sum = rgb_fma(sum, l->color, rgb_scale(c, 1 / atten));
     }
@@ -62,7 +65,7 @@ static rgb miss(raytracer *rt, vec3 d, int depth)
     return envmap_radiance(&rt->env, d);
 }
 
-static rgb trace(raytracer *rt, ray r, int depth, double weight)
+static rgb trace(raytracer *rt, ray r, const ray_diff *rd, int depth, double weight)
 {
     hit h;
     rt->rays++;
@@ -71,13 +74,21 @@ static rgb trace(raytracer *rt, ray r, int depth, double weight)
     vec3 d = vec3_normalize(r.d), view = vec3_neg(d);
     int outside = vec3_dot(d, h.ng) < 0;
     /* shade with normals facing the viewer (two-sided surfaces) */
-    vec3 n = outside ? h.ns : vec3_neg(h.ns);
-    vec3 ng = outside ? h.ng : vec3_neg(h.ng);
-    if (vec3_dot(n, view) < 0) n = ng; /* interpolated normal facing away: fall back */
+    surface s;
+    s.p = h.p;
+    s.n = outside ? h.ns : vec3_neg(h.ns);
+    s.ng = outside ? h.ng : vec3_neg(h.ng);
+    if (vec3_dot(s.n, view) < 0) s.n = s.ng; /* interpolated normal facing away: fall back */
+    s.entering = outside;
+    brdf_surface_from_material(&s, m);
+    texshade_surface(rt->sc, &h, &r, rd, &s); /* footprint; kd, ks, emission, n from the maps */
+    vec3 n = s.n;
 
-    rgb c = rgb_add(m->ambient, m->emission);
-    c = rgb_add(c, direct_lights(rt, &h, n, view, m, m->brdf == BRDF_PHONG || m->brdf == BRDF_GGX));
+    /* I = A + E + lights (E: `emission` or its light map) */
+    rgb c = rgb_add(m->ambient, s.emission);
+    c = rgb_add(c, direct_lights(rt, &h, &s, view, m->brdf == BRDF_PHONG || m->brdf == BRDF_GGX));
     if (depth >= rt->maxdepth) return c;
+    ray_diff next;
 
     if (m->brdf == BRDF_GLASS) {
         /* entering: eta = ior / 1; leaving: eta = 1 / ior */
@@ -85,21 +96,28 @@ static rgb trace(raytracer *rt, ray r, int depth, double weight)
         double cos_i = vec3_dot(view, n);
         double F = fresnel_dielectric(cos_i, eta);
         vec3 refl = vec3_reflect(d, n);
-        if (weight * F > RAYTRACER_MIN_WEIGHT)
-            c = rgb_madd(c, trace(rt, ray_spawn(h.p, h.ng, refl), depth + 1, weight * F), F);
+        if (weight * F > RAYTRACER_MIN_WEIGHT) {
+            texshade_delta_diff(&s, rd, view, refl, &next);
+            c = rgb_madd(c, trace(rt, ray_spawn(h.p, h.ng, refl), &next, depth + 1, weight * F), F);
+        }
         vec3 tdir;
-        if (F < 1 && weight * (1 - F) > RAYTRACER_MIN_WEIGHT && fresnel_refract(d, n, eta, &tdir))
-            c = rgb_madd(c, trace(rt, ray_spawn(h.p, h.ng, tdir), depth + 1, weight * (1 - F)), 1 - F);
+        if (F < 1 && weight * (1 - F) > RAYTRACER_MIN_WEIGHT && fresnel_refract(d, n, eta, &tdir)) {
+            texshade_delta_diff(&s, rd, view, tdir, &next);
+            c = rgb_madd(c, trace(rt, ray_spawn(h.p, h.ng, tdir), &next, depth + 1, weight * (1 - F)), 1 - F);
+        }
         return c;
     }
-    double ks = rgb_max(m->specular);
+    double ks = rgb_max(s.ks);
     if (ks > 0 && weight * ks > RAYTRACER_MIN_WEIGHT) {
-        /* Color += reflectivity * Color of reflected ray */
+        /* Color += reflectivity * Color of reflected ray (ks: `specular` or its map) */
         vec3 refl = vec3_reflect(d, n);
-        rgb li = trace(rt, ray_spawn(h.p, h.ng, refl), depth + 1, weight * ks);
-        c = rgb_fma(c, m->specular, li);
+        texshade_delta_diff(&s, rd, view, refl, &next);
+        rgb li = trace(rt, ray_spawn(h.p, h.ng, refl), &next, depth + 1, weight * ks);
+        c = rgb_fma(c, s.ks, li);
     }
     return c;
 }
 
-rgb raytracer_trace(raytracer *rt, ray r) { return trace(rt, r, 0, 1.0); }
+rgb raytracer_trace(raytracer *rt, ray r) { return trace(rt, r, NULL, 0, 1.0); }
+
+rgb raytracer_trace_diff(raytracer *rt, ray r, const ray_diff *rd) { return trace(rt, r, rd, 0, 1.0); }

@@ -6,8 +6,15 @@
 
 #include "envtex/bvh.h"
 #include "envtex/camera.h"
+#include "envtex/displacemap.h"
 #include "envtex/integrator.h"
 #include "envtex/rng.h"
+#include "envtex/texshade.h"
+
+/* Camera rays' differentials are scaled by max(1 / sqrt(spp), RENDER_MIN_DIFF_SCALE): with spp
+ * samples in a pixel each stands for a 1 / sqrt(spp) wide part of it (pbrt does the same and
+ * stops at 1/8, so a very high spp still filters over an eighth of a pixel). */
+#define RENDER_MIN_DIFF_SCALE 0.125
 
 render_opts render_defaults(void)
 {
@@ -36,12 +43,26 @@ int render_scene(const scene *sc, const render_opts *opts, image *out, render_st
     if (opts->variance && spp < 2)
         return error_set(err, sc->path, 0, "a per-pixel variance needs at least 2 samples per pixel (spp is 1)");
 
-    bvh accel;
     double t0 = now_seconds();
-    if (bvh_build(&accel, sc, err)) return -1;
+    /* Displacement maps move geometry: render a displaced copy (the caller's scene is not
+     * touched; displacemap.h) */
+    scene displaced;
+    int has_displaced = 0;
+    if (displacemap_needed(sc)) {
+        displacemap_stats ds;
+        if (displacemap_apply(sc, 0, &displaced, &ds, err)) return -1;
+        has_displaced = 1;
+        sc = &displaced;
+    }
+    bvh accel;
+    if (bvh_build(&accel, sc, err)) {
+        if (has_displaced) displacemap_free(&displaced);
+        return -1;
+    }
     integrator it;
     if (integrator_init(&it, sc, &accel, err)) {
         bvh_free(&accel);
+        if (has_displaced) displacemap_free(&displaced);
         return -1;
     }
     stats->build_seconds = now_seconds() - t0;
@@ -50,11 +71,15 @@ int render_scene(const scene *sc, const render_opts *opts, image *out, render_st
         image_free(out);
         integrator_free(&it);
         bvh_free(&accel);
+        if (has_displaced) displacemap_free(&displaced);
         return error_prefix(err, "%s: output image", sc->path);
     }
 
     camera cam;
     camera_init(&cam, sc->eye, sc->center, sc->up, sc->fovy, sc->width, sc->height);
+    /* ray differentials only where a texture map can use them: other scenes pay nothing */
+    int with_diff = texshade_scene_has_maps(sc);
+    double diff_scale = fmax(1.0 / sqrt((double)spp), RENDER_MIN_DIFF_SCALE);
 
     double t1 = now_seconds();
     for (int y = 0; y < sc->height; y++) {
@@ -69,7 +94,14 @@ int render_scene(const scene *sc, const render_opts *opts, image *out, render_st
                     jx = rng_uniform(&r);
                     jy = rng_uniform(&r);
                 }
-                rgb v = integrator_radiance(&it, camera_ray(&cam, x + jx, y + jy), &r);
+                rgb v;
+                if (with_diff) {
+                    ray_diff rd;
+                    ray cr = camera_ray_differential(&cam, x + jx, y + jy, diff_scale, &rd);
+                    v = integrator_radiance_diff(&it, cr, &rd, &r);
+                } else {
+                    v = integrator_radiance(&it, camera_ray(&cam, x + jx, y + jy), &r);
+                }
                 rgb d = rgb_make(v.r - mean.r, v.g - mean.g, v.b - mean.b);
                 mean = rgb_madd(mean, d, 1.0 / (s + 1));         /* mean += (v - mean) / n */
                 m2 = rgb_add(m2, rgb_make(d.r * (v.r - mean.r), d.g * (v.g - mean.g), d.b * (v.b - mean.b)));
@@ -100,5 +132,6 @@ int render_scene(const scene *sc, const render_opts *opts, image *out, render_st
     stats->bvh_depth = accel.depth;
     integrator_free(&it);
     bvh_free(&accel);
+    if (has_displaced) displacemap_free(&displaced);
     return 0;
 }

@@ -27,9 +27,14 @@ typedef struct surface {
     brdf_kind kind;
     rgb kd, ks, emission;
     double shininess, roughness, ior;
+    /* ray differentials at the hit (raydiff.h), filled by texshade_surface when the ray had
+     * them: what a perfect mirror or refraction carries on.  has_diff = 0: none. */
+    int has_diff;
+    vec3 dpdx, dpdy; /* change of p per pixel step (world) */
+    vec3 dndx, dndy; /* change of the (unbumped) shading normal n per pixel step */
 } surface;
 
-/* Fill the BRDF part of *s from a material (textures will refine this later). */
+/* Fill the BRDF part of *s from a material (texshade_surface then applies its texture maps). */
 void brdf_surface_from_material(surface *s, const material *m);
 
 /* 1 for mirror and glass: no density, only brdf_sample can produce their directions. */

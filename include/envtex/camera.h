@@ -29,4 +29,12 @@ void camera_init(camera *c, vec3 eye, vec3 center, vec3 up, double fovy_degrees,
 /* Ray through continuous pixel position (x, y); unit direction, tmin 0, tmax infinity. */
 ray camera_ray(const camera *c, double x, double y);
 
+/* camera_ray(c, x, y) and its differentials into *rd (has = 1): the pinhole's origin does not
+ * move (dox = doy = 0), and the unit direction d = v / |v|, v = alpha u + beta v - w, changes by
+ *     dd = (dv - (d . dv) d) / |v|        (the derivative of v / |v| along dv)
+ * with dv/dx = u tan(fovx/2) / (width/2) and dv/dy = -v tan(fovy/2) / (height/2): one pixel
+ * step, scaled by `scale` (> 0; a renderer taking spp samples per pixel passes about
+ * 1 / sqrt(spp), since each sample then stands for a smaller part of the pixel). */
+ray camera_ray_differential(const camera *c, double x, double y, double scale, ray_diff *rd);
+
 #endif

@@ -10,6 +10,8 @@
 #include "envtex/integrator.h"
 
 rgb direct_radiance(integrator *it, ray r, rng *g);
+/* ... with the camera ray's differentials rd (NULL: none), carried through mirrors and glass. */
+rgb direct_radiance_diff(integrator *it, ray r, const ray_diff *rd, rng *g);
 
 /* Estimate of the light arriving at surface s from every light, for outgoing wo: the sum above
  * without Le.  Shared with analytic tests. */

@@ -48,6 +48,10 @@ void integrator_free(integrator *it);
 /* Radiance along a camera ray. */
 rgb integrator_radiance(integrator *it, ray r, rng *g);
 
+/* The same with the camera ray's differentials (raydiff.h; NULL: none), which texture
+ * filtering uses and perfect mirror / glass bounces carry on (docs/texture-mapping.md). */
+rgb integrator_radiance_diff(integrator *it, ray r, const ray_diff *rd, rng *g);
+
 /* ---- shared by the integrators ---------------------------------------------------------- */
 
 typedef struct scene_hit {
@@ -61,6 +65,10 @@ typedef struct scene_hit {
 /* Nearest of the geometry (BVH) and the quad lights along r; fills the shading surface with
  * normals turned towards the ray's origin. */
 void integrator_intersect(integrator *it, const ray *r, scene_hit *out);
+
+/* The same for a ray with differentials rd (NULL: none): the surface gets its footprint
+ * (s.has_diff, dpdx, ...) and its texture maps are filtered over it (texshade.h). */
+void integrator_intersect_diff(integrator *it, const ray *r, const ray_diff *rd, scene_hit *out);
 
 /* 1 if the shadow ray is blocked by geometry. */
 int integrator_occluded(integrator *it, const ray *shadow);

@@ -19,5 +19,8 @@
 #include "envtex/integrator.h"
 
 rgb pathtracer_radiance(integrator *it, ray r, rng *g);
+/* ... with the camera ray's differentials rd (NULL: none), carried through perfect mirror and
+ * glass bounces; after the first diffuse or glossy bounce the path has none (raydiff.h). */
+rgb pathtracer_radiance_diff(integrator *it, ray r, const ray_diff *rd, rng *g);
 
 #endif

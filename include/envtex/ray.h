@@ -2,6 +2,13 @@
  *
  * A ray is o + t d for t in (tmin, tmax); d need not be unit length, and t is in units of |d|.
  * A hit records where and what was hit, in world space.
+ *
+ * Ray differentials (Igehy 1999; pbrt's RayDifferential) travel BESIDE a ray, as a ray_diff:
+ * how its origin and direction change from one pixel to the next, so that the rays of the
+ * neighbouring pixels are (o + dox, d + ddx) and (o + doy, d + ddy).  has = 0 means "no
+ * footprint known" (after a diffuse or glossy bounce, shadow rays, scenes without texture
+ * maps).  camera_ray_differential makes them, raydiff.h carries them to hits and through
+ * perfect mirrors and refraction; texture filtering turns them into a footprint.
  */
 #ifndef ENVTEX_RAY_H
 #define ENVTEX_RAY_H
@@ -12,6 +19,12 @@ typedef struct ray {
     vec3 o, d;
     double tmin, tmax;
 } ray;
+
+typedef struct ray_diff {
+    int has;             /* 1: the four vectors are valid; 0: no differentials */
+    vec3 dox, ddx;       /* change of o and of the UNIT direction d per pixel step in x */
+    vec3 doy, ddy;       /* ... per pixel step in y (one row down) */
+} ray_diff;
 
 typedef struct hit {
     double t;       /* ray parameter of the hit */

@@ -40,4 +40,8 @@ void raytracer_init(raytracer *rt, const scene *sc, const bvh *accel);
 /* Radiance along a camera ray (depth 0). */
 rgb raytracer_trace(raytracer *rt, ray r);
 
+/* The same with the camera ray's differentials (raydiff.h; NULL or has = 0: none): texture
+ * maps are filtered over the footprint, and mirror reflection and refraction carry it on. */
+rgb raytracer_trace_diff(raytracer *rt, ray r, const ray_diff *rd);
+
 #endif

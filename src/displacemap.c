@@ -1,0 +1,202 @@
+/* displacemap.c - displacement maps applied to a scene before rendering
+ * (see include/envtex/displacemap.h). */
+#include "envtex/displacemap.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "envtex/displace.h"
+
+static const texture *disp_map(const scene *sc, int material)
+{
+    return scene_map(sc, sc->materials[material].displacementmap);
+}
+
+int displacemap_needed(const scene *sc)
+{
+    for (long i = 0; i < sc->n_spheres; i++)
+        if (disp_map(sc, sc->spheres[i].material)) return 1;
+    for (long i = 0; i < sc->n_triangles; i++)
+        if (disp_map(sc, sc->triangles[i].material)) return 1;
+    return 0;
+}
+
+/* What the height callbacks need. */
+typedef struct height_ctx {
+    const texture *tex;
+    const material *m;
+    texmapping_kind mapping;
+    /* sphere: object space = center + radius p */
+    vec3 center;
+    double radius;
+    /* triangle: world corners, object corners; q of each vertex, in the callback's order */
+    const scene_triangle *tr;
+    vec3 *qv;
+    long n_q, cap_q;
+} height_ctx;
+
+static double eval_height(const height_ctx *c, uv2 st, vec3 q)
+{
+    texture_query tq = {0};
+    tq.st = st;
+    tq.p = q;
+    tq.filter = c->m->texfilter; /* no footprint: the full-resolution texture */
+    return texture_eval_scalar(c->tex, &tq);
+}
+
+static double sphere_height(void *ctx, vec3 p, vec3 n, uv2 st)
+{
+    (void)n;
+    const height_ctx *c = ctx;
+    if (c->mapping != TEXMAPPING_SPHERICAL) st = texmapping_point(c->mapping, p);
+    return eval_height(c, st, vec3_madd(c->center, p, c->radius)); /* P_object = c + R p */
+}
+
+/* Barycentrics of world point p on triangle tr (least squares in its plane). */
+static void tri_bary(const scene_triangle *tr, vec3 p, double *b1, double *b2)
+{
+    vec3 e1 = vec3_sub(tr->p[1], tr->p[0]), e2 = vec3_sub(tr->p[2], tr->p[0]), v = vec3_sub(p, tr->p[0]);
+    double a11 = vec3_dot(e1, e1), a12 = vec3_dot(e1, e2), a22 = vec3_dot(e2, e2);
+    double det = a11 * a22 - a12 * a12;
+    *b1 = *b2 = 0;
+    if (!(det > 0)) return; /* zero area: displace_triangle needs normals then; q = q0 */
+    double r1 = vec3_dot(e1, v), r2 = vec3_dot(e2, v);
+    *b1 = (a22 * r1 - a12 * r2) / det;
+    *b2 = (a11 * r2 - a12 * r1) / det;
+}
+
+static double triangle_height(void *ctx, vec3 p, vec3 n, uv2 st)
+{
+    (void)n;
+    height_ctx *c = ctx;
+    double b1, b2;
+    tri_bary(c->tr, p, &b1, &b2);
+    double b0 = 1 - b1 - b2;
+    /* P_object = b0 q0 + b1 q1 + b2 q2 */
+    vec3 q = vec3_add(vec3_add(vec3_scale(c->tr->q[0], b0), vec3_scale(c->tr->q[1], b1)),
+                      vec3_scale(c->tr->q[2], b2));
+    if (c->n_q < c->cap_q) c->qv[c->n_q] = q;
+    c->n_q++;
+    if (c->mapping != TEXMAPPING_UV) st = texmapping_point(c->mapping, q);
+    return eval_height(c, st, q);
+}
+
+/* Triangles the displaced scene needs at the given rates. */
+static long count_tris(const scene *in, int srate, int trate)
+{
+    long n = 0;
+    for (long i = 0; i < in->n_spheres; i++)
+        n += disp_map(in, in->spheres[i].material) ? 4L * srate * (srate - 1) : 0;
+    for (long i = 0; i < in->n_triangles; i++)
+        n += disp_map(in, in->triangles[i].material) ? (long)trate * trate : 1;
+    return n;
+}
+
+void displacemap_free(scene *out)
+{
+    free(out->spheres);
+    free(out->triangles);
+    memset(out, 0, sizeof *out);
+}
+
+int displacemap_apply(const scene *in, long max_tris, scene *out, displacemap_stats *st, error *err)
+{
+    displacemap_stats dummy;
+    if (!st) st = &dummy;
+    memset(st, 0, sizeof *st);
+    long budget = max_tris > 0 ? max_tris : DISPLACEMAP_MAX_TRIS;
+    if (budget > SCENE_MAX_PRIMS) budget = SCENE_MAX_PRIMS;
+    int srate = DISPLACEMAP_SPHERE_RATE, trate = DISPLACEMAP_TRIANGLE_RATE;
+    long total = count_tris(in, srate, trate);
+    while (total > budget && (srate > 2 || trate > 1)) {
+        srate = srate / 2 < 2 ? 2 : srate / 2;
+        trate = trate / 2 < 1 ? 1 : trate / 2;
+        total = count_tris(in, srate, trate);
+    }
+    *out = *in; /* shallow: shares materials, textures, lights, envmap */
+    out->spheres = NULL;
+    out->triangles = NULL;
+    out->n_spheres = out->n_triangles = 0;
+    if (total > budget)
+        return error_set(err, in->path, 0,
+                         "displacement mapping needs %ld triangles even at the lowest rates, "
+                         "more than the limit %ld", total, budget);
+    st->sphere_rate = srate;
+    st->triangle_rate = trate;
+    out->spheres = malloc((size_t)(in->n_spheres > 0 ? in->n_spheres : 1) * sizeof *out->spheres);
+    out->triangles = malloc((size_t)(total > 0 ? total : 1) * sizeof *out->triangles);
+    vec3 *qv = malloc((size_t)((trate + 1) * (trate + 2) / 2) * sizeof *qv);
+    displace_mesh m;
+    memset(&m, 0, sizeof m);
+    if (!out->spheres || !out->triangles || !qv) {
+        error_set(err, in->path, 0, "out of memory for %ld displaced triangles", total);
+        goto fail;
+    }
+    for (long i = 0; i < in->n_spheres; i++) {
+        const scene_sphere *sp = &in->spheres[i];
+        const texture *tex = disp_map(in, sp->material);
+        if (!tex) {
+            out->spheres[out->n_spheres++] = *sp;
+            continue;
+        }
+        const material *mt = &in->materials[sp->material];
+        height_ctx c = {tex, mt, scene_material_texmapping(mt, 1), sp->center, sp->radius, NULL, NULL, 0, 0};
+        if (c.mapping == TEXMAPPING_UV) c.mapping = TEXMAPPING_SPHERICAL;
+        /* SCALE object units along the unit sphere's normal: SCALE / R in its units */
+        double scale = sp->radius > 0 ? mt->displacement_scale / sp->radius : 0.0;
+        if (displace_sphere(srate, sphere_height, &c, scale, 0, &m, err)) goto fail;
+        for (long t = 0; t < m.n_tris; t++) {
+            scene_triangle *o = &out->triangles[out->n_triangles++];
+            memset(o, 0, sizeof *o);
+            for (int k = 0; k < 3; k++) {
+                long v = m.tris[t].v[k];
+                o->q[k] = vec3_madd(sp->center, m.p[v], sp->radius); /* c + R p */
+                o->p[k] = mat4_point(&sp->xf, o->q[k]);
+                o->n[k] = vec3_normalize(mat4_normal(&sp->inv, m.n[v]));
+                o->st[k] = m.tris[t].st[k];
+            }
+            o->has_normals = o->has_st = 1;
+            o->material = sp->material;
+        }
+        displace_mesh_free(&m);
+        st->spheres++;
+    }
+    for (long i = 0; i < in->n_triangles; i++) {
+        const scene_triangle *tr = &in->triangles[i];
+        const texture *tex = disp_map(in, tr->material);
+        if (!tex) {
+            out->triangles[out->n_triangles++] = *tr;
+            continue;
+        }
+        const material *mt = &in->materials[tr->material];
+        long cap = (long)(trate + 1) * (trate + 2) / 2;
+        height_ctx c = {tex, mt, scene_material_texmapping(mt, 0), {0, 0, 0}, 0, tr, qv, 0, cap};
+        if (displace_triangle(tr->p, tr->has_normals ? tr->n : NULL, tr->st, trate,
+                              triangle_height, &c, mt->displacement_scale, 0, &m, err))
+            goto fail;
+        int q_known = c.n_q == m.n_verts; /* the callback saw every vertex, in index order */
+        for (long t = 0; t < m.n_tris; t++) {
+            scene_triangle *o = &out->triangles[out->n_triangles++];
+            memset(o, 0, sizeof *o);
+            for (int k = 0; k < 3; k++) {
+                long v = m.tris[t].v[k];
+                o->p[k] = m.p[v];
+                o->n[k] = m.n[v];
+                o->st[k] = m.tris[t].st[k];
+                o->q[k] = q_known ? qv[v] : tr->q[0];
+            }
+            o->has_normals = o->has_st = 1;
+            o->material = tr->material;
+        }
+        displace_mesh_free(&m);
+        st->triangles++;
+    }
+    st->new_triangles = out->n_triangles;
+    free(qv);
+    return 0;
+fail:
+    displace_mesh_free(&m);
+    free(qv);
+    displacemap_free(out);
+    return -1;
+}

@@ -1,0 +1,347 @@
+/* test_raydiff.c - ray differentials (raydiff.h, camera_ray_differential) against finite
+ * differences of the rays themselves, and the footprint they give a texture (texshade.h). */
+#include <string.h>
+
+#include "envtex/camera.h"
+#include "envtex/fresnel.h"
+#include "envtex/raydiff.h"
+#include "envtex/texshade.h"
+#include "unit.h"
+
+/* Central-difference step in pixels: the truncation error is ~h^2 times the third derivative,
+ * the rounding error ~1e-16 / h; 1e-3 keeps both near 1e-9. */
+/* Differentials carried through a surface are finite steps (the offset ray meets the tangent
+ * plane a whole pixel away), exact only to first order: the reflection and refraction tests
+ * take them for a step of DIFF_SCALE pixels and divide, which gives the derivative. */
+#define DIFF_SCALE 1e-5
+#define FD_STEP 1e-3
+#define FD_TOL 1e-7
+
+static camera test_camera(void)
+{
+    camera c;
+    camera_init(&c, vec3_make(0.3, 0.2, 5), vec3_make(0, 0, 0), vec3_make(0, 1, 0), 50, 80, 60);
+    return c;
+}
+
+static void assert_vec_near(vec3 a, vec3 b, double tol, const char *what)
+{
+    double e = vec3_length(vec3_sub(a, b));
+    ck_assert_msg(e <= tol * fmax(1.0, vec3_length(b)), "%s: (%g %g %g) vs (%g %g %g), error %g",
+                  what, a.x, a.y, a.z, b.x, b.y, b.z, e);
+}
+
+START_TEST(test_camera_differentials_are_the_derivatives_of_camera_ray)
+{
+    camera c = test_camera();
+    const double px[4][2] = {{0.5, 0.5}, {40, 30}, {79.5, 12.25}, {3, 59}};
+    for (int i = 0; i < 4; i++) {
+        double x = px[i][0], y = px[i][1];
+        ray_diff rd;
+        ray r = camera_ray_differential(&c, x, y, 1.0, &rd);
+        ray r0 = camera_ray(&c, x, y);
+        ck_assert(rd.has);
+        ck_assert(vec3_length(vec3_sub(r.d, r0.d)) == 0); /* the same ray as camera_ray */
+        vec3 fx = vec3_scale(vec3_sub(camera_ray(&c, x + FD_STEP, y).d, camera_ray(&c, x - FD_STEP, y).d), 0.5 / FD_STEP);
+        vec3 fy = vec3_scale(vec3_sub(camera_ray(&c, x, y + FD_STEP).d, camera_ray(&c, x, y - FD_STEP).d), 0.5 / FD_STEP);
+        assert_vec_near(rd.ddx, fx, FD_TOL, "ddx");
+        assert_vec_near(rd.ddy, fy, FD_TOL, "ddy");
+        ck_assert(vec3_length(rd.dox) == 0 && vec3_length(rd.doy) == 0); /* a pinhole */
+    }
+}
+END_TEST
+
+START_TEST(test_camera_differentials_shrink_with_the_scale)
+{
+    camera c = test_camera();
+    ray_diff a, b;
+    camera_ray_differential(&c, 10, 20, 1.0, &a);
+    camera_ray_differential(&c, 10, 20, 0.25, &b);
+    assert_vec_near(b.ddx, vec3_scale(a.ddx, 0.25), 1e-15, "ddx scaled");
+    assert_vec_near(b.ddy, vec3_scale(a.ddy, 0.25), 1e-15, "ddy scaled");
+}
+END_TEST
+
+START_TEST(test_hit_differential_on_a_plane_at_known_distance)
+{
+    /* looking straight down -z at the plane z = -D: at the image centre one pixel step moves
+     * the hit by D tan(fovx / 2) / (W / 2) along u */
+    const double D = 7.0;
+    camera c;
+    camera_init(&c, vec3_make(0, 0, 0), vec3_make(0, 0, -1), vec3_make(0, 1, 0), 60, 64, 64);
+    ray_diff rd;
+    ray r = camera_ray_differential(&c, 32, 32, 1.0, &rd);
+    vec3 p = vec3_scale(r.d, D);
+    vec3 dpdx, dpdy;
+    ck_assert(raydiff_at_hit(&r, &rd, p, vec3_make(0, 0, 1), &dpdx, &dpdy));
+    double k = tan(30 * M_PI / 180) / 32;
+    assert_vec_near(dpdx, vec3_make(D * k, 0, 0), 1e-12, "dp/dx");
+    assert_vec_near(dpdy, vec3_make(0, -D * k, 0), 1e-12, "dp/dy (rows go down)");
+}
+END_TEST
+
+START_TEST(test_hit_differential_is_none_for_a_grazing_offset_ray_and_without_differentials)
+{
+    ray r = {vec3_make(0, 0, 1), vec3_make(1, 0, 0), 0, INFINITY};
+    ray_diff rd = {1, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    vec3 dx, dy;
+    /* the ray and its offsets run inside the plane's direction: n . d = 0 */
+    ck_assert(!raydiff_at_hit(&r, &rd, vec3_make(1, 0, 0), vec3_make(0, 0, 1), &dx, &dy));
+    ck_assert(vec3_length(dx) == 0 && vec3_length(dy) == 0);
+    rd.has = 0;
+    ck_assert(!raydiff_at_hit(&r, &rd, vec3_make(1, 0, 0), vec3_make(0, 0, 1), &dx, &dy));
+    ck_assert(!raydiff_at_hit(&r, NULL, vec3_make(1, 0, 0), vec3_make(0, 0, 1), &dx, &dy));
+}
+END_TEST
+
+/* The unit sphere at the origin seen by test_camera: hit point of the ray through (x, y). */
+static int sphere_hit_at(const camera *c, double x, double y, vec3 *p, vec3 *d)
+{
+    ray r = camera_ray(c, x, y);
+    double b = vec3_dot(r.o, r.d), cc = vec3_dot(r.o, r.o) - 1, disc = b * b - cc;
+    if (disc < 0) return 0;
+    *p = vec3_madd(r.o, r.d, -b - sqrt(disc));
+    *d = r.d;
+    return 1;
+}
+
+START_TEST(test_reflection_differentials_match_finite_differences_on_a_mirror_sphere)
+{
+    camera c = test_camera();
+    const double px[3][2] = {{40, 30}, {44, 26}, {35.5, 33}};
+    for (int i = 0; i < 3; i++) {
+        double x = px[i][0], y = px[i][1];
+        ray_diff rd;
+        ray r = camera_ray_differential(&c, x, y, DIFF_SCALE, &rd);
+        vec3 p, d;
+        ck_assert(sphere_hit_at(&c, x, y, &p, &d));
+        vec3 dpdx, dpdy;
+        ck_assert(raydiff_at_hit(&r, &rd, p, p, &dpdx, &dpdy));
+        /* n = p on the unit sphere, so dn = dp exactly */
+        ray_diff out;
+        raydiff_reflect(&rd, dpdx, dpdy, vec3_neg(d), p, dpdx, dpdy, &out);
+        ck_assert(out.has);
+        out.ddx = vec3_scale(out.ddx, 1 / DIFF_SCALE);
+        out.ddy = vec3_scale(out.ddy, 1 / DIFF_SCALE);
+        out.dox = vec3_scale(out.dox, 1 / DIFF_SCALE);
+        /* finite differences of the reflected direction and of the hit point */
+        vec3 pa, pb, da, db;
+        ck_assert(sphere_hit_at(&c, x + FD_STEP, y, &pa, &da) && sphere_hit_at(&c, x - FD_STEP, y, &pb, &db));
+        vec3 fd = vec3_scale(vec3_sub(vec3_reflect(da, pa), vec3_reflect(db, pb)), 0.5 / FD_STEP);
+        vec3 fp = vec3_scale(vec3_sub(pa, pb), 0.5 / FD_STEP);
+        assert_vec_near(out.ddx, fd, 1e-6, "reflected ddx");
+        assert_vec_near(out.dox, fp, 1e-6, "reflected dox");
+        ck_assert(sphere_hit_at(&c, x, y + FD_STEP, &pa, &da) && sphere_hit_at(&c, x, y - FD_STEP, &pb, &db));
+        fd = vec3_scale(vec3_sub(vec3_reflect(da, pa), vec3_reflect(db, pb)), 0.5 / FD_STEP);
+        assert_vec_near(out.ddy, fd, 1e-6, "reflected ddy");
+    }
+}
+END_TEST
+
+START_TEST(test_refraction_differentials_match_finite_differences_at_a_curved_surface)
+{
+    /* into the unit sphere (glass, n_t / n_i = 1.5), and - pretending the camera's ray were
+     * inside the ball, normal turned inward - out of it (1 / 1.5): both branches of eta */
+    camera c = test_camera();
+    const double etas[2] = {1.5, 1 / 1.5};
+    for (int e = 0; e < 2; e++) {
+        double x = 41, y = 28, eta_ti = etas[e];
+        ray_diff rd;
+        ray r = camera_ray_differential(&c, x, y, DIFF_SCALE, &rd);
+        vec3 p, d;
+        ck_assert(sphere_hit_at(&c, x, y, &p, &d));
+        vec3 dpdx, dpdy, wi;
+        ck_assert(raydiff_at_hit(&r, &rd, p, p, &dpdx, &dpdy));
+        ray_diff out;
+        /* the normal on wo's side: outward entering, inward leaving (a ray inside the ball) */
+        vec3 n = eta_ti > 1 ? p : vec3_neg(p);
+        ck_assert(fresnel_refract(d, n, eta_ti, &wi));
+        ck_assert(raydiff_refract(&rd, dpdx, dpdy, vec3_neg(d), n, vec3_scale(dpdx, eta_ti > 1 ? 1 : -1),
+                                  vec3_scale(dpdy, eta_ti > 1 ? 1 : -1), 1 / eta_ti, wi, &out));
+        out.ddx = vec3_scale(out.ddx, 1 / DIFF_SCALE);
+        out.ddy = vec3_scale(out.ddy, 1 / DIFF_SCALE);
+        vec3 pa, pb, da, db, ta, tb;
+        ck_assert(sphere_hit_at(&c, x + FD_STEP, y, &pa, &da) && sphere_hit_at(&c, x - FD_STEP, y, &pb, &db));
+        ck_assert(fresnel_refract(da, eta_ti > 1 ? pa : vec3_neg(pa), eta_ti, &ta) &&
+                  fresnel_refract(db, eta_ti > 1 ? pb : vec3_neg(pb), eta_ti, &tb));
+        assert_vec_near(out.ddx, vec3_scale(vec3_sub(ta, tb), 0.5 / FD_STEP), 1e-6, "refracted ddx");
+        ck_assert(sphere_hit_at(&c, x, y + FD_STEP, &pa, &da) && sphere_hit_at(&c, x, y - FD_STEP, &pb, &db));
+        ck_assert(fresnel_refract(da, eta_ti > 1 ? pa : vec3_neg(pa), eta_ti, &ta) &&
+                  fresnel_refract(db, eta_ti > 1 ? pb : vec3_neg(pb), eta_ti, &tb));
+        assert_vec_near(out.ddy, vec3_scale(vec3_sub(ta, tb), 0.5 / FD_STEP), 1e-6, "refracted ddy");
+    }
+}
+END_TEST
+
+START_TEST(test_no_differentials_in_means_none_out)
+{
+    ray_diff none = {0}, out;
+    vec3 z = vec3_make(0, 0, 0), n = vec3_make(0, 0, 1);
+    raydiff_reflect(&none, z, z, n, n, z, z, &out);
+    ck_assert(!out.has);
+    ck_assert(!raydiff_refract(&none, z, z, n, n, z, z, 1 / 1.5, vec3_neg(n), &out));
+    ck_assert(!out.has);
+    /* grazing transmission: cos_t = 0 would divide by zero in dmu */
+    ray_diff some = {1, z, vec3_make(1e-3, 0, 0), z, z};
+    ck_assert(!raydiff_refract(&some, z, z, n, n, z, z, 1.5, vec3_make(1, 0, 0), &out));
+    ck_assert(!out.has);
+}
+END_TEST
+
+/* ---- footprints at scene hits (texshade.h) ---------------------------------------------- */
+
+/* A 1 x 1 quad facing the camera at distance D, (s, t) = (x, y) + 0.5: one world unit is one
+ * texture unit.  A 64-texel texture, trilinear. */
+static const char *plane_scene =
+    "size 64 64\n"
+    "camera 0 0 0  0 0 -1  0 1 0  60\n"
+    "texture chk checker 8  0 0 0  1 1 1\n"
+    "diffusemap chk\n"
+    "vertextex -0.5 -0.5 -7  0 0\n"
+    "vertextex 0.5 -0.5 -7  1 0\n"
+    "vertextex 0.5 0.5 -7  1 1\n"
+    "vertextex -0.5 0.5 -7  0 1\n"
+    "tritex 0 1 2\n"
+    "tritex 0 2 3\n";
+
+/* hit of the ray (r, rd) on triangle `prim` of sc (brute force: the scenes here are tiny) */
+static int find_hit(const scene *sc, const ray *r, hit *h)
+{
+    for (long i = 0; i < sc->n_triangles; i++) {
+        const scene_triangle *tr = &sc->triangles[i];
+        vec3 e1 = vec3_sub(tr->p[1], tr->p[0]), e2 = vec3_sub(tr->p[2], tr->p[0]);
+        vec3 pv = vec3_cross(r->d, e2);
+        double det = vec3_dot(e1, pv);
+        if (fabs(det) < 1e-12) continue;
+        vec3 tv = vec3_sub(r->o, tr->p[0]);
+        double b1 = vec3_dot(tv, pv) / det;
+        vec3 qv = vec3_cross(tv, e1);
+        double b2 = vec3_dot(r->d, qv) / det, t = vec3_dot(e2, qv) / det;
+        if (b1 < 0 || b2 < 0 || b1 + b2 > 1 || t <= 0) continue;
+        memset(h, 0, sizeof *h);
+        h->t = t;
+        h->p = vec3_madd(r->o, r->d, t);
+        h->ng = h->ns = vec3_normalize(vec3_cross(e1, e2));
+        h->bary = (uv2){b1, b2};
+        h->prim = i;
+        h->material = tr->material;
+        return 1;
+    }
+    return 0;
+}
+
+START_TEST(test_footprint_of_a_plane_at_known_distance_picks_the_mip_level)
+{
+    scene sc;
+    error err = {0};
+    ck_assert_msg(scene_load_string(plane_scene, NULL, NULL, &sc, &err) == 0, "%s", err.msg);
+    camera c;
+    camera_init(&c, sc.eye, sc.center, sc.up, sc.fovy, sc.width, sc.height);
+    ray_diff rd;
+    ray r = camera_ray_differential(&c, 32, 32, 1.0, &rd);
+    hit h;
+    ck_assert(find_hit(&sc, &r, &h));
+    surface s;
+    memset(&s, 0, sizeof s);
+    s.entering = 1;
+    s.n = s.ng = h.ng;
+    texshade_differentials(&sc, &h, &r, &rd, &s);
+    ck_assert(s.has_diff);
+    texshade_point tp;
+    texshade_point_at(&sc, &h, &s, &tp);
+    double w = 7 * tan(30 * M_PI / 180) / 32; /* texture units per pixel */
+    ck_assert(fabs(tp.st.u - 0.5) < 1e-12 && fabs(tp.st.v - 0.5) < 1e-12);
+    ck_assert_msg(fabs(tp.dst_dx.u - w) < 1e-12 && fabs(tp.dst_dx.v) < 1e-12, "ds/dx %g, want %g", tp.dst_dx.u, w);
+    ck_assert(fabs(tp.dst_dy.v + w) < 1e-12 && fabs(tp.dst_dy.u) < 1e-12);
+    /* a 64 x 64 pyramid: level log2(64 w) */
+    image img;
+    ck_assert(image_alloc(&img, 64, 64, &err) == 0);
+    for (int i = 0; i < 64 * 64 * 3; i++) img.px[i] = 0.5f;
+    mipmap m;
+    ck_assert(mipmap_build(&m, &img, WRAP_REPEAT, &err) == 0);
+    double level = mipmap_level_for_footprint(&m, fmax(fabs(tp.dst_dx.u), fabs(tp.dst_dy.v)) * 64);
+    ck_assert_msg(fabs(level - log2(64 * w)) < 1e-9, "level %g, want %g", level, log2(64 * w));
+    mipmap_free(&m);
+    image_free(&img);
+    scene_free(&sc);
+}
+END_TEST
+
+START_TEST(test_barycentric_st_at_a_hit_interpolates_the_corners)
+{
+    scene sc;
+    error err = {0};
+    ck_assert(scene_load_string(plane_scene, NULL, NULL, &sc, &err) == 0);
+    camera c;
+    camera_init(&c, sc.eye, sc.center, sc.up, sc.fovy, sc.width, sc.height);
+    for (int k = 0; k < 5; k++) {
+        double x = 30 + 1.1 * k, y = 33.5 - 0.9 * k; /* the quad covers pixels 28 .. 36 */
+        ray r = camera_ray(&c, x, y);
+        hit h;
+        ck_assert(find_hit(&sc, &r, &h));
+        surface s;
+        memset(&s, 0, sizeof s);
+        texshade_point tp;
+        texshade_point_at(&sc, &h, &s, &tp);
+        /* (s, t) = (x, y) + 0.5 of the hit point on this quad */
+        ck_assert(fabs(tp.st.u - (h.p.x + 0.5)) < 1e-12 && fabs(tp.st.v - (h.p.y + 0.5)) < 1e-12);
+        ck_assert(tp.dst_dx.u == 0 && tp.dst_dy.v == 0); /* no differentials: no footprint */
+    }
+    scene_free(&sc);
+}
+END_TEST
+
+START_TEST(test_diffusemap_replaces_kd_and_untextured_materials_are_untouched)
+{
+    const char *text =
+        "size 8 8\ncamera 0 0 0  0 0 -1  0 1 0  60\n"
+        "texture c checker 4  0.2 0.4 0.6  0.2 0.4 0.6\n"
+        "diffuse 0.9 0.9 0.9\n"
+        "vertex -1 -1 -3\nvertex 1 -1 -3\nvertex 0 1 -3\ntri 0 1 2\n"
+        "diffusemap c\nspecularmap c\nemissionmap c\n"
+        "vertex -1 -1 -2\nvertex 1 -1 -2\nvertex 0 1 -2\ntri 3 4 5\n";
+    scene sc;
+    error err = {0};
+    ck_assert_msg(scene_load_string(text, NULL, NULL, &sc, &err) == 0, "%s", err.msg);
+    ck_assert(!texshade_material_has_maps(&sc.materials[sc.triangles[0].material]));
+    ck_assert(texshade_material_has_maps(&sc.materials[sc.triangles[1].material]));
+    ck_assert(texshade_scene_has_maps(&sc));
+    ray r = {vec3_make(0, 0, 0), vec3_make(0, 0, -1), 0, INFINITY};
+    hit h;
+    ck_assert(find_hit(&sc, &r, &h) && h.prim == 0); /* brute force returns the first: tri 0 */
+    surface s;
+    memset(&s, 0, sizeof s);
+    s.entering = 1;
+    s.n = s.ng = h.ng;
+    brdf_surface_from_material(&s, &sc.materials[h.material]);
+    texshade_surface(&sc, &h, &r, NULL, &s);
+    ck_assert(s.kd.r == 0.9 && rgb_is_black(s.emission));
+    h.prim = 1;
+    h.material = sc.triangles[1].material;
+    brdf_surface_from_material(&s, &sc.materials[h.material]);
+    texshade_surface(&sc, &h, &r, NULL, &s);
+    ck_assert(fabs(s.kd.r - 0.2) < 1e-12 && fabs(s.kd.g - 0.4) < 1e-12 && fabs(s.kd.b - 0.6) < 1e-12);
+    ck_assert(fabs(s.ks.b - 0.6) < 1e-12 && fabs(s.emission.g - 0.4) < 1e-12);
+    scene_free(&sc);
+}
+END_TEST
+
+Suite *raydiff_suite(void)
+{
+    Suite *s = suite_create("raydiff");
+    TCase *tc = tcase_create("core");
+    tcase_add_test(tc, test_camera_differentials_are_the_derivatives_of_camera_ray);
+    tcase_add_test(tc, test_camera_differentials_shrink_with_the_scale);
+    tcase_add_test(tc, test_hit_differential_on_a_plane_at_known_distance);
+    tcase_add_test(tc, test_hit_differential_is_none_for_a_grazing_offset_ray_and_without_differentials);
+    tcase_add_test(tc, test_reflection_differentials_match_finite_differences_on_a_mirror_sphere);
+    tcase_add_test(tc, test_refraction_differentials_match_finite_differences_at_a_curved_surface);
+    tcase_add_test(tc, test_no_differentials_in_means_none_out);
+    tcase_add_test(tc, test_footprint_of_a_plane_at_known_distance_picks_the_mip_level);
+    tcase_add_test(tc, test_barycentric_st_at_a_hit_interpolates_the_corners);
+    tcase_add_test(tc, test_diffusemap_replaces_kd_and_untextured_materials_are_untouched);
+    suite_add_tcase(s, tc);
+    return s;
+}
+
+UNIT_MAIN(raydiff_suite)
