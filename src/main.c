@@ -9,6 +9,7 @@
  *   envtex convert IN OUT --to KIND [--from KIND] [--width W] [--samples K]
  *   envtex gen-env KIND OUT [--width W] [--value V] [--sun-ratio R] [--sun-radius DEG]
  *                           [--sun-elevation DEG] [--sun-azimuth DEG]
+ *   envtex noise X Y Z              Perlin's improved noise at (X, Y, Z), 9 significant digits
  */
 #include <errno.h>
 #include <stdio.h>
@@ -22,6 +23,7 @@
 #include "envtex/genenv.h"
 #include "envtex/gradetest.h"
 #include "envtex/imageio.h"
+#include "envtex/perlin.h"
 #include "envtex/render.h"
 #include "envtex/scene.h"
 #include "envtex/tonemap.h"
@@ -36,7 +38,8 @@ static const char *usage_text =
     "       envtex convert IN OUT --to latlong|cube|cross|mirrorball|angular|cylindrical|equalarea\n"
     "                      [--from KIND] [--width W] [--samples K]   (cube: OUT_px.exr ... OUT_nz.exr)\n"
     "       envtex gen-env constant|sky|sun|axes OUT [--width W] [--value V] [--sun-ratio R]\n"
-    "                      [--sun-radius DEG] [--sun-elevation DEG] [--sun-azimuth DEG]\n";
+    "                      [--sun-radius DEG] [--sun-elevation DEG] [--sun-azimuth DEG]\n"
+    "       envtex noise X Y Z                   (Perlin's improved noise, 9 significant digits)\n";
 
 static int fail(const error *err)
 {
@@ -505,6 +508,18 @@ done:
     return status;
 }
 
+/* ---- noise ------------------------------------------------------------------------------- */
+
+static int cmd_noise(int argc, char **argv)
+{
+    double v[3];
+    if (argc != 3) return usage_error("%s", "noise needs three numbers X Y Z");
+    for (int k = 0; k < 3; k++)
+        if (parse_double(argv[k], &v[k])) return usage_error("noise needs finite numbers, got '%s'", argv[k]);
+    printf("%.9g\n", perlin_noise(v[0], v[1], v[2]));
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 2) {
@@ -521,5 +536,6 @@ int main(int argc, char **argv)
     if (!strcmp(cmd, "tonemap")) return cmd_tonemap(argc - 2, argv + 2);
     if (!strcmp(cmd, "gen-env")) return cmd_gen_env(argc - 2, argv + 2);
     if (!strcmp(cmd, "convert")) return cmd_convert(argc - 2, argv + 2);
+    if (!strcmp(cmd, "noise")) return cmd_noise(argc - 2, argv + 2);
     return cmd_render(argc - 1, argv + 1); /* envtex SCENE [options] */
 }
