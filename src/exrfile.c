@@ -414,6 +414,34 @@ done:
 
 /* ---- writing ------------------------------------------------------------------------------- */
 
+/* OpenEXRCore 3.1's ZIP compressor works in place: when a chunk does not compress (noise: a
+ * path-traced image at low spp), the chunk is stored "uncompressed" -- but what it stores is
+ * the predictor-and-interleave transformed bytes, not the raw pixels, so every reader gets
+ * garbage for that chunk.  raw_guard wraps the library's compress step: it keeps a copy of the
+ * packed (raw) chunk and puts it back when the chunk ends up stored as is. */
+typedef struct raw_guard {
+    exr_result_t (*compress)(exr_encode_pipeline_t *p); /* the library's */
+    unsigned char *copy;
+    size_t size;
+} raw_guard;
+
+static exr_result_t guarded_compress(exr_encode_pipeline_t *p)
+{
+    raw_guard *g = p->encoding_user_data;
+    size_t n = (size_t)p->packed_bytes;
+    if (n > g->size) return EXR_ERR_OUT_OF_MEMORY; /* cannot happen: sized for the largest chunk */
+    memcpy(g->copy, p->packed_buffer, n);
+    exr_result_t r = g->compress(p);
+    if (r == EXR_ERR_SUCCESS && p->compressed_bytes >= n) {
+        /* stored uncompressed: the bytes written must be the raw ones */
+        memcpy(p->packed_buffer, g->copy, n);
+        if (p->compressed_buffer && p->compressed_buffer != p->packed_buffer && p->compressed_alloc_size >= n)
+            memcpy(p->compressed_buffer, g->copy, n);
+        p->compressed_bytes = n;
+    }
+    return r;
+}
+
 int exrfile_write(const char *path, const image *im, int half, error *err)
 {
     if (!im || !im->px || image_check_size(im->w, im->h, path, err))
@@ -422,6 +450,7 @@ int exrfile_write(const char *path, const image *im, int half, error *err)
     exr_stream s = {.fd = -1, .size = -1, .msg = ""};
     exr_context_t ctx = NULL;
     exr_encode_pipeline_t enc = EXR_ENCODE_PIPELINE_INITIALIZER;
+    raw_guard guard = {NULL, NULL, 0};
     int enc_ready = 0, rc = -1;
     exr_result_t r;
 
@@ -451,6 +480,12 @@ int exrfile_write(const char *path, const image *im, int half, error *err)
         error_set(err, path, 0, "cannot write OpenEXR: %s", exr_why(&s, r));
         goto done;
     }
+    guard.size = (size_t)lines * (size_t)im->w * 3 * (half ? 2 : 4);
+    guard.copy = malloc(guard.size);
+    if (!guard.copy) {
+        error_set(err, path, 0, "out of memory writing OpenEXR");
+        goto done;
+    }
     for (int y = 0; y < im->h; y += lines) {
         exr_chunk_info_t ci;
         r = exr_write_scanline_chunk_info(ctx, part, y, &ci);
@@ -468,9 +503,13 @@ int exrfile_write(const char *path, const image *im, int half, error *err)
             ch->user_data_type = EXR_PIXEL_FLOAT;
             ch->user_bytes_per_element = (int16_t)sizeof(float);
         }
-        if ((r = exr_encoding_choose_default_routines(ctx, part, &enc)) ||
-            (r = exr_encoding_run(ctx, part, &enc)))
-            goto fail;
+        if ((r = exr_encoding_choose_default_routines(ctx, part, &enc))) goto fail;
+        if (enc.compress_fn) { /* see raw_guard */
+            guard.compress = enc.compress_fn;
+            enc.compress_fn = guarded_compress;
+            enc.encoding_user_data = &guard;
+        }
+        if ((r = exr_encoding_run(ctx, part, &enc))) goto fail;
     }
     if (enc_ready) exr_encoding_destroy(ctx, &enc);
     enc_ready = 0;
@@ -493,5 +532,6 @@ done:
     if (ctx) exr_finish(&ctx);
     if (s.fd >= 0) close(s.fd);
     if (rc != 0 && tmp[0]) imageio_tmp_abandon(tmp);
+    free(guard.copy);
     return rc;
 }
