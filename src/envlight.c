@@ -18,7 +18,7 @@ static inline double clean(float v) { return isfinite(v) && v > 0 ? (double)v : 
 
 static inline rgb texel(const envlight *el, int c, int r)
 {
-    const float *p = image_px(el->env->img, c, r);
+    const float *p = image_px(el->map, c, r);
     double s = el->env->scale;
     return rgb_make(clean(p[0]) * s, clean(p[1]) * s, clean(p[2]) * s);
 }
@@ -189,7 +189,7 @@ int envlight_build(envlight *el, const envmap *env, envsampling_mode mode, envsa
     el->env = env;
     el->mode = mode;
     el->sampler = sampler;
-    if (!env->present || !env->img) return error_set(err, NULL, 0, "no lat-long environment map to sample");
+    if (!env->present) return error_set(err, NULL, 0, "no environment map to sample");
     /* Sampled directions go back to the world through the transpose of to_env: the transform
      * must be a rotation (a `scale` before `envmap` would distort the pdf). */
     mat4 m = env->to_env, mmt = mat4_mul(m, mat4_transpose(m));
@@ -199,7 +199,13 @@ int envlight_build(envlight *el, const envmap *env, envsampling_mode mode, envsa
                 return error_set(err, NULL, 0, "the envmap's transform is not a rotation, so it cannot be sampled "
                                  "as a light (use only 'rotate' before 'envmap')");
     clock_t t0 = clock();
-    int w = el->w = env->img->w, h = el->h = env->img->h;
+    el->map = env->img;
+    if (!el->map) { /* another representation: resample it to lat-long once (no-op otherwise) */
+        if (envmap_to_latlong(env, 0, 0, &el->converted, err))
+            return error_prefix(err, "resampling the environment to lat-long for sampling");
+        el->map = &el->converted;
+    }
+    int w = el->w = el->map->w, h = el->h = el->map->h;
     el->to_world = mat4_transpose(m);
     el->identity = 1;
     for (int i = 0; i < 4; i++)
@@ -226,7 +232,7 @@ int envlight_build(envlight *el, const envmap *env, envsampling_mode mode, envsa
         /* PBRT's weights: L sin(theta at the row centre) (rows uniform in theta) */
         double sin_c = sin(M_PI * (r + 0.5) / h);
         for (int c = 0; c < w; c++) {
-            const float *p = image_px(env->img, c, r);
+            const float *p = image_px(el->map, c, r);
             for (int k = 0; k < 3; k++) el->n_bad += !(isfinite(p[k]) && p[k] >= 0);
             double L = rgb_avg(texel(el, c, r));
             power += L * om; /* |L| = sum L_avg dOmega, in double */
@@ -257,6 +263,8 @@ void envlight_free(envlight *el)
     distrib2d_free(&el->table);
     distrib1d_free(&el->point_choice);
     free(el->points);
+    image_free(&el->converted);
+    el->map = NULL;
     free(el->cos_edge);
     free(el->row_omega);
     el->points = NULL;

@@ -200,9 +200,14 @@ static int cmd_render(int argc, char **argv)
             fprintf(stderr, "envtex: no BVH (%ld primitives <= %d: tested linearly)\n", st.prims, BVH_MIN_PRIMS);
         static const char *modes[] = {"uniform", "cdf", "cdf-sintheta", "mediancut"};
         if (sc.envmap.present) {
-            fprintf(stderr, "envtex: envmap %s: %dx%d, scale %g, %.1f MB\n", sc.envmap.path,
-                    sc.envmap.img.w, sc.envmap.img.h, sc.envmap.scale,
-                    sc.envmap.img.w * (double)sc.envmap.img.h * 12 / 1e6);
+            int is_cube = sc.envmap.kind == CONVERT_CUBE;
+            int ew = is_cube ? sc.envmap.cube.size : sc.envmap.img.w, eh = is_cube ? ew : sc.envmap.img.h;
+            fprintf(stderr, "envtex: envmap %s: %s, %dx%d%s, scale %g, %.1f MB\n", sc.envmap.path,
+                    convert_kind_name(sc.envmap.kind), ew, eh, is_cube ? " per face" : "", sc.envmap.scale,
+                    ew * (double)eh * 12 * (is_cube ? 6 : 1) / 1e6);
+            if (st.envlight_built && sc.envmap.kind != CONVERT_LATLONG)
+                fprintf(stderr, "envtex: envmap resampled to a %dx%d lat-long map for lighting\n", st.envlight_w,
+                        st.envlight_h);
             if (st.envlight_built && st.envlight_mode != ENVSAMPLING_UNIFORM)
                 fprintf(stderr, "envtex: envmap sampling: '%s' tables (%s) built in %.3f s%s\n",
                         modes[st.envlight_mode], sc.envsampler == ENVSAMPLER_ALIAS ? "alias" : "binary search",

@@ -123,6 +123,8 @@ int render_scene(const scene *sc, const render_opts *opts, image *out, render_st
         stats->envlight_bad_texels = it.el.n_bad;
         stats->envlight_fell_back = it.el.fell_back;
         stats->envlight_points = it.el.n_points;
+        stats->envlight_w = it.el.w;
+        stats->envlight_h = it.el.h;
     }
     stats->lights = it.has_lights ? it.ls.n : 0;
     stats->spp = spp;

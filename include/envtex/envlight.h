@@ -23,6 +23,10 @@
  * counted (n_bad) and treated as 0 everywhere, for lighting and sampling alike.  An all-black
  * map falls back to uniform sampling (fell_back).
  *
+ * A map in another representation (cube map, mirror ball, ...) is first resampled to a lat-long
+ * map (envmap_to_latlong, solid-angle averaged, at the default resolution), which is then both
+ * sampled and used as the light, so sampling and lighting stay consistent.
+ *
  *     envlight el;
  *     if (envlight_build(&el, &env, ENVSAMPLING_CDF, ENVSAMPLER_BINARY, 0, &err)) ...
  *     envlight_sample_result s;
@@ -44,6 +48,8 @@ typedef struct envlight_point {
 
 typedef struct envlight {
     const envmap *env;
+    const image *map;    /* the lat-long map sampled: env->img, or `converted` for other kinds */
+    image converted;     /* a cube map, mirror ball... resampled to lat-long (owned); else empty */
     envsampling_mode mode;
     envsampler_kind sampler;
     int w, h;

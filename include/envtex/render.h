@@ -50,6 +50,7 @@ typedef struct render_stats {
     long envlight_bad_texels;  /* NaN / Inf / negative texel channels, treated as 0 */
     int envlight_fell_back;    /* the map was black: sampling fell back to uniform */
     int envlight_points;       /* median cut: point lights made */
+    int envlight_w, envlight_h; /* the lat-long map sampled (resampled for other kinds) */
     int lights;                /* lights the sampling integrators choose among */
 } render_stats;
 
