@@ -34,23 +34,7 @@ rgb equalarea_lookup_bilinear(const image *map, vec3 d)
     assert(map->w > 0 && map->h > 0);
     uv2 uv;
     if (equalarea_dir_to_uv(d, &uv)) return rgb_gray(0.0);
-    int w = map->w, h = map->h;
-    /* texel centres at integers: x in [-0.5, W - 0.5), y in [-0.5, H - 0.5] */
-    double x = uv.u * w - 0.5, y = uv.v * h - 0.5;
-    double x0 = floor(x), y0 = floor(y);
-    double ax = x - x0, ay = y - y0;
-    int i0 = (int)x0, j0 = (int)y0;
-    int i1 = i0 + 1, j1 = j0 + 1;
-    if (i0 < 0) i0 += w;   /* wrap in phi */
-    if (i1 >= w) i1 -= w;
-    if (j0 < 0) j0 = 0;    /* clamp at the poles */
-    if (j1 > h - 1) j1 = h - 1;
-    rgb c00 = image_get(map, i0, j0), c10 = image_get(map, i1, j0);
-    rgb c01 = image_get(map, i0, j1), c11 = image_get(map, i1, j1);
-    /* L = (1-ax)(1-ay) c00 + ax (1-ay) c10 + (1-ax) ay c01 + ax ay c11 */
-    rgb top = rgb_add(rgb_scale(c00, 1.0 - ax), rgb_scale(c10, ax));
-    rgb bottom = rgb_add(rgb_scale(c01, 1.0 - ax), rgb_scale(c11, ax));
-    return rgb_add(rgb_scale(top, 1.0 - ay), rgb_scale(bottom, ay));
+    return image_bilinear_wrap_u(map, uv);
 }
 
 double equalarea_texel_solid_angle(int w, int h)

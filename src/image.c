@@ -1,6 +1,7 @@
 /* image.c - linear RGB float images (see include/envtex/image.h). */
 #include "envtex/image.h"
 
+#include <math.h>
 #include <stdlib.h>
 
 int image_check_size(long w, long h, const char *file, error *err)
@@ -35,3 +36,35 @@ void image_free(image *im)
     im->px = NULL;
     im->w = im->h = 0;
 }
+
+/* The four texels around uv and the weights (ax, ay) of the right and bottom ones. */
+static rgb bilinear(const image *im, uv2 uv, int wrap_u)
+{
+    int w = im->w, h = im->h;
+    double x = uv.u * w - 0.5, y = uv.v * h - 0.5; /* texel centres at integers */
+    double x0 = floor(x), y0 = floor(y);
+    double ax = x - x0, ay = y - y0;
+    int i0 = (int)x0, j0 = (int)y0, i1 = i0 + 1, j1 = j0 + 1;
+    if (wrap_u) {
+        if (i0 < 0) i0 += w;
+        if (i0 >= w) i0 -= w;
+        if (i1 >= w) i1 -= w;
+    } else {
+        if (i0 < 0) i0 = 0;
+        if (i1 > w - 1) i1 = w - 1;
+        if (i0 > w - 1) i0 = w - 1;
+    }
+    if (j0 < 0) j0 = 0;
+    if (j1 > h - 1) j1 = h - 1;
+    if (j0 > h - 1) j0 = h - 1;
+    rgb c00 = image_get(im, i0, j0), c10 = image_get(im, i1, j0);
+    rgb c01 = image_get(im, i0, j1), c11 = image_get(im, i1, j1);
+    /* L = (1-ax)(1-ay) c00 + ax (1-ay) c10 + (1-ax) ay c01 + ax ay c11 */
+    rgb top = rgb_add(rgb_scale(c00, 1 - ax), rgb_scale(c10, ax));
+    rgb bottom = rgb_add(rgb_scale(c01, 1 - ax), rgb_scale(c11, ax));
+    return rgb_add(rgb_scale(top, 1 - ay), rgb_scale(bottom, ay));
+}
+
+rgb image_bilinear_clamp(const image *im, uv2 uv) { return bilinear(im, uv, 0); }
+
+rgb image_bilinear_wrap_u(const image *im, uv2 uv) { return bilinear(im, uv, 1); }

@@ -32,26 +32,7 @@ rgb latlong_lookup_bilinear(const image *map, vec3 d)
 {
     uv2 uv;
     if (latlong_dir_to_uv(d, &uv)) return rgb_gray(0);
-    int w = map->w, h = map->h;
-    /* continuous texel coordinates, texel centres at integers */
-    double x = uv.u * w - 0.5, y = uv.v * h - 0.5;
-    double fx = floor(x), fy = floor(y);
-    double ax = x - fx, ay = y - fy;
-    int x0 = (int)fx, y0 = (int)fy;
-    int x1 = x0 + 1, y1 = y0 + 1;
-    /* wrap in phi, clamp in theta */
-    if (x0 < 0) x0 += w;
-    if (x1 >= w) x1 -= w;
-    if (x0 >= w) x0 -= w;
-    if (y0 < 0) y0 = 0;
-    if (y1 > h - 1) y1 = h - 1;
-    if (y0 > h - 1) y0 = h - 1;
-    rgb c00 = image_get(map, x0, y0), c10 = image_get(map, x1, y0);
-    rgb c01 = image_get(map, x0, y1), c11 = image_get(map, x1, y1);
-    /* L = (1-ax)(1-ay) c00 + ax (1-ay) c10 + (1-ax) ay c01 + ax ay c11 */
-    rgb top = rgb_add(rgb_scale(c00, 1 - ax), rgb_scale(c10, ax));
-    rgb bot = rgb_add(rgb_scale(c01, 1 - ax), rgb_scale(c11, ax));
-    return rgb_add(rgb_scale(top, 1 - ay), rgb_scale(bot, ay));
+    return image_bilinear_wrap_u(map, uv);
 }
 
 rgb latlong_lookup_nearest(const image *map, vec3 d)

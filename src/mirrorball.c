@@ -46,21 +46,5 @@ rgb mirrorball_lookup_bilinear(const image *probe, vec3 d)
     assert(probe->w > 0 && probe->h > 0);
     uv2 uv;
     if (mirrorball_dir_to_uv(d, &uv)) return rgb_gray(0.0);
-    int w = probe->w, h = probe->h;
-    /* texel centres at integers: x, y in [-0.5, size - 0.5] */
-    double x = uv.u * w - 0.5, y = uv.v * h - 0.5;
-    double x0 = floor(x), y0 = floor(y);
-    double ax = x - x0, ay = y - y0;
-    int i0 = (int)x0, j0 = (int)y0;
-    int i1 = i0 + 1, j1 = j0 + 1;
-    if (i0 < 0) i0 = 0; /* clamp at the image edges */
-    if (j0 < 0) j0 = 0;
-    if (i1 > w - 1) i1 = w - 1;
-    if (j1 > h - 1) j1 = h - 1;
-    rgb c00 = image_get(probe, i0, j0), c10 = image_get(probe, i1, j0);
-    rgb c01 = image_get(probe, i0, j1), c11 = image_get(probe, i1, j1);
-    /* L = (1-ax)(1-ay) c00 + ax (1-ay) c10 + (1-ax) ay c01 + ax ay c11 */
-    rgb top = rgb_add(rgb_scale(c00, 1.0 - ax), rgb_scale(c10, ax));
-    rgb bottom = rgb_add(rgb_scale(c01, 1.0 - ax), rgb_scale(c11, ax));
-    return rgb_add(rgb_scale(top, 1.0 - ay), rgb_scale(bottom, ay));
+    return image_bilinear_clamp(probe, uv);
 }

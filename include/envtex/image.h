@@ -54,4 +54,12 @@ static inline void image_set(image *im, int x, int y, rgb c)
     p[2] = (float)c.b;
 }
 
+/* Bilinear interpolation at continuous image coordinates uv in [0,1]^2: u to the right, v down,
+ * texel (i, j) centred at ((i + 0.5) / W, (j + 0.5) / H).  Outside the texel centres the image
+ * is extended by clamping (image_bilinear_clamp), or wrapped left-right across u = 0 = 1 and
+ * clamped top-bottom (image_bilinear_wrap_u: the phi seam of lat-long, equal-area and
+ * cylindrical maps).  uv must be finite. */
+rgb image_bilinear_clamp(const image *im, uv2 uv);
+rgb image_bilinear_wrap_u(const image *im, uv2 uv);
+
 #endif

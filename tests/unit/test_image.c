@@ -101,6 +101,26 @@ START_TEST(test_image_free_twice_is_safe)
 }
 END_TEST
 
+START_TEST(test_image_bilinear_wraps_u_across_the_seam_and_clamps_v)
+{
+    image im = {0};
+    error err = {0};
+    ck_assert_int_eq(image_alloc(&im, 4, 2, &err), 0);
+    for (int y = 0; y < 2; y++)
+        for (int x = 0; x < 4; x++) image_set(&im, x, y, rgb_gray(x + 10 * y));
+    /* u = 0 is halfway between the last column (3) and the first (0) */
+    ck_assert_near(image_bilinear_wrap_u(&im, (uv2){0.0, 0.25}).r, 1.5, 1e-12);
+    ck_assert_near(image_bilinear_clamp(&im, (uv2){0.0, 0.25}).r, 0.0, 1e-12);
+    /* texel centres are exact; above the top centre v clamps to row 0 */
+    ck_assert_near(image_bilinear_wrap_u(&im, (uv2){2.5 / 4, 0.75}).r, 12.0, 1e-12);
+    ck_assert_near(image_bilinear_wrap_u(&im, (uv2){2.5 / 4, 0.0}).r, 2.0, 1e-12);
+    ck_assert_near(image_bilinear_clamp(&im, (uv2){1.0, 1.0}).r, 13.0, 1e-12);
+    /* between columns 1 and 2, rows 0 and 1: the mean of 1, 2, 11, 12 */
+    ck_assert_near(image_bilinear_clamp(&im, (uv2){0.5, 0.5}).r, 6.5, 1e-12);
+    image_free(&im);
+}
+END_TEST
+
 Suite *image_suite(void)
 {
     Suite *s = suite_create("image");
@@ -112,6 +132,7 @@ Suite *image_suite(void)
     tcase_add_test(tc, test_image_alloc_is_zero_filled_and_row_major);
     tcase_add_test(tc, test_image_alloc_of_a_bad_size_fails_and_leaves_an_empty_image);
     tcase_add_test(tc, test_image_free_twice_is_safe);
+    tcase_add_test(tc, test_image_bilinear_wraps_u_across_the_seam_and_clamps_v);
     suite_add_tcase(s, tc);
     return s;
 }
