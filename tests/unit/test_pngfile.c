@@ -12,67 +12,7 @@
 #include "envtex/tonemap.h"
 #include "unit.h"
 
-/* ---- test folder helpers (each test makes and removes its own mkdtemp folder) ------------- */
-
-static char dir[64];
-
-static void make_dir(void)
-{
-    strcpy(dir, "/tmp/envtex_test_XXXXXX");
-    ck_assert_ptr_nonnull(mkdtemp(dir));
-}
-
-static void remove_dir(void)
-{
-    DIR *d = opendir(dir);
-    ck_assert_ptr_nonnull(d);
-    char p[512];
-    for (struct dirent *e; (e = readdir(d));) {
-        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..")) continue;
-        snprintf(p, sizeof p, "%s/%s", dir, e->d_name);
-        unlink(p);
-    }
-    closedir(d);
-    ck_assert_int_eq(rmdir(dir), 0);
-}
-
-/* Entries of the test folder whose name contains `part` (".tmp." finds left-over temporaries). */
-static int count_files(const char *part)
-{
-    DIR *d = opendir(dir);
-    ck_assert_ptr_nonnull(d);
-    int n = 0;
-    for (struct dirent *e; (e = readdir(d));)
-        if (e->d_name[0] != '.' && strstr(e->d_name, part)) n++;
-    closedir(d);
-    return n;
-}
-
-static const char *in_dir(const char *name)
-{
-    static char buf[4][256];
-    static int i;
-    i = (i + 1) % 4;
-    snprintf(buf[i], sizeof buf[i], "%s/%s", dir, name);
-    return buf[i];
-}
-
-static void write_bytes(const char *path, const void *data, size_t n)
-{
-    FILE *f = fopen(path, "wb");
-    ck_assert_ptr_nonnull(f);
-    ck_assert_uint_eq(fwrite(data, 1, n, f), n);
-    ck_assert_int_eq(fclose(f), 0);
-}
-
-/* The whole file (caller frees). */
-static unsigned char *slurp(const char *path, size_t *n)
-{
-    unsigned char *d = NULL;
-    error err = {0};
-    ck_assert_msg(imageio_read_all(path, &d, n, &err) == 0, "%s", err.msg);
-    return d;
-}
+#include "testdir.h"
 
 /* Write a PNG with libpng directly: rows of raw samples (big endian for 16 bit). */
 static void write_raw_png(const char *path, int w, int h, int type, int depth, int interlace,
