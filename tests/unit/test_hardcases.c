@@ -2,15 +2,19 @@
  * envmaps with NaN / Inf / negative texels, 1 x 1 and 8192 x 4096 maps at the poles and the
  * seam; rays through shared triangle edges and vertices (no cracks), grazing rays, degenerate
  * triangles; reflection and refraction far from the origin (no acne); a camera inside a sphere;
- * tone mapping of Inf and NaN.  Each test names the bug it would catch.  Other modules' own
+ * textures of 1 x 1 and 1 x N texels read far outside [0, 1] and with zero and whole-texture
+ * footprints; noise at |x| = 1e6; tone mapping of Inf and NaN.  Each test names the bug it would catch.  Other modules' own
  * tests hold their own hard cases; this file collects the ones that cross modules. */
 #include <math.h>
 #include <string.h>
 
 #include "envtex/genenv.h"
 #include "envtex/latlong.h"
+#include "envtex/mipmap.h"
+#include "envtex/perlin.h"
 #include "envtex/render.h"
 #include "envtex/scene.h"
+#include "envtex/texlookup.h"
 #include "envtex/tonemap.h"
 #include "envtex/triangle.h"
 #include "unit.h"
@@ -284,6 +288,94 @@ START_TEST(test_grazing_rays_and_degenerate_triangles_give_no_garbage)
 }
 END_TEST
 
+/* ---- textures and noise -------------------------------------------------------------------- */
+
+/* Coordinates far outside [0, 1], negative, NaN and infinite, in every wrap mode, on a 1 x 1 and
+ * a 1 x 5 texture: the 1 x 1 returns its texel exactly; the 1 x 5 (a column: only t matters)
+ * returns a blend of its texels, within their range and finite (catches an int overflow of
+ * floor(s W) at 1e9, a negative modulo, a NaN index, a division by W - 1 = 0). */
+START_TEST(test_tiny_textures_read_far_outside_stay_inside_their_texels)
+{
+    image one = {0}, col = {0};
+    error err = {0};
+    ck_assert_int_eq(image_alloc(&one, 1, 1, &err), 0);
+    ck_assert_int_eq(image_alloc(&col, 1, 5, &err), 0);
+    image_set(&one, 0, 0, rgb_make(0.25, 0.5, 0.75));
+    for (int j = 0; j < 5; j++) image_set(&col, 0, j, rgb_gray(1 + j)); /* 1 .. 5 */
+    const double far[] = {0.5, -0.5, 1e6 + 0.3, -1e6 - 0.3, 1e9 + 0.7, -1e9 - 0.7, 3e15, -3e15,
+                          1e300, -1e300, NAN, INFINITY, -INFINITY, 1.0, -0.0};
+    const wrap_mode wraps[] = {WRAP_REPEAT, WRAP_CLAMP, WRAP_MIRROR};
+    int n = sizeof far / sizeof far[0], bad = 0;
+    for (int w = 0; w < 3; w++)
+        for (int a = 0; a < n; a++)
+            for (int b = 0; b < n; b++) {
+                uv2 st = {far[a], far[b]};
+                rgb p = texlookup_nearest(&one, st, wraps[w]), q = texlookup_bilinear(&one, st, wraps[w]);
+                if (p.r != 0.25 || p.b != 0.75 || fabs(q.r - 0.25) > 1e-12 || fabs(q.b - 0.75) > 1e-12) bad++;
+                rgb c = texlookup_nearest(&col, st, wraps[w]), d = texlookup_bilinear(&col, st, wraps[w]);
+                if (!(c.r >= 1 && c.r <= 5) || !(d.r >= 1 - 1e-12 && d.r <= 5 + 1e-12)) bad++;
+            }
+    ck_assert_int_eq(bad, 0);
+    image_free(&one);
+    image_free(&col);
+}
+END_TEST
+
+/* Footprints of zero and of the whole texture, for trilinear and EWA: zero is the bilinear
+ * lookup of the base; the whole texture (and beyond, and non-finite) is its mean, here of an
+ * 8 x 8 checkerboard of 0 and 1, i.e. 0.5 (catches a log2(0) level, a level index past the top
+ * of the pyramid, a NaN footprint that reaches an index). */
+START_TEST(test_zero_and_whole_texture_footprints_give_bilinear_and_mean)
+{
+    image im = {0};
+    error err = {0};
+    ck_assert_int_eq(image_alloc(&im, 8, 8, &err), 0);
+    for (int y = 0; y < 8; y++)
+        for (int x = 0; x < 8; x++) image_set(&im, x, y, rgb_gray((x + y) & 1));
+    mipmap m;
+    ck_assert_int_eq(mipmap_build(&m, &im, WRAP_REPEAT, &err), 0);
+    uv2 st = {0.3, 0.7}, zero = {0, 0};
+    rgb bl = texlookup_bilinear(&im, st, WRAP_REPEAT);
+    ck_assert_near(mipmap_lookup_trilinear(&m, st, 0).r, bl.r, 1e-12);
+    ck_assert_near(mipmap_lookup_ewa(&m, st, zero, zero).r, bl.r, 1e-12);
+    const double whole[] = {1, 2, 1e6, INFINITY};
+    for (size_t i = 0; i < sizeof whole / sizeof whole[0]; i++) {
+        ck_assert_near(mipmap_lookup_trilinear(&m, st, whole[i]).r, 0.5, 1e-6);
+        uv2 dx = {whole[i], 0}, dy = {0, whole[i]};
+        ck_assert_near(mipmap_lookup_ewa(&m, st, dx, dy).r, 0.5, 1e-6);
+    }
+    uv2 nan2 = {NAN, NAN};
+    ck_assert_near(mipmap_lookup_ewa(&m, st, nan2, nan2).r, 0.5, 1e-6);
+    mipmap_free(&m);
+    image_free(&im);
+}
+END_TEST
+
+/* Improved noise at |x| = 1e6 and at negative coordinates: 0 at every lattice point, within
+ * PERLIN_NOISE_BOUND and finite between them, and fbm with the most octaves stays finite
+ * (catches an int conversion of floor(x) that overflows or rounds the wrong way below zero,
+ * and a fraction computed as x - (int)x, which is wrong for negatives). */
+START_TEST(test_noise_far_away_and_negative_is_bounded_and_zero_on_the_lattice)
+{
+    const double base[] = {1e6, -1e6, -1.0, -37.0, 123456.0, -987654.0};
+    int bad = 0;
+    for (size_t i = 0; i < sizeof base / sizeof base[0]; i++) {
+        double x = base[i];
+        if (perlin_noise(x, -x, x) != 0.0) bad++;
+        for (int k = 1; k < 50; k++) {
+            double f = k / 50.0;
+            double n = perlin_noise(x + f, x - f * 0.7, -x + f * 0.3);
+            if (!isfinite(n) || fabs(n) > PERLIN_NOISE_BOUND) bad++;
+        }
+        double fbm = perlin_fbm(vec3_make(x + 0.1, x, -x), PERLIN_MAX_OCTAVES, 2.0, 0.5);
+        if (!isfinite(fbm) || fabs(fbm) > 2 * PERLIN_NOISE_BOUND) bad++;
+    }
+    ck_assert_int_eq(bad, 0);
+    /* continuity across the negative lattice point x = -1: no jump from a wrong floor */
+    ck_assert_near(perlin_noise(-1 - 1e-9, 0.3, 0.6), perlin_noise(-1 + 1e-9, 0.3, 0.6), 1e-6);
+}
+END_TEST
+
 /* ---- self-intersection --------------------------------------------------------------------- */
 
 /* The scene at the origin and the same scene moved by (D, D, D): the images agree (at most 1%
@@ -421,6 +513,11 @@ Suite *hardcases_suite(void)
     tcase_add_test(geo, test_camera_inside_a_sphere_sees_its_inside_everywhere);
     tcase_set_timeout(geo, 30);
     suite_add_tcase(s, geo);
+    TCase *tex = tcase_create("textures and noise");
+    tcase_add_test(tex, test_tiny_textures_read_far_outside_stay_inside_their_texels);
+    tcase_add_test(tex, test_zero_and_whole_texture_footprints_give_bilinear_and_mean);
+    tcase_add_test(tex, test_noise_far_away_and_negative_is_bounded_and_zero_on_the_lattice);
+    suite_add_tcase(s, tex);
     TCase *rep = tcase_create("reporting");
     tcase_add_test(rep, test_tonemap_reports_nan_and_inf_pixels_and_encodes_them_fixed);
     tcase_add_test(rep, test_render_counts_the_nan_pixels_it_makes);
