@@ -69,11 +69,12 @@ START_TEST(test_image_filters_are_the_lookups_they_name)
     ck_rgb_near(texture_eval(&tx, &q), texlookup_bilinear(&im, q.st, WRAP_REPEAT), 1e-6);
     q.filter = TEXFILTER_EWA;
     ck_rgb_near(texture_eval(&tx, &q), texlookup_bilinear(&im, q.st, WRAP_REPEAT), 1e-6);
-    /* a footprint of 1/4 of the texture: level 1 exactly (8 texels * 1/4 = 2 texels) */
+    /* a footprint of 1/4 x 1/16 of the texture: its area's side is 1/8 (8 texels * 1/8 = 1
+     * texel): trilinear uses sqrt(|dst/dx| |dst/dy|), not the long axis (src/texture.c) */
     q.filter = TEXFILTER_TRILINEAR;
     q.dst_dx = (uv2){0.25, 0};
-    q.dst_dy = (uv2){0, 0.1};
-    ck_rgb_near(texture_eval(&tx, &q), mipmap_lookup_trilinear(&tx.mip, q.st, 0.25), 0);
+    q.dst_dy = (uv2){0, 0.0625};
+    ck_rgb_near(texture_eval(&tx, &q), mipmap_lookup_trilinear(&tx.mip, q.st, 0.125), 1e-15);
     q.filter = TEXFILTER_EWA;
     ck_rgb_near(texture_eval(&tx, &q), mipmap_lookup_ewa(&tx.mip, q.st, q.dst_dx, q.dst_dy), 0);
     texture_free(&tx);
