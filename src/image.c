@@ -68,3 +68,27 @@ static rgb bilinear(const image *im, uv2 uv, int wrap_u)
 rgb image_bilinear_clamp(const image *im, uv2 uv) { return bilinear(im, uv, 0); }
 
 rgb image_bilinear_wrap_u(const image *im, uv2 uv) { return bilinear(im, uv, 1); }
+
+long image_zero_nonfinite(image *im)
+{
+    long n = 0;
+    size_t count = (size_t)im->w * (size_t)im->h * 3;
+    for (size_t i = 0; i < count; i++)
+        if (!isfinite(im->px[i])) {
+            im->px[i] = 0.0f;
+            n++;
+        }
+    return n;
+}
+
+long image_zero_nonfinite_or_negative(image *im)
+{
+    long n = 0;
+    size_t count = (size_t)im->w * (size_t)im->h * 3;
+    for (size_t i = 0; i < count; i++)
+        if (!(im->px[i] >= 0.0f) || isinf(im->px[i])) { /* NaN fails >= */
+            im->px[i] = 0.0f;
+            n++;
+        }
+    return n;
+}

@@ -1141,6 +1141,19 @@ static int envmap_error(parser *p, int face, const char *why)
 
 /* Read the envmap image(s) and settle the representation: six faces, or one image whose kind
  * was named or is detected from its shape (convert_kind_detect); a cross is split into faces. */
+/* Bad texels (NaN, Inf; for radiance also negative) become 0 once, at load, with one warning
+ * at the line that named the image. */
+static void clean_texels(parser *p, image *im, int line, int radiance, const char *what, const char *token)
+{
+    long n = radiance ? image_zero_nonfinite_or_negative(im) : image_zero_nonfinite(im);
+    if (n == 0) return;
+    int saved = p->line;
+    p->line = line;
+    warn(p, "%s '%s': %ld %s texel value%s (used as 0)", what, token, n,
+         radiance ? "NaN, infinite or negative" : "NaN or infinite", n == 1 ? "" : "s");
+    p->line = saved;
+}
+
 static int load_envmap(parser *p)
 {
     scene_envmap *e = &p->sc->envmap;
@@ -1150,6 +1163,7 @@ static int load_envmap(parser *p)
         for (int f = 0; f < CUBEMAP_FACES; f++) {
             image *im = &e->cube.face[f];
             if (imageio_read(e->face_path[f], im, &ie)) return envmap_error(p, f, ie.msg);
+            clean_texels(p, im, e->line, 1, "envmap", p->envmap_token[f]);
             char why[128];
             if (im->w != im->h) {
                 snprintf(why, sizeof why, "a cube face must be square, not %d x %d", im->w, im->h);
@@ -1165,6 +1179,7 @@ static int load_envmap(parser *p)
         return 0;
     }
     if (imageio_read(e->path, &e->img, &ie)) return envmap_error(p, 0, ie.msg);
+    clean_texels(p, &e->img, e->line, 1, "envmap", p->envmap_token[0]);
     if (!e->kind_given && convert_kind_detect(e->img.w, e->img.h, &e->kind, &ie))
         return envmap_error(p, 0, ie.msg);
     if (e->kind == CONVERT_CUBE) {
@@ -1204,6 +1219,7 @@ static int load_textures(parser *p)
                 return error_set(p->err, p->name, t->line, "texture '%s' file '%s' (%s): %s",
                                  t->name, t->token, t->path, ie.msg);
             }
+            clean_texels(p, im, t->line, 0, "texture file", t->token);
             t->image = sc->n_texture_images++;
         }
         texture_init_image(&t->tex, &sc->texture_images[t->image], t->wrap);

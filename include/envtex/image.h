@@ -54,6 +54,13 @@ static inline void image_set(image *im, int x, int y, rgb c)
     p[2] = (float)c.b;
 }
 
+/* Replace every NaN or infinite channel value by 0 (image_zero_nonfinite), or also every
+ * negative one (image_zero_nonfinite_or_negative: radiance cannot be negative).  Returns how
+ * many values were replaced.  Loaders call them once, so a bad texel can neither reach a
+ * lookup nor bleed into its bilinear neighbours (0 x NaN is NaN). */
+long image_zero_nonfinite(image *im);
+long image_zero_nonfinite_or_negative(image *im);
+
 /* Bilinear interpolation at continuous image coordinates uv in [0,1]^2: u to the right, v down,
  * texel (i, j) centred at ((i + 0.5) / W, (j + 0.5) / H).  Outside the texel centres the image
  * is extended by clamping (image_bilinear_clamp), or wrapped left-right across u = 0 = 1 and

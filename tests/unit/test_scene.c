@@ -1,5 +1,6 @@
 /* test_scene.c - the scene-file parser: every command's effect and default, the transform
  * order, material deduplication, and every error path at its FILE:LINE naming its token. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -835,6 +836,57 @@ START_TEST(test_a_readable_envmap_is_loaded_when_images_are_on)
 }
 END_TEST
 
+/* A NaN, infinite or negative envmap texel would make every bilinear lookup that touches it NaN
+ * (0 x NaN is NaN): the loader zeroes them once and says how many, at the envmap's line; a
+ * texture's NaN and infinite values likewise (negative ones may be meant). */
+START_TEST(test_bad_texels_are_zeroed_at_load_with_one_warning_each)
+{
+    char dir[] = "/tmp/test_scene_XXXXXX";
+    ck_assert_ptr_nonnull(mkdtemp(dir));
+    char env_path[256], tex_path[256], scene_path[256];
+    snprintf(env_path, sizeof env_path, "%s/sky.pfm", dir);
+    snprintf(tex_path, sizeof tex_path, "%s/t.pfm", dir);
+    snprintf(scene_path, sizeof scene_path, "%s/x.test", dir);
+    image im = {0};
+    error err = {0};
+    ck_assert_int_eq(image_alloc(&im, 4, 2, &err), 0);
+    image_set(&im, 0, 0, rgb_make(NAN, 1, 1));
+    image_set(&im, 1, 0, rgb_make(1, -2, 1));
+    image_set(&im, 2, 1, rgb_make(1, 1, INFINITY));
+    ck_assert_msg(imageio_write(env_path, &im, NULL, &err) == 0, "%s", err.msg);
+    ck_assert_msg(imageio_write(tex_path, &im, NULL, &err) == 0, "%s", err.msg);
+    image_free(&im);
+    FILE *f = fopen(scene_path, "w");
+    ck_assert_ptr_nonnull(f);
+    fputs(HEAD "envmap sky.pfm\ntexture t t.pfm\ndiffusemap t\nsphere 0 0 0 1\n", f);
+    fclose(f);
+    warnings ws;
+    scene_load_opts o = opts_counting(&ws);
+    o.load_images = 1;
+    scene sc;
+    ck_assert_msg(scene_load(scene_path, &o, &sc, &err) == 0, "%s", err.msg);
+    ck_assert_int_eq(ws.n, 2);
+    ck_assert_int_eq(ws.last.line, 3); /* textures are read first, the envmap last */
+    ck_assert_msg(strstr(ws.last.msg, "envmap 'sky.pfm': 3 NaN, infinite or negative texel values"), "%s",
+                  ws.last.msg);
+    for (int y = 0; y < 2; y++)
+        for (int x = 0; x < 4; x++) {
+            rgb c = image_get(&sc.envmap.img, x, y);
+            ck_assert(isfinite(c.r) && isfinite(c.g) && isfinite(c.b) && c.r >= 0 && c.g >= 0 && c.b >= 0);
+        }
+    ck_assert_double_eq(image_get(&sc.envmap.img, 0, 0).r, 0.0);
+    ck_assert_double_eq(image_get(&sc.envmap.img, 1, 0).g, 0.0);
+    ck_assert_double_eq(image_get(&sc.envmap.img, 0, 0).g, 1.0);
+    ck_assert_double_eq(image_get(&sc.texture_images[0], 1, 0).g, -2.0); /* kept in a texture */
+    ck_assert_double_eq(image_get(&sc.texture_images[0], 2, 1).b, 0.0);
+    scene_free(&sc);
+    unlink(scene_path);
+    unlink(env_path);
+    unlink(tex_path);
+    rmdir(dir);
+}
+END_TEST
+
 START_TEST(test_envmap_keyword_names_the_representation_after_an_optional_scale)
 {
     static const struct { const char *line; convert_kind kind; double scale; } cases[] = {
@@ -1349,6 +1401,7 @@ Suite *scene_suite(void)
     tcase_add_test(cmds, test_envmap_paths_are_relative_to_the_scene_folder);
     tcase_add_test(cmds, test_scene_load_resolves_envmap_beside_a_scene_file);
     tcase_add_test(cmds, test_a_readable_envmap_is_loaded_when_images_are_on);
+    tcase_add_test(cmds, test_bad_texels_are_zeroed_at_load_with_one_warning_each);
     tcase_add_test(cmds, test_envmap_keyword_names_the_representation_after_an_optional_scale);
     tcase_add_test(cmds, test_envmap_cube_takes_six_faces_relative_to_the_scene_folder);
     tcase_add_test(cmds, test_envmap_representation_is_detected_from_the_image_shape);
