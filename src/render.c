@@ -40,6 +40,9 @@ int render_scene(const scene *sc, const render_opts *opts, image *out, render_st
     int spp = opts->spp > 0 ? opts->spp : sc->spp;
     if (spp < 1 || spp > SCENE_MAX_SPP)
         return error_set(err, sc->path, 0, "spp %d is out of range [1, %d]", spp, SCENE_MAX_SPP);
+    if ((long long)sc->width * sc->height * spp > SCENE_MAX_CAMERA_SAMPLES)
+        return error_set(err, sc->path, 0, "size %d x %d at spp %d asks for %lld camera samples, over the limit of 2^34",
+                         sc->width, sc->height, spp, (long long)sc->width * sc->height * spp);
     if (opts->variance && spp < 2)
         return error_set(err, sc->path, 0, "a per-pixel variance needs at least 2 samples per pixel (spp is 1)");
 

@@ -1247,6 +1247,11 @@ static int finish(parser *p)
     p->line = 0;
     if (!p->seen_size) return error_set(p->err, p->name, 0, "no 'size' command");
     if (!sc->has_camera) return error_set(p->err, p->name, 0, "no 'camera' command");
+    long long samples = (long long)sc->width * sc->height * sc->spp;
+    if (samples > SCENE_MAX_CAMERA_SAMPLES)
+        return error_set(p->err, p->name, 0,
+                         "size %d x %d at spp %d asks for %lld camera samples, over the limit of 2^34",
+                         sc->width, sc->height, sc->spp, samples);
     if (p->depth > 0)
         warn(p, "%d 'pushTransform' without 'popTransform' at the end of the file", p->depth);
     if (p->opts->load_images && load_textures(p)) return -1;

@@ -29,6 +29,9 @@
 #define SCENE_MAX_SIZE 16384         /* image width or height */
 #define SCENE_MAX_PIXELS (1L << 26)  /* width * height */
 #define SCENE_MAX_SPP 1048576
+/* width * height * spp: about 17 billion camera samples, an hour or more of rendering even for
+ * the simplest scene; each limit alone would allow 2^46 (docs/robustness.md) */
+#define SCENE_MAX_CAMERA_SAMPLES (1LL << 34)
 #define SCENE_MAX_DEPTH 1000         /* maxdepth; -1 (unlimited, with Russian roulette) is allowed */
 #define SCENE_MAX_LIGHTSAMPLES 65536
 #define SCENE_MAX_PRIMS 50000000L    /* vertices, triangles or spheres */
