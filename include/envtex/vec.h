@@ -76,6 +76,14 @@ static inline vec3 vec3_max(vec3 a, vec3 b)
 }
 /* Mirror direction of incoming d about normal n (n unit): r = d - 2 (d.n) n  (lecture slide 3). */
 static inline vec3 vec3_reflect(vec3 d, vec3 n) { return vec3_madd(d, n, -2.0 * vec3_dot(d, n)); }
+/* Angle between two non-zero directions in radians, accurate for tiny angles (acos(a.b) is not:
+ * acos(1 - ulp) is already 1e-8): atan2(|a x b|, a.b) on the normalized vectors. */
+static inline double vec3_angle(vec3 a, vec3 b)
+{
+    a = vec3_normalize(a);
+    b = vec3_normalize(b);
+    return atan2(vec3_length(vec3_cross(a, b)), vec3_dot(a, b));
+}
 static inline int vec3_is_finite(vec3 a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
 
 /* Orthonormal basis (t, b) completing unit n, without branches on the sign's neighbourhood

@@ -2,28 +2,13 @@
 #include "envtex/angular.h"
 #include "envtex/mirrorball.h"
 #include "envtex/rng.h"
+#include "envtex/sampling.h"
 #include "unit.h"
 
 #include <float.h>
 
 #define RANDOM_DIRECTIONS 1000000
 #define ROUNDTRIP_TOL 1e-6 /* radians; the brief's bound */
-
-/* Angle between two directions, accurate for tiny angles (acos is not). */
-static double angle_between(vec3 a, vec3 b)
-{
-    a = vec3_normalize(a);
-    b = vec3_normalize(b);
-    return atan2(vec3_length(vec3_cross(a, b)), vec3_dot(a, b));
-}
-
-/* Uniform direction on the sphere: z = 1 - 2 xi1, phi = 2 pi xi2. */
-static vec3 random_direction(rng *r)
-{
-    double z = 1.0 - 2.0 * rng_uniform(r), phi = 2.0 * M_PI * rng_uniform(r);
-    double s = sqrt(fmax(0.0, 1.0 - z * z));
-    return vec3_make(s * cos(phi), s * sin(phi), z);
-}
 
 static uv2 to_uv(vec3 d)
 {
@@ -41,7 +26,7 @@ static vec3 to_dir(uv2 uv)
 
 static void assert_dir_near(vec3 got, vec3 want, double tol)
 {
-    ck_assert_msg(angle_between(got, want) <= tol, "got (%.17g %.17g %.17g), want (%g %g %g)",
+    ck_assert_msg(vec3_angle(got, want) <= tol, "got (%.17g %.17g %.17g), want (%g %g %g)",
                   got.x, got.y, got.z, want.x, want.y, want.z);
 }
 
@@ -76,11 +61,11 @@ START_TEST(test_angular_distance_from_centre_is_proportional_to_angle)
     double worst_rho = 0, worst_azimuth = 0;
     int wrong_side = 0; /* counted, not asserted, in the loop: Check writes a file per assert */
     for (int k = 0; k < 100000; k++) {
-        vec3 d = random_direction(&r);
+        vec3 d = sampling_uniform_sphere(rng_uniform(&r), rng_uniform(&r));
         uv2 uv = to_uv(d);
         double a = 2 * uv.u - 1, b = 1 - 2 * uv.v;
         double rho = sqrt(a * a + b * b);
-        double e = fabs(rho - angle_between(d, vec3_make(1, 0, 0)) / M_PI);
+        double e = fabs(rho - vec3_angle(d, vec3_make(1, 0, 0)) / M_PI);
         if (!(e <= worst_rho)) worst_rho = e;
         /* (a, b) parallel to (y, z): a z - b y = 0 and a y + b z >= 0 */
         double cross = fabs(a * d.z - b * d.y), dot = a * d.y + b * d.z;
@@ -101,7 +86,7 @@ START_TEST(test_angular_shares_the_mirror_ball_frame)
     rng r;
     rng_seed(&r, 3, 17);
     for (int k = 0; k < 1000; k++) {
-        vec3 d = random_direction(&r);
+        vec3 d = sampling_uniform_sphere(rng_uniform(&r), rng_uniform(&r));
         uv2 p = to_uv(d), q;
         ck_assert_int_eq(mirrorball_dir_to_uv(d, &q), 0);
         double a1 = 2 * p.u - 1, b1 = 1 - 2 * p.v, a2 = 2 * q.u - 1, b2 = 1 - 2 * q.v;
@@ -119,12 +104,12 @@ START_TEST(test_angular_roundtrip_is_exact_for_random_directions)
     double worst = 0;
     int bad = 0; /* counted, not asserted, in the loop: Check writes a file on every assert */
     for (int k = 0; k < RANDOM_DIRECTIONS; k++) {
-        vec3 d = random_direction(&r);
+        vec3 d = sampling_uniform_sphere(rng_uniform(&r), rng_uniform(&r));
         uv2 uv;
         vec3 back = {NAN, NAN, NAN};
         bad += angular_dir_to_uv(d, &uv) != 0;
         bad += angular_uv_to_dir(uv, &back) != 0;
-        double a = angle_between(back, d);
+        double a = vec3_angle(back, d);
         if (!(a <= worst)) worst = a;
     }
     ck_assert_int_eq(bad, 0);
@@ -143,9 +128,9 @@ START_TEST(test_angular_roundtrip_holds_next_to_the_rim_and_the_centre)
             double t = side * M_PI / 2 + 0.3;
             vec3 behind = vec3_make(-cos(eps), sin(eps) * cos(t), sin(eps) * sin(t));
             vec3 front = vec3_make(cos(eps), sin(eps) * cos(t), sin(eps) * sin(t));
-            double a = angle_between(to_dir(to_uv(behind)), behind);
+            double a = vec3_angle(to_dir(to_uv(behind)), behind);
             ck_assert_msg(a < 1e-14, "%g rad from -x: error %g rad", eps, a);
-            a = angle_between(to_dir(to_uv(front)), front);
+            a = vec3_angle(to_dir(to_uv(front)), front);
             ck_assert_msg(a < 1e-15, "%g rad from +x: error %g rad", eps, a);
         }
     }
@@ -212,7 +197,7 @@ START_TEST(test_angular_ignores_the_length_of_the_direction)
     rng r;
     rng_seed(&r, 7, 19);
     for (int k = 0; k < 1000; k++) {
-        vec3 d = random_direction(&r);
+        vec3 d = sampling_uniform_sphere(rng_uniform(&r), rng_uniform(&r));
         uv2 want = to_uv(d);
         for (size_t s = 0; s < sizeof scales / sizeof scales[0]; s++) {
             uv2 uv = to_uv(vec3_scale(d, scales[s]));

@@ -7,12 +7,6 @@
 
 #include "unit.h"
 
-static double angle_between(vec3 a, vec3 b)
-{
-    /* atan2(|a x b|, a.b): accurate for small and large angles alike */
-    return atan2(vec3_length(vec3_cross(a, b)), vec3_dot(a, b));
-}
-
 static void assert_vec_near(vec3 a, vec3 b, double tol)
 {
     ck_assert_msg(fabs(a.x - b.x) <= tol && fabs(a.y - b.y) <= tol && fabs(a.z - b.z) <= tol,
@@ -44,10 +38,10 @@ START_TEST(test_camera_top_and_bottom_edge_rays_span_fovy)
         camera c;
         camera_init(&c, vec3_make(0, 0, 5), vec3_make(0, 0, 0), vec3_make(0, 1, 0), fovs[i], 200, 100);
         ray top = camera_ray(&c, 100, 0), bottom = camera_ray(&c, 100, 100);
-        ck_assert_near(angle_between(top.d, bottom.d), fovs[i] * M_PI / 180, 1e-12);
+        ck_assert_near(vec3_angle(top.d, bottom.d), fovs[i] * M_PI / 180, 1e-12);
         /* the horizontal field follows from the aspect: tan(fovx/2) = 2 tan(fovy/2) */
         ray left = camera_ray(&c, 0, 50), right = camera_ray(&c, 200, 50);
-        ck_assert_near(angle_between(left.d, right.d), 2 * atan(2 * tan(fovs[i] * M_PI / 360)), 1e-12);
+        ck_assert_near(vec3_angle(left.d, right.d), 2 * atan(2 * tan(fovs[i] * M_PI / 360)), 1e-12);
     }
 }
 END_TEST

@@ -14,6 +14,7 @@
 #include "envtex/latlong.h"
 #include "envtex/mirrorball.h"
 #include "envtex/rng.h"
+#include "envtex/sampling.h"
 #include "unit.h"
 
 #define POWER_TOL 0.005 /* the bound: 0.5% of the total power */
@@ -43,13 +44,6 @@ static rgb power_of(const convert_map *m)
 {
     convert_env v = convert_view(m);
     return convert_power(&v);
-}
-
-static vec3 random_direction(rng *r)
-{
-    double z = 1.0 - 2.0 * rng_uniform(r), phi = 2.0 * M_PI * rng_uniform(r);
-    double s = sqrt(fmax(0.0, 1.0 - z * z));
-    return vec3_make(s * cos(phi), s * sin(phi), z);
 }
 
 /* ---- kinds -------------------------------------------------------------------------------- */
@@ -280,7 +274,7 @@ START_TEST(test_every_representation_keeps_the_orientation_of_the_axes_map)
         convert_env v = convert_view(&mid);
         int checked = 0, bad = 0;
         for (int n = 0; n < 2000; n++) {
-            vec3 d = random_direction(&r);
+            vec3 d = sampling_uniform_sphere(rng_uniform(&r), rng_uniform(&r));
             if (every_kind[i] == CONVERT_CYLINDRICAL && fabs(d.z) > 0.8) continue; /* beyond it */
             if ((every_kind[i] == CONVERT_MIRRORBALL) && d.x < -0.95) continue;    /* the rim */
             if (every_kind[i] == CONVERT_EQUALAREA && fabs(d.z) > 0.95) continue;  /* squeezed poles */
@@ -434,7 +428,7 @@ START_TEST(test_an_envmap_in_a_cube_map_sees_what_its_latlong_map_sees)
     rng r;
     rng_seed(&r, 3, 0);
     for (int n = 0; n < 500; n++) {
-        vec3 d = random_direction(&r);
+        vec3 d = sampling_uniform_sphere(rng_uniform(&r), rng_uniform(&r));
         rgb x = envmap_radiance(&ea, d), y = envmap_radiance(&eb, d);
         ck_assert_msg(fabs(x.r - y.r) < 0.05 && fabs(x.g - y.g) < 0.05 && fabs(x.b - y.b) < 0.05,
                       "(%g %g %g) vs (%g %g %g)", x.r, x.g, x.b, y.r, y.g, y.b);

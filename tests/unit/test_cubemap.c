@@ -1,6 +1,7 @@
 /* test_cubemap.c - cube map face selection, face orientation, ties, seamless lookup, crosses. */
 #include "envtex/cubemap.h"
 #include "envtex/rng.h"
+#include "envtex/sampling.h"
 #include "unit.h"
 
 #include <float.h>
@@ -9,28 +10,12 @@
 #define ROUNDTRIP_TOL 1e-6 /* radians; the brief's bound (doubles actually give ~1e-15) */
 #define ST_TOL 1e-12       /* face coordinates after a round trip: a few ulps of 1 */
 
-/* Angle between two directions, accurate for tiny angles (acos is not: acos(1 - ulp) ~ 1e-8). */
-static double angle_between(vec3 a, vec3 b)
-{
-    a = vec3_normalize(a);
-    b = vec3_normalize(b);
-    return atan2(vec3_length(vec3_cross(a, b)), vec3_dot(a, b));
-}
-
-/* Uniform direction on the sphere: z = 1 - 2 xi1, phi = 2 pi xi2. */
-static vec3 random_direction(rng *r)
-{
-    double z = 1.0 - 2.0 * rng_uniform(r), phi = 2.0 * M_PI * rng_uniform(r);
-    double s = sqrt(fmax(0.0, 1.0 - z * z));
-    return vec3_make(s * cos(phi), s * sin(phi), z);
-}
-
 static const vec3 axes[CUBEMAP_FACES] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0},
                                          {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
 
 static void assert_dir_near(vec3 got, vec3 want, double tol)
 {
-    ck_assert_msg(angle_between(got, want) <= tol, "got (%g %g %g), want (%g %g %g)", got.x,
+    ck_assert_msg(vec3_angle(got, want) <= tol, "got (%g %g %g), want (%g %g %g)", got.x,
                   got.y, got.z, want.x, want.y, want.z);
 }
 
@@ -81,12 +66,12 @@ START_TEST(test_cubemap_roundtrip_is_exact_for_random_directions)
     double worst = 0;
     int bad = 0; /* counted, not asserted, in the loop: Check writes a file on every assert */
     for (int k = 0; k < RANDOM_DIRECTIONS; k++) {
-        vec3 d = random_direction(&r);
+        vec3 d = sampling_uniform_sphere(rng_uniform(&r), rng_uniform(&r));
         int f;
         uv2 st;
         bad += cubemap_dir_to_face(d, &f, &st) != 0;
         bad += !(st.u >= 0 && st.u <= 1 && st.v >= 0 && st.v <= 1);
-        double a = angle_between(cubemap_face_to_dir(f, st), d);
+        double a = vec3_angle(cubemap_face_to_dir(f, st), d);
         if (!(a <= worst)) worst = a; /* NaN becomes the worst */
     }
     ck_assert_int_eq(bad, 0);
@@ -192,7 +177,7 @@ START_TEST(test_cubemap_ignores_the_length_of_the_direction)
     rng r;
     rng_seed(&r, 7, 2);
     for (int k = 0; k < 1000; k++) {
-        vec3 d = random_direction(&r);
+        vec3 d = sampling_uniform_sphere(rng_uniform(&r), rng_uniform(&r));
         int f0;
         uv2 st0;
         cubemap_dir_to_face(d, &f0, &st0);
@@ -331,8 +316,8 @@ START_TEST(test_cubemap_lookup_reproduces_a_smooth_function_everywhere)
     rng_seed(&r, 3, 4);
     double worst = 0;
     for (int k = 0; k < 200000; k++) {
-        vec3 d = random_direction(&r);
-        double a = angle_between(lookup_dir(&cm, d), d);
+        vec3 d = sampling_uniform_sphere(rng_uniform(&r), rng_uniform(&r));
+        double a = vec3_angle(lookup_dir(&cm, d), d);
         if (!(a <= worst)) worst = a;
     }
     /* A texel spans about 2/N rad at a face centre; the interpolation error stays well under
@@ -357,7 +342,7 @@ static void assert_cross_is_continuous(const image *cross, int n)
                 if (x2 >= cross->w || y2 >= cross->h) continue;
                 rgb b = image_get(cross, x2, y2);
                 if (rgb_is_black(b)) continue;
-                double ang = angle_between(vec3_make(a.r, a.g, a.b), vec3_make(b.r, b.g, b.b));
+                double ang = vec3_angle(vec3_make(a.r, a.g, a.b), vec3_make(b.r, b.g, b.b));
                 /* neighbouring texel centres are at most ~2/N apart (face centres) */
                 ck_assert_msg(ang < 2.2 / n, "pixels (%d,%d) and (%d,%d) are %g rad apart", x, y,
                               x2, y2, ang);
@@ -517,7 +502,7 @@ START_TEST(test_cubemap_lookup_works_with_one_texel_faces)
     rng_seed(&r, 5, 5);
     int outside = 0; /* counted, not asserted, in the loop: Check writes a file per assert */
     for (int k = 0; k < 10000; k++) {
-        rgb c = cubemap_lookup_bilinear(&cm, random_direction(&r));
+        rgb c = cubemap_lookup_bilinear(&cm, sampling_uniform_sphere(rng_uniform(&r), rng_uniform(&r)));
         outside += !(c.r >= 1 - 1e-12 && c.r <= 6 + 1e-12);
     }
     ck_assert_int_eq(outside, 0);

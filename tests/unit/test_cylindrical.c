@@ -1,28 +1,13 @@
 /* test_cylindrical.c - the cylindrical map: orientation, extent, poles, seam, round trips. */
 #include "envtex/cylindrical.h"
 #include "envtex/rng.h"
+#include "envtex/sampling.h"
 #include "unit.h"
 
 #include <float.h>
 
 #define RANDOM_DIRECTIONS 1000000
 #define ROUNDTRIP_TOL 1e-6 /* radians; the brief's bound (doubles give ~1e-15) */
-
-/* Angle between two directions, accurate for tiny angles (acos is not). */
-static double angle_between(vec3 a, vec3 b)
-{
-    a = vec3_normalize(a);
-    b = vec3_normalize(b);
-    return atan2(vec3_length(vec3_cross(a, b)), vec3_dot(a, b));
-}
-
-/* Uniform direction on the sphere: z = 1 - 2 xi1, phi = 2 pi xi2. */
-static vec3 random_direction(rng *r)
-{
-    double z = 1.0 - 2.0 * rng_uniform(r), phi = 2.0 * M_PI * rng_uniform(r);
-    double s = sqrt(fmax(0.0, 1.0 - z * z));
-    return vec3_make(s * cos(phi), s * sin(phi), z);
-}
 
 static uv2 to_uv(vec3 d, double h)
 {
@@ -73,14 +58,14 @@ START_TEST(test_cylindrical_roundtrip_is_exact_inside_the_extent)
     long accepted = 0, bad = 0; /* counted, not asserted, in the loop: Check writes a file on
                                    every assert */
     for (int k = 0; k < RANDOM_DIRECTIONS; k++) {
-        vec3 d = random_direction(&r);
+        vec3 d = sampling_uniform_sphere(rng_uniform(&r), rng_uniform(&r));
         uv2 uv;
         if (cylindrical_dir_to_uv(d, h, &uv)) continue;
         accepted++;
         bad += !(uv.u >= 0 && uv.u < 1 && uv.v >= 0 && uv.v <= 1);
         vec3 back;
         bad += cylindrical_uv_to_dir(uv, h, &back) != 0;
-        double a = angle_between(back, d);
+        double a = vec3_angle(back, d);
         if (!(a <= worst)) worst = a;
     }
     ck_assert_int_eq(bad, 0);
@@ -186,7 +171,7 @@ START_TEST(test_cylindrical_ignores_the_length_of_the_direction)
     rng_seed(&r, 7, 9);
     int tested = 0;
     for (int k = 0; k < 1000; k++) {
-        vec3 d = random_direction(&r);
+        vec3 d = sampling_uniform_sphere(rng_uniform(&r), rng_uniform(&r));
         uv2 want;
         if (cylindrical_dir_to_uv(d, 2.0, &want)) continue;
         tested++;

@@ -1,28 +1,13 @@
 /* test_equalarea.c - the equal-area map: orientation, round trips, poles, seam, equal texels. */
 #include "envtex/equalarea.h"
 #include "envtex/rng.h"
+#include "envtex/sampling.h"
 #include "unit.h"
 
 #include <float.h>
 
 #define RANDOM_DIRECTIONS 1000000
 #define ROUNDTRIP_TOL 1e-6 /* radians; the brief's bound (doubles give ~1e-15) */
-
-/* Angle between two directions, accurate for tiny angles (acos is not). */
-static double angle_between(vec3 a, vec3 b)
-{
-    a = vec3_normalize(a);
-    b = vec3_normalize(b);
-    return atan2(vec3_length(vec3_cross(a, b)), vec3_dot(a, b));
-}
-
-/* Uniform direction on the sphere: z = 1 - 2 xi1, phi = 2 pi xi2. */
-static vec3 random_direction(rng *r)
-{
-    double z = 1.0 - 2.0 * rng_uniform(r), phi = 2.0 * M_PI * rng_uniform(r);
-    double s = sqrt(fmax(0.0, 1.0 - z * z));
-    return vec3_make(s * cos(phi), s * sin(phi), z);
-}
 
 static uv2 to_uv(vec3 d)
 {
@@ -59,11 +44,11 @@ START_TEST(test_equalarea_roundtrip_is_exact_for_random_directions)
     double worst = 0;
     int bad = 0; /* counted, not asserted, in the loop: Check writes a file on every assert */
     for (int k = 0; k < RANDOM_DIRECTIONS; k++) {
-        vec3 d = random_direction(&r);
+        vec3 d = sampling_uniform_sphere(rng_uniform(&r), rng_uniform(&r));
         uv2 uv;
         bad += equalarea_dir_to_uv(d, &uv) != 0;
         bad += !(uv.u >= 0 && uv.u < 1 && uv.v >= 0 && uv.v <= 1);
-        double a = angle_between(equalarea_uv_to_dir(uv), d);
+        double a = vec3_angle(equalarea_uv_to_dir(uv), d);
         if (!(a <= worst)) worst = a;
     }
     ck_assert_int_eq(bad, 0);
@@ -83,7 +68,7 @@ START_TEST(test_equalarea_roundtrip_is_exact_next_to_the_poles)
         for (int pole = 0; pole < 2; pole++) {
             double t = pole ? M_PI - theta : theta;
             vec3 d = vec3_make(sin(t) * cos(1.0), sin(t) * sin(1.0), cos(t));
-            double a = angle_between(equalarea_uv_to_dir(to_uv(d)), d);
+            double a = vec3_angle(equalarea_uv_to_dir(to_uv(d)), d);
             double tol = pole ? NADIR_RESOLUTION : 1e-15 + 1e-9 * theta;
             ck_assert_msg(a < tol, "theta %g: error %g rad", t, a);
         }
@@ -165,7 +150,7 @@ START_TEST(test_equalarea_ignores_the_length_of_the_direction)
     rng r;
     rng_seed(&r, 7, 6);
     for (int k = 0; k < 1000; k++) {
-        vec3 d = random_direction(&r);
+        vec3 d = sampling_uniform_sphere(rng_uniform(&r), rng_uniform(&r));
         uv2 want = to_uv(d);
         for (size_t s = 0; s < sizeof scales / sizeof scales[0]; s++) {
             uv2 uv = to_uv(vec3_scale(d, scales[s]));
@@ -207,7 +192,7 @@ START_TEST(test_equalarea_texels_receive_equal_shares_of_uniform_directions)
     rng_seed(&r, 2024, 7);
     for (int k = 0; k < N; k++) {
         uv2 uv;
-        equalarea_dir_to_uv(random_direction(&r), &uv);
+        equalarea_dir_to_uv(sampling_uniform_sphere(rng_uniform(&r), rng_uniform(&r)), &uv);
         int c = (int)(uv.u * W), row = (int)(uv.v * H);
         if (row == H) row = H - 1; /* v = 1 exactly belongs to the last row */
         count[row * W + c]++;

@@ -18,11 +18,6 @@
         if (!(fabs(a_ - b_) <= t_)) \
             ck_abort_msg("%s == %.17g, %s == %.17g, tolerance %g", #a, a_, #b, b_, t_); } while (0)
 
-static double angle_between(vec3 a, vec3 b)
-{
-    return atan2(vec3_length(vec3_cross(a, b)), vec3_dot(a, b));
-}
-
 static uv2 to_uv(vec3 d)
 {
     uv2 uv = {-1, -1};
@@ -96,7 +91,7 @@ START_TEST(test_latlong_roundtrip_is_exact_away_from_poles)
         uv2 uv;
         EXPECT_INT_EQ(latlong_dir_to_uv(d, &uv), 0);
         EXPECT(uv.u >= 0 && uv.u < 1 && uv.v >= 0 && uv.v <= 1);
-        worst = fmax(worst, angle_between(d, latlong_uv_to_dir(uv)));
+        worst = fmax(worst, vec3_angle(d, latlong_uv_to_dir(uv)));
     }
     EXPECT_MSG(worst < 1e-9, "worst round-trip error %g rad", worst);
 }
@@ -114,7 +109,7 @@ START_TEST(test_latlong_roundtrip_is_exact_near_the_poles)
             uv2 uv = to_uv(d);
             EXPECT_NEAR(uv.v * M_PI, th, 1e-15 * fmax(th, 1e-3));
             EXPECT_NEAR(uv.u, (k + 0.25) / 16, 1e-12);
-            EXPECT(angle_between(d, latlong_uv_to_dir(uv)) < 1e-15);
+            EXPECT(vec3_angle(d, latlong_uv_to_dir(uv)) < 1e-15);
         }
     }
 }

@@ -1,28 +1,13 @@
 /* test_mirrorball.c - mirror-ball probes: orientation, reflection law, round trips, the rim. */
 #include "envtex/mirrorball.h"
 #include "envtex/rng.h"
+#include "envtex/sampling.h"
 #include "unit.h"
 
 #include <float.h>
 
 #define RANDOM_DIRECTIONS 1000000
 #define ROUNDTRIP_TOL 1e-6 /* radians; the brief's bound */
-
-/* Angle between two directions, accurate for tiny angles (acos is not). */
-static double angle_between(vec3 a, vec3 b)
-{
-    a = vec3_normalize(a);
-    b = vec3_normalize(b);
-    return atan2(vec3_length(vec3_cross(a, b)), vec3_dot(a, b));
-}
-
-/* Uniform direction on the sphere: z = 1 - 2 xi1, phi = 2 pi xi2. */
-static vec3 random_direction(rng *r)
-{
-    double z = 1.0 - 2.0 * rng_uniform(r), phi = 2.0 * M_PI * rng_uniform(r);
-    double s = sqrt(fmax(0.0, 1.0 - z * z));
-    return vec3_make(s * cos(phi), s * sin(phi), z);
-}
 
 static uv2 to_uv(vec3 d)
 {
@@ -40,7 +25,7 @@ static vec3 to_dir(uv2 uv)
 
 static void assert_dir_near(vec3 got, vec3 want, double tol)
 {
-    ck_assert_msg(angle_between(got, want) <= tol, "got (%.17g %.17g %.17g), want (%g %g %g)",
+    ck_assert_msg(vec3_angle(got, want) <= tol, "got (%.17g %.17g %.17g), want (%g %g %g)",
                   got.x, got.y, got.z, want.x, want.y, want.z);
 }
 
@@ -89,7 +74,7 @@ START_TEST(test_mirrorball_directions_obey_the_law_of_reflection)
         tested++;
         vec3 n = vec3_make(sqrt(1 - a * a - b * b), a, b);
         ck_assert_near(vec3_length(d), 1.0, 1e-14);
-        ck_assert_near(angle_between(n, view), angle_between(n, d), 1e-12);
+        ck_assert_near(vec3_angle(n, view), vec3_angle(n, d), 1e-12);
         ck_assert_near(vec3_dot(vec3_cross(n, view), d), 0.0, 1e-12);
     }
     ck_assert_int_gt(tested, 10000);
@@ -106,12 +91,12 @@ START_TEST(test_mirrorball_roundtrip_is_exact_for_random_directions)
     double worst = 0;
     int bad = 0; /* counted, not asserted, in the loop: Check writes a file on every assert */
     for (int k = 0; k < RANDOM_DIRECTIONS; k++) {
-        vec3 d = random_direction(&r);
+        vec3 d = sampling_uniform_sphere(rng_uniform(&r), rng_uniform(&r));
         uv2 uv;
         vec3 back = {NAN, NAN, NAN};
         bad += mirrorball_dir_to_uv(d, &uv) != 0;
         bad += mirrorball_uv_to_dir(uv, &back) != 0;
-        double a = angle_between(back, d);
+        double a = vec3_angle(back, d);
         if (!(a <= worst)) worst = a;
     }
     ck_assert_int_eq(bad, 0);
@@ -129,7 +114,7 @@ START_TEST(test_mirrorball_roundtrip_holds_close_to_the_rim)
         for (int side = 0; side < 4; side++) {
             double t = side * M_PI / 2 + 0.3;
             vec3 d = vec3_make(-cos(eps), sin(eps) * cos(t), sin(eps) * sin(t));
-            double a = angle_between(to_dir(to_uv(d)), d);
+            double a = vec3_angle(to_dir(to_uv(d)), d);
             ck_assert_msg(a < 1e-15 / eps + 1e-15, "%g rad from -x: error %g rad", eps, a);
         }
     }
@@ -197,7 +182,7 @@ START_TEST(test_mirrorball_ignores_the_length_of_the_direction)
     rng r;
     rng_seed(&r, 7, 14);
     for (int k = 0; k < 1000; k++) {
-        vec3 d = random_direction(&r);
+        vec3 d = sampling_uniform_sphere(rng_uniform(&r), rng_uniform(&r));
         uv2 want = to_uv(d);
         for (size_t s = 0; s < sizeof scales / sizeof scales[0]; s++) {
             uv2 uv = to_uv(vec3_scale(d, scales[s]));
@@ -220,7 +205,7 @@ START_TEST(test_mirrorball_equal_image_areas_hold_equal_solid_angles)
     rng_seed(&r, 2024, 15);
     for (int k = 0; k < N; k++) {
         uv2 uv;
-        mirrorball_dir_to_uv(random_direction(&r), &uv);
+        mirrorball_dir_to_uv(sampling_uniform_sphere(rng_uniform(&r), rng_uniform(&r)), &uv);
         double a = 2 * uv.u - 1, b = 1 - 2 * uv.v;
         int ring = (int)((a * a + b * b) * RINGS);
         count[ring < RINGS ? ring : RINGS - 1]++;
