@@ -92,7 +92,7 @@ starter:
 	@BUILD=$(BUILD) STEPS="$(STEPS)" tests/starter/make-starter
 
 starter-check:
-	@BUILD=$(BUILD) tests/starter/check
+	+@BUILD=$(BUILD) tests/starter/check
 
 docs-images: $(BUILD)/envtex
 	@BUILD=$(BUILD) ENVTEX=$(BUILD)/envtex docs/make-images.sh
