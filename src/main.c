@@ -192,8 +192,8 @@ static int cmd_render(int argc, char **argv)
     render_stats st;
     if (render_scene(&sc, &ro, &img, &st, &err)) goto done;
     if (verbose) {
-        fprintf(stderr, "envtex: scene %s: %dx%d, %ld primitives (%ld spheres, %ld triangles), %d lights, %d materials\n",
-                scene_path, sc.width, sc.height, st.prims, sc.n_spheres, sc.n_triangles, sc.n_lights, sc.n_materials);
+        fprintf(stderr, "envtex: scene %s: %dx%d, %ld spheres and %ld triangles as read (%ld primitives rendered), %d lights, %d materials\n",
+                scene_path, sc.width, sc.height, sc.n_spheres, sc.n_triangles, st.prims, sc.n_lights, sc.n_materials);
         if (st.bvh_is_tree)
             fprintf(stderr, "envtex: built BVH: %ld nodes, depth %d, %.3f s\n", st.bvh_nodes, st.bvh_depth, st.build_seconds);
         else
@@ -224,6 +224,18 @@ static int cmd_render(int argc, char **argv)
             fprintf(stderr, "envtex: no envmap\n");
         }
         if (st.lights) fprintf(stderr, "envtex: %d lights to sample (chosen by power)\n", st.lights);
+        if (sc.n_textures) {
+            int mips = 0;
+            for (int i = 0; i < sc.n_textures; i++) mips += sc.textures[i].tex.has_mip;
+            fprintf(stderr, "envtex: %d textures (%d image files), %d mip pyramids (built only for trilinear/EWA)\n",
+                    sc.n_textures, sc.n_texture_images, mips);
+        } else {
+            fprintf(stderr, "envtex: no textures: no ray differentials traced\n");
+        }
+        if (st.displaced_spheres + st.displaced_triangles)
+            fprintf(stderr, "envtex: displacement: %ld spheres (rate %d) and %ld triangles (rate %d) tessellated; "
+                    "the BVH holds %ld triangles\n", st.displaced_spheres, st.displace_sphere_rate,
+                    st.displaced_triangles, st.displace_triangle_rate, st.displaced_result);
     }
     if (st.nonfinite_pixels)
         fprintf(stderr, "envtex: warning: %s: %ld pixels are NaN or Inf\n", scene_path, st.nonfinite_pixels);

@@ -55,6 +55,11 @@ int render_scene(const scene *sc, const render_opts *opts, image *out, render_st
         displacemap_stats ds;
         if (displacemap_apply(sc, 0, &displaced, &ds, err)) return -1;
         has_displaced = 1;
+        stats->displaced_spheres = ds.spheres;
+        stats->displaced_triangles = ds.triangles;
+        stats->displaced_result = ds.new_triangles;
+        stats->displace_sphere_rate = ds.sphere_rate;
+        stats->displace_triangle_rate = ds.triangle_rate;
         sc = &displaced;
     }
     bvh accel;

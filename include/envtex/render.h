@@ -52,6 +52,9 @@ typedef struct render_stats {
     int envlight_points;       /* median cut: point lights made */
     int envlight_w, envlight_h; /* the lat-long map sampled (resampled for other kinds) */
     int lights;                /* lights the sampling integrators choose among */
+    long displaced_spheres, displaced_triangles; /* objects tessellated for displacement maps */
+    long displaced_result;     /* triangles they became (with the untouched ones) */
+    int displace_sphere_rate, displace_triangle_rate;
 } render_stats;
 
 render_opts render_defaults(void);
