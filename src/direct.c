@@ -9,29 +9,18 @@ rgb direct_lighting(integrator *it, const surface *s, vec3 wo, rng *g)
     if (brdf_is_delta(s) || !it->has_lights) return sum;
     const lights *ls = &it->ls;
     int n = it->sc->lightsamples;
-    int m = it->sc->lightstratify ? (int)sqrt((double)n) : 0; /* an m x m grid of strata */
-    while (m > 0 && (m + 1) * (m + 1) <= n) m++;
+    int m = integrator_strata(n, it->sc->lightstratify);
     for (int k = 0; k < ls->n; k++) {
         int is_delta_light = k != lights_env_index(ls) && ls->sc->lights[k].kind != LIGHT_QUAD;
         int nk = is_delta_light ? 1 : n; /* a point or directional light needs one sample */
         rgb lk = rgb_gray(0);
         for (int j = 0; j < nk; j++) {
             double xi1 = rng_uniform(g), xi2 = rng_uniform(g), xi3 = rng_uniform(g);
-            int strat = m > 0 && j < m * m && !is_delta_light;
-            if (strat) { /* stratum (j mod m, j / m) of the grid */
-                xi1 = ((j % m) + xi1) / m;
-                xi2 = ((j / m) + xi2) / m;
-            }
-            light_sample ls_s;
-            if (!lights_sample(ls, k, s->p, s->ng, xi1, xi2, xi3, strat, &ls_s)) continue;
-            double cos_i = vec3_dot(s->n, ls_s.wi);
-            if (cos_i <= 0 || vec3_dot(s->ng, ls_s.shadow.d) <= 0) continue;
-            rgb f = brdf_eval(s, wo, ls_s.wi);
-            if (rgb_is_black(f)) continue;
-            if (integrator_occluded(it, &ls_s.shadow)) continue;
-            /* f cos Li / pdf  (a delta light: f cos E) */
-            double w = ls_s.is_delta ? cos_i : cos_i / ls_s.pdf;
-            lk = rgb_fma(lk, f, rgb_scale(ls_s.Li, w));
+            int strat = !is_delta_light && integrator_stratum(j, m, &xi1, &xi2);
+            light_sample l;
+            rgb c;
+            if (!integrator_light_sample(it, s, wo, k, xi1, xi2, xi3, strat, &l, &c)) continue;
+            lk = rgb_madd(lk, c, l.is_delta ? 1 : 1 / l.pdf); /* f Li cos / pdf (delta: f E cos) */
         }
         sum = rgb_madd(sum, lk, 1.0 / nk);
     }

@@ -39,6 +39,21 @@ int imageio_tmp_open(const char *path, char *tmp_path, error *err)
     return fd;
 }
 
+FILE *imageio_tmp_fopen(const char *path, char *tmp_path, error *err)
+{
+    int fd = imageio_tmp_open(path, tmp_path, err);
+    if (fd < 0) return NULL;
+    FILE *f = fdopen(fd, "wb");
+    if (!f) {
+        int e = errno;
+        close(fd);
+        imageio_tmp_abandon(tmp_path);
+        tmp_path[0] = '\0';
+        error_set(err, path, 0, "cannot write: %s", strerror(e));
+    }
+    return f;
+}
+
 int imageio_tmp_commit(const char *tmp_path, const char *path, error *err)
 {
     if (rename(tmp_path, path) != 0) {

@@ -134,3 +134,32 @@ int integrator_occluded(integrator *it, const ray *shadow)
     it->rays++;
     return bvh_occluded(it->accel, it->sc, shadow);
 }
+
+int integrator_strata(int n, int stratify)
+{
+    if (!stratify) return 0;
+    int m = (int)sqrt((double)n);
+    while ((m + 1) * (m + 1) <= n) m++; /* sqrt can round down past a perfect square */
+    return m;
+}
+
+int integrator_stratum(int j, int m, double *xi1, double *xi2)
+{
+    if (m <= 0 || j >= m * m) return 0;
+    *xi1 = ((j % m) + *xi1) / m; /* stratum (j mod m, j / m) of the grid */
+    *xi2 = ((j / m) + *xi2) / m;
+    return 1;
+}
+
+int integrator_light_sample(integrator *it, const surface *s, vec3 wo, int k, double xi1, double xi2,
+                            double xi3, int stratified, light_sample *l, rgb *f_li_cos)
+{
+    if (!lights_sample(&it->ls, k, s->p, s->ng, xi1, xi2, xi3, stratified, l)) return 0;
+    double cos_i = vec3_dot(s->n, l->wi);
+    if (cos_i <= 0 || vec3_dot(s->ng, l->shadow.d) <= 0) return 0;
+    rgb f = brdf_eval(s, wo, l->wi);
+    if (rgb_is_black(f)) return 0;
+    if (integrator_occluded(it, &l->shadow)) return 0; /* V = 0 */
+    *f_li_cos = rgb_scale(rgb_mul(f, l->Li), cos_i);  /* f Li cos(theta) */
+    return 1;
+}

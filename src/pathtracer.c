@@ -12,33 +12,23 @@ static rgb next_event(integrator *it, const surface *s, vec3 wo, rng *g, int mis
     const lights *ls = &it->ls;
     rgb sum = rgb_gray(0);
     int n = sc->lightsamples;
-    int m = sc->lightstratify ? (int)sqrt((double)n) : 0;
-    while (m > 0 && (m + 1) * (m + 1) <= n) m++;
+    int m = integrator_strata(n, sc->lightstratify);
     for (int j = 0; j < n; j++) {
         double xc = rng_uniform(g), xi1 = rng_uniform(g), xi2 = rng_uniform(g), xi3 = rng_uniform(g);
-        int strat = m > 0 && j < m * m;
-        if (strat) {
-            xi1 = ((j % m) + xi1) / m;
-            xi2 = ((j / m) + xi2) / m;
-        }
+        int strat = integrator_stratum(j, m, &xi1, &xi2);
         int k;
         double pick;
         if (!lights_pick(ls, xc, &k, &pick)) break;
         light_sample l;
-        if (!lights_sample(ls, k, s->p, s->ng, xi1, xi2, xi3, strat, &l)) continue;
-        double cos_i = vec3_dot(s->n, l.wi);
-        if (cos_i <= 0 || vec3_dot(s->ng, l.shadow.d) <= 0) continue;
-        rgb f = brdf_eval(s, wo, l.wi);
-        if (rgb_is_black(f)) continue;
-        if (integrator_occluded(it, &l.shadow)) continue;
         rgb c;
+        if (!integrator_light_sample(it, s, wo, k, xi1, xi2, xi3, strat, &l, &c)) continue;
         if (l.is_delta) {
-            c = rgb_scale(rgb_mul(f, l.Li), cos_i / pick); /* f cos E / P(pick) */
+            c = rgb_scale(c, 1 / pick); /* f E cos / P(pick) */
         } else {
             double pl = pick * l.pdf; /* pdf of this sample among all lights */
             double w = 1;
             if (mis) w = integrator_power_heuristic(n, pl, 1, brdf_pdf(s, wo, l.wi, sc->importancesampling));
-            c = rgb_scale(rgb_mul(f, l.Li), w * cos_i / pl); /* f cos Li / pdf, MIS weighted */
+            c = rgb_scale(c, w / pl); /* f Li cos / pdf, MIS weighted */
         }
         sum = rgb_add(sum, c);
     }

@@ -105,14 +105,8 @@ int pfm_write(const char *path, const image *im, error *err)
     if (!im || !im->px || image_check_size(im->w, im->h, path, err))
         return error_set(err, path, 0, "cannot write an empty or invalid image");
     char tmp[ERROR_FILE_MAX];
-    int fd = imageio_tmp_open(path, tmp, err);
-    if (fd < 0) return -1;
-    FILE *f = fdopen(fd, "wb");
-    if (!f) {
-        close(fd);
-        imageio_tmp_abandon(tmp);
-        return error_set(err, path, 0, "cannot write: %s", strerror(errno));
-    }
+    FILE *f = imageio_tmp_fopen(path, tmp, err);
+    if (!f) return -1;
     size_t rowbytes = (size_t)im->w * 3 * 4;
     unsigned char *row = malloc(rowbytes);
     int oom = row == NULL;

@@ -164,14 +164,8 @@ int pngfile_write_rgb8(const char *path, int w, int h, const uint8_t *rgb8, erro
     char tmp[ERROR_FILE_MAX];
     png_job job = {.path = path};
     int rc = -1;
-    int fd = imageio_tmp_open(path, tmp, err);
-    if (fd < 0) return -1;
-    job.f = fdopen(fd, "wb");
-    if (!job.f) {
-        close(fd);
-        error_set(err, path, 0, "cannot write: %s", strerror(errno));
-        goto done;
-    }
+    job.f = imageio_tmp_fopen(path, tmp, err);
+    if (!job.f) return -1;
     job.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &job, job_error, job_warning);
     if (job.png) job.info = png_create_info_struct(job.png);
     if (!job.png || !job.info) {

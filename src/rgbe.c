@@ -241,14 +241,8 @@ static int write_rgbe(const char *path, const image *im, int rle, error *err)
         return error_set(err, path, 0, "cannot write an empty or invalid image");
     if (im->w < 8 || im->w > 0x7fff) rle = 0; /* new-style RLE is undefined outside [8, 32767] */
     char tmp[ERROR_FILE_MAX];
-    int fd = imageio_tmp_open(path, tmp, err);
-    if (fd < 0) return -1;
-    FILE *f = fdopen(fd, "wb");
-    if (!f) {
-        close(fd);
-        imageio_tmp_abandon(tmp);
-        return error_set(err, path, 0, "cannot write: %s", strerror(errno));
-    }
+    FILE *f = imageio_tmp_fopen(path, tmp, err);
+    if (!f) return -1;
     size_t w = (size_t)im->w;
     unsigned char *scan = malloc(4 * w), *packed = malloc(4 * (w + w / 128 + 2) + 4);
     int oom = !scan || !packed;

@@ -20,6 +20,8 @@
 #ifndef ENVTEX_IMAGEIO_H
 #define ENVTEX_IMAGEIO_H
 
+#include <stdio.h>
+
 #include "envtex/error.h"
 #include "envtex/image.h"
 #include "envtex/tonemap.h"
@@ -43,6 +45,8 @@ int imageio_can_write(const char *path);
  * checks close / fclose) BEFORE commit.  A failed commit unlinks the temporary file itself.
  * Library code outside imageio may use them for other output files. */
 int imageio_tmp_open(const char *path, char *tmp_path, error *err); /* returns an fd or -1 */
+/* imageio_tmp_open as a stdio stream ("wb"); NULL on failure (nothing left behind). */
+FILE *imageio_tmp_fopen(const char *path, char *tmp_path, error *err);
 int imageio_tmp_commit(const char *tmp_path, const char *path, error *err);
 void imageio_tmp_abandon(const char *tmp_path);
 

@@ -73,6 +73,20 @@ void integrator_intersect_diff(integrator *it, const ray *r, const ray_diff *rd,
 /* 1 if the shadow ray is blocked by geometry. */
 int integrator_occluded(integrator *it, const ray *shadow);
 
+/* `lightstratify on` with n light samples: the side m of the m x m grid of strata (the largest
+ * m with m^2 <= n; samples past m^2 are not stratified); 0 when not stratifying. */
+int integrator_strata(int n, int stratify);
+
+/* Sample j of n with an m x m grid: (xi1, xi2) moved into stratum (j mod m, j / m) if j < m^2.
+ * Returns 1 if the sample is stratified. */
+int integrator_stratum(int j, int m, double *xi1, double *xi2);
+
+/* One sample of light k seen from s: fills *l and *f_li_cos = f(wo, wi) Li cos(theta_i) and
+ * returns 1, or returns 0 when it carries nothing (the light is behind the surface, the BRDF is
+ * zero there, or the shadow ray is blocked).  The caller divides by the pdf and weights. */
+int integrator_light_sample(integrator *it, const surface *s, vec3 wo, int k, double xi1, double xi2,
+                            double xi3, int stratified, light_sample *l, rgb *f_li_cos);
+
 /* power heuristic with beta = 2: w = (nf pf)^2 / ((nf pf)^2 + (ng pg)^2) */
 static inline double integrator_power_heuristic(double nf, double pf, double ng, double pg)
 {
