@@ -74,4 +74,17 @@ static inline unsigned char *slurp(const char *path, size_t *n)
     return d;
 }
 
+/* A write that failed left the file at `path` exactly as `before` (n bytes, read with slurp
+ * before the write) and no temporary file beside it; frees `before`. */
+static inline void assert_unchanged(const char *path, unsigned char *before, size_t n)
+{
+    size_t na;
+    unsigned char *after = slurp(path, &na);
+    ck_assert_uint_eq(na, n);
+    ck_assert_int_eq(memcmp(before, after, n), 0);
+    ck_assert_int_eq(count_files(".tmp."), 0);
+    free(before);
+    free(after);
+}
+
 #endif
