@@ -53,16 +53,37 @@ static inline int lattice_cell(double fl)
     return (int)c & 255;
 }
 
+/* Below this magnitude the lattice cell comes from an int conversion (2^30: far from INT_MAX) */
+#define PERLIN_INT_SAFE 0x1p30
+
+/* floor(x) for |x| < 2^30: truncate toward zero, then step down for a negative non-integer */
+static inline int fast_floor(double x)
+{
+    int i = (int)x;
+    return i - (x < (double)i);
+}
+
 double perlin_noise(double x, double y, double z)
 {
     if (!(isfinite(x) && isfinite(y) && isfinite(z))) return 0.0;
     /* STEP(perlin): Improved Noise: hash the 8 lattice corners with perm[], dot each corner's gradient with the offset, blend with fade(t) = 6t^5 - 15t^4 + 10t^3 (slides 44-46) */
     /* STUB: (void)perm; return 0.0 * (x + y + z); */
-    double fx = floor(x), fy = floor(y), fz = floor(z);
-    int X = lattice_cell(fx), Y = lattice_cell(fy), Z = lattice_cell(fz);
-    x -= fx; /* the point's position inside its cell, [0, 1] */
-    y -= fy;
-    z -= fz;
+    int X, Y, Z;
+    if (fabs(x) < PERLIN_INT_SAFE && fabs(y) < PERLIN_INT_SAFE && fabs(z) < PERLIN_INT_SAFE) {
+        /* the common case: floor by truncation (exact in this range), the cell by & 255 (two's
+         * complement: floor(x) mod 256 for negative floor(x) too) */
+        int ix = fast_floor(x), iy = fast_floor(y), iz = fast_floor(z);
+        X = ix & 255; Y = iy & 255; Z = iz & 255;
+        x -= ix; /* the point's position inside its cell, [0, 1) */
+        y -= iy;
+        z -= iz;
+    } else {
+        double fx = floor(x), fy = floor(y), fz = floor(z);
+        X = lattice_cell(fx); Y = lattice_cell(fy); Z = lattice_cell(fz);
+        x -= fx;
+        y -= fy;
+        z -= fz;
+    }
     double u = fade(x), v = fade(y), w = fade(z);
     /* hash the 8 corners: A = p[X] + Y, AA = p[A] + Z, ... as in the reference */
     int A = perm[X] + Y, AA = perm[A] + Z, AB = perm[A + 1] + Z;
