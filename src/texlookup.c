@@ -69,11 +69,58 @@ const char *texlookup_wrap_name(wrap_mode wrap)
     return (unsigned)wrap < 3 ? wrap_names[wrap] : "unknown";
 }
 
+/* floor(x) for |x| < WRAP_INT_SAFE: truncate toward zero, then step down for a negative
+ * non-integer (exact: x is converted to the integer it truncates to) */
+static inline int fast_floor(double x)
+{
+    int i = (int)x;
+    return i - (x < (double)i);
+}
+
+/* i in any int range wrapped into [0, n), with the cheap cases first: inside, then repeat by a
+ * mask when n is a power of two (the usual texture), else texlookup_wrap (a division) */
+static inline int wrap_fast(int i, int n, wrap_mode wrap)
+{
+    if ((unsigned)i < (unsigned)n) return i;
+    if (wrap == WRAP_REPEAT && (n & (n - 1)) == 0) return i & (n - 1); /* two's complement mod */
+    return texlookup_wrap(i, n, wrap);
+}
+
+/* The two indices a bilinear lookup blends along one axis, x = s n - 1/2 (texel centres at
+ * integers): i0 = floor(x) and i0 + 1, wrapped, and the fraction f = x - floor(x) in [0, 1]
+ * (0 for a non-finite x).  Small |x| takes the integer path; the rest wraps in double. */
+static inline void bilinear_axis(double x, int n, wrap_mode wrap, int *i0, int *i1, double *f)
+{
+    if (fabs(x) < WRAP_INT_SAFE) { /* false for NaN and infinities */
+        int k = fast_floor(x);
+        *f = x - k;
+        if (k >= 0 && k + 1 < n) { /* inside: the common case of a texture seen once */
+            *i0 = k;
+            *i1 = k + 1;
+            return;
+        }
+        *i0 = wrap_fast(k, n, wrap);
+        *i1 = wrap_fast(k + 1, n, wrap);
+        return;
+    }
+    double x0 = floor(x), fx = x - x0;
+    *f = fx >= 0.0 ? fx : 0.0; /* NaN (non-finite x) -> 0 */
+    *i0 = wrap_integer(x0, n, wrap);
+    *i1 = wrap_integer(x0 + 1.0, n, wrap);
+}
+
+/* floor(x) wrapped, the integer path first (as bilinear_axis) */
+static inline int nearest_axis(double x, int n, wrap_mode wrap)
+{
+    if (fabs(x) < WRAP_INT_SAFE) return wrap_fast(fast_floor(x), n, wrap);
+    return wrap_integer(floor(x), n, wrap);
+}
+
 rgb texlookup_nearest(const image *im, uv2 st, wrap_mode wrap)
 {
     assert(im->w >= 1 && im->h >= 1);
-    int i = texlookup_wrap_floor(st.u * im->w, im->w, wrap); /* i = floor(s W) */
-    int j = texlookup_wrap_floor(st.v * im->h, im->h, wrap); /* j = floor(t H), from the bottom */
+    int i = nearest_axis(st.u * im->w, im->w, wrap); /* i = floor(s W) */
+    int j = nearest_axis(st.v * im->h, im->h, wrap); /* j = floor(t H), from the bottom */
     return image_get(im, i, im->h - 1 - j);
 }
 
@@ -81,13 +128,10 @@ rgb texlookup_bilinear(const image *im, uv2 st, wrap_mode wrap)
 {
     assert(im->w >= 1 && im->h >= 1);
     int w = im->w, h = im->h;
-    double x = st.u * w - 0.5, y = st.v * h - 0.5; /* texel centres at integers */
-    double x0 = floor(x), y0 = floor(y);
-    double fx = x - x0, fy = y - y0; /* [0, 1]; NaN for a non-finite coordinate */
-    if (!(fx >= 0.0)) fx = 0.0;
-    if (!(fy >= 0.0)) fy = 0.0;
-    int i0 = wrap_integer(x0, w, wrap), i1 = wrap_integer(x0 + 1.0, w, wrap);
-    int j0 = wrap_integer(y0, h, wrap), j1 = wrap_integer(y0 + 1.0, h, wrap);
+    int i0, i1, j0, j1;
+    double fx, fy;
+    bilinear_axis(st.u * w - 0.5, w, wrap, &i0, &i1, &fx); /* x = s W - 1/2, i0 = floor(x) */
+    bilinear_axis(st.v * h - 0.5, h, wrap, &j0, &j1, &fy); /* y = t H - 1/2, j0 = floor(y) */
     const float *r0 = image_px(im, 0, h - 1 - j0); /* row of j0 (rows counted from the top) */
     const float *r1 = image_px(im, 0, h - 1 - j1);
     const float *c00 = r0 + 3 * i0, *c10 = r0 + 3 * i1, *c01 = r1 + 3 * i0, *c11 = r1 + 3 * i1;

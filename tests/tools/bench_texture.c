@@ -1,14 +1,20 @@
 /* bench_texture.c - microbenchmarks of texture lookups (make bench, tests/bench/bench_texture):
  *   - ns per texture_eval of a 512 x 512 image texture for each filter (nearest, bilinear,
  *     trilinear, EWA), median of repeats.  The queries come in scanlines, as a renderer makes
- *     them: along a row of 512 "pixels" (s, t) advances by one footprint per pixel; each row
- *     has its own footprint, from 1/4 to 16 texels wide (log-uniform), its own direction and
- *     up to 4:1 anisotropy (a receding plane's range).  Random (s, t) for every query would
- *     measure cache misses instead of the filter;
+ *     them: along a row of 512 "pixels" (s, t) advances by one footprint per pixel (dst/dx);
+ *     each patch of rows has its own footprint, from 1/4 to 16 texels wide (log-uniform), its
+ *     own direction and up to 4:1 anisotropy (a receding plane's range).  Two orders:
+ *       "lookup"      16 ADJACENT rows per patch, row j starting at st0 + j dst/dy: a 512 x 16
+ *                     block of pixels of one textured surface, in a renderer's scanline order
+ *                     (what a row reads, the next row reads again);
+ *       "lookup-rows" every row on its own (st0 random): no row reuses another's texels, the
+ *                     pessimistic case, bound by cache misses at large footprints.
+ *     Random (s, t) for every query would measure cache misses instead of the filter;
  *   - ns per perlin_noise evaluation at random points in [-100, 100]^3.
  * The queries are made before the clock starts; a running sum keeps the compiler honest.
  * Output lines (parsed by the script):
  *     lookup FILTER NS
+ *     lookup-rows FILTER NS
  *     perlin NS
  * Usage: bench_texture [REPEATS] (default 7). */
 #include <stdio.h>
@@ -54,8 +60,8 @@ int main(int argc, char **argv)
     /* Queries are made in the timed loop from one small record per scanline, as a renderer makes
      * them per pixel: an array of N_QUERIES full queries (176 bytes each, 46 MB) would make the
      * benchmark measure memory bandwidth instead of the lookups. */
-    typedef struct line { uv2 st, dx, dy; vec3 p, dp; } line;
-    enum { N_LINES = N_QUERIES / TEX_SIZE };
+    typedef struct line { uv2 st, st0, dx, dy; vec3 p, dp; } line; /* st0: the "rows" start */
+    enum { N_LINES = N_QUERIES / TEX_SIZE, PATCH_ROWS = 16 };
     line *lines = malloc(N_LINES * sizeof *lines);
     if (!lines || image_alloc(&img, TEX_SIZE, TEX_SIZE, &err)) goto fail;
     rng g;
@@ -66,9 +72,16 @@ int main(int argc, char **argv)
     texture_init_image(&tx, &img, WRAP_REPEAT);
     if (texture_prepare(&tx, TEXFILTER_EWA, &err)) goto fail;
     for (int l = 0; l < N_LINES; l++) { /* a scanline: its start, footprint and direction */
+        if (l % PATCH_ROWS) { /* patch order: the row below the previous one (kept for "rows") */
+            lines[l] = lines[l - 1];
+            lines[l].st.u += lines[l].dy.u;
+            lines[l].st.v += lines[l].dy.v;
+            lines[l].st0 = (uv2){rng_uniform(&g), rng_uniform(&g)};
+            continue;
+        }
         double w = pow(2.0, -2 + 6 * rng_uniform(&g)) / TEX_SIZE; /* 1/4 .. 16 texels */
         double a = 2 * M_PI * rng_uniform(&g), aniso = 1 + 3 * rng_uniform(&g);
-        lines[l].st = (uv2){rng_uniform(&g), rng_uniform(&g)};
+        lines[l].st = lines[l].st0 = (uv2){rng_uniform(&g), rng_uniform(&g)};
         lines[l].dx = (uv2){w * cos(a), w * sin(a)};
         lines[l].dy = (uv2){-w / aniso * sin(a), w / aniso * cos(a)};
         lines[l].p = vec3_make(200 * rng_uniform(&g) - 100, 200 * rng_uniform(&g) - 100, 200 * rng_uniform(&g) - 100);
@@ -76,27 +89,29 @@ int main(int argc, char **argv)
                                                           rng_uniform(&g) - 0.5)), 0.37);
     }
     double sink = 0;
-    for (int f = TEXFILTER_NEAREST; f <= TEXFILTER_EWA; f++) {
-        double t[64];
-        texture_query q;
-        memset(&q, 0, sizeof q);
-        q.filter = (texture_filter)f;
-        for (int k = 0; k < repeats; k++) {
-            double t0 = now();
-            for (int l = 0; l < N_LINES; l++) {
-                q.st = lines[l].st;
-                q.dst_dx = lines[l].dx;
-                q.dst_dy = lines[l].dy;
-                for (int i = 0; i < TEX_SIZE; i++) {
-                    sink += texture_eval(&tx, &q).r;
-                    q.st.u += q.dst_dx.u; /* the next pixel of the row */
-                    q.st.v += q.dst_dx.v;
+    for (int order = 0; order < 2; order++) /* 0: patches of adjacent rows, 1: rows alone */
+        for (int f = TEXFILTER_NEAREST; f <= TEXFILTER_EWA; f++) {
+            double t[64];
+            texture_query q;
+            memset(&q, 0, sizeof q);
+            q.filter = (texture_filter)f;
+            for (int k = 0; k < repeats; k++) {
+                double t0 = now();
+                for (int l = 0; l < N_LINES; l++) {
+                    q.st = order == 0 ? lines[l].st : lines[l].st0;
+                    q.dst_dx = lines[l].dx;
+                    q.dst_dy = lines[l].dy;
+                    for (int i = 0; i < TEX_SIZE; i++) {
+                        sink += texture_eval(&tx, &q).r;
+                        q.st.u += q.dst_dx.u; /* the next pixel of the row */
+                        q.st.v += q.dst_dx.v;
+                    }
                 }
+                t[k] = (now() - t0) / N_QUERIES * 1e9;
             }
-            t[k] = (now() - t0) / N_QUERIES * 1e9;
+            printf("%s %s %.2f\n", order == 0 ? "lookup" : "lookup-rows",
+                   texture_filter_name((texture_filter)f), median(t, repeats));
         }
-        printf("lookup %s %.2f\n", texture_filter_name((texture_filter)f), median(t, repeats));
-    }
     double t[64];
     for (int k = 0; k < repeats; k++) {
         double t0 = now();
