@@ -226,7 +226,7 @@ int envlight_build(envlight *el, const envmap *env, envsampling_mode mode, envsa
         envlight_free(el);
         return error_set(err, NULL, 0, "out of memory for the sampling table of a %d x %d map", w, h);
     }
-    double power = 0;
+    double power = 0, second = 0;
     for (int r = 0; r < h; r++) {
         double om = texel_omega(el, r);
         /* PBRT's weights: L sin(theta at the row centre) (rows uniform in theta) */
@@ -236,10 +236,13 @@ int envlight_build(envlight *el, const envmap *env, envsampling_mode mode, envsa
             for (int k = 0; k < 3; k++) el->n_bad += !(isfinite(p[k]) && p[k] >= 0);
             double L = rgb_avg(texel(el, c, r));
             power += L * om; /* |L| = sum L_avg dOmega, in double */
+            second += L * L * om; /* sum L_avg^2 dOmega, for kappa */
             energy[(size_t)c * h + r] = L * (mode == ENVSAMPLING_CDF_SINTHETA ? sin_c : om);
         }
     }
     el->power = power;
+    /* kappa = E[L^2] / E[L]^2 over uniform directions = (second / 4 pi) / (power / 4 pi)^2 */
+    el->kappa = power > 0 ? 4 * M_PI * second / (power * power) : 1.0;
     int status = 0;
     if (!(power > 0)) {
         el->fell_back = 1; /* all black: nothing to importance sample */
@@ -272,6 +275,13 @@ void envlight_free(envlight *el)
     el->n_points = 0;
 }
 
+/* The cdf mode's pdf of texel (c, r): p(omega) = p(c,r) / dOmega_r with p(c,r) = L_avg dOmega_r / |L|,
+ * so p(omega) = L_avg(c, r) / |L|, "the pdf cancels the light".  Computed from the texel (one
+ * read, which the caller needs for L anyway) rather than as the table's pmf / dOmega: the same
+ * number up to the CDF's rounding (~1e-16 / p relative, distrib.h), used alike by sampling and
+ * lookup so that they agree to the last bit. */
+static inline double cdf_pdf(const envlight *el, int c, int r) { return rgb_avg(texel(el, c, r)) / el->power; }
+
 /* envmap frame -> world for sampled directions (the inverse of a rotation is its transpose) */
 static vec3 frame_to_world(const envlight *el, vec3 d)
 {
@@ -286,13 +296,30 @@ double envlight_pdf(const envlight *el, vec3 wi)
     case ENVSAMPLING_UNIFORM: return 1 / (4 * M_PI);
     case ENVSAMPLING_CDF:
         if (world_to_texel(el, wi, &c, &r, NULL)) return 0;
-        return distrib2d_pmf(&el->table, c, r) / texel_omega(el, r); /* p(omega) = p(c,r) / dOmega */
+        return cdf_pdf(el, c, r);
     case ENVSAMPLING_CDF_SINTHETA:
         if (world_to_texel(el, wi, &c, &r, &sin_t) || !(sin_t > 0)) return 0;
         /* p(omega) = p(theta, phi) / sin theta, p(theta, phi) = p(c,r) W H / (2 pi^2) */
         return distrib2d_pmf(&el->table, c, r) * el->w * el->h / (2 * M_PI * M_PI * sin_t);
     default: return 0; /* median cut has no density */
     }
+}
+
+rgb envlight_radiance_pdf(const envlight *el, vec3 wi, double *pdf)
+{
+    int c, r;
+    double sin_t;
+    *pdf = 0;
+    if (!el->env->present || world_to_texel(el, wi, &c, &r, &sin_t)) return rgb_gray(0);
+    switch (el->mode) {
+    case ENVSAMPLING_UNIFORM: *pdf = 1 / (4 * M_PI); break;
+    case ENVSAMPLING_CDF: *pdf = cdf_pdf(el, c, r); break;
+    case ENVSAMPLING_CDF_SINTHETA:
+        if (sin_t > 0) *pdf = distrib2d_pmf(&el->table, c, r) * el->w * el->h / (2 * M_PI * M_PI * sin_t);
+        break;
+    default: break; /* median cut: no density */
+    }
+    return texel(el, c, r);
 }
 
 int envlight_sample(const envlight *el, double xi1, double xi2, int force_inversion, envlight_sample_result *out)
@@ -317,7 +344,8 @@ int envlight_sample(const envlight *el, double xi1, double xi2, int force_invers
         double u0 = el->cos_edge[r], u1 = el->cos_edge[r + 1];
         cos_t = u0 + rr * (u1 - u0);
         sin_t = sqrt(fmax(0.0, 1 - cos_t * cos_t));
-        out->pdf = pmf / texel_omega(el, r);
+        out->pdf = cdf_pdf(el, c, r);
+        (void)pmf;
     } else {
         /* uniform in theta: PBRT.  rr = 0 in a lit row 0 (xi at a CDF step) gives theta = 0,
          * where sin theta = 0 and the density is infinite: start ENVLIGHT_POLE_REM of a row

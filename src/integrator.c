@@ -70,6 +70,14 @@ int integrator_init(integrator *it, const scene *sc, const bvh *accel, error *er
         return -1;
     }
     it->has_lights = 1;
+    it->env_fraction = 1;
+    if (sc->integrator == INTEGRATOR_PATHTRACER && sc->nee == NEE_MIS && lights_env_index(&it->ls) >= 0 &&
+        it->el.mode != ENVSAMPLING_MEDIANCUT) {
+        /* MIS: sample the envmap at a fraction of its picks (lights.h); auto: min(1, kappa - 1) */
+        double c = sc->envsamplefraction >= 0 ? sc->envsamplefraction : fmin(1.0, it->el.kappa - 1);
+        lights_set_env_fraction(&it->ls, c);
+        it->env_fraction = it->ls.env_fraction;
+    }
     it->build_seconds = (double)(clock() - t0) / CLOCKS_PER_SEC;
     return 0;
 }

@@ -29,6 +29,7 @@ int lights_build(lights *ls, const scene *sc, const envlight *env, double scene_
     ls->sc = sc;
     ls->env = env;
     ls->radius = scene_radius > 0 ? scene_radius : 1;
+    ls->env_fraction = 1;
     ls->n = sc->n_lights + (env ? 1 : 0);
     if (ls->n == 0) return 0;
     double *w = malloc((size_t)ls->n * sizeof *w);
@@ -45,11 +46,29 @@ void lights_free(lights *ls) { distrib1d_free(&ls->choose); }
 int lights_pick(const lights *ls, double xi, int *k, double *prob)
 {
     if (ls->n == 0) return 0;
-    *k = distrib1d_sample(&ls->choose, xi, prob, NULL);
+    double rem = xi;
+    if (ls->n == 1) { /* one light (the envmap alone, say): no table to search */
+        *k = 0;
+        *prob = 1;
+    } else {
+        *k = distrib1d_sample(&ls->choose, xi, prob, &rem);
+    }
+    if (*k == lights_env_index(ls) && ls->env_fraction < 1) {
+        /* keep the envmap pick with probability c: rem is uniform in [0,1) given the pick */
+        if (!(rem < ls->env_fraction)) return 0;
+        *prob *= ls->env_fraction;
+    }
     return *prob > 0;
 }
 
-double lights_pick_prob(const lights *ls, int k) { return ls->n ? distrib1d_pmf(&ls->choose, k) : 0; }
+double lights_pick_prob(const lights *ls, int k)
+{
+    if (!ls->n) return 0;
+    double p = distrib1d_pmf(&ls->choose, k);
+    return k == lights_env_index(ls) ? p * ls->env_fraction : p;
+}
+
+void lights_set_env_fraction(lights *ls, double c) { ls->env_fraction = c >= 0 && c <= 1 ? c : 1; }
 
 /* the emitting normal of a quad: along ac x ab */
 static vec3 quad_normal(const scene_light *l) { return vec3_normalize(vec3_cross(l->ac, l->ab)); }

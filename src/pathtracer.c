@@ -18,7 +18,7 @@ static rgb next_event(integrator *it, const surface *s, vec3 wo, rng *g, int mis
         int strat = integrator_stratum(j, m, &xi1, &xi2);
         int k;
         double pick;
-        if (!lights_pick(ls, xc, &k, &pick)) break;
+        if (!lights_pick(ls, xc, &k, &pick)) continue; /* no sample this time (env fraction) */
         light_sample l;
         rgb c;
         if (!integrator_light_sample(it, s, wo, k, xi1, xi2, xi3, strat, &l, &c)) continue;
@@ -64,11 +64,13 @@ rgb pathtracer_radiance_diff(integrator *it, ray r, const ray_diff *rd0, rng *g)
             } else if (!it->has_envlight) {
                 Le = rgb_gray(0);
             } else {
-                Le = envlight_radiance(&it->el, r.d);
+                int ke = lights_env_index(&it->ls);
+                double pdf_env = 0;
+                int mis_env = !counts && nee == NEE_MIS && ke >= 0 && it->el.mode != ENVSAMPLING_MEDIANCUT;
+                Le = mis_env ? envlight_radiance_pdf(&it->el, r.d, &pdf_env) : envlight_radiance(&it->el, r.d);
                 if (!counts) {
-                    int ke = lights_env_index(&it->ls);
-                    if (nee == NEE_MIS && ke >= 0 && it->el.mode != ENVSAMPLING_MEDIANCUT) {
-                        double pl = lights_pick_prob(&it->ls, ke) * envlight_pdf(&it->el, r.d);
+                    if (mis_env) {
+                        double pl = lights_pick_prob(&it->ls, ke) * pdf_env;
                         Le = rgb_scale(Le, integrator_power_heuristic(1, brdf_pdf_prev, n_light, pl));
                     } else if (ke >= 0) {
                         Le = rgb_gray(0); /* sampled by NEE (median cut: only by NEE) */

@@ -133,8 +133,10 @@ int render_scene(const scene *sc, const render_opts *opts, image *out, render_st
         stats->envlight_points = it.el.n_points;
         stats->envlight_w = it.el.w;
         stats->envlight_h = it.el.h;
+        stats->envlight_kappa = it.el.kappa;
     }
     stats->lights = it.has_lights ? it.ls.n : 0;
+    stats->env_fraction = it.env_fraction;
     stats->spp = spp;
     stats->prims = accel.n_prims;
     stats->bvh_is_tree = accel.is_tree;

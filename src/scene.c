@@ -675,6 +675,21 @@ static int cmd_envsampler(parser *p)
     return 0;
 }
 
+/* `envsamplefraction auto|F`: under MIS, the probability that an envmap pick is sampled */
+static int cmd_envsamplefraction(parser *p)
+{
+    if (strcmp(p->tok[1], "auto") == 0) {
+        p->sc->envsamplefraction = -1;
+        return 0;
+    }
+    double f;
+    if (arg_num(p, 1, &f)) return -1;
+    if (!(f >= 0 && f <= 1))
+        return fail(p, "'envsamplefraction' must be 'auto' or a number in [0, 1], got '%s'", p->tok[1]);
+    p->sc->envsamplefraction = f;
+    return 0;
+}
+
 /* Token i of an `envmap` line as a file name into dst (relative names are relative to the scene
  * file's folder; absolute ones are kept), remembering the token as written for messages. */
 static int envmap_file(parser *p, int i, char *dst, size_t size, char *token, size_t token_size)
@@ -1069,6 +1084,7 @@ static const command commands[] = {
     {"ior", cmd_ior, 1, 1},
     {"envsampling", cmd_envsampling, 1, 2},
     {"envsampler", cmd_envsampler, 1, 1},
+    {"envsamplefraction", cmd_envsamplefraction, 1, 1},
 };
 
 /* ---- lines ------------------------------------------------------------------------------ */
@@ -1273,6 +1289,7 @@ static void scene_init(scene *sc)
     sc->envsampling = ENVSAMPLING_CDF;
     sc->mediancut_lights = 64;
     sc->envsampler = ENVSAMPLER_BINARY;
+    sc->envsamplefraction = -1; /* auto */
     sc->envmap.scale = 1.0;
     sc->envmap.xf = mat4_identity();
     sc->envmap.inv = mat4_identity();

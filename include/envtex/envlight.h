@@ -56,6 +56,10 @@ typedef struct envlight {
     float *clean;        /* the map as used for lighting: w * h * 3, bad texels zeroed, scaled */
     distrib2d table;     /* cdf and cdf-sintheta: outer = columns (phi), inner = rows */
     double power;        /* |L| = sum over texels of L_avg dOmega (after scale) */
+    double kappa;        /* 4 pi sum L_avg^2 dOmega / |L|^2 >= 1: the second moment of L_avg over
+                          * uniform directions relative to its mean squared; kappa - 1 is the
+                          * relative variance of estimating the light with uniform directions
+                          * (1 for a constant map, ~10^3 and more with a sun) */
     long n_bad;          /* NaN / Inf / negative texel channels found */
     int fell_back;       /* 1 if the map was black and sampling is uniform */
     double *cos_edge;    /* h + 1 entries: cos theta at the top edge of each row (and the bottom) */
@@ -91,6 +95,10 @@ int envlight_sample(const envlight *el, double xi1, double xi2, int force_invers
 
 /* pdf (per steradian) that envlight_sample returns wi. */
 double envlight_pdf(const envlight *el, vec3 wi);
+
+/* envlight_radiance(wi) and, in *pdf, envlight_pdf(wi), from one direction-to-texel lookup (what
+ * MIS needs when a BRDF ray leaves the scene). */
+rgb envlight_radiance_pdf(const envlight *el, vec3 wi, double *pdf);
 
 /* mediancut: pick point light k with probability power_avg(k) / sum (xi in [0,1)); the shadow
  * direction is jittered inside its stratum with (xi1, xi2).  *prob = the pick probability. */

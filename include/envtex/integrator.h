@@ -40,6 +40,7 @@ typedef struct integrator {
     raytracer rt;       /* integrator raytracer */
     long long rays;     /* rays traced by the sampling integrators */
     double build_seconds;
+    double env_fraction;  /* the envmap's sampling fraction in use (lights.h), 1 if not MIS */
 } integrator;
 
 int integrator_init(integrator *it, const scene *sc, const bvh *accel, error *err);

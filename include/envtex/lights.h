@@ -27,6 +27,8 @@ typedef struct lights {
     int n;                /* sc->n_lights, plus 1 for the environment (last index) */
     distrib1d choose;     /* pick a light by power */
     double radius;
+    double env_fraction;  /* c in [0, 1]: a pick of the envmap is sampled with probability c
+                           * (1 unless lights_set_env_fraction; see there) */
 } lights;
 
 typedef struct light_sample {
@@ -44,6 +46,20 @@ void lights_free(lights *ls);
 /* Pick a light with probability proportional to its power (xi in [0,1)). 0 if there are none. */
 int lights_pick(const lights *ls, double xi, int *k, double *prob);
 double lights_pick_prob(const lights *ls, int k);
+
+/* Sample the envmap at only a fraction c of its picks (MIS only: with NEE alone the skipped
+ * directions would be lost).  Picking is unchanged, but a pick of the envmap is kept with
+ * probability c (lights_pick returns 0 otherwise: no light sample this time) and its pick
+ * probability, hence its pdf in the MIS weights, is multiplied by c on both sides: the light
+ * sample's estimate f L cos w / (c P pdf) and a BRDF ray's weight p_b^2 / (p_b^2 + (c P pdf)^2).
+ * The weights still sum to 1, so the estimator stays unbiased for any c; c = 0 leaves the
+ * envmap to BRDF sampling alone.  The choice of c (pathtracer: `envsamplefraction`):
+ *     auto: c = min(1, kappa - 1), kappa = E[L^2] / E[L]^2 of the map (envlight.h).
+ * kappa - 1 is the relative variance of finding the map with directions that ignore it, so
+ * BRDF sampling of an almost constant sky is already good and pays no shadow ray for light
+ * samples that add little (sky: kappa 1.29, c 0.29), while any map whose radiance varies by
+ * more than its mean (a sun, a window, every HDR photograph measured) is always sampled. */
+void lights_set_env_fraction(lights *ls, double c);
 static inline int lights_env_index(const lights *ls) { return ls->env ? ls->n - 1 : -1; }
 
 /* Sample light k from shading point p (geometric normal ng, for the shadow ray's offset) with

@@ -170,6 +170,7 @@ typedef struct scene {
     envsampling_mode envsampling; /* default ENVSAMPLING_CDF */
     int mediancut_lights;      /* N of `envsampling mediancut N`, default 64 */
     envsampler_kind envsampler; /* default ENVSAMPLER_BINARY */
+    double envsamplefraction;  /* `envsamplefraction F` in [0, 1]; -1 = auto (lights.h) */
     scene_envmap envmap;
     /* geometry, materials, lights: arrays owned by the scene */
     material *materials; int n_materials;

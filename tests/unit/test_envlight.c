@@ -503,6 +503,49 @@ START_TEST(test_envlight_cdf_pdf_is_radiance_over_power)
 }
 END_TEST
 
+/* kappa = E[L^2] / E[L]^2 over uniform directions: 1 for a constant map, 2 for a map lit on
+ * one hemisphere only (E[L^2] = L^2 / 2, E[L]^2 = L^2 / 4), huge for the sun; and
+ * envlight_radiance_pdf is envlight_radiance and envlight_pdf in one lookup, in every mode */
+START_TEST(test_envlight_kappa_and_the_combined_lookup)
+{
+    image im;
+    make_map(M_CONSTANT, &im);
+    envmap env = env_of(&im, 1, mat4_identity());
+    envlight el;
+    build(&el, &env, ENVSAMPLING_CDF, ENVSAMPLER_BINARY, 0);
+    ck_assert_msg(fabs(el.kappa - 1) < 1e-12, "constant map: kappa %.15g", el.kappa);
+    envlight_free(&el);
+    image_free(&im);
+    /* upper hemisphere 3, lower 0: rows split exactly at the equator (an even height) */
+    ck_assert_int_eq(image_alloc(&im, 16, 8, &(error){0}), 0);
+    for (int r = 0; r < 8; r++)
+        for (int c = 0; c < 16; c++) image_set(&im, c, r, rgb_gray(r < 4 ? 3 : 0));
+    env = env_of(&im, 1, mat4_identity());
+    build(&el, &env, ENVSAMPLING_CDF, ENVSAMPLER_BINARY, 0);
+    ck_assert_msg(fabs(el.kappa - 2) < 1e-12, "half-lit map: kappa %.15g", el.kappa);
+    envlight_free(&el);
+    image_free(&im);
+    make_map(M_SUN, &im);
+    env = env_of(&im, 2, mat4_rotate(vec3_make(1, 0, 0), -90));
+    for (int mode = ENVSAMPLING_UNIFORM; mode <= ENVSAMPLING_CDF_SINTHETA; mode++) {
+        build(&el, &env, (envsampling_mode)mode, ENVSAMPLER_BINARY, 0);
+        ck_assert_msg(el.kappa > 100, "sun map: kappa %g", el.kappa);
+        rng g;
+        rng_seed(&g, 31, (uint64_t)mode);
+        for (int i = 0; i < 5000; i++) {
+            double z = 1 - 2 * rng_uniform(&g), ph = 2 * M_PI * rng_uniform(&g), st = sqrt(fmax(0, 1 - z * z));
+            vec3 w = vec3_make(st * cos(ph), st * sin(ph), z);
+            double pdf;
+            rgb L = envlight_radiance_pdf(&el, w, &pdf), L1 = envlight_radiance(&el, w);
+            ck_assert(L.r == L1.r && L.g == L1.g && L.b == L1.b);
+            ck_assert_msg(pdf == envlight_pdf(&el, w), "mode %d: %g vs %g", mode, pdf, envlight_pdf(&el, w));
+        }
+        envlight_free(&el);
+    }
+    image_free(&im);
+}
+END_TEST
+
 /* radiance is the nearest texel, scaled (piecewise constant, so light and BRDF sampling see the
  * same function) */
 START_TEST(test_envlight_radiance_is_the_scaled_texel)
@@ -695,6 +738,7 @@ Suite *envlight_suite(void)
     tc = tcase_create("numerics");
     tcase_set_timeout(tc, 60);
     tcase_add_test(tc, test_envlight_rotation_moves_samples_and_pdf_with_the_map);
+    tcase_add_test(tc, test_envlight_kappa_and_the_combined_lookup);
     tcase_add_test(tc, test_envlight_non_rotation_transform_is_refused);
     tcase_add_test(tc, test_envlight_all_black_map_falls_back_to_uniform);
     tcase_add_test(tc, test_envlight_zero_texels_and_edge_xi_are_never_sampled);

@@ -79,6 +79,29 @@ START_TEST(test_lights_pick_probability_is_proportional_to_power)
                       lights_pick_prob(&ls, k), pw[k] / total);
         ck_assert_msg(fabs((double)count[k] / N - pw[k] / total) < 2.0 / N, "light %d picked %ld times", k, count[k]);
     }
+    /* MIS's envmap fraction c: the envmap is kept at c of its picks, with pick probability c P;
+     * other lights are unchanged; c = 0 never samples it; an out-of-range c means 1 */
+    const double fractions[] = {0.3, 0.0, 1.0};
+    for (int f = 0; f < 3; f++) {
+        double c = fractions[f];
+        lights_set_env_fraction(&ls, c);
+        long kept[5] = {0}, none = 0;
+        for (int i = 0; i < N; i++) {
+            int k;
+            double prob;
+            if (!lights_pick(&ls, (i + 0.5) / N, &k, &prob)) { none++; continue; }
+            kept[k]++;
+            ck_assert(prob == lights_pick_prob(&ls, k));
+        }
+        ck_assert_msg(fabs(lights_pick_prob(&ls, 4) - c * pw[4] / total) < 1e-12, "c %g: %g", c, lights_pick_prob(&ls, 4));
+        ck_assert_msg(fabs((double)kept[4] / N - c * pw[4] / total) < 2.0 / N, "c %g: env kept %ld times", c, kept[4]);
+        ck_assert_msg(fabs((double)none / N - (1 - c) * pw[4] / total) < 2.0 / N, "c %g: %ld skipped", c, none);
+        for (int k = 0; k < 4; k++) ck_assert(fabs(lights_pick_prob(&ls, k) - pw[k] / total) < 1e-12);
+    }
+    lights_set_env_fraction(&ls, NAN);
+    ck_assert(ls.env_fraction == 1);
+    lights_set_env_fraction(&ls, 1.5);
+    ck_assert(ls.env_fraction == 1);
     lights_free(&ls);
     /* without an environment the set is the scene's lights only */
     ck_assert_int_eq(lights_build(&ls, &sc, NULL, R, &err), 0);
