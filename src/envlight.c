@@ -313,7 +313,7 @@ rgb envlight_radiance_pdf(const envlight *el, vec3 wi, double *pdf)
     if (!el->env->present || world_to_texel(el, wi, &c, &r, &sin_t)) return rgb_gray(0);
     switch (el->mode) {
     case ENVSAMPLING_UNIFORM: *pdf = 1 / (4 * M_PI); break;
-    case ENVSAMPLING_CDF: *pdf = cdf_pdf(el, c, r); break;
+    case ENVSAMPLING_CDF: { rgb L = texel(el, c, r); *pdf = rgb_avg(L) / el->power; return L; } /* cdf_pdf */
     case ENVSAMPLING_CDF_SINTHETA:
         if (sin_t > 0) *pdf = distrib2d_pmf(&el->table, c, r) * el->w * el->h / (2 * M_PI * M_PI * sin_t);
         break;
@@ -344,8 +344,7 @@ int envlight_sample(const envlight *el, double xi1, double xi2, int force_invers
         double u0 = el->cos_edge[r], u1 = el->cos_edge[r + 1];
         cos_t = u0 + rr * (u1 - u0);
         sin_t = sqrt(fmax(0.0, 1 - cos_t * cos_t));
-        out->pdf = cdf_pdf(el, c, r);
-        (void)pmf;
+        out->pdf = -1; /* set below from the texel: cdf_pdf */
     } else {
         /* uniform in theta: PBRT.  rr = 0 in a lit row 0 (xi at a CDF step) gives theta = 0,
          * where sin theta = 0 and the density is infinite: start ENVLIGHT_POLE_REM of a row
@@ -360,6 +359,7 @@ int envlight_sample(const envlight *el, double xi1, double xi2, int force_invers
     /* L and pdf of the sampled texel itself (envlight_pdf / envlight_radiance of wi agree
      * except on texel edges, a set of measure zero) */
     out->L = texel(el, c, r);
+    if (el->mode == ENVSAMPLING_CDF) out->pdf = rgb_avg(out->L) / el->power; /* cdf_pdf, one texel read */
     return out->pdf > 0;
 }
 

@@ -10,6 +10,7 @@
  * rotation is respected and a non-rotation refused; and median cut's strata.
  */
 #include "envtex/envlight.h"
+#include "envtex/sampling.h"
 
 #include <stddef.h>
 #include <stdint.h>
@@ -533,8 +534,7 @@ START_TEST(test_envlight_kappa_and_the_combined_lookup)
         rng g;
         rng_seed(&g, 31, (uint64_t)mode);
         for (int i = 0; i < 5000; i++) {
-            double z = 1 - 2 * rng_uniform(&g), ph = 2 * M_PI * rng_uniform(&g), st = sqrt(fmax(0, 1 - z * z));
-            vec3 w = vec3_make(st * cos(ph), st * sin(ph), z);
+            vec3 w = sampling_uniform_sphere(rng_uniform(&g), rng_uniform(&g));
             double pdf;
             rgb L = envlight_radiance_pdf(&el, w, &pdf), L1 = envlight_radiance(&el, w);
             ck_assert(L.r == L1.r && L.g == L1.g && L.b == L1.b);
