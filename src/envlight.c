@@ -333,10 +333,12 @@ int envlight_sample(const envlight *el, double xi1, double xi2, int force_invers
     if (el->mode != ENVSAMPLING_CDF && el->mode != ENVSAMPLING_CDF_SINTHETA) return 0;
     int c, r;
     double pmf, rc, rr;
+    /* the cdf mode takes its pdf from the texel (cdf_pdf): no pmf, so no read of the CDF for it */
+    double *want_pmf = el->mode == ENVSAMPLING_CDF ? NULL : &pmf;
     if (el->sampler == ENVSAMPLER_ALIAS && !force_inversion)
-        distrib2d_sample_alias(&el->table, xi1, xi2, &c, &r, &pmf, &rc, &rr);
+        distrib2d_sample_alias(&el->table, xi1, xi2, &c, &r, want_pmf, &rc, &rr);
     else
-        distrib2d_sample(&el->table, xi1, xi2, &c, &r, &pmf, &rc, &rr);
+        distrib2d_sample(&el->table, xi1, xi2, &c, &r, want_pmf, &rc, &rr);
     double phi = 2 * M_PI * (c + rc) / el->w; /* uniform in phi inside the column */
     double cos_t, sin_t;
     if (el->mode == ENVSAMPLING_CDF) {
@@ -361,6 +363,73 @@ int envlight_sample(const envlight *el, double xi1, double xi2, int force_invers
     out->L = texel(el, c, r);
     if (el->mode == ENVSAMPLING_CDF) out->pdf = rgb_avg(out->L) / el->power; /* cdf_pdf, one texel read */
     return out->pdf > 0;
+}
+
+/* ---- how often MIS should sample the map (lights.h, envsamplefraction auto) --------------- */
+
+/* The fractions c tried, and the normals the model averages over (a Fibonacci sphere). */
+static const double mis_fractions[] = {0, 1.0 / 32, 1.0 / 16, 1.0 / 8, 0.25, 0.5, 0.75, 1};
+#define MIS_MODEL_NORMALS 64
+
+double envlight_mis_fraction(const envlight *el, double light_cost, double *rel_var_out)
+{
+    enum { NC = sizeof mis_fractions / sizeof mis_fractions[0] };
+    if (rel_var_out)
+        for (int i = 0; i < NC; i++) rel_var_out[i] = 0;
+    if (el->fell_back || !(el->power > 0) || el->mode != ENVSAMPLING_CDF) return 1;
+    /* the map reduced to at most ENVLIGHT_MIS_GRID_W x _H cells (energy and solid angle summed, so
+     * each cell holds the mean radiance of its texels) */
+    int gw = el->w < ENVLIGHT_MIS_GRID_W ? el->w : ENVLIGHT_MIS_GRID_W;
+    int gh = el->h < ENVLIGHT_MIS_GRID_H ? el->h : ENVLIGHT_MIS_GRID_H;
+    double energy[ENVLIGHT_MIS_GRID_W * ENVLIGHT_MIS_GRID_H] = {0}, omega[ENVLIGHT_MIS_GRID_W * ENVLIGHT_MIS_GRID_H] = {0};
+    for (int r = 0; r < el->h; r++) {
+        int gr = (int)((long long)r * gh / el->h);
+        double om = texel_omega(el, r);
+        for (int c = 0; c < el->w; c++) {
+            int k = gr * gw + (int)((long long)c * gw / el->w);
+            energy[k] += rgb_avg(texel(el, c, r)) * om;
+            omega[k] += om;
+        }
+    }
+    vec3 dir[ENVLIGHT_MIS_GRID_W * ENVLIGHT_MIS_GRID_H];
+    for (int gr = 0; gr < gh; gr++)
+        for (int gc = 0; gc < gw; gc++) /* the cell's centre, in the envmap frame */
+            dir[gr * gw + gc] = latlong_uv_to_dir((uv2){(gc + 0.5) / gw, (gr + 0.5) / gh});
+    double cost[NC] = {0};
+    int counted = 0;
+    for (int n = 0; n < MIS_MODEL_NORMALS; n++) {
+        /* a diffuse surface of albedo 1 facing normal nrm: g = L cos+ / pi */
+        vec3 nrm = sampling_uniform_sphere((n + 0.5) / MIS_MODEL_NORMALS, fmod(n * 0.6180339887498949, 1.0));
+        double I = 0, S[NC] = {0};
+        for (int k = 0; k < gw * gh; k++) {
+            double cs = vec3_dot(nrm, dir[k]);
+            if (!(cs > 0) || !(omega[k] > 0)) continue;
+            double L = energy[k] / omega[k], g = L * cs / M_PI;
+            double pb = cs / M_PI, pl = L / el->power; /* cosine sampling; the cdf's pdf L / |L| */
+            I += g * omega[k];
+            for (int i = 0; i < NC; i++) {
+                double c = mis_fractions[i], pm = (pb + c * pl) / (1 + c); /* the mixture */
+                S[i] += g * g / pm * omega[k]; /* second moment: integral of g^2 / p_m */
+            }
+        }
+        if (!(I > 0)) continue;
+        counted++;
+        for (int i = 0; i < NC; i++) {
+            /* relative variance of 1 + c samples of the mixture: (S / I^2 - 1) / (1 + c) */
+            double rv = fmax(0.0, S[i] / (I * I) - 1) / (1 + mis_fractions[i]);
+            cost[i] += rv;
+        }
+    }
+    if (!counted) return 1;
+    int best = NC - 1;
+    for (int i = 0; i < NC; i++) {
+        cost[i] /= counted;
+        if (rel_var_out) rel_var_out[i] = cost[i];
+        cost[i] *= 1 + light_cost * mis_fractions[i]; /* variance x time: the inefficiency */
+    }
+    for (int i = NC - 1; i >= 0; i--)
+        if (cost[i] < cost[best] * (1 - 1e-9)) best = i;
+    return mis_fractions[best];
 }
 
 int envlight_mediancut_pick(const envlight *el, double xi, double xi1, double xi2, int *k, vec3 *shadow_dir,

@@ -73,8 +73,10 @@ int integrator_init(integrator *it, const scene *sc, const bvh *accel, error *er
     it->env_fraction = 1;
     if (sc->integrator == INTEGRATOR_PATHTRACER && sc->nee == NEE_MIS && lights_env_index(&it->ls) >= 0 &&
         it->el.mode != ENVSAMPLING_MEDIANCUT) {
-        /* MIS: sample the envmap at a fraction of its picks (lights.h); auto: min(1, kappa - 1) */
-        double c = sc->envsamplefraction >= 0 ? sc->envsamplefraction : fmin(1.0, it->el.kappa - 1);
+        /* MIS: sample the envmap at a fraction of its picks (lights.h); auto: the fraction that
+         * minimizes variance x time for diffuse surfaces under this map (envlight.h) */
+        double c = sc->envsamplefraction >= 0 ? sc->envsamplefraction
+                                              : envlight_mis_fraction(&it->el, INTEGRATOR_MIS_LIGHT_COST, NULL);
         lights_set_env_fraction(&it->ls, c);
         it->env_fraction = it->ls.env_fraction;
     }

@@ -53,7 +53,6 @@ typedef struct envlight {
     envsampling_mode mode;
     envsampler_kind sampler;
     int w, h;
-    float *clean;        /* the map as used for lighting: w * h * 3, bad texels zeroed, scaled */
     distrib2d table;     /* cdf and cdf-sintheta: outer = columns (phi), inner = rows */
     double power;        /* |L| = sum over texels of L_avg dOmega (after scale) */
     double kappa;        /* 4 pi sum L_avg^2 dOmega / |L|^2 >= 1: the second moment of L_avg over
@@ -99,6 +98,23 @@ double envlight_pdf(const envlight *el, vec3 wi);
 /* envlight_radiance(wi) and, in *pdf, envlight_pdf(wi), from one direction-to-texel lookup (what
  * MIS needs when a BRDF ray leaves the scene). */
 rgb envlight_radiance_pdf(const envlight *el, vec3 wi, double *pdf);
+
+/* How often MIS should sample this map: the fraction c of its picks (lights.h) that minimizes
+ * variance x time for a model surface, c in {0, 1/32, 1/16, 1/8, 1/4, 1/2, 3/4, 1}.
+ * The model: diffuse surfaces (albedo 1) facing 64 normals spread over the sphere, lit by the
+ * map reduced to at most ENVLIGHT_MIS_GRID_W x _H cells of mean radiance; per vertex one cosine
+ * (BRDF) sample plus, with probability c, one cdf light sample, combined as 1 + c samples of the
+ * mixture p_m = (p_brdf + c p_light) / (1 + c) (what the balance heuristic approaches):
+ *     relative variance V(c) = (integral g^2 / p_m / I^2 - 1) / (1 + c),  g = L cos+ / pi,
+ * averaged over the normals, and time per vertex 1 + light_cost c (a light sample costs
+ * light_cost of a BRDF sample's ray and shading).  A constant map gives c = 0 (cosine sampling
+ * has no variance there); a sun gives c = 1 (V grows like 1/c).  Only for the cdf mode (others
+ * return 1).  rel_var_out, if given, receives V for each c (8 values).  Reads every texel once,
+ * allocates nothing. */
+#define ENVLIGHT_MIS_GRID_W 64
+#define ENVLIGHT_MIS_GRID_H 32
+#define ENVLIGHT_MIS_FRACTIONS 8
+double envlight_mis_fraction(const envlight *el, double light_cost, double *rel_var_out);
 
 /* mediancut: pick point light k with probability power_avg(k) / sum (xi in [0,1)); the shadow
  * direction is jittered inside its stratum with (xi1, xi2).  *prob = the pick probability. */

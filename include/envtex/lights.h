@@ -54,11 +54,11 @@ double lights_pick_prob(const lights *ls, int k);
  * sample's estimate f L cos w / (c P pdf) and a BRDF ray's weight p_b^2 / (p_b^2 + (c P pdf)^2).
  * The weights still sum to 1, so the estimator stays unbiased for any c; c = 0 leaves the
  * envmap to BRDF sampling alone.  The choice of c (pathtracer: `envsamplefraction`):
- *     auto: c = min(1, kappa - 1), kappa = E[L^2] / E[L]^2 of the map (envlight.h).
- * kappa - 1 is the relative variance of finding the map with directions that ignore it, so
- * BRDF sampling of an almost constant sky is already good and pays no shadow ray for light
- * samples that add little (sky: kappa 1.29, c 0.29), while any map whose radiance varies by
- * more than its mean (a sun, a window, every HDR photograph measured) is always sampled. */
+ *     auto: envlight_mis_fraction, the c that minimizes variance x time for diffuse surfaces
+ *           under this map (a light sample costing INTEGRATOR_MIS_LIGHT_COST of a BRDF sample).
+ * BRDF (cosine) sampling of an almost constant sky is already good, and a light sample there
+ * adds a shadow ray for little: c = 0 (the generated sky).  Under a sun, a window or any of the
+ * HDR photographs measured, the variance of BRDF sampling alone is many times larger: c = 1. */
 void lights_set_env_fraction(lights *ls, double c);
 static inline int lights_env_index(const lights *ls) { return ls->env ? ls->n - 1 : -1; }
 

@@ -504,6 +504,53 @@ START_TEST(test_envlight_cdf_pdf_is_radiance_over_power)
 }
 END_TEST
 
+/* envlight_mis_fraction's model against closed forms, and its choices.  Constant map L, a
+ * normal n: g = L cos / pi on the upper hemisphere, I = L, p_light = 1 / (4 pi), so with
+ * x = cos theta and the mixture p_m = (x / pi + c / (4 pi)) / (1 + c):
+ *     S / I^2 = (1 + c) 2 pi int_0^1 (x / pi)^2 / (x / pi + c / (4 pi)) dx
+ *             = 8 (1 + c) / c int_0^1 x^2 / (4x / c + 1) dx,
+ * which is 1 at c = 0 (no variance), 1.402347 at c = 1 (V = 0.201174) and 1.227977 at
+ * c = 1/2 (V = 0.151985).  The generated sky gets c = 0 (cosine sampling already follows it,
+ * and light samples below the horizon are wasted), the sun map c = 1, and V falls with c under the sun (V ~ 1/c there). */
+START_TEST(test_envlight_mis_fraction_model)
+{
+    image im;
+    ck_assert_int_eq(image_alloc(&im, 128, 64, &(error){0}), 0);
+    for (int r = 0; r < 64; r++)
+        for (int c = 0; c < 128; c++) image_set(&im, c, r, rgb_gray(0.7));
+    envmap env = env_of(&im, 1, mat4_identity());
+    envlight el;
+    build(&el, &env, ENVSAMPLING_CDF, ENVSAMPLER_ALIAS, 0);
+    double v[ENVLIGHT_MIS_FRACTIONS];
+    ck_assert(envlight_mis_fraction(&el, 0.6, v) == 0);
+    ck_assert_msg(v[0] < 1e-3, "cosine sampling of a constant map: V %g", v[0]);
+    ck_assert_msg(fabs(v[5] / 0.151985 - 1) < 0.01, "c = 1/2: V %g, closed form 0.151985", v[5]);
+    ck_assert_msg(fabs(v[7] / 0.201174 - 1) < 0.01, "c = 1: V %g, closed form 0.201174", v[7]);
+    envlight_free(&el);
+    image_free(&im);
+    genenv_params p = genenv_defaults();
+    p.width = 256;
+    error err = {0};
+    ck_assert_int_eq(genenv_make(GENENV_SKY, &p, &im, &err), 0);
+    env = env_of(&im, 1, mat4_identity());
+    build(&el, &env, ENVSAMPLING_CDF, ENVSAMPLER_ALIAS, 0);
+    ck_assert_msg(envlight_mis_fraction(&el, 0.6, v) == 0, "sky: c %g", envlight_mis_fraction(&el, 0.6, NULL));
+    envlight_free(&el);
+    image_free(&im);
+    make_map(M_SUN, &im);
+    env = env_of(&im, 2, mat4_rotate(vec3_make(1, 0, 0), -90));
+    build(&el, &env, ENVSAMPLING_CDF, ENVSAMPLER_ALIAS, 0);
+    ck_assert(envlight_mis_fraction(&el, 0.6, v) == 1);
+    for (int i = 1; i < ENVLIGHT_MIS_FRACTIONS; i++) ck_assert_msg(v[i] < v[i - 1], "sun: V[%d] %g >= V[%d] %g", i, v[i], i - 1, v[i - 1]);
+    ck_assert_msg(v[0] > 10 * v[7], "sun: cosine sampling alone V %g, with c = 1 %g", v[0], v[7]);
+    envlight_free(&el);
+    build(&el, &env, ENVSAMPLING_UNIFORM, ENVSAMPLER_ALIAS, 0);
+    ck_assert(envlight_mis_fraction(&el, 0.6, NULL) == 1); /* not the cdf mode: unchanged */
+    envlight_free(&el);
+    image_free(&im);
+}
+END_TEST
+
 /* kappa = E[L^2] / E[L]^2 over uniform directions: 1 for a constant map, 2 for a map lit on
  * one hemisphere only (E[L^2] = L^2 / 2, E[L]^2 = L^2 / 4), huge for the sun; and
  * envlight_radiance_pdf is envlight_radiance and envlight_pdf in one lookup, in every mode */
@@ -739,6 +786,7 @@ Suite *envlight_suite(void)
     tcase_set_timeout(tc, 60);
     tcase_add_test(tc, test_envlight_rotation_moves_samples_and_pdf_with_the_map);
     tcase_add_test(tc, test_envlight_kappa_and_the_combined_lookup);
+    tcase_add_test(tc, test_envlight_mis_fraction_model);
     tcase_add_test(tc, test_envlight_non_rotation_transform_is_refused);
     tcase_add_test(tc, test_envlight_all_black_map_falls_back_to_uniform);
     tcase_add_test(tc, test_envlight_zero_texels_and_edge_xi_are_never_sampled);

@@ -145,7 +145,7 @@ static const strategy strategies[] = {
     {"pathtracer, mis, brdf", PT_STRAT "nexteventestimation mis\nimportancesampling brdf\n"},
     {"pathtracer, mis, hemisphere, cdf-sintheta alias", PT_STRAT "nexteventestimation mis\nimportancesampling hemisphere\nenvsampling cdf-sintheta\nenvsampler alias\nenvsamplefraction 1\n"},
     {"pathtracer, mis, cosine, uniform", PT_STRAT "nexteventestimation mis\nimportancesampling cosine\nenvsampling uniform\n"},
-    /* a constant map has kappa = 1, so auto gives c = 0 (BRDF sampling alone): force light samples */
+    /* under a constant map auto gives c = 0 (cosine sampling is exact there): force light samples */
     {"pathtracer, mis, brdf, envsamplefraction 1", PT_STRAT "nexteventestimation mis\nimportancesampling brdf\nenvsamplefraction 1\n"},
     {"pathtracer, mis, cosine, envsamplefraction 0.3", "integrator pathtracer\nspp 256\nlightsamples 4\nlightstratify on\nnexteventestimation mis\nimportancesampling cosine\nenvsamplefraction 0.3\n"},
     {"direct, cdf", DI_STRAT "envsampling cdf\n"},
