@@ -376,7 +376,8 @@ double envlight_mis_fraction(const envlight *el, double light_cost, double *rel_
     enum { NC = sizeof mis_fractions / sizeof mis_fractions[0] };
     if (rel_var_out)
         for (int i = 0; i < NC; i++) rel_var_out[i] = 0;
-    if (el->fell_back || !(el->power > 0) || el->mode != ENVSAMPLING_CDF) return 1;
+    if (el->fell_back || !(el->power > 0) || (el->mode != ENVSAMPLING_CDF && el->mode != ENVSAMPLING_CDF_SINTHETA))
+        return 1;
     /* the map reduced to at most ENVLIGHT_MIS_GRID_W x _H cells (energy and solid angle summed, so
      * each cell holds the mean radiance of its texels) */
     int gw = el->w < ENVLIGHT_MIS_GRID_W ? el->w : ENVLIGHT_MIS_GRID_W;
@@ -405,7 +406,7 @@ double envlight_mis_fraction(const envlight *el, double light_cost, double *rel_
             double cs = vec3_dot(nrm, dir[k]);
             if (!(cs > 0) || !(omega[k] > 0)) continue;
             double L = energy[k] / omega[k], g = L * cs / M_PI;
-            double pb = cs / M_PI, pl = L / el->power; /* cosine sampling; the cdf's pdf L / |L| */
+            double pb = cs / M_PI, pl = L / el->power; /* cosine sampling; the cdf's pdf L / |L| (PBRT's, nearly) */
             I += g * omega[k];
             for (int i = 0; i < NC; i++) {
                 double c = mis_fractions[i], pm = (pb + c * pl) / (1 + c); /* the mixture */
