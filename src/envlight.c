@@ -374,15 +374,17 @@ static const double mis_fractions[] = {0, 1.0 / 32, 1.0 / 16, 1.0 / 8, 0.25, 0.5
 double envlight_mis_fraction(const envlight *el, double light_cost, double *rel_var_out)
 {
     enum { NC = sizeof mis_fractions / sizeof mis_fractions[0] };
+    _Static_assert(NC == ENVLIGHT_MIS_FRACTIONS, "envlight.h promises ENVLIGHT_MIS_FRACTIONS values");
     if (rel_var_out)
         for (int i = 0; i < NC; i++) rel_var_out[i] = 0;
-    if (el->fell_back || !(el->power > 0) || (el->mode != ENVSAMPLING_CDF && el->mode != ENVSAMPLING_CDF_SINTHETA))
-        return 1;
+    int cdf = el->mode == ENVSAMPLING_CDF || el->mode == ENVSAMPLING_CDF_SINTHETA;
+    if (el->fell_back || !(el->power > 0) || !cdf) return 1;
     /* the map reduced to at most ENVLIGHT_MIS_GRID_W x _H cells (energy and solid angle summed, so
      * each cell holds the mean radiance of its texels) */
     int gw = el->w < ENVLIGHT_MIS_GRID_W ? el->w : ENVLIGHT_MIS_GRID_W;
     int gh = el->h < ENVLIGHT_MIS_GRID_H ? el->h : ENVLIGHT_MIS_GRID_H;
-    double energy[ENVLIGHT_MIS_GRID_W * ENVLIGHT_MIS_GRID_H] = {0}, omega[ENVLIGHT_MIS_GRID_W * ENVLIGHT_MIS_GRID_H] = {0};
+    enum { CELLS = ENVLIGHT_MIS_GRID_W * ENVLIGHT_MIS_GRID_H };
+    double energy[CELLS] = {0}, omega[CELLS] = {0};
     for (int r = 0; r < el->h; r++) {
         int gr = (int)((long long)r * gh / el->h);
         double om = texel_omega(el, r);
@@ -392,7 +394,7 @@ double envlight_mis_fraction(const envlight *el, double light_cost, double *rel_
             omega[k] += om;
         }
     }
-    vec3 dir[ENVLIGHT_MIS_GRID_W * ENVLIGHT_MIS_GRID_H];
+    vec3 dir[CELLS];
     for (int gr = 0; gr < gh; gr++)
         for (int gc = 0; gc < gw; gc++) /* the cell's centre, in the envmap frame */
             dir[gr * gw + gc] = latlong_uv_to_dir((uv2){(gc + 0.5) / gw, (gr + 0.5) / gh});
@@ -406,7 +408,8 @@ double envlight_mis_fraction(const envlight *el, double light_cost, double *rel_
             double cs = vec3_dot(nrm, dir[k]);
             if (!(cs > 0) || !(omega[k] > 0)) continue;
             double L = energy[k] / omega[k], g = L * cs / M_PI;
-            double pb = cs / M_PI, pl = L / el->power; /* cosine sampling; the cdf's pdf L / |L| (PBRT's, nearly) */
+            /* cosine sampling; the cdf's pdf L / |L| (PBRT's, nearly) */
+            double pb = cs / M_PI, pl = L / el->power;
             I += g * omega[k];
             for (int i = 0; i < NC; i++) {
                 double c = mis_fractions[i], pm = (pb + c * pl) / (1 + c); /* the mixture */

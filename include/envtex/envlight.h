@@ -108,9 +108,10 @@ rgb envlight_radiance_pdf(const envlight *el, vec3 wi, double *pdf);
  *     relative variance V(c) = (integral g^2 / p_m / I^2 - 1) / (1 + c),  g = L cos+ / pi,
  * averaged over the normals, and time per vertex 1 + light_cost c (a light sample costs
  * light_cost of a BRDF sample's ray and shading).  A constant map gives c = 0 (cosine sampling
- * has no variance there); a sun gives c = 1 (V grows like 1/c).  For the cdf modes (cdf-sintheta's
- * pdf is modelled as the cdf's); uniform and median cut return 1.  rel_var_out, if given, receives V for each c (8 values).  Reads every texel once,
- * allocates nothing. */
+ * has no variance there); a sun gives c = 1 (V grows like 1/c).  For the cdf modes
+ * (cdf-sintheta's pdf is modelled as the cdf's); uniform and median cut return 1.
+ * rel_var_out, if given, receives V for each c (ENVLIGHT_MIS_FRACTIONS values).  Reads every
+ * texel once, allocates nothing. */
 #define ENVLIGHT_MIS_GRID_W 64
 #define ENVLIGHT_MIS_GRID_H 32
 #define ENVLIGHT_MIS_FRACTIONS 8
