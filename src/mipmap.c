@@ -96,6 +96,32 @@ cleanup:
     return status;
 }
 
+/* A texel as trilinear reads it: R, G, B and an unused 0 in one 16-byte vector (GCC and Clang
+ * vector extensions: SSE on x86-64, NEON on arm64), so a texel is one aligned load and each
+ * product or sum below works on the three channels at once. */
+typedef float mip_rgba __attribute__((vector_size(16)));
+
+/* Copy every level into m->packed (16-byte aligned, level after level). */
+static int pack_levels(mipmap *m, error *err)
+{
+    size_t n = 0;
+    for (int l = 0; l < m->nlevels; l++) {
+        m->packed_at[l] = n;
+        n += (size_t)m->level[l].w * (size_t)m->level[l].h;
+    }
+    mip_rgba *px = aligned_alloc(sizeof(mip_rgba), n * sizeof(mip_rgba));
+    if (!px) return error_set(err, NULL, 0, "out of memory for the packed levels of a %d x %d mipmap",
+                              m->level[0].w, m->level[0].h);
+    for (int l = 0; l < m->nlevels; l++) {
+        const image *im = &m->level[l];
+        mip_rgba *dst = px + m->packed_at[l];
+        for (size_t i = 0; i < (size_t)im->w * (size_t)im->h; i++)
+            dst[i] = (mip_rgba){im->px[3 * i], im->px[3 * i + 1], im->px[3 * i + 2], 0.0f};
+    }
+    m->packed = (float *)px;
+    return 0;
+}
+
 int mipmap_build(mipmap *m, const image *base, wrap_mode wrap, error *err)
 {
     memset(m, 0, sizeof *m);
@@ -114,6 +140,10 @@ int mipmap_build(mipmap *m, const image *base, wrap_mode wrap, error *err)
         }
         m->nlevels++;
     }
+    if (pack_levels(m, err)) {
+        mipmap_free(m);
+        return -1;
+    }
     for (int i = 0; i < MIPMAP_EWA_LUT_SIZE; i++) {
         double r2 = (double)i / (MIPMAP_EWA_LUT_SIZE - 1);
         m->ewa_weight[i] = exp(-MIPMAP_EWA_ALPHA * r2) - exp(-MIPMAP_EWA_ALPHA); /* Gaussian, 0 at r = 1 */
@@ -125,6 +155,7 @@ void mipmap_free(mipmap *m)
 {
     if (!m) return;
     for (int l = 1; l < m->nlevels && l < MIPMAP_MAX_LEVELS; l++) image_free(&m->level[l]);
+    free(m->packed);
     memset(m, 0, sizeof *m);
 }
 
@@ -148,18 +179,52 @@ double mipmap_level_for_footprint(const mipmap *m, double width_in_texels)
     return l < top ? l : top;
 }
 
-rgb mipmap_lookup_trilinear(const mipmap *m, uv2 st, double footprint_width)
+/* texlookup_bilinear on packed level l: the same texels, indices and weights,
+ *     c = (1-fy) [(1-fx) c00 + fx c10] + fy [(1-fx) c01 + fx c11],
+ * in float on the three channels at once. */
+static inline __attribute__((always_inline)) mip_rgba bilinear_packed(const mipmap *m, int l, uv2 st)
 {
-    /* STEP(mipmap): trilinear filtering: level = log2(footprint in texels), bilinear in the two nearest levels, blended by the fraction (slides 36-39) */
-    /* STUB: (void)footprint_width; return texlookup_bilinear(&m->level[0], st, m->wrap); */
-    double lod = mipmap_level_for_footprint(m, footprint_width * max_side(&m->level[0]));
+    int w = m->level[l].w, h = m->level[l].h;
+    texlookup_axis x = texlookup_bilinear_axis(st.u * w - 0.5, w, m->wrap); /* x = s W - 1/2 */
+    texlookup_axis y = texlookup_bilinear_axis(st.v * h - 0.5, h, m->wrap); /* y = t H - 1/2 */
+    const mip_rgba *px = (const mip_rgba *)m->packed + m->packed_at[l];
+    const mip_rgba *r0 = px + (size_t)(h - 1 - y.i0) * (size_t)w; /* rows counted from the top */
+    const mip_rgba *r1 = px + (size_t)(h - 1 - y.i1) * (size_t)w;
+    float gx = (float)x.f, gy = (float)y.f;
+    mip_rgba bottom = r0[x.i0] * (1.0f - gx) + r0[x.i1] * gx, top = r1[x.i0] * (1.0f - gx) + r1[x.i1] * gx;
+    return bottom * (1.0f - gy) + top * gy;
+}
+
+/* Trilinear at continuous level lod in [0, levels - 1]:
+ *     c = (1 - f) bilinear(level l, st) + f bilinear(level l + 1, st),  l = floor(lod), f = lod - l */
+static inline __attribute__((always_inline)) rgb trilinear_at(const mipmap *m, uv2 st, double lod)
+{
+    /* STEP(mipmap): trilinear filtering: bilinear in the two nearest levels of the level lod = log2(footprint in texels), blended by the fraction (slides 36-39) */
+    /* STUB: (void)lod; return texlookup_bilinear(&m->level[0], st, m->wrap); */
     int l = (int)lod;
     double f = lod - l; /* 0 at the top level, so l + 1 is never read past it */
-    rgb c0 = texlookup_bilinear(&m->level[l], st, m->wrap);
-    if (f <= 0.0) return c0;
-    rgb c1 = texlookup_bilinear(&m->level[l + 1], st, m->wrap);
-    return rgb_madd(rgb_scale(c0, 1.0 - f), c1, f); /* (1 - f) c0 + f c1 */
+    mip_rgba c = bilinear_packed(m, l, st); /* texlookup_bilinear(&m->level[l], st, m->wrap) */
+    if (f > 0.0) {
+        float g = (float)f;
+        c = c * (1.0f - g) + bilinear_packed(m, l + 1, st) * g; /* (1 - f) c0 + f c1 */
+    }
+    return (rgb){c[0], c[1], c[2]};
     /* END STEP(mipmap) */
+}
+
+rgb mipmap_lookup_trilinear(const mipmap *m, uv2 st, double footprint_width)
+{
+    return trilinear_at(m, st, mipmap_level_for_footprint(m, footprint_width * max_side(&m->level[0])));
+}
+
+rgb mipmap_lookup_trilinear_axes(const mipmap *m, uv2 st, double len2_a, double len2_b)
+{
+    /* width^4 in texels = |a|^2 |b|^2 side^4, so lod = log2(width) = log2(width^4) / 4: one log2
+     * and no square root on the way to the texels */
+    double side2 = (double)max_side(&m->level[0]) * max_side(&m->level[0]);
+    double w4 = len2_a * len2_b * side2 * side2, top = m->nlevels - 1;
+    double lod = w4 > 1.0 ? 0.25 * log2(w4) : 0.0; /* magnification, or NaN: the base */
+    return trilinear_at(m, st, lod < top ? lod : top);
 }
 
 /* ---- EWA ----------------------------------------------------------------------------------- */

@@ -28,8 +28,8 @@ int texlookup_wrap(int i, int n, wrap_mode wrap)
 }
 
 /* Past this magnitude floor(x) is wrapped in double; below it, converted to int and wrapped
- * there.  2^30 leaves room for the + 1 of a bilinear neighbour without reaching INT_MAX. */
-#define WRAP_INT_SAFE 0x1p30
+ * there (texlookup.h) */
+#define WRAP_INT_SAFE TEXLOOKUP_INT_SAFE
 
 /* An integer-valued double f (already floored) wrapped into [0, n). */
 static inline int wrap_integer(double f, int n, wrap_mode wrap)
@@ -86,30 +86,20 @@ static inline int wrap_fast(int i, int n, wrap_mode wrap)
     return texlookup_wrap(i, n, wrap);
 }
 
-/* The two indices a bilinear lookup blends along one axis, x = s n - 1/2 (texel centres at
- * integers): i0 = floor(x) and i0 + 1, wrapped, and the fraction f = x - floor(x) in [0, 1]
- * (0 for a non-finite x).  Small |x| takes the integer path; the rest wraps in double. */
-static inline void bilinear_axis(double x, int n, wrap_mode wrap, int *i0, int *i1, double *f)
+/* texlookup_bilinear_axis past its inline fast path: an index outside [0, n - 1) (wrapped, the
+ * integer path first) or |x| >= TEXLOOKUP_INT_SAFE, NaN and infinities (wrapped in double). */
+texlookup_axis texlookup_bilinear_axis_far(double x, int n, wrap_mode wrap)
 {
     if (fabs(x) < WRAP_INT_SAFE) { /* false for NaN and infinities */
         int k = fast_floor(x);
-        *f = x - k;
-        if (k >= 0 && k + 1 < n) { /* inside: the common case of a texture seen once */
-            *i0 = k;
-            *i1 = k + 1;
-            return;
-        }
-        *i0 = wrap_fast(k, n, wrap);
-        *i1 = wrap_fast(k + 1, n, wrap);
-        return;
+        return (texlookup_axis){wrap_fast(k, n, wrap), wrap_fast(k + 1, n, wrap), x - k};
     }
     double x0 = floor(x), fx = x - x0;
-    *f = fx >= 0.0 ? fx : 0.0; /* NaN (non-finite x) -> 0 */
-    *i0 = wrap_integer(x0, n, wrap);
-    *i1 = wrap_integer(x0 + 1.0, n, wrap);
+    return (texlookup_axis){wrap_integer(x0, n, wrap), wrap_integer(x0 + 1.0, n, wrap),
+                            fx >= 0.0 ? fx : 0.0}; /* NaN (non-finite x) -> f = 0 */
 }
 
-/* floor(x) wrapped, the integer path first (as bilinear_axis) */
+/* floor(x) wrapped, the integer path first (as texlookup_bilinear_axis) */
 static inline int nearest_axis(double x, int n, wrap_mode wrap)
 {
     if (fabs(x) < WRAP_INT_SAFE) return wrap_fast(fast_floor(x), n, wrap);
@@ -128,10 +118,10 @@ rgb texlookup_bilinear(const image *im, uv2 st, wrap_mode wrap)
 {
     assert(im->w >= 1 && im->h >= 1);
     int w = im->w, h = im->h;
-    int i0, i1, j0, j1;
-    double fx, fy;
-    bilinear_axis(st.u * w - 0.5, w, wrap, &i0, &i1, &fx); /* x = s W - 1/2, i0 = floor(x) */
-    bilinear_axis(st.v * h - 0.5, h, wrap, &j0, &j1, &fy); /* y = t H - 1/2, j0 = floor(y) */
+    texlookup_axis ax = texlookup_bilinear_axis(st.u * w - 0.5, w, wrap); /* x = s W - 1/2, i0 = floor(x) */
+    texlookup_axis ay = texlookup_bilinear_axis(st.v * h - 0.5, h, wrap); /* y = t H - 1/2, j0 = floor(y) */
+    int i0 = ax.i0, i1 = ax.i1, j0 = ay.i0, j1 = ay.i1;
+    double fx = ax.f, fy = ay.f;
     const float *r0 = image_px(im, 0, h - 1 - j0); /* row of j0 (rows counted from the top) */
     const float *r1 = image_px(im, 0, h - 1 - j1);
     const float *c00 = r0 + 3 * i0, *c10 = r0 + 3 * i1, *c01 = r1 + 3 * i0, *c11 = r1 + 3 * i1;

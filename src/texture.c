@@ -112,7 +112,7 @@ void texture_free(texture *t)
 
 /* ---- evaluation ------------------------------------------------------------------------- */
 
-static double uv_length(uv2 a) { return sqrt(a.u * a.u + a.v * a.v); }
+static double uv_dot(uv2 a, uv2 b) { return a.u * b.u + a.v * b.v; }
 
 static double smoothstep(double a, double b, double x)
 {
@@ -219,8 +219,8 @@ rgb texture_eval(const texture *t, const texture_query *q)
              * plane: the long axis (pbrt's max) blurs the short one away, the short axis
              * aliases; the area's side measured 3.4x less error than max on the receding
              * checkerboard at 1 spp (docs/texture-mapping.md).  Equal to both when isotropic. */
-            return mipmap_lookup_trilinear(&t->mip, q->st,
-                                           sqrt(uv_length(q->dst_dx) * uv_length(q->dst_dy)));
+            return mipmap_lookup_trilinear_axes(&t->mip, q->st, uv_dot(q->dst_dx, q->dst_dx),
+                                                uv_dot(q->dst_dy, q->dst_dy));
         case TEXFILTER_EWA:
             assert(t->has_mip && "texture_prepare(t, TEXFILTER_EWA) first");
             return mipmap_lookup_ewa(&t->mip, q->st, q->dst_dx, q->dst_dy);

@@ -52,6 +52,11 @@ typedef struct mipmap {
     image level[MIPMAP_MAX_LEVELS];  /* level[0] is a shallow copy of the base: its pixels are
                                         the caller's; levels 1.. are owned */
     double ewa_weight[MIPMAP_EWA_LUT_SIZE]; /* weight at r^2 = i / (SIZE - 1) */
+    float *packed;                   /* trilinear's copy of every level: texels as 4 floats
+                                        (R, G, B, 0), 16 bytes, so a texel is one aligned load
+                                        and the filter blends three channels at once.  Owned;
+                                        4/3 of the base's size again (level 0 included) */
+    size_t packed_at[MIPMAP_MAX_LEVELS]; /* level l's first texel in `packed` (texels) */
 } mipmap;
 
 /* Build the pyramid of `base` (non-empty) for lookups with `wrap`.  The mipmap REFERENCES the
@@ -82,8 +87,15 @@ double mipmap_level_for_footprint(const mipmap *m, double width_in_texels);
  * l = floor(L), f = L - l:
  *     c = (1 - f) bilinear(level l, st) + f bilinear(level l + 1, st).
  * Continuous in footprint_width and in st; footprint <= 1 texel is a plain bilinear lookup of
- * the base.  Allocation free. */
+ * the base.  Reads the packed levels and blends in float (single precision, as the texels are
+ * stored): within a few float ulps of the same formula in double.  Allocation free. */
 rgb mipmap_lookup_trilinear(const mipmap *m, uv2 st, double footprint_width);
+
+/* mipmap_lookup_trilinear with the footprint given by the SQUARED lengths of its two axes (texture
+ * units; e.g. |dst/dx|^2 and |dst/dy|^2): footprint_width = (len2_a len2_b)^(1/4), the side of
+ * the square of the footprint's area, found by a single log2 with no square root (the level
+ * is within rounding of mipmap_lookup_trilinear's). */
+rgb mipmap_lookup_trilinear_axes(const mipmap *m, uv2 st, double len2_a, double len2_b);
 
 /* EWA lookup (pbrt-v3 MIPMap::EWA).  dst_dx, dst_dy: the change of (s, t) per pixel step in x
  * and y (texture units), i.e. the two axes of the pixel's footprint in texture space.

@@ -69,4 +69,33 @@ rgb texlookup_nearest(const image *im, uv2 st, wrap_mode wrap);
  * the weights). */
 rgb texlookup_bilinear(const image *im, uv2 st, wrap_mode wrap);
 
+/* Past this magnitude a coordinate's floor is wrapped in double, below it as an int: 2^30
+ * leaves room for the + 1 of a bilinear neighbour without reaching INT_MAX. */
+#define TEXLOOKUP_INT_SAFE 0x1p30
+
+/* One axis of a bilinear lookup: the two texels blended and the weight of the second. */
+typedef struct texlookup_axis {
+    int i0, i1; /* floor(x) and floor(x) + 1, wrapped into [0, n) */
+    double f;   /* x - floor(x) in [0, 1): i1's weight (0 for a non-finite x) */
+} texlookup_axis;
+
+texlookup_axis texlookup_bilinear_axis_far(double x, int n, wrap_mode wrap);
+
+/* One axis of a bilinear lookup over n texels (for lookups on other layouts, such as mipmap.h's
+ * packed levels), x = s n - 1/2 (texel centres at integers); a non-finite x reads a border
+ * texel with weight 1.  Inline for the common cases, both texels inside or a tiled
+ * power-of-two texture; the rest (other wraps, huge or non-finite x) is
+ * texlookup_bilinear_axis_far. */
+static inline texlookup_axis texlookup_bilinear_axis(double x, int n, wrap_mode wrap)
+{
+    if (fabs(x) < TEXLOOKUP_INT_SAFE) { /* false for NaN and infinities */
+        int k = (int)x;
+        k -= x < (double)k; /* floor: truncation steps down for a negative non-integer */
+        if (k >= 0 && k + 1 < n) return (texlookup_axis){k, k + 1, x - k};
+        if (wrap == WRAP_REPEAT && (n & (n - 1)) == 0) /* a tiled power-of-two texture: */
+            return (texlookup_axis){k & (n - 1), (k + 1) & (n - 1), x - k}; /* k mod n, two's complement */
+    }
+    return texlookup_bilinear_axis_far(x, n, wrap);
+}
+
 #endif

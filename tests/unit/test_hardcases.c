@@ -336,7 +336,7 @@ START_TEST(test_zero_and_whole_texture_footprints_give_bilinear_and_mean)
     ck_assert_int_eq(mipmap_build(&m, &im, WRAP_REPEAT, &err), 0);
     uv2 st = {0.3, 0.7}, zero = {0, 0};
     rgb bl = texlookup_bilinear(&im, st, WRAP_REPEAT);
-    ck_assert_near(mipmap_lookup_trilinear(&m, st, 0).r, bl.r, 1e-12);
+    ck_assert_near(mipmap_lookup_trilinear(&m, st, 0).r, bl.r, 1e-6); /* trilinear works in float */
     ck_assert_near(mipmap_lookup_ewa(&m, st, zero, zero).r, bl.r, 1e-12);
     const double whole[] = {1, 2, 1e6, INFINITY};
     for (size_t i = 0; i < sizeof whole / sizeof whole[0]; i++) {
