@@ -30,10 +30,11 @@
  * Filters (texture_filter) and what each does without differentials (all derivatives zero):
  *   nearest    image: the texel containing (s, t); checker, solids: the point value.
  *   bilinear   image: texlookup_bilinear; checker, solids: the point value.
- *   trilinear  image: mip level from the footprint width w = max(|dst/dx|, |dst/dy|) (texture
- *              units), mipmap_lookup_trilinear; checker: the exact box-filtered value over a
- *              box w wide in s and in t; solids: octaves band-limited by the footprint
- *              max(|dP/dx|, |dP/dy|) (perlin.h's filtered sums).
+ *   trilinear  image: mip level from the footprint width w = sqrt(|dst/dx| |dst/dy|) (texture
+ *              units: the side of the square of the footprint's area),
+ *              mipmap_lookup_trilinear_axes; checker: the exact box-filtered value over the box
+ *              max(|ds/dx|, |ds/dy|) wide in s (likewise t); solids: octaves band-limited by
+ *              the footprint max(|dP/dx|, |dP/dy|) (perlin.h's filtered sums).
  *   ewa        image: mipmap_lookup_ewa with both derivative vectors; checker and solids: as
  *              trilinear.
  *   Fallback: zero derivatives mean "no footprint known" (for example after a diffuse bounce):
