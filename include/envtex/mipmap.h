@@ -55,7 +55,8 @@ typedef struct mipmap {
     float *packed;                   /* trilinear's copy of every level: texels as 4 floats
                                         (R, G, B, 0), 16 bytes, so a texel is one aligned load
                                         and the filter blends three channels at once.  Owned;
-                                        4/3 of the base's size again (level 0 included) */
+                                        16 bytes a texel over all levels (level 0 included):
+                                        about 1.8 times the base image's bytes */
     size_t packed_at[MIPMAP_MAX_LEVELS]; /* level l's first texel in `packed` (texels) */
 } mipmap;
 
