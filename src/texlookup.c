@@ -69,14 +69,6 @@ const char *texlookup_wrap_name(wrap_mode wrap)
     return (unsigned)wrap < 3 ? wrap_names[wrap] : "unknown";
 }
 
-/* floor(x) for |x| < WRAP_INT_SAFE: truncate toward zero, then step down for a negative
- * non-integer (exact: x is converted to the integer it truncates to) */
-static inline int fast_floor(double x)
-{
-    int i = (int)x;
-    return i - (x < (double)i);
-}
-
 /* i in any int range wrapped into [0, n), with the cheap cases first: inside, then repeat by a
  * mask when n is a power of two (the usual texture), else texlookup_wrap (a division) */
 static inline int wrap_fast(int i, int n, wrap_mode wrap)
@@ -91,7 +83,7 @@ static inline int wrap_fast(int i, int n, wrap_mode wrap)
 texlookup_axis texlookup_bilinear_axis_far(double x, int n, wrap_mode wrap)
 {
     if (fabs(x) < WRAP_INT_SAFE) { /* false for NaN and infinities */
-        int k = fast_floor(x);
+        int k = texlookup_fast_floor(x);
         return (texlookup_axis){wrap_fast(k, n, wrap), wrap_fast(k + 1, n, wrap), x - k};
     }
     double x0 = floor(x), fx = x - x0;
@@ -102,7 +94,7 @@ texlookup_axis texlookup_bilinear_axis_far(double x, int n, wrap_mode wrap)
 /* floor(x) wrapped, the integer path first (as texlookup_bilinear_axis) */
 static inline int nearest_axis(double x, int n, wrap_mode wrap)
 {
-    if (fabs(x) < WRAP_INT_SAFE) return wrap_fast(fast_floor(x), n, wrap);
+    if (fabs(x) < WRAP_INT_SAFE) return wrap_fast(texlookup_fast_floor(x), n, wrap);
     return wrap_integer(floor(x), n, wrap);
 }
 

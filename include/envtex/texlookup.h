@@ -73,6 +73,14 @@ rgb texlookup_bilinear(const image *im, uv2 st, wrap_mode wrap);
  * leaves room for the + 1 of a bilinear neighbour without reaching INT_MAX. */
 #define TEXLOOKUP_INT_SAFE 0x1p30
 
+/* floor(x) for |x| < TEXLOOKUP_INT_SAFE: truncate toward zero, then step down for a negative
+ * non-integer (exact: x is compared with the integer it truncates to) */
+static inline int texlookup_fast_floor(double x)
+{
+    int i = (int)x;
+    return i - (x < (double)i);
+}
+
 /* One axis of a bilinear lookup: the two texels blended and the weight of the second. */
 typedef struct texlookup_axis {
     int i0, i1; /* floor(x) and floor(x) + 1, wrapped into [0, n) */
@@ -89,8 +97,7 @@ texlookup_axis texlookup_bilinear_axis_far(double x, int n, wrap_mode wrap);
 static inline texlookup_axis texlookup_bilinear_axis(double x, int n, wrap_mode wrap)
 {
     if (fabs(x) < TEXLOOKUP_INT_SAFE) { /* false for NaN and infinities */
-        int k = (int)x;
-        k -= x < (double)k; /* floor: truncation steps down for a negative non-integer */
+        int k = texlookup_fast_floor(x);
         if (k >= 0 && k + 1 < n) return (texlookup_axis){k, k + 1, x - k};
         if (wrap == WRAP_REPEAT && (n & (n - 1)) == 0) /* a tiled power-of-two texture: */
             return (texlookup_axis){k & (n - 1), (k + 1) & (n - 1), x - k}; /* k mod n, two's complement */
