@@ -170,14 +170,18 @@ static void alias_build_table(const double *cdf, int n, distrib_alias *t, double
 }
 
 /* O(1) alias sampling: u = x n picks the cell i = floor(u), and f = u - i, uniform in [0, 1),
- * picks i itself (f < prob_i) or its alias; f is then rescaled to [0, 1) within that part. */
-static int alias_pick(const distrib_alias *t, int n, double xi, double *remapped)
+ * picks i itself (f < prob_i) or its alias; f is then rescaled to [0, 1) within that part.
+ * A branch, not a select, on purpose: on a table bigger than the cache the CPU guesses the
+ * branch and goes on (to the caller's read of the bin's data) while the cell is still on its
+ * way from memory; a select waits for the cell.  Measured on the 2048 x 1024 sun map, the
+ * select took ~1.3x the time a sample. */
+static inline int alias_pick(const distrib_alias *t, int n, double xi, double *remapped)
 {
     double u = clamp_xi(xi) * (double)n;
     int i = (int)u;
     if (i > n - 1) i = n - 1; /* u rounds up to n when xi is within an ulp of 1 */
     double f = u - (double)i;
-    if (f > DISTRIB_ONE_MINUS_ULP) f = DISTRIB_ONE_MINUS_ULP;
+    f = f < DISTRIB_ONE_MINUS_ULP ? f : DISTRIB_ONE_MINUS_ULP;
     double prob = (double)t[i].prob;
     int bin;
     double r;
@@ -188,7 +192,7 @@ static int alias_pick(const distrib_alias *t, int n, double xi, double *remapped
         bin = t[i].alias;
         r = (f - prob) / (1.0 - prob);
     }
-    if (remapped) *remapped = r > DISTRIB_ONE_MINUS_ULP ? DISTRIB_ONE_MINUS_ULP : r;
+    if (remapped) *remapped = r < DISTRIB_ONE_MINUS_ULP ? r : DISTRIB_ONE_MINUS_ULP;
     return bin;
 }
 
@@ -452,12 +456,20 @@ void distrib2d_sample_alias(const distrib2d *d, double xi_outer, double xi_inner
 {
     assert(outer && inner);
     assert(d->cond_alias && "call distrib2d_alias_build first");
-    double p_outer;
-    int o = distrib1d_sample_alias(&d->marginal, xi_outer, &p_outer, rem_outer);
+    int o = alias_pick(d->marginal.alias, d->n_outer, xi_outer, rem_outer); /* distrib1d_sample_alias */
     int i = alias_pick(d->cond_alias + (size_t)o * (size_t)d->n_inner, d->n_inner, xi_inner,
                        rem_inner);
-    const double *cdf = column_cdf(d, o);
-    if (pmf) *pmf = p_outer * (cdf[i + 1] - cdf[i]); /* p(outer) p(inner | outer) */
+    if (pmf) { /* p(outer) p(inner | outer), read only when asked for (two more cache lines) */
+        const double *cdf = column_cdf(d, o);
+        *pmf = distrib1d_pmf(&d->marginal, o) * (cdf[i + 1] - cdf[i]);
+    }
     *outer = o;
     *inner = i;
+}
+
+int distrib2d_sample_alias_inner(const distrib2d *d, int outer, double xi_inner, double *rem_inner)
+{
+    assert(d->cond_alias && "call distrib2d_alias_build first");
+    assert(outer >= 0 && outer < d->n_outer);
+    return alias_pick(d->cond_alias + (size_t)outer * (size_t)d->n_inner, d->n_inner, xi_inner, rem_inner);
 }

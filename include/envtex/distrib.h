@@ -169,4 +169,22 @@ void distrib2d_sample(const distrib2d *d, double xi_outer, double xi_inner, int 
 void distrib2d_sample_alias(const distrib2d *d, double xi_outer, double xi_inner, int *outer,
                             int *inner, double *pmf, double *rem_outer, double *rem_inner);
 
+/* distrib2d_sample_alias in two halves, for a caller that prefetches between them:
+ *     int o = distrib1d_sample_alias(&d->marginal, xi_outer, NULL, &rem_outer);
+ *     __builtin_prefetch(data_of(o, distrib_alias_first_bin(d->n_inner, xi_inner)));
+ *     int i = distrib2d_sample_alias_inner(d, o, xi_inner, &rem_inner);
+ * give the same o, i and remapped values as distrib2d_sample_alias. */
+int distrib2d_sample_alias_inner(const distrib2d *d, int outer, double xi_inner, double *rem_inner);
+
+/* The cell an alias pick of xi over n bins reads, floor(xi n) with xi clamped to [0, 1): the
+ * bin the pick returns unless it takes that cell's alias.  On a table far bigger than the
+ * cache, a caller that reads its own data at the returned bin can prefetch it here, so that
+ * its miss and the table's overlap instead of following each other. */
+static inline int distrib_alias_first_bin(int n, double xi)
+{
+    double u = (xi >= 0.0 ? (xi < 1.0 ? xi : 1.0) : 0.0) * (double)n; /* NaN: 0 */
+    int i = (int)u;
+    return i < n - 1 ? i : n - 1;
+}
+
 #endif

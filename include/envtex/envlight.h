@@ -63,6 +63,10 @@ typedef struct envlight {
     int fell_back;       /* 1 if the map was black and sampling is uniform */
     double *cos_edge;    /* h + 1 entries: cos theta at the top edge of each row (and the bottom) */
     double *row_omega;   /* h entries: solid angle of one texel of each row */
+    double *phi_cs;      /* cdf modes: cos and sin of phi_j = 2 pi j / (w phi_sub), interleaved,
+                          * j in [0, w phi_sub): a sample's phi = phi_j + delta, delta < 2 pi / 256,
+                          * is turned into cos and sin by the angle-addition formula (no libm call) */
+    int phi_sub;         /* table entries per column: ceil(256 / w) */
     int identity;        /* the envmap transform is the identity: skip the matrix per sample */
     mat4 to_world;       /* envmap frame -> world (the transpose of env->to_env, a rotation) */
     envlight_point *points; int n_points; /* mediancut */

@@ -868,6 +868,51 @@ START_TEST(test_distrib2d_zero_columns_and_cells_are_never_chosen)
 }
 END_TEST
 
+/* The two halves a caller prefetches between (distrib2d_sample_alias_inner after the marginal
+ * pick) give what distrib2d_sample_alias gives, and distrib_alias_first_bin names the cell the
+ * row pick reads: the pick returns that bin or that cell's alias, for xi over [0, 1], its edges
+ * and out-of-range values. */
+START_TEST(test_distrib2d_alias_in_two_halves_is_the_whole)
+{
+    double w[T2_MAX];
+    int no, ni;
+    zero_grid(w, &no, &ni);
+    distrib2d d = {0};
+    error err = {0};
+    ck_assert_int_eq(distrib2d_init(&d, w, no, ni, &err), 0);
+    ck_assert_int_eq(distrib2d_alias_build(&d, &err), 0);
+    enum { STEPS = 400 };
+    const double odd[] = {-1.0, NAN, 2.0, INFINITY};
+    int n_odd = (int)(sizeof odd / sizeof odd[0]), n_xi = STEPS + 1 + N_XI_LOW + N_XI_HIGH + n_odd;
+    long differ = 0, not_first = 0;
+    for (int a = 0; a < n_xi; a++) {
+        for (int b = 0; b < n_xi; b++) {
+            double xs[2];
+            int ks[2] = {a, b};
+            for (int t = 0; t < 2; t++) {
+                int k = ks[t];
+                xs[t] = k <= STEPS ? (double)k / STEPS
+                        : k <= STEPS + N_XI_LOW ? xi_low[k - STEPS - 1]
+                        : k <= STEPS + N_XI_LOW + N_XI_HIGH ? xi_high[k - STEPS - 1 - N_XI_LOW]
+                                                            : odd[k - STEPS - 1 - N_XI_LOW - N_XI_HIGH];
+            }
+            int o, i;
+            double ro, ri, ro2, ri2;
+            distrib2d_sample_alias(&d, xs[0], xs[1], &o, &i, NULL, &ro, &ri);
+            int o2 = distrib1d_sample_alias(&d.marginal, xs[0], NULL, &ro2);
+            int i2 = distrib2d_sample_alias_inner(&d, o2, xs[1], &ri2);
+            differ += o2 != o || i2 != i || ro2 != ro || ri2 != ri;
+            int first = distrib_alias_first_bin(ni, xs[1]);
+            ck_assert(first >= 0 && first < ni);
+            not_first += i != first && i != d.cond_alias[(size_t)o * ni + first].alias;
+        }
+    }
+    ck_assert_msg(differ == 0, "%ld samples differ in two halves", differ);
+    ck_assert_msg(not_first == 0, "%ld picks neither the first bin nor its alias", not_first);
+    distrib2d_free(&d);
+}
+END_TEST
+
 /* Catches the ends of either search landing on a zero column or cell. */
 START_TEST(test_distrib2d_edge_xi_give_the_first_and_last_nonzero_cells)
 {
@@ -1096,6 +1141,7 @@ Suite *distrib_suite(void)
     tcase_add_loop_test(tc, test_distrib2d_alias_samples_fit_the_binary_search_pmf, 0, T2_COUNT);
     tcase_add_test(tc, test_distrib2d_remapped_values_are_uniform_on_0_1);
     tcase_add_test(tc, test_distrib2d_zero_columns_and_cells_are_never_chosen);
+    tcase_add_test(tc, test_distrib2d_alias_in_two_halves_is_the_whole);
     tcase_add_test(tc, test_distrib2d_edge_xi_give_the_first_and_last_nonzero_cells);
     tcase_add_test(tc, test_distrib2d_inversion_is_monotone_in_each_xi);
     tcase_add_test(tc, test_distrib2d_all_zero_weights_fall_back_to_uniform);

@@ -363,6 +363,80 @@ START_TEST(test_envlight_zero_texels_and_edge_xi_are_never_sampled)
 }
 END_TEST
 
+/* A sample's phi comes from a table of cos and sin at >= 256 steps and a short Taylor series
+ * for the rest (envlight.c, sample_cos_sin_phi).  Its direction must be a unit vector to the
+ * last few ulps (a term too few in either series is off by ~1e-13 on a 1-column map) and lie
+ * in the one lit column, on maps 1 to 2000 columns wide (1 to 256 table steps per column); and
+ * on a constant map, where phi is known, it must be that phi to a few ulps. */
+#define UNIT_TOL 1e-15
+#define PHI_TOL 1e-14 /* radians: a few ulps of 2 pi */
+START_TEST(test_envlight_sampled_phi_is_unit_and_in_its_column)
+{
+    const int widths[] = {1, 2, 3, 7, 255, 256, 257, 2000};
+    rng g;
+    rng_seed(&g, 23, 0);
+    double worst = 0;
+    long outside = 0;
+    for (size_t k = 0; k < sizeof widths / sizeof widths[0]; k++) {
+        int w = widths[k], h = w > 1 ? w / 2 : 1, lit = w / 3;
+        image im;
+        fill(&im, w, h);
+        for (int r = 0; r < h; r++) set_gray(&im, lit, r, 1.0 + r);
+        envmap env = env_of(&im, 1, mat4_identity());
+        for (int cfg = C_CDF_BINARY; cfg < C_COUNT; cfg++) {
+            envlight el;
+            build(&el, &env, cfg_mode[cfg], cfg_sampler[cfg], 0);
+            for (int i = 0; i < 20000; i++) {
+                double xi1 = i < 3 ? 0.5 * i : rng_uniform(&g); /* 0, 1/2, 1 and random */
+                envlight_sample_result s;
+                ck_assert(envlight_sample(&el, xi1, rng_uniform(&g), 0, &s));
+                double e = fabs(vec3_dot(s.wi, s.wi) - 1);
+                worst = e > worst ? e : worst;
+                uv2 uv;
+                ck_assert_int_eq(latlong_dir_to_uv(s.wi, &uv), 0);
+                double x = uv.u * w; /* in [lit, lit + 1], or at the seam 0 = w for column 0 */
+                int in = (x > lit - EDGE_TOL && x < lit + 1 + EDGE_TOL) || (lit == 0 && x > w - EDGE_TOL);
+                outside += !in;
+            }
+            envlight_free(&el);
+        }
+        image_free(&im);
+    }
+    ck_assert_msg(worst <= UNIT_TOL, "| |wi|^2 - 1 | up to %.3g", worst);
+    ck_assert_msg(outside == 0, "%ld samples outside the lit column", outside);
+    /* a constant one-row map a power of two wide (up to 256, in the weights' rounding): every
+     * column equally likely and the CDF exact to an ulp, so phi = 2 pi (c + rc) / w = 2 pi xi1,
+     * and the table's phi must be that angle (atan2 of the sample).  Wider, the CDF's rounding,
+     * times w in the remapped value, reaches ~1e-13 */
+    const int pow2[] = {1, 2, 4, 256};
+    double worst_phi = 0;
+    for (size_t k = 0; k < sizeof pow2 / sizeof pow2[0]; k++) {
+        int w = pow2[k];
+        image im;
+        fill(&im, w, 1);
+        for (int c = 0; c < w; c++) set_gray(&im, c, 0, 0.5);
+        envmap env = env_of(&im, 1, mat4_identity());
+        for (int cfg = C_CDF_BINARY; cfg < C_COUNT; cfg++) {
+            envlight el;
+            build(&el, &env, cfg_mode[cfg], cfg_sampler[cfg], 0);
+            for (int i = 0; i < 20000; i++) {
+                double xi1 = rng_uniform(&g);
+                envlight_sample_result s;
+                ck_assert(envlight_sample(&el, xi1, rng_uniform(&g), 0, &s));
+                double phi = atan2(s.wi.y, s.wi.x), want = 2 * M_PI * xi1;
+                if (phi < 0) phi += 2 * M_PI;
+                double e = fabs(phi - want);
+                e = e < 2 * M_PI - e ? e : 2 * M_PI - e; /* 0 and 2 pi are one angle */
+                worst_phi = e > worst_phi ? e : worst_phi;
+            }
+            envlight_free(&el);
+        }
+        image_free(&im);
+    }
+    ck_assert_msg(worst_phi <= PHI_TOL, "phi off 2 pi xi by up to %.3g", worst_phi);
+}
+END_TEST
+
 /* NaN, +-Inf and negative channels are counted and used as 0: radiance 0 there (that channel),
  * never sampled when the whole texel is bad, not part of the power */
 START_TEST(test_envlight_bad_texels_are_counted_dark_and_never_sampled)
@@ -790,6 +864,7 @@ Suite *envlight_suite(void)
     tcase_add_test(tc, test_envlight_non_rotation_transform_is_refused);
     tcase_add_test(tc, test_envlight_all_black_map_falls_back_to_uniform);
     tcase_add_test(tc, test_envlight_zero_texels_and_edge_xi_are_never_sampled);
+    tcase_add_test(tc, test_envlight_sampled_phi_is_unit_and_in_its_column);
     tcase_add_test(tc, test_envlight_bad_texels_are_counted_dark_and_never_sampled);
     tcase_add_test(tc, test_envlight_large_table_is_normalized);
     tcase_add_test(tc, test_envlight_cdf_pdf_is_radiance_over_power);
