@@ -57,6 +57,8 @@
  * 8192 x 4096 ~0.35 s.  A 2D sample costs ~20-50 ns while the tables sit in cache; on a table
  * far bigger than the cache, with samples spread over it, both samplers are bound by memory
  * latency: ~120 ns alias (2 misses), ~140-200 ns binary search with the guide (~550 without).
+ * A caller that reads its own data at the sampled cell can overlap that miss with the
+ * table's: see distrib2d_sample_alias_inner and distrib_alias_first_bin.
  */
 #ifndef ENVTEX_DISTRIB_H
 #define ENVTEX_DISTRIB_H
