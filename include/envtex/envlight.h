@@ -67,6 +67,7 @@ typedef struct envlight {
                           * j in [0, w phi_sub): a sample's phi = phi_j + delta, delta < 2 pi / 256,
                           * is turned into cos and sin by the angle-addition formula (no libm call) */
     int phi_sub;         /* table entries per column: ceil(256 / w) */
+    double phi_step;     /* 2 pi / (w phi_sub), the table's step */
     int identity;        /* the envmap transform is the identity: skip the matrix per sample */
     mat4 to_world;       /* envmap frame -> world (the transpose of env->to_env, a rotation) */
     envlight_point *points; int n_points; /* mediancut */
