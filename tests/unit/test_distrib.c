@@ -824,6 +824,16 @@ static void zero_grid(double *w, int *no, int *ni)
             w[o * 6 + i] = (o % 3 == 0 || i == 0 || i == 5 || (i + o) % 4 == 0) ? 0.0 : 1.0 + i + o;
 }
 
+/* The sweeps of xi below: k / SWEEP_STEPS for k = 0 .. SWEEP_STEPS, then the edge values
+ * xi_low and xi_high (NaN, infinities and out-of-range values among them). */
+enum { SWEEP_STEPS = 400, N_SWEEP = SWEEP_STEPS + 1 + N_XI_LOW + N_XI_HIGH };
+static double sweep_xi(int k)
+{
+    return k <= SWEEP_STEPS ? (double)k / SWEEP_STEPS
+           : k <= SWEEP_STEPS + N_XI_LOW ? xi_low[k - SWEEP_STEPS - 1]
+                                         : xi_high[k - SWEEP_STEPS - 1 - N_XI_LOW];
+}
+
 /* Catches a zero column or zero cell reachable from any xi pair, edges included. */
 START_TEST(test_distrib2d_zero_columns_and_cells_are_never_chosen)
 {
@@ -834,19 +844,10 @@ START_TEST(test_distrib2d_zero_columns_and_cells_are_never_chosen)
     error err = {0};
     ck_assert_int_eq(distrib2d_init(&d, w, no, ni, &err), 0);
     ck_assert_int_eq(distrib2d_alias_build(&d, &err), 0);
-    enum { STEPS = 400 };
-    int n_xi = STEPS + 1 + N_XI_LOW + N_XI_HIGH;
     long zero_hits = 0, out_of_range = 0;
-    for (int a = 0; a < n_xi; a++) {
-        for (int b = 0; b < n_xi; b++) {
-            double xs[2];
-            int ks[2] = {a, b};
-            for (int t = 0; t < 2; t++) {
-                int k = ks[t];
-                xs[t] = k <= STEPS ? (double)k / STEPS
-                        : k <= STEPS + N_XI_LOW ? xi_low[k - STEPS - 1]
-                                                : xi_high[k - STEPS - 1 - N_XI_LOW];
-            }
+    for (int a = 0; a < N_SWEEP; a++) {
+        for (int b = 0; b < N_SWEEP; b++) {
+            double xs[2] = {sweep_xi(a), sweep_xi(b)};
             for (int alias = 0; alias < 2; alias++) {
                 int o = -1, i = -1;
                 double pmf = 0.0;
@@ -870,8 +871,8 @@ END_TEST
 
 /* The two halves a caller prefetches between (distrib2d_sample_alias_inner after the marginal
  * pick) give what distrib2d_sample_alias gives, and distrib_alias_first_bin names the cell the
- * row pick reads: the pick returns that bin or that cell's alias, for xi over [0, 1], its edges
- * and out-of-range values. */
+ * row pick reads: the pick returns that bin or that cell's alias, for the sweep of xi (its
+ * edges, NaN and out-of-range values included). */
 START_TEST(test_distrib2d_alias_in_two_halves_is_the_whole)
 {
     double w[T2_MAX];
@@ -881,21 +882,10 @@ START_TEST(test_distrib2d_alias_in_two_halves_is_the_whole)
     error err = {0};
     ck_assert_int_eq(distrib2d_init(&d, w, no, ni, &err), 0);
     ck_assert_int_eq(distrib2d_alias_build(&d, &err), 0);
-    enum { STEPS = 400 };
-    const double odd[] = {-1.0, NAN, 2.0, INFINITY};
-    int n_odd = (int)(sizeof odd / sizeof odd[0]), n_xi = STEPS + 1 + N_XI_LOW + N_XI_HIGH + n_odd;
     long differ = 0, not_first = 0;
-    for (int a = 0; a < n_xi; a++) {
-        for (int b = 0; b < n_xi; b++) {
-            double xs[2];
-            int ks[2] = {a, b};
-            for (int t = 0; t < 2; t++) {
-                int k = ks[t];
-                xs[t] = k <= STEPS ? (double)k / STEPS
-                        : k <= STEPS + N_XI_LOW ? xi_low[k - STEPS - 1]
-                        : k <= STEPS + N_XI_LOW + N_XI_HIGH ? xi_high[k - STEPS - 1 - N_XI_LOW]
-                                                            : odd[k - STEPS - 1 - N_XI_LOW - N_XI_HIGH];
-            }
+    for (int a = 0; a < N_SWEEP; a++) {
+        for (int b = 0; b < N_SWEEP; b++) {
+            double xs[2] = {sweep_xi(a), sweep_xi(b)};
             int o, i;
             double ro, ri, ro2, ri2;
             distrib2d_sample_alias(&d, xs[0], xs[1], &o, &i, NULL, &ro, &ri);
