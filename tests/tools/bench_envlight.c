@@ -6,28 +6,10 @@
 #include <stdlib.h>
 #include <time.h>
 
+#include "bench.h"
 #include "envtex/envlight.h"
 #include "envtex/genenv.h"
 #include "envtex/rng.h"
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec + ts.tv_nsec * 1e-9;
-}
-
-static int cmp(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
-
-static double median(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 static int make_env(int w, image *img, envmap *env, error *err)
 {

@@ -19,6 +19,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "bench.h"
 #include "envtex/angular.h"
 #include "envtex/convert.h"
 #include "envtex/cubemap.h"
@@ -31,25 +32,6 @@
 
 #define N_DIRS (1 << 20)
 #define POWER_TOL 0.005
-
-static double now(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
-
-static double median(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp_double);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 /* The representation's direction -> image coordinates; the face index counts for cubes. */
 static double to_uv(convert_kind k, vec3 d, double h)

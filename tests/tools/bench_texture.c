@@ -22,31 +22,13 @@
 #include <string.h>
 #include <time.h>
 
+#include "bench.h"
 #include "envtex/perlin.h"
 #include "envtex/rng.h"
 #include "envtex/texture.h"
 
 #define N_QUERIES (1 << 18)
 #define TEX_SIZE 512
-
-static double now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return ts.tv_sec + ts.tv_nsec * 1e-9;
-}
-
-static int cmp(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
-
-static double median(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, cmp);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 int main(int argc, char **argv)
 {

@@ -1,5 +1,4 @@
 /* test_exrfile.c - OpenEXR reading and writing through OpenEXRCore. */
-#include <dirent.h>
 #include <fcntl.h>
 #include <math.h>
 #include <openexr.h>
@@ -12,52 +11,10 @@
 #include "envtex/exrfile.h"
 #include "envtex/pfm.h"
 #include "envtex/imageio.h"
+#include "testdir.h"
 #include "unit.h"
 
 #define COURTYARD "/work/shared/hdri/courtyard.exr"
-
-static char dir[64];
-
-static void make_dir(void)
-{
-    strcpy(dir, "/tmp/envtex_exr_XXXXXX");
-    ck_assert_ptr_nonnull(mkdtemp(dir));
-}
-
-/* Number of entries in the test folder whose name contains `part`. */
-static int count_files(const char *part)
-{
-    DIR *d = opendir(dir);
-    ck_assert_ptr_nonnull(d);
-    int n = 0;
-    for (struct dirent *e; (e = readdir(d));)
-        if (e->d_name[0] != '.' && strstr(e->d_name, part)) n++;
-    closedir(d);
-    return n;
-}
-
-static void remove_dir(void)
-{
-    DIR *d = opendir(dir);
-    ck_assert_ptr_nonnull(d);
-    char p[512];
-    for (struct dirent *e; (e = readdir(d));) {
-        if (!strcmp(e->d_name, ".") || !strcmp(e->d_name, "..")) continue;
-        snprintf(p, sizeof p, "%s/%s", dir, e->d_name);
-        unlink(p);
-    }
-    closedir(d);
-    ck_assert_int_eq(rmdir(dir), 0);
-}
-
-static const char *in_dir(const char *name)
-{
-    static char buf[4][256];
-    static int i;
-    i = (i + 1) % 4;
-    snprintf(buf[i], sizeof buf[i], "%s/%s", dir, name);
-    return buf[i];
-}
 
 /* A test picture with values over many decades, negatives, and a distinct value per pixel. */
 static void fill_test_image(image *im, int w, int h)
