@@ -3,6 +3,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "envtex/tonemap.h"
@@ -19,6 +20,53 @@ static int same_size(const image *a, const image *ref, error *err)
     return 0;
 }
 
+/* The largest `cap` values of a stream, kept in a min-heap: v[0] is the least of them, the one
+ * a larger newcomer replaces.  O(log cap) a value, no allocation after the first. */
+typedef struct largest { double *v; long n, cap; } largest;
+
+static void largest_sift_down(largest *t, long i)
+{
+    for (;;) {
+        long c = 2 * i + 1; /* children 2i+1, 2i+2 */
+        if (c >= t->n) return;
+        if (c + 1 < t->n && t->v[c + 1] < t->v[c]) c++;
+        if (t->v[i] <= t->v[c]) return;
+        double x = t->v[i];
+        t->v[i] = t->v[c];
+        t->v[c] = x;
+        i = c;
+    }
+}
+
+static void largest_add(largest *t, double x)
+{
+    if (t->n < t->cap) { /* not full: append, sift up to its parent (i-1)/2 */
+        long i = t->n++;
+        t->v[i] = x;
+        while (i > 0 && t->v[(i - 1) / 2] > t->v[i]) {
+            double y = t->v[i];
+            t->v[i] = t->v[(i - 1) / 2];
+            t->v[(i - 1) / 2] = y;
+            i = (i - 1) / 2;
+        }
+    } else if (t->cap > 0 && x > t->v[0]) { /* full: replace the least */
+        t->v[0] = x;
+        largest_sift_down(t, 0);
+    }
+}
+
+/* sum of the k largest values kept (k <= n): drop the n - k least, add up the rest */
+static double largest_sum(largest *t, long k)
+{
+    while (t->n > k) {
+        t->v[0] = t->v[--t->n];
+        largest_sift_down(t, 0);
+    }
+    double s = 0.0;
+    for (long i = 0; i < t->n; i++) s += t->v[i];
+    return s;
+}
+
 int compare_metrics(const image *a, const image *ref, compare_result *out, error *err)
 {
     memset(out, 0, sizeof *out);
@@ -26,6 +74,9 @@ int compare_metrics(const image *a, const image *ref, compare_result *out, error
     if (same_size(a, ref, err)) return -1;
     double se = 0.0, rel = 0.0, max_abs = 0.0; /* sums in double: up to 2^28 pixels */
     long used = 0;
+    largest top = {NULL, 0, (long)((double)a->w * a->h * COMPARE_RELMSE_TRIM)};
+    if (top.cap > 0 && !(top.v = malloc((size_t)top.cap * sizeof *top.v)))
+        return error_set(err, NULL, 0, "out of memory comparing %d x %d images", a->w, a->h);
     for (int y = 0; y < a->h; y++)
         for (int x = 0; x < a->w; x++) {
             const float *p = image_px(a, x, y), *q = image_px(ref, x, y);
@@ -34,25 +85,32 @@ int compare_metrics(const image *a, const image *ref, compare_result *out, error
             if (!fr) out->ref_nonfinite++;
             if (!fa || !fr) continue;
             used++;
+            double rel_px = 0.0;
             for (int k = 0; k < 3; k++) {
                 double d = (double)p[k] - (double)q[k];
-                se += d * d;                                                     /* (a - ref)^2 */
-                rel += d * d / ((double)q[k] * q[k] + COMPARE_RELMSE_EPSILON); /* / (ref^2 + eps) */
+                se += d * d;                                                        /* (a - ref)^2 */
+                rel_px += d * d / ((double)q[k] * q[k] + COMPARE_RELMSE_EPSILON); /* / (ref^2 + eps) */
                 if (fabs(d) > max_abs) {
                     max_abs = fabs(d);
                     out->max_x = x;
                     out->max_y = y;
                 }
             }
+            rel += rel_px;
+            largest_add(&top, rel_px);
         }
     out->pixels = used;
+    long trim = (long)((double)used * COMPARE_RELMSE_TRIM); /* <= top.cap: used <= w h */
+    double rel_top = largest_sum(&top, trim);
+    free(top.v);
     if (used == 0) { /* nothing finite to compare: the metrics are undefined */
-        out->rmse = out->relmse = out->max_abs = out->psnr = NAN;
+        out->rmse = out->relmse = out->relmse_trim = out->max_abs = out->psnr = NAN;
         return 0;
     }
     double mse = se / (3.0 * (double)used);
     out->rmse = sqrt(mse);
     out->relmse = rel / (3.0 * (double)used);
+    out->relmse_trim = fmax(rel - rel_top, 0.0) / (3.0 * (double)(used - trim)); /* rounding: >= 0 */
     out->max_abs = max_abs;
     out->psnr = mse > 0.0 ? -10.0 * log10(mse) : INFINITY; /* 10 log10(peak^2 / mse), peak 1 */
     return 0;

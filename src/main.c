@@ -257,7 +257,7 @@ static int cmd_render(int argc, char **argv)
             error_prefix(&err, "--ref %s", ref_path);
             goto done;
         }
-        printf(" relmse=%.6g rmse=%.6g", cr.relmse, cr.rmse);
+        printf(" relmse=%.6g rmse=%.6g relmse_trim=%.6g", cr.relmse, cr.rmse, cr.relmse_trim);
     }
     printf("\n");
     status = 0;
@@ -357,8 +357,8 @@ static int cmd_compare(int argc, char **argv)
         error_set(&err, a_path, 0, "%s (against %s)", err.msg, b_path);
         goto done;
     }
-    printf("rmse=%.6g relmse=%.6g psnr=%.3f max_abs=%.6g nan=%ld\n", cr.rmse, cr.relmse, cr.psnr,
-           cr.max_abs, cr.nonfinite);
+    printf("rmse=%.6g relmse=%.6g psnr=%.3f max_abs=%.6g nan=%ld relmse_trim=%.6g\n", cr.rmse, cr.relmse,
+           cr.psnr, cr.max_abs, cr.nonfinite, cr.relmse_trim);
     if (diff_path) {
         if (compare_diff_image(&a, &b, &d, &err) || imageio_write(diff_path, &d, NULL, &err)) goto done;
     }

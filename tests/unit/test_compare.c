@@ -65,6 +65,83 @@ START_TEST(test_relmse_epsilon_guards_black_reference_pixels)
 }
 END_TEST
 
+/* relmse_trim against a brute force: every pixel's term, sorted, the largest 0.1% (rounded
+ * down, of the finite pixels) left out.  Fireflies at the first and last pixels and between,
+ * growing along the scan, shrinking, and mixed (each order exercises the kept list differently);
+ * NaN pixels, so that the count comes from the pixels used. */
+START_TEST(test_relmse_trim_leaves_out_the_largest_tenth_of_a_percent)
+{
+    enum { W = 81, H = 50 }; /* 4050 pixels, 1100 NaN: 2950 used, 2 left out (not 4) */
+    static double term[W * H];
+    for (int order = 0; order < 3; order++) {
+        image a = {0}, ref = {0};
+        grey(&a, W, H, 0.0f);
+        grey(&ref, W, H, 0.0f);
+        int n = 0;
+        unsigned s = 12345;
+        for (int i = 0; i < W * H; i++) {
+            float *p = a.px + 3 * i, *q = ref.px + 3 * i;
+            int nan_px = i % W >= 59; /* 22 a row */
+            int firefly = !nan_px && (i == 0 || i == W * H - 23 || i == 1777 || i % 397 == 5);
+            float size = order == 0 ? (float)(i + 1) / 10 : order == 1 ? (float)(W * H - i) / 10
+                                                                       : (float)(i % 7 + 1) * 100;
+            double t = 0;
+            for (int k = 0; k < 3; k++) {
+                s = s * 1103515245u + 12345u;
+                q[k] = (float)((s >> 8) % 1000) / 500.0f;         /* 0 .. 2 */
+                p[k] = q[k] + (float)((s >> 4) % 100) / 1000.0f; /* + 0 .. 0.1 */
+                if (firefly) { /* on a reference of 1: its term grows with its size */
+                    q[k] = 1.0f;
+                    p[k] = 1.0f + size;
+                }
+                double d = (double)p[k] - (double)q[k];
+                t += d * d / ((double)q[k] * q[k] + COMPARE_RELMSE_EPSILON);
+            }
+            if (nan_px) p[1] = NAN;
+            else term[n++] = t;
+        }
+        ck_assert_int_eq(n, 2950);
+        for (int i = 1; i < n; i++) /* insertion sort, descending */
+            for (int j = i; j > 0 && term[j] > term[j - 1]; j--) {
+                double x = term[j];
+                term[j] = term[j - 1];
+                term[j - 1] = x;
+            }
+        double all = 0, rest = 0;
+        for (int i = 0; i < n; i++) {
+            all += term[i];
+            if (i >= 2) rest += term[i];
+        }
+        compare_result m;
+        error err = {0};
+        ck_assert_int_eq(compare_metrics(&a, &ref, &m, &err), 0);
+        ck_assert_int_eq(m.pixels, 2950);
+        ck_assert_double_eq_tol(m.relmse, all / (3.0 * n), 1e-12 * m.relmse);
+        ck_assert_msg(fabs(m.relmse_trim - rest / (3.0 * (n - 2))) <= 1e-9 * m.relmse_trim,
+                      "order %d: relmse_trim %.12g, want %.12g", order, m.relmse_trim, rest / (3.0 * (n - 2)));
+        ck_assert(m.relmse_trim < m.relmse);
+        image_free(&a);
+        image_free(&ref);
+    }
+}
+END_TEST
+
+/* Under 1000 pixels nothing is left out: relmse_trim is relmse. */
+START_TEST(test_relmse_trim_of_a_small_image_is_relmse)
+{
+    image a = {0}, ref = {0};
+    grey(&a, 31, 32, 0.5f); /* 992 pixels */
+    grey(&ref, 31, 32, 0.25f);
+    image_px(&a, 3, 4)[0] = 1000.0f;
+    compare_result m;
+    error err = {0};
+    ck_assert_int_eq(compare_metrics(&a, &ref, &m, &err), 0);
+    ck_assert(m.relmse_trim == m.relmse && m.relmse > 1000);
+    image_free(&a);
+    image_free(&ref);
+}
+END_TEST
+
 START_TEST(test_nonfinite_pixels_are_counted_and_left_out)
 {
     image a = {0}, ref = {0};
@@ -188,6 +265,8 @@ Suite *compare_suite(void)
     tcase_add_test(tc, test_equal_images_have_zero_error_and_infinite_psnr);
     tcase_add_test(tc, test_metrics_of_one_changed_channel_are_the_hand_computed_ones);
     tcase_add_test(tc, test_relmse_epsilon_guards_black_reference_pixels);
+    tcase_add_test(tc, test_relmse_trim_leaves_out_the_largest_tenth_of_a_percent);
+    tcase_add_test(tc, test_relmse_trim_of_a_small_image_is_relmse);
     tcase_add_test(tc, test_nonfinite_pixels_are_counted_and_left_out);
     tcase_add_test(tc, test_different_sizes_are_an_error_and_a_failed_verdict);
     tcase_add_test(tc, test_threshold_verdicts_follow_the_percent_hard_and_nan_rules);
