@@ -45,7 +45,7 @@ rgb pathtracer_radiance_diff(integrator *it, ray r, const ray_diff *rd0, rng *g)
     ray_diff rd = {0};
     if (rd0) rd = *rd0;
     const scene *sc = it->sc;
-    nee_mode nee = it->has_lights && it->ls.n > 0 ? sc->nee : NEE_OFF;
+    nee_mode nee = it->has_lights ? it->nee : NEE_OFF;
     int n_light = sc->lightsamples;
     rgb L = rgb_gray(0), beta = rgb_gray(1);
     int specular_chain = 1;  /* only camera and perfect-specular bounces so far */

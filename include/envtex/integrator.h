@@ -47,6 +47,10 @@ typedef struct integrator {
     long long rays;     /* rays traced by the sampling integrators */
     double build_seconds;
     double env_fraction;  /* the envmap's sampling fraction in use (lights.h), 1 if not MIS */
+    nee_mode nee;         /* the path tracer's next-event estimation as run: the scene's, or off
+                           * when no light can be sampled (no lights; or MIS whose only light is
+                           * the envmap at fraction c = 0, which is BRDF sampling alone: the same
+                           * estimator without a light pick and a pdf lookup per vertex) */
 } integrator;
 
 int integrator_init(integrator *it, const scene *sc, const bvh *accel, error *err);

@@ -393,6 +393,50 @@ START_TEST(test_integrators_nee_off_on_and_mis_agree_under_a_sun_map)
 }
 END_TEST
 
+/* MIS with the envmap sampled at fraction c = 0 (lights.h) and no other light is BRDF sampling
+ * alone: the path tracer runs it as NEE off, so the image is the NEE-off image bit for bit (no
+ * light pick's random numbers, no pdf lookup per escaping path).  With a quad light beside it the
+ * quad is still sampled: MIS stays on. */
+START_TEST(test_integrators_mis_with_env_fraction_zero_is_brdf_sampling)
+{
+    const char *modes[] = {"nexteventestimation off\nimportancesampling brdf\n",
+                           "nexteventestimation mis\nimportancesampling brdf\nenvsamplefraction 0\n"};
+    image im[2] = {{0}, {0}};
+    for (int i = 0; i < 2; i++) {
+        char text[2048];
+        snprintf(text, sizeof text, "%sintegrator pathtracer\nspp 4\n%s", nee_scene, modes[i]);
+        scene sc;
+        load(&sc, text);
+        set_env(&sc, GENENV_SUN, 64, 300);
+        render(&sc, 7, &im[i]);
+        scene_free(&sc);
+    }
+    ck_assert_int_eq(im[0].w * im[0].h, im[1].w * im[1].h);
+    double sum = 0;
+    for (long k = 0; k < (long)im[0].w * im[0].h * 3; k++) {
+        ck_assert_msg(im[0].px[k] == im[1].px[k], "value %ld: %.9g (nee off) vs %.9g (mis, c = 0)", k,
+                      im[0].px[k], im[1].px[k]);
+        sum += im[0].px[k];
+    }
+    ck_assert_msg(sum > 0, "the image is black");
+    image_free(&im[0]);
+    image_free(&im[1]);
+
+    char text[2048];
+    snprintf(text, sizeof text, "%sintegrator pathtracer\nquadLight -1 -1 3  2 0 0  0 2 0  5 5 5\n%s", nee_scene,
+             modes[1]);
+    scene sc;
+    load(&sc, text);
+    set_env(&sc, GENENV_SUN, 64, 300);
+    rig rg;
+    rig_init(&rg, &sc);
+    ck_assert_double_eq(rg.it.env_fraction, 0);
+    ck_assert_int_eq(rg.it.nee, NEE_MIS);
+    rig_free(&rg);
+    scene_free(&sc);
+}
+END_TEST
+
 /* ---- stratification ---------------------------------------------------------------------------- */
 
 /* direct_lighting with 16 light samples: a 4 x 4 grid of strata has clearly lower variance than
@@ -583,6 +627,7 @@ Suite *integrators_suite(void)
     tcase_set_timeout(tc, 120);
     tcase_add_test(tc, test_integrators_nee_off_on_and_mis_agree_under_a_quad_light);
     tcase_add_test(tc, test_integrators_nee_off_on_and_mis_agree_under_a_sun_map);
+    tcase_add_test(tc, test_integrators_mis_with_env_fraction_zero_is_brdf_sampling);
     tcase_add_test(tc, test_integrators_russian_roulette_keeps_the_mean);
     suite_add_tcase(s, tc);
     return s;
