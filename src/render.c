@@ -137,6 +137,7 @@ int render_scene(const scene *sc, const render_opts *opts, image *out, render_st
     }
     stats->lights = it.has_lights ? it.ls.n : 0;
     stats->env_fraction = it.env_fraction;
+    stats->nee = it.nee;
     stats->spp = spp;
     stats->prims = accel.n_prims;
     stats->bvh_is_tree = accel.is_tree;

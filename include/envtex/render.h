@@ -53,6 +53,7 @@ typedef struct render_stats {
     int envlight_w, envlight_h; /* the lat-long map sampled (resampled for other kinds) */
     double envlight_kappa;     /* E[L^2] / E[L]^2 of the map (envlight.h) */
     double env_fraction;       /* the envmap's sampling fraction under MIS (lights.h), else 1 */
+    nee_mode nee;              /* the path tracer's next-event estimation as run (integrator.h) */
     int lights;                /* lights the sampling integrators choose among */
     long displaced_spheres, displaced_triangles; /* objects tessellated for displacement maps */
     long displaced_result;     /* triangles they became (with the untouched ones) */
