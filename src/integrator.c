@@ -80,9 +80,8 @@ int integrator_init(integrator *it, const scene *sc, const bvh *accel, error *er
         lights_set_env_fraction(&it->ls, c);
         it->env_fraction = it->ls.env_fraction;
     }
-    it->nee = sc->nee;
-    if (it->ls.n == 0 || (it->ls.n == 1 && lights_env_index(&it->ls) == 0 && it->env_fraction == 0))
-        it->nee = NEE_OFF;
+    /* nothing to sample: no light, or the envmap alone (index 0) at c = 0 */
+    it->nee = it->ls.n == 0 || (lights_env_index(&it->ls) == 0 && it->env_fraction == 0) ? NEE_OFF : sc->nee;
     it->build_seconds = (double)(clock() - t0) / CLOCKS_PER_SEC;
     return 0;
 }
