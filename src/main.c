@@ -229,10 +229,13 @@ static int cmd_render(int argc, char **argv)
         }
         if (st.lights) fprintf(stderr, "envtex: %d lights to sample (chosen by power)\n", st.lights);
         if (sc.n_textures) {
-            int mips = 0;
-            for (int i = 0; i < sc.n_textures; i++) mips += sc.textures[i].tex.has_mip;
-            fprintf(stderr, "envtex: %d textures (%d image files), %d mip pyramids (built only for trilinear/EWA)\n",
-                    sc.n_textures, sc.n_texture_images, mips);
+            int mips = 0, packed = 0;
+            for (int i = 0; i < sc.n_textures; i++) {
+                mips += sc.textures[i].tex.has_mip;
+                packed += sc.textures[i].tex.mip.packed != NULL;
+            }
+            fprintf(stderr, "envtex: %d textures (%d image files), %d mip pyramids (built only for trilinear/EWA), "
+                    "%d packed for trilinear\n", sc.n_textures, sc.n_texture_images, mips, packed);
         } else {
             fprintf(stderr, "envtex: no textures: no ray differentials traced\n");
         }

@@ -140,10 +140,6 @@ int mipmap_build(mipmap *m, const image *base, wrap_mode wrap, error *err)
         }
         m->nlevels++;
     }
-    if (pack_levels(m, err)) {
-        mipmap_free(m);
-        return -1;
-    }
     for (int i = 0; i < MIPMAP_EWA_LUT_SIZE; i++) {
         double r2 = (double)i / (MIPMAP_EWA_LUT_SIZE - 1);
         m->ewa_weight[i] = exp(-MIPMAP_EWA_ALPHA * r2) - exp(-MIPMAP_EWA_ALPHA); /* Gaussian, 0 at r = 1 */
@@ -157,6 +153,12 @@ void mipmap_free(mipmap *m)
     for (int l = 1; l < m->nlevels && l < MIPMAP_MAX_LEVELS; l++) image_free(&m->level[l]);
     free(m->packed);
     memset(m, 0, sizeof *m);
+}
+
+int mipmap_pack(mipmap *m, error *err)
+{
+    assert(m->nlevels > 0 && "mipmap_build first");
+    return m->packed ? 0 : pack_levels(m, err);
 }
 
 int mipmap_levels(const mipmap *m) { return m->nlevels; }
@@ -214,11 +216,13 @@ static inline __attribute__((always_inline)) rgb trilinear_at(const mipmap *m, u
 
 rgb mipmap_lookup_trilinear(const mipmap *m, uv2 st, double footprint_width)
 {
+    assert(m->packed && "mipmap_pack(m) first");
     return trilinear_at(m, st, mipmap_level_for_footprint(m, footprint_width * max_side(&m->level[0])));
 }
 
 rgb mipmap_lookup_trilinear_axes(const mipmap *m, uv2 st, double len2_a, double len2_b)
 {
+    assert(m->packed && "mipmap_pack(m) first");
     /* width^4 in texels = |a|^2 |b|^2 side^4, so lod = log2(width) = log2(width^4) / 4: one log2
      * and no square root on the way to the texels */
     double side2 = (double)max_side(&m->level[0]) * max_side(&m->level[0]);

@@ -91,15 +91,20 @@ int texture_init_solid(texture *t, texture_kind kind, const texture_solid_params
 
 int texture_needs_prepare(const texture *t, texture_filter filter)
 {
-    return t->kind == TEXTURE_IMAGE && !t->has_mip &&
-           (filter == TEXFILTER_TRILINEAR || filter == TEXFILTER_EWA);
+    if (t->kind != TEXTURE_IMAGE) return 0;
+    if (filter == TEXFILTER_TRILINEAR) return !t->has_mip || !t->mip.packed; /* levels + packed copy */
+    if (filter == TEXFILTER_EWA) return !t->has_mip;                         /* levels alone */
+    return 0;
 }
 
 int texture_prepare(texture *t, texture_filter filter, error *err)
 {
     if (!texture_needs_prepare(t, filter)) return 0;
-    if (mipmap_build(&t->mip, t->img, t->wrap, err)) return -1;
-    t->has_mip = 1;
+    if (!t->has_mip) {
+        if (mipmap_build(&t->mip, t->img, t->wrap, err)) return -1;
+        t->has_mip = 1;
+    }
+    if (filter == TEXFILTER_TRILINEAR && mipmap_pack(&t->mip, err)) return -1; /* the pyramid stays */
     return 0;
 }
 
@@ -213,7 +218,7 @@ rgb texture_eval(const texture *t, const texture_query *q)
         case TEXFILTER_NEAREST: return texlookup_nearest(t->img, q->st, t->wrap);
         case TEXFILTER_BILINEAR: return texlookup_bilinear(t->img, q->st, t->wrap);
         case TEXFILTER_TRILINEAR:
-            assert(t->has_mip && "texture_prepare(t, TEXFILTER_TRILINEAR) first");
+            assert(t->has_mip && t->mip.packed && "texture_prepare(t, TEXFILTER_TRILINEAR) first");
             /* footprint width w = sqrt(|dst/dx| |dst/dy|): the side of the square with the area
              * of the pixel's footprint.  An isotropic filter must compromise on a receding
              * plane: the long axis (pbrt's max) blurs the short one away, the short axis

@@ -6,6 +6,7 @@
  *
  *     mipmap m;
  *     if (mipmap_build(&m, &img, WRAP_REPEAT, &err)) return -1;  // img must outlive m
+ *     if (mipmap_pack(&m, &err)) return -1;                      // for trilinear only
  *     rgb a = mipmap_lookup_trilinear(&m, st, 0.01);             // footprint: 1% of the texture
  *     rgb b = mipmap_lookup_ewa(&m, st, dst_dx, dst_dy);         // st's derivatives per pixel
  *     mipmap_free(&m);
@@ -52,11 +53,12 @@ typedef struct mipmap {
     image level[MIPMAP_MAX_LEVELS];  /* level[0] is a shallow copy of the base: its pixels are
                                         the caller's; levels 1.. are owned */
     double ewa_weight[MIPMAP_EWA_LUT_SIZE]; /* weight at r^2 = i / (SIZE - 1) */
-    float *packed;                   /* trilinear's copy of every level: texels as 4 floats
-                                        (R, G, B, 0), 16 bytes, so a texel is one aligned load
-                                        and the filter blends three channels at once.  Owned;
-                                        16 bytes a texel over all levels (level 0 included):
-                                        about 1.8 times the base image's bytes */
+    float *packed;                   /* trilinear's copy of every level (mipmap_pack; NULL
+                                        until then): texels as 4 floats (R, G, B, 0), 16 bytes,
+                                        so a texel is one aligned load and the filter blends
+                                        three channels at once.  Owned; 16 bytes a texel over
+                                        all levels (level 0 included): about 1.8 times the base
+                                        image's bytes, which EWA alone never pays */
     size_t packed_at[MIPMAP_MAX_LEVELS]; /* level l's first texel in `packed` (texels) */
 } mipmap;
 
@@ -67,7 +69,14 @@ typedef struct mipmap {
  * holds nothing to free (mipmap_free is still safe). */
 int mipmap_build(mipmap *m, const image *base, wrap_mode wrap, error *err);
 
-/* Free the owned levels and reset *m (the base image is untouched).  Safe on a zeroed, failed
+/* Make trilinear's packed copy of every level (m->packed), which mipmap_lookup_trilinear and
+ * mipmap_lookup_trilinear_axes read: call it once after mipmap_build before their first use
+ * (assert).  EWA and the levels themselves do not need it, so a pyramid used by EWA alone
+ * never pays for it.  Once packed, later calls do nothing.  Returns 0, or -1 with *err set
+ * (out of memory; *m is unchanged and still valid for EWA). */
+int mipmap_pack(mipmap *m, error *err);
+
+/* Free the owned levels (and the packed copy) and reset *m (the base image is untouched).  Safe on a zeroed, failed
  * or already freed mipmap. */
 void mipmap_free(mipmap *m);
 
@@ -89,7 +98,8 @@ double mipmap_level_for_footprint(const mipmap *m, double width_in_texels);
  *     c = (1 - f) bilinear(level l, st) + f bilinear(level l + 1, st).
  * Continuous in footprint_width and in st; footprint <= 1 texel is a plain bilinear lookup of
  * the base.  Reads the packed levels and blends in float (single precision, as the texels are
- * stored): within a few float ulps of the same formula in double.  Allocation free. */
+ * stored): within a few float ulps of the same formula in double.  Allocation free.  Needs
+ * mipmap_pack first (assert). */
 rgb mipmap_lookup_trilinear(const mipmap *m, uv2 st, double footprint_width);
 
 /* mipmap_lookup_trilinear with the footprint given by the SQUARED lengths of its two axes (texture

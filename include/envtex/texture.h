@@ -132,15 +132,17 @@ int texture_init_checker(texture *t, rgb c0, rgb c1, double frequency, error *er
 int texture_init_solid(texture *t, texture_kind kind, const texture_solid_params *sp, error *err);
 
 /* Get t ready for evaluations with `filter`: builds the mip pyramid of an image texture the
- * first time trilinear or EWA is asked for (once; later calls are free).  Other kinds and
- * filters need nothing.  Returns 0, or -1 with *err set (out of memory). */
+ * first time trilinear or EWA is asked for, and trilinear's packed copy of it (mipmap_pack) the
+ * first time trilinear is (once each; later calls are free).  Other kinds and filters need
+ * nothing, and a texture filtered by EWA alone never pays for the packed copy.  Returns 0, or
+ * -1 with *err set (out of memory). */
 int texture_prepare(texture *t, texture_filter filter, error *err);
 
 /* Free what t owns (its pyramid; not the image) and zero it.  Safe on a zeroed texture. */
 void texture_free(texture *t);
 
-/* 1 if evaluating with `filter` needs texture_prepare first (an image texture, trilinear or
- * EWA, and no pyramid yet). */
+/* 1 if evaluating with `filter` needs texture_prepare first (an image texture: trilinear without
+ * the pyramid or its packed copy yet, or EWA without the pyramid). */
 int texture_needs_prepare(const texture *t, texture_filter filter);
 
 /* The texture's colour for query q, filtered by q->filter (see the table above).  An image

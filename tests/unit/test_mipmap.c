@@ -49,6 +49,7 @@ static mipmap build(const image *im, wrap_mode wrap)
     mipmap m;
     error err = {0};
     ck_assert_int_eq(mipmap_build(&m, im, wrap, &err), 0);
+    ck_assert_int_eq(mipmap_pack(&m, &err), 0);
     return m;
 }
 
@@ -450,6 +451,40 @@ START_TEST(test_ewa_far_coordinates_read_like_near_ones)
 }
 END_TEST
 
+/* Catches a pyramid that always pays for trilinear's packed copy (EWA alone never reads it), a
+ * pack that copies again on a second call, and a packed copy that differs from the levels. */
+START_TEST(test_only_pack_makes_trilinears_copy_and_only_once)
+{
+    image im = new_image(6, 5);
+    for (int y = 0; y < 5; y++)
+        for (int x = 0; x < 6; x++) image_set(&im, x, y, rgb_make(x, y, x * y));
+    mipmap m;
+    error err = {0};
+    ck_assert_int_eq(mipmap_build(&m, &im, WRAP_CLAMP, &err), 0);
+    ck_assert_ptr_null(m.packed);
+    uv2 st = {0.4, 0.3}, zero = {0, 0};
+    rgb ewa = mipmap_lookup_ewa(&m, st, zero, zero); /* EWA runs on the levels alone */
+    ck_assert_int_eq(mipmap_pack(&m, &err), 0);
+    ck_assert_ptr_nonnull(m.packed);
+    float *first = m.packed;
+    ck_assert_int_eq(mipmap_pack(&m, &err), 0);
+    ck_assert_ptr_eq(m.packed, first);
+    for (int l = 0; l < mipmap_levels(&m); l++) { /* every level, texel for texel, as (R, G, B, 0) */
+        const image *lv = mipmap_level(&m, l);
+        const float *p = m.packed + 4 * m.packed_at[l];
+        for (int i = 0; i < lv->w * lv->h; i++) {
+            ck_assert(p[4 * i] == lv->px[3 * i] && p[4 * i + 1] == lv->px[3 * i + 1]);
+            ck_assert(p[4 * i + 2] == lv->px[3 * i + 2] && p[4 * i + 3] == 0.0f);
+        }
+    }
+    rgb tri = mipmap_lookup_trilinear(&m, st, 0); /* below a texel: bilinear on the base */
+    ck_assert_near(tri.b, ewa.b, 1e-5);
+    mipmap_free(&m);
+    ck_assert_ptr_null(m.packed);
+    image_free(&im);
+}
+END_TEST
+
 START_TEST(test_build_rejects_an_empty_image_and_an_unknown_wrap_mode)
 {
     mipmap m;
@@ -490,6 +525,7 @@ Suite *mipmap_suite(void)
     tcase_add_test(tc, test_ewa_filters_along_the_major_axis_only);
     tcase_add_test(tc, test_ewa_clamps_the_anisotropy);
     tcase_add_test(tc, test_ewa_far_coordinates_read_like_near_ones);
+    tcase_add_test(tc, test_only_pack_makes_trilinears_copy_and_only_once);
     tcase_add_test(tc, test_build_rejects_an_empty_image_and_an_unknown_wrap_mode);
     suite_add_tcase(s, tc);
     return s;

@@ -1333,9 +1333,10 @@ START_TEST(test_texture_images_are_read_once_and_pyramids_built_only_when_needed
     ck_assert_msg(imageio_write(img_path, &im, NULL, &err) == 0, "%s", err.msg);
     image_free(&im);
     write_file(dir, "x.test", HEAD "texture a wood.pfm\ntexture b wood.pfm mirror\n"
-                                   "texture c wood.pfm clamp\n"
+                                   "texture c wood.pfm clamp\ntexture d wood.pfm\n"
                                    "texfilter nearest\ndiffusemap a\nsphere 0 0 0 1\n"
-                                   "texfilter trilinear\ndiffusemap b\nsphere 0 0 0 1\n");
+                                   "texfilter trilinear\ndiffusemap b\nsphere 0 0 0 1\n"
+                                   "texfilter ewa\ndiffusemap c\nsphere 0 0 0 1\n");
     scene sc;
     ck_assert_msg(scene_load(path, NULL, &sc, &err) == 0, "%s", err.msg);
     ck_assert_int_eq(sc.n_texture_images, 1); /* three textures, one file read */
@@ -1343,8 +1344,11 @@ START_TEST(test_texture_images_are_read_once_and_pyramids_built_only_when_needed
     ck_assert_double_eq(image_get(sc.textures[2].tex.img, 1, 0).b, 2);
     ck_assert_int_eq(sc.textures[1].tex.wrap, WRAP_MIRROR);
     ck_assert_int_eq(sc.textures[0].tex.has_mip, 0); /* nearest needs none */
-    ck_assert_int_eq(sc.textures[1].tex.has_mip, 1); /* trilinear does */
-    ck_assert_int_eq(sc.textures[2].tex.has_mip, 0); /* unused */
+    ck_assert_int_eq(sc.textures[1].tex.has_mip, 1); /* trilinear does, */
+    ck_assert_ptr_nonnull(sc.textures[1].tex.mip.packed); /* with its packed copy */
+    ck_assert_int_eq(sc.textures[2].tex.has_mip, 1); /* EWA: the pyramid, */
+    ck_assert_ptr_null(sc.textures[2].tex.mip.packed); /* not the copy it never reads */
+    ck_assert_int_eq(sc.textures[3].tex.has_mip, 0); /* unused */
     scene_free(&sc);
     scene_free(&sc);
     write_file(dir, "x.test", HEAD "# maps\ntexture a missing.png\n");
