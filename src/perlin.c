@@ -65,19 +65,20 @@ static inline int fast_floor(double x)
 
 double perlin_noise(double x, double y, double z)
 {
-    if (!(isfinite(x) && isfinite(y) && isfinite(z))) return 0.0;
     /* STEP(perlin): Improved Noise: hash the 8 lattice corners with perm[], dot each corner's gradient with the offset, blend with fade(t) = 6t^5 - 15t^4 + 10t^3 (slides 44-46) */
     /* STUB: (void)perm; return 0.0 * (x + y + z); */
     int X, Y, Z;
     if (fabs(x) < PERLIN_INT_SAFE && fabs(y) < PERLIN_INT_SAFE && fabs(z) < PERLIN_INT_SAFE) {
-        /* the common case: floor by truncation (exact in this range), the cell by & 255 (two's
-         * complement: floor(x) mod 256 for negative floor(x) too) */
+        /* the common case (NaN and infinities fail these comparisons and go below): floor by
+         * truncation (exact in this range), the cell by & 255 (two's complement: floor(x) mod
+         * 256 for negative floor(x) too) */
         int ix = fast_floor(x), iy = fast_floor(y), iz = fast_floor(z);
         X = ix & 255; Y = iy & 255; Z = iz & 255;
         x -= ix; /* the point's position inside its cell, [0, 1) */
         y -= iy;
         z -= iz;
     } else {
+        if (!(isfinite(x) && isfinite(y) && isfinite(z))) return 0.0; /* no lattice cell: 0 */
         double fx = floor(x), fy = floor(y), fz = floor(z);
         X = lattice_cell(fx); Y = lattice_cell(fy); Z = lattice_cell(fz);
         x -= fx;
