@@ -1,6 +1,9 @@
 /* bench_envlight.c - microbenchmarks of environment sampling (make bench):
  *   - sample + pdf of a 2048 x 1024 sun map, ns per call (median of repeats), alias and binary;
  *   - table build time of a 4096 x 2048 map (cdf mode; alias tables on top).
+ *   - the same sample + pdf on a 128 x 64 sun map, whose tables and texels stay in the cache: the
+ *     arithmetic alone, without the big map's memory misses (the gap between the two lines is
+ *     what memory costs; docs/environment-lighting.md).
  * The map is the procedural sun sky (a sun 10^5 times the sky), the case sampling is for. */
 #include <stdio.h>
 #include <stdlib.h>
@@ -23,6 +26,25 @@ static int make_env(int w, image *img, envmap *env, error *err)
     return 0;
 }
 
+/* median ns per envlight_sample (sample + pdf + L) over `repeats` runs of n samples */
+static double time_samples(const envlight *el, int repeats, int n)
+{
+    double t[64], sink = 0;
+    for (int k = 0; k < repeats && k < 64; k++) {
+        rng g;
+        rng_seed(&g, 1, (uint64_t)k);
+        double t0 = now();
+        for (int i = 0; i < n; i++) {
+            envlight_sample_result r;
+            envlight_sample(el, rng_uniform(&g), rng_uniform(&g), 0, &r); /* sample + pdf + L */
+            sink += r.pdf;
+        }
+        t[k] = (now() - t0) / n * 1e9;
+    }
+    if (sink < 0) printf("!"); /* keeps the loop */
+    return median(t, repeats < 64 ? repeats : 64);
+}
+
 int main(int argc, char **argv)
 {
     int repeats = argc > 1 ? atoi(argv[1]) : 7;
@@ -37,24 +59,22 @@ int main(int argc, char **argv)
     for (int s = 0; s < 2; s++) {
         envlight el;
         if (envlight_build(&el, &env, ENVSAMPLING_CDF, (envsampler_kind)s, 0, &err)) goto fail;
-        double t[64], sink = 0;
-        for (int k = 0; k < repeats && k < 64; k++) {
-            rng g;
-            rng_seed(&g, 1, (uint64_t)k);
-            double t0 = now();
-            for (int i = 0; i < n; i++) {
-                envlight_sample_result r;
-                envlight_sample(&el, rng_uniform(&g), rng_uniform(&g), 0, &r); /* sample + pdf + L */
-                sink += r.pdf;
-            }
-            t[k] = (now() - t0) / n * 1e9;
-        }
-        result[s] = median(t, repeats < 64 ? repeats : 64);
-        printf("envlight sample+pdf 2048x1024 sun, %-6s: median %6.1f ns per sample (%d repeats of %d)%s\n",
-               names[s], result[s], repeats, n, sink < 0 ? "!" : "");
+        result[s] = time_samples(&el, repeats, n);
+        printf("envlight sample+pdf 2048x1024 sun, %-6s: median %6.1f ns per sample (%d repeats of %d)\n",
+               names[s], result[s], repeats, n);
         envlight_free(&el);
     }
     printf("envlight alias / binary time ratio: %.2f (target: alias <= 30 ns)\n", result[1] / result[0]);
+    image_free(&img);
+    if (make_env(128, &img, &env, &err)) goto fail;
+    {
+        envlight el;
+        if (envlight_build(&el, &env, ENVSAMPLING_CDF, ENVSAMPLER_ALIAS, 0, &err)) goto fail;
+        double small = time_samples(&el, repeats, n);
+        printf("envlight sample+pdf 128x64 sun (in cache), alias: median %6.1f ns per sample; "
+               "the 2048x1024 map takes %.2fx that\n", small, result[1] / small);
+        envlight_free(&el);
+    }
     image_free(&img);
     if (make_env(4096, &img, &env, &err)) goto fail;
     for (int s = 0; s < 2; s++) {
