@@ -76,8 +76,8 @@ int mipmap_build(mipmap *m, const image *base, wrap_mode wrap, error *err);
  * (out of memory; *m is unchanged and still valid for EWA). */
 int mipmap_pack(mipmap *m, error *err);
 
-/* Free the owned levels (and the packed copy) and reset *m (the base image is untouched).  Safe on a zeroed, failed
- * or already freed mipmap. */
+/* Free the owned levels (and the packed copy) and reset *m (the base image is untouched).  Safe
+ * on a zeroed, failed or already freed mipmap. */
 void mipmap_free(mipmap *m);
 
 /* Number of levels, 1 + floor(log2(max(W, H))). */

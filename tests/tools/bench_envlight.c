@@ -1,9 +1,9 @@
 /* bench_envlight.c - microbenchmarks of environment sampling (make bench):
  *   - sample + pdf of a 2048 x 1024 sun map, ns per call (median of repeats), alias and binary;
+ *   - the same with alias on a 128 x 64 sun map, whose tables and texels stay in the cache: the
+ *     arithmetic alone, without the big map's memory misses (the gap between the two is what
+ *     memory costs; docs/environment-lighting.md);
  *   - table build time of a 4096 x 2048 map (cdf mode; alias tables on top).
- *   - the same sample + pdf on a 128 x 64 sun map, whose tables and texels stay in the cache: the
- *     arithmetic alone, without the big map's memory misses (the gap between the two lines is
- *     what memory costs; docs/environment-lighting.md).
  * The map is the procedural sun sky (a sun 10^5 times the sky), the case sampling is for. */
 #include <stdio.h>
 #include <stdlib.h>
