@@ -834,16 +834,22 @@ static double sweep_xi(int k)
                                          : xi_high[k - SWEEP_STEPS - 1 - N_XI_LOW];
 }
 
+/* zero_grid's weights in d, with the CDFs and the alias tables built (d is freed by the caller) */
+static void zero_grid_tables(distrib2d *d, double *w, int *no, int *ni)
+{
+    error err = {0};
+    zero_grid(w, no, ni);
+    ck_assert_int_eq(distrib2d_init(d, w, *no, *ni, &err), 0);
+    ck_assert_int_eq(distrib2d_alias_build(d, &err), 0);
+}
+
 /* Catches a zero column or zero cell reachable from any xi pair, edges included. */
 START_TEST(test_distrib2d_zero_columns_and_cells_are_never_chosen)
 {
     double w[T2_MAX];
     int no, ni;
-    zero_grid(w, &no, &ni);
     distrib2d d = {0};
-    error err = {0};
-    ck_assert_int_eq(distrib2d_init(&d, w, no, ni, &err), 0);
-    ck_assert_int_eq(distrib2d_alias_build(&d, &err), 0);
+    zero_grid_tables(&d, w, &no, &ni);
     long zero_hits = 0, out_of_range = 0;
     for (int a = 0; a < N_SWEEP; a++) {
         for (int b = 0; b < N_SWEEP; b++) {
@@ -877,11 +883,8 @@ START_TEST(test_distrib2d_alias_in_two_halves_is_the_whole)
 {
     double w[T2_MAX];
     int no, ni;
-    zero_grid(w, &no, &ni);
     distrib2d d = {0};
-    error err = {0};
-    ck_assert_int_eq(distrib2d_init(&d, w, no, ni, &err), 0);
-    ck_assert_int_eq(distrib2d_alias_build(&d, &err), 0);
+    zero_grid_tables(&d, w, &no, &ni);
     long differ = 0, not_first = 0;
     for (int a = 0; a < N_SWEEP; a++) {
         for (int b = 0; b < N_SWEEP; b++) {
