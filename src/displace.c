@@ -57,6 +57,20 @@ static int recompute_normals(displace_mesh *m, error *err)
     return 0;
 }
 
+/* The common end of a tessellation: move the vertices (displace_vertices), free their st
+ * (vst), then recompute the normals.  On failure *out is freed. */
+static int displace_and_renormalize(displace_mesh *out, uv2 *vst, displace_height_fn height, void *ctx,
+                                    double scale, error *err)
+{
+    displace_vertices(out, vst, height, ctx, scale);
+    free(vst);
+    if (recompute_normals(out, err)) {
+        displace_mesh_free(out);
+        return -1;
+    }
+    return 0;
+}
+
 static int check_count(long nt, long max_tris, error *err)
 {
     long max = max_tris > 0 && max_tris < DISPLACE_MAX_TRIS ? max_tris : DISPLACE_MAX_TRIS;
@@ -115,13 +129,7 @@ int displace_triangle(const vec3 p[3], const vec3 n[3], const uv2 st[3], int rat
             }
         }
 #undef IDX
-    displace_vertices(out, vst, height, ctx, scale);
-    free(vst);
-    if (recompute_normals(out, err)) {
-        displace_mesh_free(out);
-        return -1;
-    }
-    return 0;
+    return displace_and_renormalize(out, vst, height, ctx, scale, err);
 }
 
 int displace_sphere(int rate, displace_height_fn height, void *ctx, double scale, long max_tris,
@@ -174,11 +182,5 @@ int displace_sphere(int rate, displace_height_fn height, void *ctx, double scale
                                         {{sm, 0}, {s1, tb}, {s0, tb}}};
     }
 #undef RING
-    displace_vertices(out, vst, height, ctx, scale);
-    free(vst);
-    if (recompute_normals(out, err)) {
-        displace_mesh_free(out);
-        return -1;
-    }
-    return 0;
+    return displace_and_renormalize(out, vst, height, ctx, scale, err);
 }
