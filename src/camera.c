@@ -3,14 +3,28 @@
 
 #include <assert.h>
 
+camera_frame_status camera_frame(vec3 eye, vec3 center, vec3 up, vec3 *u, vec3 *v, vec3 *w)
+{
+    vec3 d = vec3_sub(eye, center), wn, upn, right;
+    if (!(isfinite(d.x) && isfinite(d.y) && isfinite(d.z))) return CAMERA_FRAME_TOO_FAR;
+    if (vec3_unit_direction(d, &wn)) return CAMERA_FRAME_SAME_POINT; /* w = (eye - center) / |...| */
+    if (vec3_unit_direction(up, &upn)) return CAMERA_FRAME_UP_ZERO;
+    vec3 r = vec3_cross(upn, wn); /* |up x w| = sin(angle) for unit vectors */
+    if (!(vec3_length(r) > CAMERA_PARALLEL_EPS) || vec3_unit_direction(r, &right))
+        return CAMERA_FRAME_UP_PARALLEL;
+    *w = wn;
+    *u = right;                   /* u = up x w / |...| */
+    *v = vec3_cross(wn, right);   /* v = w x u */
+    return CAMERA_FRAME_OK;
+}
+
 void camera_init(camera *c, vec3 eye, vec3 center, vec3 up, double fovy_degrees, int width, int height)
 {
     assert(width > 0 && height > 0 && fovy_degrees > 0 && fovy_degrees < 180);
     c->eye = eye;
-    c->w = vec3_normalize(vec3_sub(eye, center));        /* w = (eye - center) / |...| */
-    c->u = vec3_normalize(vec3_cross(up, c->w));         /* u = up x w / |...|        */
-    assert(vec3_length2(c->u) > 0); /* eye != center and up not parallel to the view */
-    c->v = vec3_cross(c->w, c->u);                       /* v = w x u                 */
+    camera_frame_status st = camera_frame(eye, center, up, &c->u, &c->v, &c->w);
+    assert(st == CAMERA_FRAME_OK); /* eye != center and up not parallel to the view */
+    (void)st;
     c->tan_half_y = tan(fovy_degrees * M_PI / 360.0);    /* tan(fovy / 2)             */
     c->tan_half_x = c->tan_half_y * (double)width / (double)height;
     c->width = width;

@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "envtex/camera.h"
 #include "envtex/imageio.h"
 #include "envtex/obj.h"
 #include "envtex/perlin.h"
@@ -25,11 +26,6 @@
 /* maxverts / maxvertnorms are only capacity hints: a hostile "maxverts 999999999999" must not
  * reserve gigabytes, so a hint reserves at most this many entries (arrays still grow past it). */
 #define HINT_CAP (1L << 20)
-
-/* sin of the angle between the camera's up and its view direction below which
- * right = normalize(look x up) has no reliable direction (doubles carry ~1e-16 relative error,
- * so 1e-9 leaves a wide margin while rejecting only truly parallel vectors). */
-#define CAMERA_PARALLEL_EPS 1e-9
 
 /* sin of the angle between a quad light's edges below which it is a sliver of no area: rounding
  * of exactly parallel edges leaves |ab x ac| ~ 1e-16 |ab| |ac|. */
@@ -304,14 +300,17 @@ static int cmd_camera(parser *p)
     vec3 up = vec3_make(v[6], v[7], v[8]);
     if (!(v[9] > 0 && v[9] < 180))
         return fail(p, "'camera' fovy must be in (0, 180) degrees, got '%s'", p->tok[10]);
-    vec3 look = vec3_sub(at, from);
-    if (!(vec3_length(look) > 0)) return fail(p, "'camera' look-from equals look-at");
-    if (!(vec3_length(up) > 0)) return fail(p, "'camera' up vector is zero");
-    /* |look x up| = |look| |up| sin(angle): right = look x up must have a direction */
-    if (!(vec3_length(vec3_cross(look, up)) >
-          CAMERA_PARALLEL_EPS * vec3_length(look) * vec3_length(up)))
+    vec3 u, v_, w; /* the frame camera_init will build: checked here, with its own arithmetic */
+    switch (camera_frame(from, at, up, &u, &v_, &w)) {
+    case CAMERA_FRAME_OK: break;
+    case CAMERA_FRAME_TOO_FAR:
+        return fail(p, "'camera' look-from and look-at are too far apart (their difference overflows)");
+    case CAMERA_FRAME_SAME_POINT: return fail(p, "'camera' look-from equals look-at");
+    case CAMERA_FRAME_UP_ZERO: return fail(p, "'camera' up vector is zero");
+    case CAMERA_FRAME_UP_PARALLEL:
         return fail(p, "'camera' up vector (%s %s %s) is parallel to the view direction",
                     p->tok[7], p->tok[8], p->tok[9]);
+    }
     scene *sc = p->sc;
     sc->has_camera = 1;
     sc->eye = from;
@@ -369,8 +368,8 @@ static int cmd_vertexnormal(parser *p)
 {
     double v[6];
     if (arg_nums(p, 1, 6, v)) return -1;
-    vec3 n = vec3_make(v[3], v[4], v[5]);
-    if (!(vec3_length(n) > 0)) return fail(p, "'vertexnormal' normal is zero");
+    vec3 n; /* a direction: only its direction is kept (so 1e300 or 1e-300 components work) */
+    if (vec3_unit_direction(vec3_make(v[3], v[4], v[5]), &n)) return fail(p, "'vertexnormal' normal is zero");
     if (p->n_vnorms >= p->max_prims)
         return fail(p, "more than %ld vertex normals", p->max_prims);
     if (grow(p, (void **)&p->vnorms, &p->cap_vnorms, p->n_vnorms + 1, sizeof *p->vnorms))
@@ -446,12 +445,10 @@ static int cmd_trinormal(parser *p)
         const vertex_normal *v = &p->vnorms[idx[k]];
         t.q[k] = v->p;
         t.p[k] = mat4_point(&p->xf, v->p);
-        vec3 n = mat4_normal(inv, v->n); /* n' = (M^-1)^T n */
-        double len = vec3_length(n);
-        if (!(len > 0) || !isfinite(len))
+        /* n' = (M^-1)^T n, normalized */
+        if (vec3_unit_direction(mat4_normal(inv, v->n), &t.n[k]))
             return fail(p, "'trinormal' normal of vertex '%s' degenerates under the current "
                            "transform", p->tok[k + 1]);
-        t.n[k] = vec3_scale(n, 1.0 / len);
     }
     return add_triangle(p, &t);
 }

@@ -22,8 +22,30 @@ typedef struct camera {
     int width, height;
 } camera;
 
-/* Caller guarantees eye != center, up not parallel to the view, 0 < fovy < 180 (the scene
- * parser checks these); asserts otherwise. */
+/* The sine of the angle between `up` and the view below which camera_frame calls them parallel:
+ * right = up x w has no reliable direction there (doubles carry ~1e-16 relative error, so 1e-9
+ * leaves a wide margin while rejecting only truly parallel vectors). */
+#define CAMERA_PARALLEL_EPS 1e-9
+
+/* What camera_frame can refuse (0 = a frame). */
+typedef enum camera_frame_status {
+    CAMERA_FRAME_OK = 0,
+    CAMERA_FRAME_TOO_FAR,       /* eye - center overflows (or a coordinate is not finite) */
+    CAMERA_FRAME_SAME_POINT,    /* eye == center: no view direction */
+    CAMERA_FRAME_UP_ZERO,       /* up is zero or not finite */
+    CAMERA_FRAME_UP_PARALLEL    /* sin(angle(up, view)) <= CAMERA_PARALLEL_EPS */
+} camera_frame_status;
+
+/* The camera's orthonormal frame: w = unit(eye - center), u = unit(up x w), v = w x u.  Every
+ * length is taken with vec3_unit_direction, so any finite eye, center and up work, however
+ * large or small (a cross product of 1e-160 vectors would underflow to 0 otherwise).  Returns
+ * CAMERA_FRAME_OK and sets *u, *v, *w, or a status and leaves them untouched.  The scene
+ * parser calls it to check a `camera` line, so that camera_init never meets a frame it cannot
+ * build. */
+camera_frame_status camera_frame(vec3 eye, vec3 center, vec3 up, vec3 *u, vec3 *v, vec3 *w);
+
+/* Caller guarantees camera_frame(eye, center, up) == CAMERA_FRAME_OK and 0 < fovy < 180 (the
+ * scene parser checks these); asserts otherwise. */
 void camera_init(camera *c, vec3 eye, vec3 center, vec3 up, double fovy_degrees, int width, int height);
 
 /* Ray through continuous pixel position (x, y); unit direction, tmin 0, tmax infinity. */

@@ -108,6 +108,33 @@ START_TEST(test_camera_rays_are_unit_and_linear_in_the_image_plane)
 }
 END_TEST
 
+/* camera_frame works for any finite vectors that have a frame, and says why when there is
+ * none.  Catches lengths from sqrt of squares (1e-163 x 1e-160 underflows: the parser once let
+ * this camera through and camera_init asserted), an overflowing eye - center reported as
+ * anything else, and a parallel test on unnormalised vectors. */
+START_TEST(test_camera_frame_handles_tiny_and_huge_vectors_and_names_each_failure)
+{
+    vec3 u, v, w;
+    ck_assert_int_eq(camera_frame(vec3_make(0, 0, 1e10), vec3_make(0, 0, 0), vec3_make(0, 1e-163, 1e-160),
+                                  &u, &v, &w), CAMERA_FRAME_OK);
+    assert_vec_near(u, vec3_make(1, 0, 0), 1e-15); /* up's part across the view is +y: right = +x */
+    ck_assert_near(vec3_length(u), 1, 1e-15);
+    ck_assert_near(vec3_length(v), 1, 1e-15);
+    ck_assert_near(vec3_dot(u, w), 0, 1e-15);
+    ck_assert_int_eq(camera_frame(vec3_make(1e300, 0, 0), vec3_make(0, 0, 0), vec3_make(0, 1e300, 0), &u, &v, &w),
+                     CAMERA_FRAME_OK);
+    assert_vec_near(w, vec3_make(1, 0, 0), 1e-15);
+    ck_assert_int_eq(camera_frame(vec3_make(0, 0, 1e308), vec3_make(0, 0, -1e308), vec3_make(0, 1, 0), &u, &v, &w),
+                     CAMERA_FRAME_TOO_FAR);
+    ck_assert_int_eq(camera_frame(vec3_make(1, 2, 3), vec3_make(1, 2, 3), vec3_make(0, 1, 0), &u, &v, &w),
+                     CAMERA_FRAME_SAME_POINT);
+    ck_assert_int_eq(camera_frame(vec3_make(0, 0, 1), vec3_make(0, 0, 0), vec3_make(0, 0, 0), &u, &v, &w),
+                     CAMERA_FRAME_UP_ZERO);
+    ck_assert_int_eq(camera_frame(vec3_make(0, 0, 1e-300), vec3_make(0, 0, 0), vec3_make(0, 1e-300, 1), &u, &v, &w),
+                     CAMERA_FRAME_UP_PARALLEL); /* sin(angle) = 1e-300, however small the vectors */
+}
+END_TEST
+
 /* Programmer errors are asserts (camera.h): the scene parser refuses these cameras. */
 START_TEST(test_camera_with_eye_at_the_centre_asserts)
 {
@@ -132,6 +159,7 @@ Suite *camera_suite(void)
     tcase_add_test(tc, test_camera_row_0_is_at_the_top_and_x_grows_to_the_right);
     tcase_add_test(tc, test_camera_frame_is_orthonormal_for_a_slanted_up);
     tcase_add_test(tc, test_camera_rays_are_unit_and_linear_in_the_image_plane);
+    tcase_add_test(tc, test_camera_frame_handles_tiny_and_huge_vectors_and_names_each_failure);
 #ifndef NDEBUG
     tcase_add_test_raise_signal(tc, test_camera_with_eye_at_the_centre_asserts, SIGABRT);
     tcase_add_test_raise_signal(tc, test_camera_with_up_along_the_view_asserts, SIGABRT);

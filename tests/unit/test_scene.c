@@ -167,6 +167,8 @@ static const bad_case bad_cases[] = {
     {"camera 1 2 3 1 2 3 0 1 0 45\n", 3, "'camera' look-from equals look-at"},
     {"camera 0 0 5 0 0 0 0 0 2 45\n", 3, "'camera' up vector (0 0 2) is parallel"},
     {"camera 0 0 5 0 0 0 0 0 0 45\n", 3, "'camera' up vector is zero"},
+    /* overflowing eye - center: not "parallel" (its length was Inf, the old test's message) */
+    {"camera 0 0 1e308 0 0 -1e308 0 1 0 45\n", 3, "'camera' look-from and look-at are too far apart"},
     /* envmap */
     {"envmap a.exr\nenvmap b.exr\n", 4, "envmap given twice (first at line 3)"},
     {"envmap sky.exr 0\n", 3, "'envmap' argument 2 must be > 0, got '0'"},
@@ -484,6 +486,29 @@ START_TEST(test_image_and_camera_commands_are_stored)
 }
 END_TEST
 
+/* Cameras whose vectors are tiny or whose points are far from the origin are valid: each has a
+ * view direction and an up that is not along it.  Catches lengths taken as sqrt(x^2 + ...):
+ * the first cross product underflows to 0 (camera_init then asserted: a crash), the second's
+ * 1e155^2 overflows (reported as "parallel"), the third's 1e-300^2 underflows ("equals"). */
+START_TEST(test_cameras_with_tiny_or_huge_but_valid_vectors_are_accepted)
+{
+    static const char *const cameras[] = {
+        "camera 0 0 1e10 0 0 0 0 1e-163 1e-160 45\n",
+        "camera 1e155 0 0 0 0 0 0 1 0 45\n",
+        "camera 0 0 1e-300 0 0 0 0 1 0 45\n",
+        "camera 0 0 4 0 0 0 0 1e-300 0 45\n",
+    };
+    for (size_t i = 0; i < sizeof cameras / sizeof cameras[0]; i++) {
+        char text[256];
+        snprintf(text, sizeof text, "size 8 8\n%s", cameras[i]);
+        scene sc;
+        load_ok(text, &sc);
+        ck_assert_int_eq(sc.has_camera, 1);
+        scene_free(&sc);
+    }
+}
+END_TEST
+
 START_TEST(test_renderer_settings_are_stored)
 {
     scene sc;
@@ -671,6 +696,18 @@ START_TEST(test_trinormal_transforms_normals_by_the_inverse_transpose)
     double l = sqrt(0.25 + 1);
     assert_vec_near(t->n[0], 0.5 / l, 1 / l, 0);
     assert_vec_near(t->n[1], 0, 0, 1); /* unit even when written with length 3 */
+    scene_free(&sc);
+    /* normals of any finite length: 1e300 (its square overflows) and 1e-300 (underflows).
+     * Catches a length from sqrt of squares ("degenerates under the current transform") */
+    load_ok(HEAD "vertexnormal 0 0 0 1e300 1e300 0\nvertexnormal 1 0 0 0 0 1e-300\nvertexnormal 0 1 0 0 0 1\n"
+                 "trinormal 0 1 2\n", &sc);
+    assert_vec_near(sc.triangles[0].n[0], sqrt(0.5), sqrt(0.5), 0);
+    assert_vec_near(sc.triangles[0].n[1], 0, 0, 1);
+    scene_free(&sc);
+    /* a transform whose inverse transpose makes a unit normal ~1e300 long */
+    load_ok(HEAD "vertexnormal 0 0 0 1 1 0\nvertexnormal 1 0 0 0 0 1\nvertexnormal 0 1 0 0 0 1\n"
+                 "scale 1e-300 1 1\ntrinormal 0 1 2\n", &sc);
+    assert_vec_near(sc.triangles[0].n[0], 1, 0, 0); /* (1e300, 1, 0) normalised */
     scene_free(&sc);
 }
 END_TEST
@@ -1391,6 +1428,7 @@ Suite *scene_suite(void)
     TCase *cmds = tcase_create("commands");
     tcase_add_test(cmds, test_defaults_are_the_courses);
     tcase_add_test(cmds, test_image_and_camera_commands_are_stored);
+    tcase_add_test(cmds, test_cameras_with_tiny_or_huge_but_valid_vectors_are_accepted);
     tcase_add_test(cmds, test_renderer_settings_are_stored);
     tcase_add_test(cmds, test_every_integrator_name_round_trips);
     tcase_add_test(cmds, test_each_object_takes_the_material_current_when_read);
