@@ -26,6 +26,13 @@ int imageio_tmp_open(const char *path, char *tmp_path, error *err)
         tmp_path[0] = '\0';
         return error_set(err, path, 0, "path is too long");
     }
+    /* rename() would put the image in place of a folder's entry or a device: refuse first */
+    struct stat st;
+    if (stat(path, &st) == 0 && !S_ISREG(st.st_mode)) {
+        tmp_path[0] = '\0';
+        return error_set(err, path, 0, "cannot write an image here: %s",
+                         S_ISDIR(st.st_mode) ? "it is a folder" : "it is not a regular file");
+    }
     int fd = mkstemp(tmp_path);
     if (fd < 0) {
         int e = errno;

@@ -15,6 +15,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "envtex/bvh.h"
@@ -30,7 +31,7 @@
 
 static const char *usage_text =
     "usage: envtex SCENE                         (same as: envtex render SCENE)\n"
-    "       envtex render SCENE [-o OUT.exr|.png|.pfm] [--spp N] [--seed N] [--ref REF] [--variance VAR.exr]\n"
+    "       envtex render SCENE [-o OUT.exr|.png|.pfm|.hdr] [--spp N] [--seed N] [--ref REF] [--variance VAR.exr]\n"
     "                           [--quiet] [--verbose] [--strict]\n"
     "       envtex compare A B [--diff DIFF.png] [--fail-percent P] [--fail T] [--hard H]\n"
     "       envtex compare --test IMG REF VAR [--img-spp N --ref-spp M] [--alpha A] [--max-fail F] [--diff MAP.png]\n"
@@ -125,11 +126,35 @@ static void progress_bar(void *ctx, int done, int rows)
     fflush(stderr);
 }
 
+/* 1 if a and b name the same existing file (device and inode) */
+static int same_file(const char *a, const char *b)
+{
+    struct stat sa, sb;
+    return a && b && a[0] && b[0] && stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev &&
+           sa.st_ino == sb.st_ino;
+}
+
+/* An output must not replace a file the scene reads (its own file, the envmap, a texture):
+ * the render would succeed and the input be gone. */
+static int check_not_an_input(const char *out, const scene *sc, error *err)
+{
+    const char *what = NULL;
+    if (same_file(out, sc->path)) what = sc->path;
+    if (sc->envmap.present && same_file(out, sc->envmap.path)) what = sc->envmap.path;
+    for (int f = 0; sc->envmap.present && sc->envmap.six_files && f < CUBEMAP_FACES; f++)
+        if (same_file(out, sc->envmap.face_path[f])) what = sc->envmap.face_path[f];
+    for (int i = 0; i < sc->n_textures; i++)
+        if (same_file(out, sc->textures[i].path)) what = sc->textures[i].path;
+    if (what) return error_set(err, out, 0, "the output would replace an input of the scene (%s)", what);
+    return 0;
+}
+
 /* Output path must be writable before the render starts: try the temporary file now. */
 static int check_output(const char *path, error *err)
 {
+    if (!path[0]) return error_set(err, NULL, 0, "the output file name is empty");
     if (!imageio_can_write(path))
-        return error_set(err, path, 0, "cannot write this format: use .exr, .png or .pfm");
+        return error_set(err, path, 0, "cannot write this format: use .exr, .png, .pfm or .hdr");
     char tmp[ERROR_FILE_MAX];
     int fd = imageio_tmp_open(path, tmp, err);
     if (fd < 0) return -1;
@@ -177,15 +202,28 @@ static int cmd_render(int argc, char **argv)
     lo.warn = warn_keep;
     lo.warn_ctx = &ws;
     if (scene_load(scene_path, &lo, &sc, &err)) return fail(&err);
-    if (!quiet) warnings_print(&ws);
     if (!out_path) out_path = sc.output;
 
+    /* Everything that can refuse the run is checked before the render and before the scene's
+     * warnings are printed: a refused run prints one line and writes nothing. */
     int status = 1;
     image img = {0}, ref = {0}, var = {0};
-    if (check_output(out_path, &err)) goto done;
-    if (var_path && check_output(var_path, &err)) goto done;
+    if (check_output(out_path, &err) || check_not_an_input(out_path, &sc, &err)) goto done;
+    if (var_path && (check_output(var_path, &err) || check_not_an_input(var_path, &sc, &err))) goto done;
+    if (var_path && (!strcmp(var_path, out_path) || same_file(var_path, out_path))) {
+        error_set(&err, var_path, 0, "--variance names the output file itself");
+        goto done;
+    }
     if (var_path) ro.variance = &var;
-    if (ref_path && imageio_read(ref_path, &ref, &err)) goto done;
+    if (ref_path) {
+        if (imageio_read(ref_path, &ref, &err)) goto done;
+        if (ref.w != sc.width || ref.h != sc.height) {
+            error_set(&err, NULL, 0, "--ref %s: image sizes differ: %d x %d against a %d x %d reference", ref_path,
+                      sc.width, sc.height, ref.w, ref.h);
+            goto done;
+        }
+    }
+    if (!quiet) warnings_print(&ws);
     if (!quiet && isatty(STDERR_FILENO)) {
         ro.progress = progress_bar;
     }
@@ -244,8 +282,16 @@ static int cmd_render(int argc, char **argv)
                     "the BVH holds %ld triangles\n", st.displaced_spheres, st.displace_sphere_rate,
                     st.displaced_triangles, st.displace_triangle_rate, st.displaced_result);
     }
+    compare_result cr; /* before any file is written: a failure here writes nothing */
+    if (ref_path && compare_metrics(&img, &ref, &cr, &err)) {
+        error_prefix(&err, "--ref %s", ref_path);
+        goto done;
+    }
     if (st.nonfinite_pixels)
         fprintf(stderr, "envtex: warning: %s: %ld pixels are NaN or Inf\n", scene_path, st.nonfinite_pixels);
+    if (st.nonfinite_variance)
+        fprintf(stderr, "envtex: warning: %s: %ld pixels of the variance image are NaN or Inf\n", var_path,
+                st.nonfinite_variance);
     tonemap_params tm = tonemap_defaults();
     tm.gamma = sc.gamma;
     if (imageio_write(out_path, &img, &tm, &err)) goto done;
@@ -253,15 +299,7 @@ static int cmd_render(int argc, char **argv)
 
     printf("time_s=%.3f spp=%d rays=%lld mrays_per_s=%.3f nonfinite=%ld build_s=%.3f", st.seconds, st.spp,
            st.rays, st.seconds > 0 ? st.rays / st.seconds / 1e6 : 0.0, st.nonfinite_pixels, st.build_seconds);
-    if (ref_path) {
-        compare_result cr;
-        if (compare_metrics(&img, &ref, &cr, &err)) {
-            printf("\n");
-            error_prefix(&err, "--ref %s", ref_path);
-            goto done;
-        }
-        printf(" relmse=%.6g rmse=%.6g relmse_trim=%.6g", cr.relmse, cr.rmse, cr.relmse_trim);
-    }
+    if (ref_path) printf(" relmse=%.6g rmse=%.6g relmse_trim=%.6g", cr.relmse, cr.rmse, cr.relmse_trim);
     printf("\n");
     status = 0;
 done:
@@ -308,7 +346,9 @@ static int cmd_compare_test(int argc, char **argv)
         if (imageio_read(paths[k], &im[k], &err)) goto done;
     gradetest_result r;
     if (gradetest_run(&im[0], &im[1], &im[2], &p, &r, map_path ? &map : NULL, &err)) {
-        error_set(&err, paths[0], 0, "%s", err.msg);
+        char msg[ERROR_MSG_MAX]; /* err.msg cannot be an argument of error_set on err: they overlap */
+        memcpy(msg, err.msg, sizeof msg);
+        error_set(&err, paths[0], 0, "%s", msg);
         goto done;
     }
     if (map_path && imageio_write(map_path, &map, NULL, &err)) goto done;
@@ -357,11 +397,14 @@ static int cmd_compare(int argc, char **argv)
     if (imageio_read(a_path, &a, &err) || imageio_read(b_path, &b, &err)) goto done;
     compare_result cr;
     if (compare_metrics(&a, &b, &cr, &err)) {
-        error_set(&err, a_path, 0, "%s (against %s)", err.msg, b_path);
+        char msg[ERROR_MSG_MAX]; /* err.msg cannot be an argument of error_set on err: they overlap */
+        memcpy(msg, err.msg, sizeof msg);
+        error_set(&err, a_path, 0, "%s (against %s)", msg, b_path);
         goto done;
     }
-    printf("rmse=%.6g relmse=%.6g psnr=%.3f max_abs=%.6g nan=%ld relmse_trim=%.6g\n", cr.rmse, cr.relmse,
-           cr.psnr, cr.max_abs, cr.nonfinite, cr.relmse_trim);
+    /* nan: A's NaN/Inf pixels; ref_nan: B's.  Either pixel non-finite leaves it out of the sums */
+    printf("rmse=%.6g relmse=%.6g psnr=%.3f max_abs=%.6g nan=%ld relmse_trim=%.6g ref_nan=%ld\n", cr.rmse, cr.relmse,
+           cr.psnr, cr.max_abs, cr.nonfinite, cr.relmse_trim, cr.ref_nonfinite);
     if (diff_path) {
         if (compare_diff_image(&a, &b, &d, &err) || imageio_write(diff_path, &d, NULL, &err)) goto done;
     }

@@ -30,6 +30,9 @@ static double now_seconds(void)
     return ts.tv_sec + ts.tv_nsec * 1e-9;
 }
 
+/* all three channels of a stored pixel are finite */
+static inline int pixel_is_finite(const float *p) { return isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]); }
+
 int render_scene(const scene *sc, const render_opts *opts, image *out, render_stats *stats, error *err)
 {
     render_opts def = render_defaults();
@@ -115,10 +118,13 @@ int render_scene(const scene *sc, const render_opts *opts, image *out, render_st
                 m2 = rgb_add(m2, rgb_make(d.r * (v.r - mean.r), d.g * (v.g - mean.g), d.b * (v.b - mean.b)));
             }
             rgb c = mean;
-            if (opts->variance) /* variance of the mean: M2 / (n - 1) / n */
+            if (opts->variance) { /* variance of the mean: M2 / (n - 1) / n */
                 image_set(opts->variance, x, y, rgb_scale(m2, 1.0 / ((double)(spp - 1) * spp)));
-            if (!rgb_is_finite(c)) stats->nonfinite_pixels++;
+                stats->nonfinite_variance += !pixel_is_finite(image_px(opts->variance, x, y));
+            }
             image_set(out, x, y, c);
+            /* counted as stored: a finite double above FLT_MAX becomes Inf in the float image */
+            stats->nonfinite_pixels += !pixel_is_finite(image_px(out, x, y));
         }
         if (opts->progress) opts->progress(opts->progress_ctx, y + 1, sc->height);
     }

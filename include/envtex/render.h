@@ -38,7 +38,9 @@ typedef struct render_stats {
     double build_seconds;      /* time to build acceleration structures and tables */
     long long rays;            /* rays traced, shadow rays included */
     int spp;
-    long nonfinite_pixels;     /* pixels with a NaN or Inf channel (should be 0) */
+    long nonfinite_pixels;     /* pixels with a NaN or Inf channel in the image as stored (float:
+                                * a radiance above FLT_MAX is Inf there) (should be 0) */
+    long nonfinite_variance;   /* the same, in opts->variance (0 without one) */
     /* what was built */
     long prims;
     int bvh_is_tree;

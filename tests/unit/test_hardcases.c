@@ -497,6 +497,41 @@ START_TEST(test_render_counts_the_nan_pixels_it_makes)
 }
 END_TEST
 
+/* Radiance that a double holds but a float cannot (emission 1e39 > FLT_MAX) is Inf in the
+ * stored image, and the count says so; likewise the variance image's own count.  Catches a
+ * count taken on the double before the store (it reported 0 while files held Inf). */
+START_TEST(test_render_counts_pixels_that_overflow_the_float_image)
+{
+    scene sc;
+    load(&sc, "size 16 16\ncamera 0 0 4 0 0 0 0 1 0 45\nambient 0 0 0\nemission 1e39 1e39 1e39\nsphere 0 0 0 1\n");
+    image img = {0};
+    render_stats st;
+    render(&sc, &img, &st);
+    long n = count_nonfinite(&img);
+    ck_assert_int_gt(n, 0);
+    ck_assert_int_eq(st.nonfinite_pixels, n);
+    ck_assert_int_eq(st.nonfinite_variance, 0); /* no variance image asked for */
+    image_free(&img);
+    scene_free(&sc);
+    /* a finite image whose variance overflows: 4 samples of a pixel on the sphere's edge, each
+     * 0 or 1e20: s^2 / 4 ~ 1e39 > FLT_MAX */
+    load(&sc, "size 16 16\ncamera 0 0 4 0 0 0 0 1 0 45\nambient 0 0 0\nemission 1e20 1e20 1e20\nsphere 0 0 0 1\n");
+    render_opts o = render_defaults();
+    o.spp = 4;
+    image var = {0};
+    o.variance = &var;
+    error err = {0};
+    if (render_scene(&sc, &o, &img, &st, &err)) ck_abort_msg("render: %s", err.msg);
+    ck_assert_int_eq(st.nonfinite_pixels, count_nonfinite(&img));
+    long nv = count_nonfinite(&var);
+    ck_assert_int_gt(nv, 0);
+    ck_assert_int_eq(st.nonfinite_variance, nv);
+    image_free(&img);
+    image_free(&var);
+    scene_free(&sc);
+}
+END_TEST
+
 Suite *hardcases_suite(void)
 {
     Suite *s = suite_create("hardcases");
@@ -522,6 +557,7 @@ Suite *hardcases_suite(void)
     TCase *rep = tcase_create("reporting");
     tcase_add_test(rep, test_tonemap_reports_nan_and_inf_pixels_and_encodes_them_fixed);
     tcase_add_test(rep, test_render_counts_the_nan_pixels_it_makes);
+    tcase_add_test(rep, test_render_counts_pixels_that_overflow_the_float_image);
     suite_add_tcase(s, rep);
     return s;
 }
