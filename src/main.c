@@ -214,6 +214,10 @@ static int cmd_render(int argc, char **argv)
         error_set(&err, var_path, 0, "--variance names the output file itself");
         goto done;
     }
+    if (ref_path && (same_file(ref_path, out_path) || (var_path && same_file(ref_path, var_path)))) {
+        error_set(&err, ref_path, 0, "the output would replace the --ref image");
+        goto done;
+    }
     if (var_path) ro.variance = &var;
     if (ref_path) {
         if (imageio_read(ref_path, &ref, &err)) goto done;
