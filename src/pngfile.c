@@ -28,7 +28,7 @@ typedef struct png_job {
     png_infop info;
     unsigned char *bytes; /* decoded / encoded rows */
     png_bytep *rows;
-    float *lut;           /* sRGB decode table, 256 or 65536 entries */
+    float *lut;           /* decode table (sRGB or a gAMA power law), 256 or 65536 entries */
     image im;
     char msg[256];        /* libpng's message */
 } png_job;
@@ -43,6 +43,20 @@ static void job_error(png_structp png, png_const_charp msg)
 static void job_warning(png_structp png, png_const_charp msg) { (void)png; (void)msg; }
 
 /* ---- reading ------------------------------------------------------------------------------- */
+
+/* The file gamma of a PNG whose codes follow a power law, encoded = linear^file_gamma, or 0 for
+ * sRGB.  libpng's rule: an sRGB or iCCP chunk wins over gAMA (libpng also reports a gAMA for an
+ * sRGB chunk, so sRGB is asked first); a gAMA chunk alone is a power law; no colour information
+ * at all is taken as sRGB.  libpng drops a gAMA outside [1/6250, 6250] (so 0 never comes
+ * back); the g > 0 test guards the division 1 / file_gamma all the same. */
+static double file_gamma_of(png_structp png, png_infop info)
+{
+    if (png_get_valid(png, info, PNG_INFO_sRGB) || png_get_valid(png, info, PNG_INFO_iCCP))
+        return 0.0;
+    double g = 0.0;
+    if (!png_get_gAMA(png, info, &g) || !(g > 0.0)) return 0.0;
+    return g;
+}
 
 static int read_body(png_job *job, error *err)
 {
@@ -85,8 +99,12 @@ static int read_body(png_job *job, error *err)
     job->lut = malloc(sizeof *job->lut * levels);
     if (!job->bytes || !job->rows || !job->lut)
         return error_set(err, job->path, 0, "out of memory for a %u x %u PNG", (unsigned)w, (unsigned)h);
-    for (size_t i = 0; i < levels; i++) /* linear = srgb_decode(code / max code) */
-        job->lut[i] = (float)tonemap_srgb_decode((double)i / (double)(levels - 1));
+    double file_gamma = file_gamma_of(job->png, job->info);
+    for (size_t i = 0; i < levels; i++) { /* code = i / max code */
+        double code = (double)i / (double)(levels - 1);
+        job->lut[i] = (float)(file_gamma > 0.0 ? pow(code, 1.0 / file_gamma) /* linear = code^(1/g) */
+                                               : tonemap_srgb_decode(code));
+    }
     for (png_uint_32 y = 0; y < h; y++) job->rows[y] = job->bytes + rowbytes * y;
     png_read_image(job->png, job->rows);
     png_read_end(job->png, NULL);

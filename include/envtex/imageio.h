@@ -26,8 +26,9 @@
 #include "envtex/image.h"
 #include "envtex/tonemap.h"
 
-/* Read any supported image into *out (linear RGB; PNG colour is decoded from sRGB, grey is
- * replicated, alpha dropped).  *out must not own pixels; on failure it stays empty. */
+/* Read any supported image into *out (linear RGB; PNG colour is decoded from sRGB, or with the
+ * power law of a lone gAMA chunk (pngfile.h); grey is replicated, alpha dropped).  *out must
+ * not own pixels; on failure it stays empty. */
 int imageio_read(const char *path, image *out, error *err);
 
 /* Write `im` to `path`, format by extension (.exr .png .pfm .hdr, case-insensitive; an

@@ -1,4 +1,5 @@
-/* test_pngfile.c - PNG reading (every colour type, sRGB decoded) and writing. */
+/* test_pngfile.c - PNG reading (every colour type; sRGB decoded, or a gAMA chunk's power law)
+ * and writing. */
 #include <dirent.h>
 #include <math.h>
 #include <png.h>
@@ -14,9 +15,12 @@
 
 #include "testdir.h"
 
-/* Write a PNG with libpng directly: rows of raw samples (big endian for 16 bit). */
-static void write_raw_png(const char *path, int w, int h, int type, int depth, int interlace,
-                          const unsigned char *data, size_t rowbytes)
+/* Write a PNG with libpng directly: rows of raw samples (big endian for 16 bit).  `srgb`: sRGB,
+ * gAMA and cHRM chunks, as many tools write them (png_set_sRGB_gAMA_and_cHRM); else a lone gAMA
+ * chunk of `file_gamma` if it is > 0; else no colour chunk. */
+static void write_tagged_png(const char *path, int w, int h, int type, int depth, int interlace,
+                             const unsigned char *data, size_t rowbytes, int srgb,
+                             double file_gamma)
 {
     FILE *f = fopen(path, "wb");
     ck_assert_ptr_nonnull(f);
@@ -30,6 +34,8 @@ static void write_raw_png(const char *path, int w, int h, int type, int depth, i
         png_color pal[2] = {{255, 0, 0}, {0, 0, 255}};
         png_set_PLTE(png, info, pal, 2);
     }
+    if (srgb) png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
+    else if (file_gamma > 0) png_set_gAMA(png, info, file_gamma);
     png_write_info(png, info);
     png_bytep rows[64];
     for (int y = 0; y < h; y++) rows[y] = (png_bytep)data + (size_t)y * rowbytes;
@@ -37,6 +43,24 @@ static void write_raw_png(const char *path, int w, int h, int type, int depth, i
     png_write_end(png, NULL);
     png_destroy_write_struct(&png, &info);
     fclose(f);
+}
+
+/* The same with no colour chunks at all. */
+static void write_raw_png(const char *path, int w, int h, int type, int depth, int interlace,
+                          const unsigned char *data, size_t rowbytes)
+{
+    write_tagged_png(path, w, h, type, depth, interlace, data, rowbytes, 0, 0.0);
+}
+
+/* 1 if the PNG bytes d[0..n) hold a chunk of this type (walking the chunk list). */
+static int has_chunk(const unsigned char *d, size_t n, const char type[4])
+{
+    for (size_t p = 8; p + 8 <= n;) {
+        size_t len = (size_t)d[p] << 24 | (size_t)d[p + 1] << 16 | (size_t)d[p + 2] << 8 | d[p + 3];
+        if (memcmp(d + p + 4, type, 4) == 0) return 1;
+        p += 12 + len;
+    }
+    return 0;
 }
 
 static float dec8(int v) { return (float)tonemap_srgb_decode(v / 255.0); }
@@ -110,6 +134,48 @@ START_TEST(test_every_colour_type_decodes_to_linear_rgb)
 }
 END_TEST
 
+START_TEST(test_a_gama_chunk_alone_means_a_power_law_and_srgb_wins_over_it)
+{
+    make_dir();
+    image im = {0};
+    error err = {0};
+    unsigned char c8[6] = {0, 64, 128, 192, 255, 16};
+    /* gAMA 1/2.2 alone: encoded = linear^(1/2.2), so linear = code^2.2 (the file holds 45455) */
+    write_tagged_png(in_dir("g22.png"), 2, 1, PNG_COLOR_TYPE_RGB, 8, PNG_INTERLACE_NONE, c8, 6, 0,
+                     1.0 / 2.2);
+    ck_assert_msg(pngfile_read(in_dir("g22.png"), &im, &err) == 0, "%s", err.msg);
+    for (int i = 0; i < 6; i++)
+        ck_assert_near(im.px[i], pow(c8[i] / 255.0, 1.0 / 0.45455), 1e-6);
+    ck_assert(im.px[4] == 1.0f && im.px[0] == 0.0f);
+    image_free(&im);
+    /* gAMA 1 alone, 16 bit: the codes are linear */
+    unsigned char c16[6] = {0x80, 0x00, 0x40, 0x00, 0xff, 0xff};
+    write_tagged_png(in_dir("g1.png"), 1, 1, PNG_COLOR_TYPE_RGB, 16, PNG_INTERLACE_NONE, c16, 6, 0,
+                     1.0);
+    ck_assert_msg(pngfile_read(in_dir("g1.png"), &im, &err) == 0, "%s", err.msg);
+    ck_assert_near(im.px[0], 32768.0 / 65535.0, 1e-6);
+    ck_assert_near(im.px[1], 16384.0 / 65535.0, 1e-6);
+    ck_assert(im.px[2] == 1.0f);
+    image_free(&im);
+    /* sRGB with gAMA 1/2.2 beside it: the sRGB curve, not the power law (they differ by more
+     * by 0.003 to 0.009 at 16, 64, 128 and 192); and no colour chunk at all: sRGB too */
+    write_tagged_png(in_dir("srgb.png"), 2, 1, PNG_COLOR_TYPE_RGB, 8, PNG_INTERLACE_NONE, c8, 6, 1,
+                     0.0);
+    size_t n;
+    unsigned char *d = slurp(in_dir("srgb.png"), &n);
+    ck_assert(has_chunk(d, n, "sRGB") && has_chunk(d, n, "gAMA"));
+    free(d);
+    write_raw_png(in_dir("none.png"), 2, 1, PNG_COLOR_TYPE_RGB, 8, PNG_INTERLACE_NONE, c8, 6);
+    const char *names[] = {"srgb.png", "none.png"};
+    for (int f = 0; f < 2; f++) {
+        ck_assert_msg(pngfile_read(in_dir(names[f]), &im, &err) == 0, "%s", err.msg);
+        for (int i = 0; i < 6; i++) ck_assert_msg(im.px[i] == dec8(c8[i]), "%s [%d]", names[f], i);
+        image_free(&im);
+    }
+    remove_dir();
+}
+END_TEST
+
 START_TEST(test_interlaced_png_reads_like_a_plain_one)
 {
     make_dir();
@@ -161,6 +227,35 @@ START_TEST(test_png_claiming_40000_by_40000_is_refused_before_allocation)
     ck_assert_int_eq(pngfile_read(in_dir("big.png"), &im, &err), -1);
     ck_assert_msg(strstr(err.msg, "over the limit") != NULL, "%s", err.msg);
     ck_assert_ptr_null(im.px);
+    free(d);
+    remove_dir();
+}
+END_TEST
+
+START_TEST(test_a_gama_outside_what_libpng_accepts_is_read_as_srgb)
+{
+    make_dir();
+    unsigned char c8[3] = {16, 64, 192};
+    write_tagged_png(in_dir("g.png"), 1, 1, PNG_COLOR_TYPE_RGB, 8, PNG_INTERLACE_NONE, c8, 3, 0,
+                     1.0);
+    size_t n;
+    unsigned char *d = slurp(in_dir("g.png"), &n);
+    /* gAMA follows IHDR (8 + 25 bytes): length at 33, "gAMA" at 37, value at 41, CRC at 45 */
+    ck_assert_int_eq(memcmp(d + 37, "gAMA", 4), 0);
+    const unsigned char bad[2][4] = {{0, 0, 0, 0}, {0, 0, 0, 15}}; /* 0 and 0.00015 < 1/6250 */
+    for (int b = 0; b < 2; b++) {
+        memcpy(d + 41, bad[b], 4);
+        uint32_t c = crc32_png(d + 37, 8);
+        unsigned char cb[4] = {(unsigned char)(c >> 24), (unsigned char)(c >> 16),
+                               (unsigned char)(c >> 8), (unsigned char)c};
+        memcpy(d + 45, cb, 4);
+        write_bytes(in_dir("bad.png"), d, n);
+        image im = {0};
+        error err = {0};
+        ck_assert_msg(pngfile_read(in_dir("bad.png"), &im, &err) == 0, "%s", err.msg);
+        for (int i = 0; i < 3; i++) ck_assert_msg(im.px[i] == dec8(c8[i]), "gAMA %d [%d]", b, i);
+        image_free(&im);
+    }
     free(d);
     remove_dir();
 }
@@ -238,8 +333,10 @@ Suite *pngfile_suite(void)
     TCase *tc = tcase_create("pngfile");
     tcase_add_test(tc, test_png_roundtrip_is_within_8bit_quantization);
     tcase_add_test(tc, test_every_colour_type_decodes_to_linear_rgb);
+    tcase_add_test(tc, test_a_gama_chunk_alone_means_a_power_law_and_srgb_wins_over_it);
     tcase_add_test(tc, test_interlaced_png_reads_like_a_plain_one);
     tcase_add_test(tc, test_png_claiming_40000_by_40000_is_refused_before_allocation);
+    tcase_add_test(tc, test_a_gama_outside_what_libpng_accepts_is_read_as_srgb);
     tcase_add_test(tc, test_truncated_and_corrupt_png_are_errors);
     tcase_add_test(tc, test_failed_png_write_leaves_the_old_file_byte_identical);
     tcase_add_test(tc, test_png_write_applies_the_tone_mapping_it_is_given);
