@@ -29,6 +29,7 @@ typedef struct png_job {
     unsigned char *bytes; /* decoded / encoded rows */
     png_bytep *rows;
     float *lut;           /* decode table (sRGB or a gAMA power law), 256 or 65536 entries */
+    png_fixed_point gama; /* writing: gAMA's file gamma x 100000, or 0 for an sRGB chunk */
     image im;
     char msg[256];        /* libpng's message */
 } png_job;
@@ -168,19 +169,21 @@ static int write_body(png_job *job, int w, int h, const uint8_t *rgb8, error *er
     png_init_io(job->png, job->f);
     png_set_IHDR(job->png, job->info, (png_uint_32)w, (png_uint_32)h, 8, PNG_COLOR_TYPE_RGB,
                  PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-    png_set_sRGB(job->png, job->info, PNG_sRGB_INTENT_PERCEPTUAL);
+    if (job->gama > 0) png_set_gAMA_fixed(job->png, job->info, job->gama); /* power law alone */
+    else png_set_sRGB(job->png, job->info, PNG_sRGB_INTENT_PERCEPTUAL);
     png_write_info(job->png, job->info);
     for (int y = 0; y < h; y++) png_write_row(job->png, rgb8 + (size_t)y * (size_t)w * 3);
     png_write_end(job->png, NULL);
     return 0;
 }
 
-int pngfile_write_rgb8(const char *path, int w, int h, const uint8_t *rgb8, error *err)
+/* Write the bytes atomically with one colour chunk: gAMA of `gama` (the file gamma x 100000)
+ * when gama > 0, else sRGB.  The public functions name the two cases. */
+static int write_png(const char *path, png_fixed_point gama, int w, int h, const uint8_t *rgb8,
+                     error *err)
 {
-    if (!rgb8 || image_check_size(w, h, path, err))
-        return error_set(err, path, 0, "cannot write an empty or invalid image");
     char tmp[ERROR_FILE_MAX];
-    png_job job = {.path = path};
+    png_job job = {.path = path, .gama = gama};
     int rc = -1;
     job.f = imageio_tmp_fopen(path, tmp, err);
     if (!job.f) return -1;
@@ -203,6 +206,27 @@ done:
     return imageio_tmp_commit(tmp, path, err);
 }
 
+int pngfile_write_rgb8(const char *path, int w, int h, const uint8_t *rgb8, error *err)
+{
+    if (!rgb8 || image_check_size(w, h, path, err))
+        return error_set(err, path, 0, "cannot write an empty or invalid image");
+    return write_png(path, 0, w, h, rgb8, err); /* sRGB chunk */
+}
+
+int pngfile_write_rgb8_gamma(const char *path, int w, int h, const uint8_t *rgb8, double gamma,
+                             error *err)
+{
+    if (!rgb8 || image_check_size(w, h, path, err))
+        return error_set(err, path, 0, "cannot write an empty or invalid image");
+    if (!(gamma >= 1.0 / PNGFILE_GAMMA_MAX && gamma <= PNGFILE_GAMMA_MAX))
+        return error_set(err, path, 0, "gamma %g cannot be recorded in a PNG (a gAMA chunk holds "
+                         "gammas from 1/%g to %g)", gamma, PNGFILE_GAMMA_MAX, PNGFILE_GAMMA_MAX);
+    /* encoded = linear^(1/gamma): the file gamma is 1/gamma, stored x 100000 (2.2 -> 45455),
+     * within [16, 625000000], which libpng accepts */
+    png_fixed_point gama = (png_fixed_point)floor(100000.0 / gamma + 0.5);
+    return write_png(path, gama, w, h, rgb8, err);
+}
+
 int pngfile_write(const char *path, const image *im, const tonemap_params *tm, error *err)
 {
     if (!im || !im->px || image_check_size(im->w, im->h, path, err))
@@ -210,8 +234,11 @@ int pngfile_write(const char *path, const image *im, const tonemap_params *tm, e
     tonemap_params def = tonemap_defaults();
     uint8_t *buf = malloc((size_t)im->w * (size_t)im->h * 3);
     if (!buf) return error_set(err, path, 0, "out of memory for a %d x %d PNG", im->w, im->h);
-    tonemap_image(tm ? tm : &def, im, buf);
-    int rc = pngfile_write_rgb8(path, im->w, im->h, buf, err);
+    const tonemap_params *t = tm ? tm : &def;
+    tonemap_image(t, im, buf);
+    /* label the file with the curve tonemap_image encoded with */
+    int rc = t->gamma > 0.0 ? pngfile_write_rgb8_gamma(path, im->w, im->h, buf, t->gamma, err)
+                            : pngfile_write_rgb8(path, im->w, im->h, buf, err);
     free(buf);
     return rc;
 }

@@ -8,8 +8,8 @@
  *
  * Reading picks the format by the file's magic bytes (not its name): OpenEXR (76 2f 31 01),
  * PNG (its 8-byte signature), Radiance ("#?"), PFM ("PF" or "Pf").  Writing picks it by the
- * extension: .exr (linear float RGB, ZIP), .png (8-bit sRGB after tone mapping), .pfm (linear
- * float), .hdr (Radiance RGBE, run-length encoded).  Every write goes to a temporary file
+ * extension: .exr (linear float RGB, ZIP), .png (8-bit after tone mapping: sRGB, or c^(1/g) with
+ * tm->gamma g, the file labelled with which), .pfm (linear float), .hdr (Radiance RGBE, run-length encoded).  Every write goes to a temporary file
  * "PATH.tmp.XXXXXX" in the same folder and is renamed over the target only when complete, so a
  * failure never leaves a partial file and an existing target stays byte-identical.
  * Errors name the file (err->file) and say what is wrong ("cannot open: No such file or

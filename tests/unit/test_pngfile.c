@@ -52,18 +52,26 @@ static void write_raw_png(const char *path, int w, int h, int type, int depth, i
     write_tagged_png(path, w, h, type, depth, interlace, data, rowbytes, 0, 0.0);
 }
 
-/* 1 if the PNG bytes d[0..n) hold a chunk of this type (walking the chunk list). */
-static int has_chunk(const unsigned char *d, size_t n, const char type[4])
+static uint32_t be32(const unsigned char *p)
 {
-    for (size_t p = 8; p + 8 <= n;) {
-        size_t len = (size_t)d[p] << 24 | (size_t)d[p + 1] << 16 | (size_t)d[p + 2] << 8 | d[p + 3];
-        if (memcmp(d + p + 4, type, 4) == 0) return 1;
-        p += 12 + len;
-    }
-    return 0;
+    return (uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | p[3];
+}
+
+/* The data of the first chunk of this type in the PNG bytes d[0..n), or NULL. */
+static const unsigned char *find_chunk(const unsigned char *d, size_t n, const char type[4])
+{
+    for (size_t p = 8; p + 8 <= n; p += 12 + be32(d + p))
+        if (memcmp(d + p + 4, type, 4) == 0) return d + p + 8;
+    return NULL;
 }
 
 static float dec8(int v) { return (float)tonemap_srgb_decode(v / 255.0); }
+
+/* A test image: values in [0,1], so nothing is clamped and every one comes back. */
+static void fill_ramp(image *im)
+{
+    for (int i = 0; i < im->w * im->h * 3; i++) im->px[i] = (float)((i * 37) % 101) / 100.0f;
+}
 
 START_TEST(test_png_roundtrip_is_within_8bit_quantization)
 {
@@ -71,7 +79,7 @@ START_TEST(test_png_roundtrip_is_within_8bit_quantization)
     image im = {0}, back = {0};
     error err = {0};
     ck_assert_int_eq(image_alloc(&im, 16, 9, &err), 0);
-    for (int i = 0; i < 16 * 9 * 3; i++) im.px[i] = (float)((i * 37) % 101) / 100.0f;
+    fill_ramp(&im);
     ck_assert_int_eq(pngfile_write(in_dir("a.png"), &im, NULL, &err), 0);
     ck_assert_msg(pngfile_read(in_dir("a.png"), &back, &err) == 0, "%s", err.msg);
     ck_assert_int_eq(back.w, 16);
@@ -83,6 +91,102 @@ START_TEST(test_png_roundtrip_is_within_8bit_quantization)
     ck_assert_int_eq(count_files(".tmp."), 0);
     image_free(&im);
     image_free(&back);
+    remove_dir();
+}
+END_TEST
+
+START_TEST(test_png_is_labelled_with_the_curve_its_bytes_are_in)
+{
+    make_dir();
+    image im = {0};
+    error err = {0};
+    ck_assert_int_eq(image_alloc(&im, 4, 4, &err), 0);
+    fill_ramp(&im);
+    size_t n;
+    /* the default tone mapping encodes with the sRGB curve: an sRGB chunk, no gAMA */
+    ck_assert_int_eq(pngfile_write(in_dir("s.png"), &im, NULL, &err), 0);
+    unsigned char *d = slurp(in_dir("s.png"), &n);
+    ck_assert_ptr_nonnull(find_chunk(d, n, "sRGB"));
+    ck_assert_ptr_null(find_chunk(d, n, "gAMA"));
+    free(d);
+    /* gamma g encodes with c^(1/g): a gAMA chunk of 1/g (x 100000), no sRGB chunk */
+    const double g[3] = {2.2, 1.0, 1.8};
+    const uint32_t stored[3] = {45455, 100000, 55556};
+    for (int k = 0; k < 3; k++) {
+        tonemap_params tm = tonemap_defaults();
+        tm.gamma = g[k];
+        ck_assert_int_eq(pngfile_write(in_dir("g.png"), &im, &tm, &err), 0);
+        d = slurp(in_dir("g.png"), &n);
+        ck_assert_msg(find_chunk(d, n, "sRGB") == NULL, "gamma %g: an sRGB chunk", g[k]);
+        const unsigned char *gama = find_chunk(d, n, "gAMA");
+        ck_assert_msg(gama != NULL, "gamma %g: no gAMA chunk", g[k]);
+        ck_assert_uint_eq(be32(gama), stored[k]);
+        free(d);
+    }
+    image_free(&im);
+    remove_dir();
+}
+END_TEST
+
+START_TEST(test_gamma_png_roundtrip_is_within_8bit_quantization)
+{
+    make_dir();
+    image im = {0}, back = {0};
+    error err = {0};
+    ck_assert_int_eq(image_alloc(&im, 16, 9, &err), 0);
+    fill_ramp(&im);
+    const double g[3] = {2.2, 1.0, 1.8};
+    for (int k = 0; k < 3; k++) {
+        tonemap_params tm = tonemap_defaults();
+        tm.gamma = g[k];
+        ck_assert_int_eq(pngfile_write(in_dir("g.png"), &im, &tm, &err), 0);
+        ck_assert_msg(pngfile_read(in_dir("g.png"), &back, &err) == 0, "%s", err.msg);
+        /* in encoded units c^(1/g), rounding to 8 bits is within half a step; 1e-5 more for the
+         * file gamma's 5 digits (0.45455, not 1/2.2) */
+        double worst = 0.0;
+        for (int i = 0; i < 16 * 9 * 3; i++)
+            worst = fmax(worst, fabs(pow(back.px[i], 1.0 / g[k]) - pow(im.px[i], 1.0 / g[k])));
+        ck_assert_msg(worst <= 0.5 / 255.0 + 1e-5, "gamma %g: worst %g", g[k], worst);
+        image_free(&back);
+    }
+    image_free(&im);
+    remove_dir();
+}
+END_TEST
+
+START_TEST(test_a_gamma_no_gama_chunk_can_hold_is_an_error_and_writes_nothing)
+{
+    make_dir();
+    image im = {0};
+    error err = {0};
+    ck_assert_int_eq(image_alloc(&im, 2, 2, &err), 0);
+    tonemap_params tm = tonemap_defaults();
+    const double bad[2] = {0.99 / PNGFILE_GAMMA_MAX, 1.01 * PNGFILE_GAMMA_MAX};
+    for (int k = 0; k < 2; k++) {
+        tm.gamma = bad[k];
+        ck_assert_int_eq(pngfile_write(in_dir("x.png"), &im, &tm, &err), -1);
+        ck_assert_msg(strstr(err.msg, "gamma") && strstr(err.msg, "gAMA"), "%s", err.msg);
+        ck_assert_str_eq(err.file, in_dir("x.png"));
+        ck_assert_int_eq(count_files("x.png"), 0); /* neither the file nor a temporary */
+    }
+    uint8_t px[3] = {1, 2, 3};
+    ck_assert_int_eq(pngfile_write_rgb8_gamma(in_dir("x.png"), 1, 1, px, 0.0, &err), -1);
+    ck_assert_int_eq(pngfile_write_rgb8_gamma(in_dir("x.png"), 1, 1, px, NAN, &err), -1);
+    ck_assert_int_eq(count_files("x.png"), 0);
+    /* the two ends themselves are fine: 16 and 625000000 units of 1e-5 */
+    const double ends[2] = {PNGFILE_GAMMA_MAX, 1.0 / PNGFILE_GAMMA_MAX};
+    const uint32_t stored[2] = {16, 625000000};
+    for (int k = 0; k < 2; k++) {
+        ck_assert_msg(pngfile_write_rgb8_gamma(in_dir("x.png"), 1, 1, px, ends[k], &err) == 0,
+                      "%s", err.msg);
+        size_t n;
+        unsigned char *d = slurp(in_dir("x.png"), &n);
+        const unsigned char *gama = find_chunk(d, n, "gAMA");
+        ck_assert_ptr_nonnull(gama);
+        ck_assert_uint_eq(be32(gama), stored[k]);
+        free(d);
+    }
+    image_free(&im);
     remove_dir();
 }
 END_TEST
@@ -163,7 +267,7 @@ START_TEST(test_a_gama_chunk_alone_means_a_power_law_and_srgb_wins_over_it)
                      0.0);
     size_t n;
     unsigned char *d = slurp(in_dir("srgb.png"), &n);
-    ck_assert(has_chunk(d, n, "sRGB") && has_chunk(d, n, "gAMA"));
+    ck_assert(find_chunk(d, n, "sRGB") && find_chunk(d, n, "gAMA"));
     free(d);
     write_raw_png(in_dir("none.png"), 2, 1, PNG_COLOR_TYPE_RGB, 8, PNG_INTERLACE_NONE, c8, 6);
     const char *names[] = {"srgb.png", "none.png"};
@@ -332,6 +436,9 @@ Suite *pngfile_suite(void)
     Suite *s = suite_create("pngfile");
     TCase *tc = tcase_create("pngfile");
     tcase_add_test(tc, test_png_roundtrip_is_within_8bit_quantization);
+    tcase_add_test(tc, test_png_is_labelled_with_the_curve_its_bytes_are_in);
+    tcase_add_test(tc, test_gamma_png_roundtrip_is_within_8bit_quantization);
+    tcase_add_test(tc, test_a_gamma_no_gama_chunk_can_hold_is_an_error_and_writes_nothing);
     tcase_add_test(tc, test_every_colour_type_decodes_to_linear_rgb);
     tcase_add_test(tc, test_a_gama_chunk_alone_means_a_power_law_and_srgb_wins_over_it);
     tcase_add_test(tc, test_interlaced_png_reads_like_a_plain_one);
