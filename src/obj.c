@@ -203,6 +203,8 @@ static int parse(const char *text, size_t len, const char *name, long max_elems,
         goto done;
     }
     size_t pos = 0;
+    /* a UTF-8 byte-order mark some editors write is not part of the first keyword */
+    if (len >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0) pos = 3;
     while (pos < len) {
         r.line++;
         const char *nl = memchr(text + pos, '\n', len - pos);

@@ -28,7 +28,8 @@ typedef struct png_job {
     png_infop info;
     unsigned char *bytes; /* decoded / encoded rows */
     png_bytep *rows;
-    float *lut;           /* sRGB decode table, 256 or 65536 entries */
+    float *lut;           /* decode table (sRGB or a gAMA power law), 256 or 65536 entries */
+    png_fixed_point gama; /* writing: gAMA's file gamma x 100000, or 0 for an sRGB chunk */
     image im;
     char msg[256];        /* libpng's message */
 } png_job;
@@ -43,6 +44,20 @@ static void job_error(png_structp png, png_const_charp msg)
 static void job_warning(png_structp png, png_const_charp msg) { (void)png; (void)msg; }
 
 /* ---- reading ------------------------------------------------------------------------------- */
+
+/* The file gamma of a PNG whose codes follow a power law, encoded = linear^file_gamma, or 0 for
+ * sRGB.  libpng's rule: an sRGB or iCCP chunk wins over gAMA (libpng also reports a gAMA for an
+ * sRGB chunk, so sRGB is asked first); a gAMA chunk alone is a power law; no colour information
+ * at all is taken as sRGB.  libpng drops a gAMA outside [1/6250, 6250] (so 0 never comes
+ * back); the g > 0 test guards the division 1 / file_gamma all the same. */
+static double file_gamma_of(png_structp png, png_infop info)
+{
+    if (png_get_valid(png, info, PNG_INFO_sRGB) || png_get_valid(png, info, PNG_INFO_iCCP))
+        return 0.0;
+    double g = 0.0;
+    if (!png_get_gAMA(png, info, &g) || !(g > 0.0)) return 0.0;
+    return g;
+}
 
 static int read_body(png_job *job, error *err)
 {
@@ -85,8 +100,12 @@ static int read_body(png_job *job, error *err)
     job->lut = malloc(sizeof *job->lut * levels);
     if (!job->bytes || !job->rows || !job->lut)
         return error_set(err, job->path, 0, "out of memory for a %u x %u PNG", (unsigned)w, (unsigned)h);
-    for (size_t i = 0; i < levels; i++) /* linear = srgb_decode(code / max code) */
-        job->lut[i] = (float)tonemap_srgb_decode((double)i / (double)(levels - 1));
+    double file_gamma = file_gamma_of(job->png, job->info);
+    for (size_t i = 0; i < levels; i++) { /* code = i / max code */
+        double code = (double)i / (double)(levels - 1);
+        job->lut[i] = (float)(file_gamma > 0.0 ? pow(code, 1.0 / file_gamma) /* linear = code^(1/g) */
+                                               : tonemap_srgb_decode(code));
+    }
     for (png_uint_32 y = 0; y < h; y++) job->rows[y] = job->bytes + rowbytes * y;
     png_read_image(job->png, job->rows);
     png_read_end(job->png, NULL);
@@ -150,19 +169,21 @@ static int write_body(png_job *job, int w, int h, const uint8_t *rgb8, error *er
     png_init_io(job->png, job->f);
     png_set_IHDR(job->png, job->info, (png_uint_32)w, (png_uint_32)h, 8, PNG_COLOR_TYPE_RGB,
                  PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-    png_set_sRGB(job->png, job->info, PNG_sRGB_INTENT_PERCEPTUAL);
+    if (job->gama > 0) png_set_gAMA_fixed(job->png, job->info, job->gama); /* power law alone */
+    else png_set_sRGB(job->png, job->info, PNG_sRGB_INTENT_PERCEPTUAL);
     png_write_info(job->png, job->info);
     for (int y = 0; y < h; y++) png_write_row(job->png, rgb8 + (size_t)y * (size_t)w * 3);
     png_write_end(job->png, NULL);
     return 0;
 }
 
-int pngfile_write_rgb8(const char *path, int w, int h, const uint8_t *rgb8, error *err)
+/* Write the bytes atomically with one colour chunk: gAMA of `gama` (the file gamma x 100000)
+ * when gama > 0, else sRGB.  The public functions name the two cases. */
+static int write_png(const char *path, png_fixed_point gama, int w, int h, const uint8_t *rgb8,
+                     error *err)
 {
-    if (!rgb8 || image_check_size(w, h, path, err))
-        return error_set(err, path, 0, "cannot write an empty or invalid image");
     char tmp[ERROR_FILE_MAX];
-    png_job job = {.path = path};
+    png_job job = {.path = path, .gama = gama};
     int rc = -1;
     job.f = imageio_tmp_fopen(path, tmp, err);
     if (!job.f) return -1;
@@ -185,6 +206,27 @@ done:
     return imageio_tmp_commit(tmp, path, err);
 }
 
+int pngfile_write_rgb8(const char *path, int w, int h, const uint8_t *rgb8, error *err)
+{
+    if (!rgb8 || image_check_size(w, h, path, err))
+        return error_set(err, path, 0, "cannot write an empty or invalid image");
+    return write_png(path, 0, w, h, rgb8, err); /* sRGB chunk */
+}
+
+int pngfile_write_rgb8_gamma(const char *path, int w, int h, const uint8_t *rgb8, double gamma,
+                             error *err)
+{
+    if (!rgb8 || image_check_size(w, h, path, err))
+        return error_set(err, path, 0, "cannot write an empty or invalid image");
+    if (!(gamma >= 1.0 / PNGFILE_GAMMA_MAX && gamma <= PNGFILE_GAMMA_MAX))
+        return error_set(err, path, 0, "gamma %g cannot be recorded in a PNG (a gAMA chunk holds "
+                         "gammas from 1/%g to %g)", gamma, PNGFILE_GAMMA_MAX, PNGFILE_GAMMA_MAX);
+    /* encoded = linear^(1/gamma): the file gamma is 1/gamma, stored x 100000 (2.2 -> 45455),
+     * within [16, 625000000], which libpng accepts */
+    png_fixed_point gama = (png_fixed_point)floor(100000.0 / gamma + 0.5);
+    return write_png(path, gama, w, h, rgb8, err);
+}
+
 int pngfile_write(const char *path, const image *im, const tonemap_params *tm, error *err)
 {
     if (!im || !im->px || image_check_size(im->w, im->h, path, err))
@@ -192,8 +234,11 @@ int pngfile_write(const char *path, const image *im, const tonemap_params *tm, e
     tonemap_params def = tonemap_defaults();
     uint8_t *buf = malloc((size_t)im->w * (size_t)im->h * 3);
     if (!buf) return error_set(err, path, 0, "out of memory for a %d x %d PNG", im->w, im->h);
-    tonemap_image(tm ? tm : &def, im, buf);
-    int rc = pngfile_write_rgb8(path, im->w, im->h, buf, err);
+    const tonemap_params *t = tm ? tm : &def;
+    tonemap_image(t, im, buf);
+    /* label the file with the curve tonemap_image encoded with */
+    int rc = t->gamma > 0.0 ? pngfile_write_rgb8_gamma(path, im->w, im->h, buf, t->gamma, err)
+                            : pngfile_write_rgb8(path, im->w, im->h, buf, err);
     free(buf);
     return rc;
 }

@@ -8,8 +8,8 @@
  *
  * Reading picks the format by the file's magic bytes (not its name): OpenEXR (76 2f 31 01),
  * PNG (its 8-byte signature), Radiance ("#?"), PFM ("PF" or "Pf").  Writing picks it by the
- * extension: .exr (linear float RGB, ZIP), .png (8-bit sRGB after tone mapping), .pfm (linear
- * float), .hdr (Radiance RGBE, run-length encoded).  Every write goes to a temporary file
+ * extension: .exr (linear float RGB, ZIP), .png (8-bit after tone mapping: sRGB, or c^(1/g) with
+ * tm->gamma g, the file labelled with which), .pfm (linear float), .hdr (Radiance RGBE, run-length encoded).  Every write goes to a temporary file
  * "PATH.tmp.XXXXXX" in the same folder and is renamed over the target only when complete, so a
  * failure never leaves a partial file and an existing target stays byte-identical.
  * Errors name the file (err->file) and say what is wrong ("cannot open: No such file or
@@ -26,8 +26,9 @@
 #include "envtex/image.h"
 #include "envtex/tonemap.h"
 
-/* Read any supported image into *out (linear RGB; PNG colour is decoded from sRGB, grey is
- * replicated, alpha dropped).  *out must not own pixels; on failure it stays empty. */
+/* Read any supported image into *out (linear RGB; PNG colour is decoded from sRGB, or with the
+ * power law of a lone gAMA chunk (pngfile.h); grey is replicated, alpha dropped).  *out must
+ * not own pixels; on failure it stays empty. */
 int imageio_read(const char *path, image *out, error *err);
 
 /* Write `im` to `path`, format by extension (.exr .png .pfm .hdr, case-insensitive; an

@@ -17,7 +17,8 @@
  * the latest), as the format says.  Index 0, or one beyond the records read so far, is an error.
  * Every other statement (o, g, s, usemtl, mtllib, l, p, ...) is skipped and counted in
  * n_ignored (the first one's keyword and line are kept, so a caller can warn once).  Blank lines
- * and `#` comments (also after a statement) are skipped; a trailing `\r` is white space.
+ * and `#` comments (also after a statement) are skipped; a trailing `\r` is white space.  A
+ * UTF-8 byte-order mark (EF BB BF) at the start of the text is skipped, as in scene files.
  *
  * Errors are values: err->file is the OBJ's name, err->line the line, err->msg what is wrong
  * ("expected a number for 'v', got 'abc'", "index 9 of 'f' is out of range: 8 vertices so far",

@@ -30,7 +30,8 @@ typedef enum tonemap_op {
 typedef struct tonemap_params {
     double exposure; /* EV: multiply by 2^exposure first */
     tonemap_op op;
-    double gamma;    /* <= 0: sRGB transfer curve; > 0: c^(1/gamma) */
+    double gamma;    /* <= 0: sRGB transfer curve; > 0: c^(1/gamma) (pngfile_write labels the
+                      * file with the curve: an sRGB chunk, or a gAMA chunk of 1/gamma) */
 } tonemap_params;
 
 tonemap_params tonemap_defaults(void);

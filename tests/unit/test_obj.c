@@ -99,6 +99,19 @@ START_TEST(test_optional_numbers_comments_and_other_statements_are_tolerated)
 }
 END_TEST
 
+START_TEST(test_a_utf8_byte_order_mark_at_the_start_is_skipped)
+{
+    obj_mesh m;
+    load_ok("\xEF\xBB\xBFv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", &m);
+    ck_assert_int_eq(m.n_v, 3); /* the first 'v' is a vertex, not an unknown statement */
+    ck_assert_int_eq(m.n_tris, 1);
+    ck_assert_int_eq(m.n_ignored, 0);
+    obj_free(&m);
+    /* the mark's line is still line 1 */
+    load_fails("\xEF\xBB\xBFv 0 0 abc\n", 0, 1, "'abc'");
+}
+END_TEST
+
 START_TEST(test_each_error_names_its_line)
 {
     load_fails("v 0 0 abc\n", 0, 1, "'abc'");
@@ -158,6 +171,7 @@ Suite *obj_suite(void)
     tcase_add_test(tc, test_polygons_are_fanned_from_their_first_corner);
     tcase_add_test(tc, test_negative_indices_count_back_from_the_last_record_so_far);
     tcase_add_test(tc, test_optional_numbers_comments_and_other_statements_are_tolerated);
+    tcase_add_test(tc, test_a_utf8_byte_order_mark_at_the_start_is_skipped);
     tcase_add_test(tc, test_each_error_names_its_line);
     tcase_add_test(tc, test_limits_are_checked_before_the_arrays_grow);
     tcase_add_test(tc, test_files_are_read_and_missing_ones_named);
