@@ -636,7 +636,17 @@ static int cmd_brdf(parser *p)
 
 static int cmd_roughness(parser *p) { return arg_nonneg(p, 1, 0, &p->mat.roughness); }
 static int cmd_ior(parser *p) { return arg_nonneg(p, 1, 1, &p->mat.ior); }
-static int cmd_gamma(parser *p) { return arg_nonneg(p, 1, 1, &p->sc->gamma); }
+/* output encoding c^(1/g): gammas outside [SCENE_GAMMA_MIN, SCENE_GAMMA_MAX] are typing
+ * mistakes (the course uses 2.2), refused here rather than after the render by the PNG writer */
+#define SCENE_GAMMA_MIN 0.01
+#define SCENE_GAMMA_MAX 100.0
+static int cmd_gamma(parser *p)
+{
+    if (arg_nonneg(p, 1, 1, &p->sc->gamma)) return -1;
+    if (!(p->sc->gamma >= SCENE_GAMMA_MIN && p->sc->gamma <= SCENE_GAMMA_MAX))
+        return fail(p, "'gamma' must be from %g to %g, got '%s'", SCENE_GAMMA_MIN, SCENE_GAMMA_MAX, p->tok[1]);
+    return 0;
+}
 
 static int cmd_envmiss(parser *p)
 {

@@ -121,6 +121,8 @@ static const bad_case bad_cases[] = {
     {"importancesampling uniform\n", 3, "'uniform'"},
     {"envmiss foo\n", 3, "'envmiss' must be 'envmap' or 'black', got 'foo'"},
     {"gamma 0\n", 3, "'gamma' argument 1 must be > 0, got '0'"},
+    {"gamma 1e-5\n", 3, "'gamma' must be from 0.01 to 100, got '1e-5'"},
+    {"gamma 101\n", 3, "'gamma' must be from 0.01 to 100, got '101'"},
     /* material state */
     {"brdf foo\n", 3, "'brdf' must be 'phong', 'ggx', 'mirror' or 'glass', got 'foo'"},
     {"roughness -0.1\n", 3, "'roughness' argument 1 must be >= 0, got '-0.1'"},
