@@ -10,6 +10,7 @@
 
 #include <assert.h>
 #include <errno.h>
+#include <float.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -1177,6 +1178,28 @@ static void clean_texels(parser *p, image *im, int line, int radiance, const cha
     p->line = saved;
 }
 
+/* The brightest channel value of an image (after clean_texels: finite, >= 0). */
+static double brightest(const image *im)
+{
+    float m = 0;
+    for (size_t i = 0; i < 3 * (size_t)im->w * (size_t)im->h; i++) m = im->px[i] > m ? im->px[i] : m;
+    return m;
+}
+
+/* The scaled envmap must stay a float radiance: scale x the brightest texel <= FLT_MAX.  Past
+ * it (`envmap big.pfm 1e300`) the map's radiance is Inf, and Inf x 0 makes NaN pixels. */
+static int check_envmap_scale(parser *p, double bright)
+{
+    scene_envmap *e = &p->sc->envmap;
+    if (!(e->scale * bright <= FLT_MAX)) {
+        char why[160];
+        snprintf(why, sizeof why, "scale %g times its brightest texel %g is %g, above the largest float "
+                 "radiance (%g)", e->scale, bright, e->scale * bright, (double)FLT_MAX);
+        return envmap_error(p, 0, why);
+    }
+    return 0;
+}
+
 static int load_envmap(parser *p)
 {
     scene_envmap *e = &p->sc->envmap;
@@ -1199,10 +1222,13 @@ static int load_envmap(parser *p)
             }
         }
         e->cube.size = e->cube.face[0].w;
-        return 0;
+        double bright = 0;
+        for (int f = 0; f < CUBEMAP_FACES; f++) bright = fmax(bright, brightest(&e->cube.face[f]));
+        return check_envmap_scale(p, bright);
     }
     if (imageio_read(e->path, &e->img, &ie)) return envmap_error(p, 0, ie.msg);
     clean_texels(p, &e->img, e->line, 1, "envmap", p->envmap_token[0]);
+    if (check_envmap_scale(p, brightest(&e->img))) return -1;
     if (!e->kind_given && convert_kind_detect(e->img.w, e->img.h, &e->kind, &ie))
         return envmap_error(p, 0, ie.msg);
     if (e->kind == CONVERT_CUBE) {

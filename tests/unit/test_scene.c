@@ -869,6 +869,21 @@ START_TEST(test_a_readable_envmap_is_loaded_when_images_are_on)
     ck_assert_double_eq(image_get(&sc.envmap.img, 3, 1).b, 2.0);
     scene_free(&sc);
     ck_assert_ptr_null(sc.envmap.img.px);
+    /* a scale that takes the brightest texel (2) past FLT_MAX is an error at the envmap's line
+     * (catches a missing check: the map's radiance was Inf, and pixels NaN); up to it is fine */
+    f = fopen(scene_path, "w");
+    ck_assert_ptr_nonnull(f);
+    fputs(HEAD "envmap sky.pfm 1.8e38\n", f);
+    fclose(f);
+    ck_assert_int_eq(scene_load(scene_path, NULL, &sc, &err), -1);
+    ck_assert_int_eq(err.line, 3);
+    ck_assert_msg(strstr(err.msg, "above the largest float radiance"), "%s", err.msg);
+    f = fopen(scene_path, "w");
+    ck_assert_ptr_nonnull(f);
+    fputs(HEAD "envmap sky.pfm 1.6e38\n", f);
+    fclose(f);
+    ck_assert_msg(scene_load(scene_path, NULL, &sc, &err) == 0, "%s", err.msg);
+    scene_free(&sc);
     unlink(scene_path);
     unlink(img_path);
     rmdir(dir);
