@@ -31,7 +31,9 @@ rgb brdf_eval(const surface *s, vec3 wo, vec3 wi)
     if (rgb_is_black(s->ks)) return f;
     if (s->kind == BRDF_PHONG) {
         vec3 r = vec3_reflect(vec3_neg(wo), s->n); /* mirror direction of wo */
-        double c = vec3_dot(r, wi);
+        /* cos = r . wi in [0, 1]: two unit vectors' dot product rounds up to 1 + 2^-52, and
+         * (1 + 2^-52)^s is Inf for a huge s (1e18): clamp to the axis, where the lobe peaks */
+        double c = fmin(vec3_dot(r, wi), 1.0);
         if (c > 0) f = rgb_madd(f, s->ks, (s->shininess + 2) / (2 * M_PI) * pow(c, s->shininess));
         return f;
     }

@@ -40,7 +40,9 @@ vec3 sampling_phong_lobe(double s, double xi1, double xi2)
 
 double sampling_phong_lobe_pdf(double s, double cos_alpha)
 {
-    return cos_alpha > 0 ? (s + 1) / (2 * M_PI) * pow(cos_alpha, s) : 0;
+    /* cos_alpha in [0, 1]: a dot product of unit vectors can round to 1 + 2^-52, and
+     * (1 + 2^-52)^s overflows for a huge s: clamp to the axis (the peak, (s + 1) / (2 pi)) */
+    return cos_alpha > 0 ? (s + 1) / (2 * M_PI) * pow(fmin(cos_alpha, 1.0), s) : 0;
 }
 
 vec3 sampling_ggx_half(double alpha, double xi1, double xi2)

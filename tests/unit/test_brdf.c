@@ -198,6 +198,41 @@ START_TEST(test_brdf_is_zero_below_the_surface)
 }
 END_TEST
 
+/* Modified Phong at the mirror direction wi = r with a huge shininess (1e18, which the parser
+ * accepts): r.wi of two unit vectors rounds to 1 + 2^-52 for about a third of directions, and
+ * (1 + 2^-52)^1e18 = Inf.  f and the pdf must be the lobe's peak, kd / pi + ks (s + 2) / (2 pi)
+ * and (1 - t) cos / pi + t (s + 1) / (2 pi), and a BRDF sample's weight f cos / pdf finite.
+ * Catches the cosine r.wi not clamped to <= 1 in brdf_eval (f = Inf) or in the Phong lobe pdf
+ * (pdf = Inf, weight Inf / Inf = NaN). */
+START_TEST(test_brdf_phong_with_huge_shininess_stays_finite_at_the_mirror_direction)
+{
+    const double shin = 1e18;
+    brdf_case c = {"", BRDF_PHONG, SAMPLING_BRDF, 0.5, 0.5, shin, 0, 0};
+    surface s = make_surface(&c);
+    double t = brdf_specular_probability(&s);
+    rng r;
+    rng_seed(&r, 11, 0);
+    int above_one = 0, bad = 0;
+    for (int i = 0; i < 1000; i++) {
+        vec3 wo = sampling_uniform_hemisphere(rng_uniform(&r), rng_uniform(&r));
+        if (!(wo.z > 1e-3)) continue;
+        vec3 wi = vec3_reflect(vec3_neg(wo), s.n); /* r: the lobe's axis, as brdf.c computes it */
+        above_one += vec3_dot(wi, wi) > 1;
+        double f = brdf_eval(&s, wo, wi).r, pdf = brdf_pdf(&s, wo, wi, SAMPLING_BRDF);
+        double f_peak = 0.5 / M_PI + 0.5 * (shin + 2) / (2 * M_PI);
+        double pdf_peak = (1 - t) * wi.z / M_PI + t * (shin + 1) / (2 * M_PI);
+        /* r.wi = 1 - 2^-53 gives (1 - 2^-53)^1e18 = e^-111: 0 to the tolerance */
+        bad += !(fabs(f - f_peak) <= 1e-12 * f_peak || f <= 0.5 / M_PI + 1e-12);
+        bad += !(fabs(pdf - pdf_peak) <= 1e-12 * pdf_peak || pdf <= (1 - t) * wi.z / M_PI + 1e-12);
+        brdf_sample_result bs;
+        if (brdf_sample(&s, wo, SAMPLING_BRDF, rng_uniform(&r), rng_uniform(&r), 0.0, &bs))
+            bad += !rgb_is_finite(bs.weight) || !isfinite(bs.pdf);
+    }
+    ck_assert_msg(above_one > 0, "no direction had r.r > 1: the test cannot fail");
+    ck_assert_int_eq(bad, 0);
+}
+END_TEST
+
 /* a mirror reflects exactly with weight ks; glass returns the reflection or the refraction with
  * weight 1, reflecting with probability F; neither has a pdf or an f */
 START_TEST(test_brdf_delta_surfaces_reflect_and_refract_exactly)
@@ -254,6 +289,7 @@ Suite *brdf_suite(void)
     tcase_add_test(tc, test_brdf_specular_probability_follows_the_course);
     tcase_add_test(tc, test_brdf_is_zero_below_the_surface);
     tcase_add_test(tc, test_brdf_delta_surfaces_reflect_and_refract_exactly);
+    tcase_add_test(tc, test_brdf_phong_with_huge_shininess_stays_finite_at_the_mirror_direction);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -179,6 +179,20 @@ START_TEST(test_sampling_ggx_d_with_zero_roughness_is_zero_not_nan)
 }
 END_TEST
 
+/* The Phong lobe pdf at its axis with a cosine that rounded above 1 (r.wi of two unit vectors
+ * can be 1 + 2^-52) is the peak (s + 1) / (2 pi), for a huge shininess too.  Catches the cosine
+ * not clamped to <= 1: (1 + 2^-52)^1e18 = Inf, and at s = 1e15 a peak 1.25 times too high. */
+START_TEST(test_sampling_phong_pdf_treats_a_cosine_rounded_above_one_as_the_axis)
+{
+    const double shin[] = {10, 1e15, 1e18, 1e300};
+    for (int i = 0; i < 4; i++) {
+        double s = shin[i], peak = (s + 1) / (2 * M_PI);
+        ck_assert_near(sampling_phong_lobe_pdf(s, 1.0), peak, 1e-15 * peak);
+        ck_assert_near(sampling_phong_lobe_pdf(s, 1 + 0x1p-52), peak, 1e-15 * peak);
+    }
+}
+END_TEST
+
 /* sampling_to_world is a rotation taking +z to n, for normals along and near every axis
  * (n = -z is where the branch-free basis changes sign) */
 START_TEST(test_sampling_to_world_is_a_rotation_taking_z_to_n)
@@ -215,6 +229,7 @@ Suite *sampling_suite(void)
     tcase_add_test(tc, test_sampling_edge_random_numbers_give_unit_directions_in_the_right_hemisphere);
     tcase_add_test(tc, test_sampling_pdfs_vanish_below_their_hemisphere);
     tcase_add_test(tc, test_sampling_ggx_d_with_zero_roughness_is_zero_not_nan);
+    tcase_add_test(tc, test_sampling_phong_pdf_treats_a_cosine_rounded_above_one_as_the_axis);
     tcase_add_test(tc, test_sampling_to_world_is_a_rotation_taking_z_to_n);
     suite_add_tcase(s, tc);
     return s;
