@@ -39,7 +39,7 @@ rgb brdf_eval(const surface *s, vec3 wo, vec3 wi)
     }
     /* GGX microfacet term F G D / (4 cos_i cos_o) */
     vec3 h = vec3_normalize(vec3_add(wi, wo));
-    double a = s->roughness;
+    double a = sampling_ggx_alpha(s->roughness); /* clamped where the lobe is its limit */
     double D = sampling_ggx_d(a, vec3_dot(s->n, h));
     double G = ggx_g1(a, cos_i) * ggx_g1(a, cos_o);
     double m = pow(1 - fmax(0.0, vec3_dot(wi, h)), 5); /* Schlick: F = ks + (1 - ks) (1 - wi.h)^5 */
