@@ -31,13 +31,15 @@ rgb brdf_eval(const surface *s, vec3 wo, vec3 wi)
     if (rgb_is_black(s->ks)) return f;
     if (s->kind == BRDF_PHONG) {
         vec3 r = vec3_reflect(vec3_neg(wo), s->n); /* mirror direction of wo */
-        double c = vec3_dot(r, wi);
+        /* cos = r . wi in [0, 1]: two unit vectors' dot product rounds up to 1 + 2^-52, and
+         * (1 + 2^-52)^s is Inf for a huge s (1e18): clamp to the axis, where the lobe peaks */
+        double c = fmin(vec3_dot(r, wi), 1.0);
         if (c > 0) f = rgb_madd(f, s->ks, (s->shininess + 2) / (2 * M_PI) * pow(c, s->shininess));
         return f;
     }
     /* GGX microfacet term F G D / (4 cos_i cos_o) */
     vec3 h = vec3_normalize(vec3_add(wi, wo));
-    double a = s->roughness;
+    double a = sampling_ggx_alpha(s->roughness); /* clamped where the lobe is its limit */
     double D = sampling_ggx_d(a, vec3_dot(s->n, h));
     double G = ggx_g1(a, cos_i) * ggx_g1(a, cos_o);
     double m = pow(1 - fmax(0.0, vec3_dot(wi, h)), 5); /* Schlick: F = ks + (1 - ks) (1 - wi.h)^5 */

@@ -160,10 +160,18 @@ double perlin_turbulence_filtered(vec3 p, double footprint, int octaves, double 
     return octave_sum(p, footprint, octaves, lacunarity, gain, 1, PERLIN_MEAN_ABS);
 }
 
+double perlin_marble_veins(double phase)
+{
+    /* frequency * x or amplitude * turbulence overflowed (or was 0 * Inf): veins far finer than
+     * the doubles can place, whose mean is 0; sin(+-Inf) and sin(NaN) would be NaN */
+    if (!isfinite(phase)) return 0.0;
+    return sin(phase);
+}
+
 double perlin_marble(vec3 p, double frequency, double amplitude, int octaves)
 {
     double turb = perlin_turbulence(p, octaves, 2.0, 0.5);
-    return 0.5 + 0.5 * sin(frequency * p.x + amplitude * turb); /* marble */
+    return 0.5 + 0.5 * perlin_marble_veins(frequency * p.x + amplitude * turb); /* marble */
 }
 
 double perlin_wood(vec3 p, double rings, double amplitude)

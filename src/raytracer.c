@@ -49,7 +49,9 @@ static rgb direct_lights(raytracer *rt, const hit *h, const surface *s, vec3 vie
         rgb c = rgb_scale(s->kd, ndotl);                       /* kd max(N.L, 0) */
         if (has_ks) {
             vec3 half = vec3_normalize(vec3_add(ldir, view));  /* H = (L + V) / |L + V| */
-            double ndoth = vec3_dot(n, half);
+            /* N.H in [0, 1]: two unit vectors' dot product rounds up to 1 + 2^-52, and
+             * (1 + 2^-52)^s is Inf for a huge s (1e18): clamp to the highlight's centre */
+            double ndoth = fmin(vec3_dot(n, half), 1.0);
             if (ndoth > 0) c = rgb_madd(c, s->ks, pow(ndoth, s->shininess)); /* ks (N.H)^s */
         }
         sum = rgb_fma(sum, l->color, rgb_scale(c, 1 / atten));

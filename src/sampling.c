@@ -40,12 +40,15 @@ vec3 sampling_phong_lobe(double s, double xi1, double xi2)
 
 double sampling_phong_lobe_pdf(double s, double cos_alpha)
 {
-    return cos_alpha > 0 ? (s + 1) / (2 * M_PI) * pow(cos_alpha, s) : 0;
+    /* cos_alpha in [0, 1]: a dot product of unit vectors can round to 1 + 2^-52, and
+     * (1 + 2^-52)^s overflows for a huge s: clamp to the axis (the peak, (s + 1) / (2 pi)) */
+    return cos_alpha > 0 ? (s + 1) / (2 * M_PI) * pow(fmin(cos_alpha, 1.0), s) : 0;
 }
 
 vec3 sampling_ggx_half(double alpha, double xi1, double xi2)
 {
     xi1 = clamp01(xi1);
+    alpha = sampling_ggx_alpha(alpha); /* alpha^2 finite and at least 2^-54 (or 0) */
     /* tan^2(theta_h) = alpha^2 xi1 / (1 - xi1)  ->  cos^2 = (1 - xi1) / (1 + (alpha^2 - 1) xi1) */
     double cos2 = (1 - xi1) / (1 + (alpha * alpha - 1) * xi1);
     return from_cos(sqrt(fmax(0.0, cos2)), 2 * M_PI * clamp01(xi2));
@@ -54,6 +57,7 @@ vec3 sampling_ggx_half(double alpha, double xi1, double xi2)
 double sampling_ggx_d(double alpha, double cos_theta)
 {
     if (cos_theta <= 0) return 0;
+    alpha = sampling_ggx_alpha(alpha); /* the peak 1 / (pi alpha^2) and den^2 stay finite */
     double c2 = cos_theta * cos_theta, a2 = alpha * alpha;
     /* alpha^2 / (pi cos^4 (alpha^2 + tan^2)^2) = alpha^2 / (pi (alpha^2 cos^2 + sin^2)^2) */
     double den = a2 * c2 + (1 - c2);

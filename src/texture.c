@@ -193,7 +193,7 @@ static double solid_value(const texture *t, vec3 p, double w)
              * perlin.h fades an octave, a = 1 - smoothstep(1/2, 1, cycles w) */
             double a = 1.0 - smoothstep(0.5, 1.0, s->frequency / (2 * M_PI) * w);
             double turb = perlin_turbulence_filtered(x, w, s->octaves, 2.0, 0.5);
-            v = 0.5 + 0.5 * a * sin(s->frequency * x.x + s->amplitude * turb);
+            v = 0.5 + 0.5 * a * perlin_marble_veins(s->frequency * x.x + s->amplitude * turb);
         } else {
             v = perlin_marble(x, s->frequency, s->amplitude, s->octaves);
         }

@@ -70,8 +70,16 @@ double perlin_turbulence_filtered(vec3 p, double footprint, int octaves, double 
 /* Marble: 0.5 + 0.5 sin(frequency * p.x + amplitude * turbulence(p)), in [0, 1],
  * with turbulence = perlin_turbulence(p, octaves, 2, 0.5).  The veins run across x with period
  * 2 pi / frequency; `amplitude` (radians per unit of turbulence) bends them.  Example:
- * frequency 4, amplitude 8, octaves 6.  Map to colours with a lerp or a colour ramp. */
+ * frequency 4, amplitude 8, octaves 6.  Map to colours with a lerp or a colour ramp.  Where
+ * the phase overflows, 0.5 (perlin_marble_veins). */
 double perlin_marble(vec3 p, double frequency, double amplitude, int octaves);
+
+/* The veins' profile at a marble phase (frequency * p.x + amplitude * turbulence): sin(phase),
+ * or its mean 0 where the phase is infinite or NaN.  The parser accepts any finite frequency,
+ * amplitude and scale, and their products overflow (1e200 * 1e200); veins that fine are far
+ * below the spacing of doubles, so their mean is the only meaningful value (the one the filtered
+ * marble fades them to).  Finite phases, however large, keep sin. */
+double perlin_marble_veins(double phase);
 
 /* Wood: rings about the y axis.  v = rings * sqrt(p.x^2 + p.z^2) + amplitude *
  * noise(p); returns the fraction v - floor(v), in [0, 1).  `rings` = rings per unit of radius;

@@ -29,10 +29,31 @@ double sampling_cosine_hemisphere_pdf(double cos_theta);
 vec3 sampling_phong_lobe(double s, double xi1, double xi2);
 double sampling_phong_lobe_pdf(double s, double cos_alpha);
 
+/* The GGX roughness alpha the GGX functions use (these two and brdf.c's G1): any alpha > 0 is
+ * clamped to [SAMPLING_GGX_ALPHA_MIN, SAMPLING_GGX_ALPHA_MAX], where the lobe has already
+ * reached its limit in double precision; alpha = 0 stays 0 (a delta: D = 0, no density).  So
+ * every finite alpha >= 0 gives finite D, G and half vectors.
+ *   MIN = 2^-27: at or below it alpha^2 - 1 rounds to -1, so sampling_ggx_half returns exactly
+ *     +z for every xi: the lobe is already a mirror.  Smaller alphas only push D's peak
+ *     1 / (pi alpha^2) (2^54 / pi here) towards overflow: computed as alpha^2 / (pi (alpha^2)^2)
+ *     it is Inf below ~1e-81, where (alpha^2)^2 underflows to 0 (and 1 / alpha^2 overflows
+ *     below 1e-154), and f / pdf becomes Inf / Inf.
+ *   MAX = 2^64: the specular lobe has already vanished, below 2^-97 (1e-29) wherever both
+ *     directions are more than 2^-40 from the horizon (measured; at normal incidence it is
+ *     F / (4 pi alpha^2) = 2^-131 F).  alpha^4 = 2^256 keeps D's (alpha^2 cos^2 + sin^2)^2 and
+ *     G1's alpha^2 tan^2 far from overflow, which alpha^2 alone reaches above 1e154. */
+#define SAMPLING_GGX_ALPHA_MIN 0x1p-27
+#define SAMPLING_GGX_ALPHA_MAX 0x1p64
+static inline double sampling_ggx_alpha(double alpha)
+{
+    return alpha > 0 ? fmin(fmax(alpha, SAMPLING_GGX_ALPHA_MIN), SAMPLING_GGX_ALPHA_MAX) : 0;
+}
+
 /* GGX (Trowbridge-Reitz) half vector around +z: theta_h = atan(alpha sqrt(xi1 / (1 - xi1)));
- * pdf_h = D(h) cos(theta_h) with D from sampling_ggx_d. */
+ * pdf_h = D(h) cos(theta_h) with D from sampling_ggx_d.  alpha: sampling_ggx_alpha. */
 vec3 sampling_ggx_half(double alpha, double xi1, double xi2);
-/* D = alpha^2 / (pi cos^4(theta) (alpha^2 + tan^2(theta))^2) ; 0 for cos_theta <= 0 */
+/* D = alpha^2 / (pi cos^4(theta) (alpha^2 + tan^2(theta))^2) ; 0 for cos_theta <= 0 and for
+ * alpha = 0; alpha: sampling_ggx_alpha. */
 double sampling_ggx_d(double alpha, double cos_theta);
 
 /* Local direction (z along n) -> world, n unit. */

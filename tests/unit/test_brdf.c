@@ -198,6 +198,106 @@ START_TEST(test_brdf_is_zero_below_the_surface)
 }
 END_TEST
 
+/* Modified Phong at the mirror direction wi = r with a huge shininess (1e18, which the parser
+ * accepts): r.wi of two unit vectors rounds to 1 + 2^-52 for about a third of directions, and
+ * (1 + 2^-52)^1e18 = Inf.  f and the pdf must be the lobe's peak, kd / pi + ks (s + 2) / (2 pi)
+ * and (1 - t) cos / pi + t (s + 1) / (2 pi), and a BRDF sample's weight f cos / pdf finite.
+ * Catches the cosine r.wi not clamped to <= 1 in brdf_eval (f = Inf) or in the Phong lobe pdf
+ * (pdf = Inf, weight Inf / Inf = NaN). */
+START_TEST(test_brdf_phong_with_huge_shininess_stays_finite_at_the_mirror_direction)
+{
+    const double shin = 1e18;
+    brdf_case c = {"", BRDF_PHONG, SAMPLING_BRDF, 0.5, 0.5, shin, 0, 0};
+    surface s = make_surface(&c);
+    double t = brdf_specular_probability(&s);
+    rng r;
+    rng_seed(&r, 11, 0);
+    int above_one = 0, bad = 0;
+    for (int i = 0; i < 1000; i++) {
+        vec3 wo = sampling_uniform_hemisphere(rng_uniform(&r), rng_uniform(&r));
+        if (!(wo.z > 1e-3)) continue;
+        vec3 wi = vec3_reflect(vec3_neg(wo), s.n); /* r: the lobe's axis, as brdf.c computes it */
+        above_one += vec3_dot(wi, wi) > 1;
+        double f = brdf_eval(&s, wo, wi).r, pdf = brdf_pdf(&s, wo, wi, SAMPLING_BRDF);
+        double f_peak = 0.5 / M_PI + 0.5 * (shin + 2) / (2 * M_PI);
+        double pdf_peak = (1 - t) * wi.z / M_PI + t * (shin + 1) / (2 * M_PI);
+        /* r.wi = 1 - 2^-53 gives (1 - 2^-53)^1e18 = e^-111: 0 to the tolerance */
+        bad += !(fabs(f - f_peak) <= 1e-12 * f_peak || f <= 0.5 / M_PI + 1e-12);
+        bad += !(fabs(pdf - pdf_peak) <= 1e-12 * pdf_peak || pdf <= (1 - t) * wi.z / M_PI + 1e-12);
+        brdf_sample_result bs;
+        if (brdf_sample(&s, wo, SAMPLING_BRDF, rng_uniform(&r), rng_uniform(&r), 0.0, &bs))
+            bad += !rgb_is_finite(bs.weight) || !isfinite(bs.pdf);
+    }
+    ck_assert_msg(above_one > 0, "no direction had r.r > 1: the test cannot fail");
+    ck_assert_int_eq(bad, 0);
+}
+END_TEST
+
+/* GGX at roughnesses far beyond the lecture's range reaches its two limits with finite numbers.
+ * Huge alpha (1e155 .. DBL_MAX): the specular lobe has vanished, f = kd / pi to 1e-20 away from
+ * grazing, and pdf and sample weights are finite.  Tiny alpha (1e-300 .. 1e-20): a mirror, the
+ * specular sample is the mirror direction with weight f cos / pdf = F / t (D dominates f and
+ * the pdf alike; Schlick's F at 80 degrees is far from ks, so the diffuse weight kd / (1 - t) = 1
+ * cannot pass for it).  alpha = 0 (a delta that f and the pdf leave out) stays finite.
+ * Catches alpha^2 overflowing in D or in G1 (f = pdf = NaN once alpha > 1e154; G1 alone: NaN
+ * at wi = n, Inf * tan^2 = Inf * 0), D's peak overflowing for alpha below ~1e-81 (weight
+ * Inf / Inf = NaN), and a tiny alpha flushed to 0 instead of clamped up (as alpha^2 underflowing
+ * to 0 below 1e-154 does: the specular lobe gone, weight 1, not F / t). */
+START_TEST(test_brdf_ggx_with_extreme_roughness_is_finite_and_reaches_its_limits)
+{
+    const double huge[] = {1e155, 1e200, 1e300, 1.7976931348623157e308};
+    const double tiny[] = {1e-300, 1e-160, 1e-100, 1e-20};
+    brdf_case c = {"", BRDF_GGX, SAMPLING_BRDF, 0.5, 0.5, 0, 0, 0};
+    rng r;
+    rng_seed(&r, 13, 0);
+    int bad = 0;
+    for (int i = 0; i < 4; i++) {
+        c.roughness = huge[i];
+        surface s = make_surface(&c);
+        for (int k = 0; k < 500; k++) {
+            vec3 wo = sampling_cosine_hemisphere(rng_uniform(&r), rng_uniform(&r));
+            vec3 wi = sampling_cosine_hemisphere(rng_uniform(&r), rng_uniform(&r));
+            double f = brdf_eval(&s, wo, wi).r, pdf = brdf_pdf(&s, wo, wi, SAMPLING_BRDF);
+            if (wo.z > 1e-3 && wi.z > 1e-3) bad += !(fabs(f - 0.5 / M_PI) <= 1e-20);
+            bad += !isfinite(f) || !(isfinite(pdf) && pdf > 0);
+            brdf_sample_result bs;
+            if (brdf_sample(&s, wo, SAMPLING_BRDF, rng_uniform(&r), rng_uniform(&r), rng_uniform(&r), &bs))
+                bad += !rgb_is_finite(bs.weight) || !isfinite(bs.pdf);
+            /* wi = n exactly: tan = 0 in G1, where an unclamped alpha^2 = Inf gives Inf * 0 */
+            if (wo.z > 1e-3) bad += !(fabs(brdf_eval(&s, wo, s.n).r - 0.5 / M_PI) <= 1e-20);
+        }
+    }
+    vec3 wo = wo_of(80);
+    double t = 0.5, F = 0.5 + 0.5 * pow(1 - wo.z, 5); /* Schlick at wi.h = wo.n */
+    for (int i = 0; i < 4; i++) {
+        c.roughness = tiny[i];
+        surface s = make_surface(&c);
+        vec3 mirror = vec3_reflect(vec3_neg(wo), s.n);
+        for (int k = 0; k < 100; k++) {
+            brdf_sample_result bs;
+            /* xi3 = 0 < t: the specular lobe */
+            if (!brdf_sample(&s, wo, SAMPLING_BRDF, rng_uniform(&r), rng_uniform(&r), 0.0, &bs)) {
+                bad++;
+                continue;
+            }
+            bad += !(vec3_length(vec3_sub(bs.wi, mirror)) < 1e-12);
+            bad += !(fabs(bs.weight.r - F / t) < 1e-6);
+        }
+    }
+    c.roughness = 0;
+    surface s = make_surface(&c);
+    for (int k = 0; k < 500; k++) {
+        vec3 wo2 = sampling_cosine_hemisphere(rng_uniform(&r), rng_uniform(&r));
+        vec3 wi = sampling_cosine_hemisphere(rng_uniform(&r), rng_uniform(&r));
+        bad += !rgb_is_finite(brdf_eval(&s, wo2, wi)) || !isfinite(brdf_pdf(&s, wo2, wi, SAMPLING_BRDF));
+        brdf_sample_result bs;
+        if (brdf_sample(&s, wo2, SAMPLING_BRDF, rng_uniform(&r), rng_uniform(&r), rng_uniform(&r), &bs))
+            bad += !rgb_is_finite(bs.weight) || !isfinite(bs.pdf);
+    }
+    ck_assert_int_eq(bad, 0);
+}
+END_TEST
+
 /* a mirror reflects exactly with weight ks; glass returns the reflection or the refraction with
  * weight 1, reflecting with probability F; neither has a pdf or an f */
 START_TEST(test_brdf_delta_surfaces_reflect_and_refract_exactly)
@@ -254,6 +354,8 @@ Suite *brdf_suite(void)
     tcase_add_test(tc, test_brdf_specular_probability_follows_the_course);
     tcase_add_test(tc, test_brdf_is_zero_below_the_surface);
     tcase_add_test(tc, test_brdf_delta_surfaces_reflect_and_refract_exactly);
+    tcase_add_test(tc, test_brdf_phong_with_huge_shininess_stays_finite_at_the_mirror_direction);
+    tcase_add_test(tc, test_brdf_ggx_with_extreme_roughness_is_finite_and_reaches_its_limits);
     suite_add_tcase(s, tc);
     return s;
 }

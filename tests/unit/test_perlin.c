@@ -288,6 +288,37 @@ START_TEST(test_marble_and_wood_follow_their_formulas_and_stay_in_range)
 }
 END_TEST
 
+/* Marble's phase frequency * x + amplitude * turbulence overflows for parameters the parser
+ * accepts (frequency 1e200 at x = 1e200, frequency 1.8e308 at x = 2, amplitude 1.8e308 times a
+ * turbulence above 1, 0 * Inf at an infinite x), and sin(Inf) and sin(NaN) are NaN.  The veins
+ * are then far finer than the doubles can place: marble is their mean, exactly 0.5.  Finite
+ * phases keep the formula (sin(1e200 * 0.3) is noise, but finite).  Catches the phase passed to
+ * sin unchecked (NaN). */
+START_TEST(test_marble_is_its_mean_where_its_phase_overflows)
+{
+    const double big = 1.7976931348623157e308;
+    ck_assert(perlin_marble(vec3_make(1e200, 0.3, 0.2), 1e200, 0, 6) == 0.5);
+    ck_assert(perlin_marble(vec3_make(-1e200, 0.3, 0.2), 1e200, 8, 6) == 0.5);
+    ck_assert(perlin_marble(vec3_make(2, 0.3, 0.2), big, 8, 6) == 0.5);
+    ck_assert(perlin_marble(vec3_make(INFINITY, 0.3, 0.2), 0, 8, 6) == 0.5); /* 0 * Inf */
+    ck_assert(perlin_marble(vec3_make(2, 0.3, 0.2), big, -big, 30) == 0.5); /* Inf, or Inf - Inf */
+    int overflowed = 0;
+    for (int i = 0; i < 2000; i++) {
+        vec3 p = {rng_uniform(-50, 50), rng_uniform(-50, 50), rng_uniform(-50, 50)};
+        double turb = perlin_turbulence(p, 6, 2, 0.5), m = perlin_marble(p, 4, big, 6);
+        if (isfinite(4 * p.x + big * turb)) {
+            ck_assert_near(m, 0.5 + 0.5 * sin(4 * p.x + big * turb), 1e-12);
+        } else {
+            overflowed++;
+            ck_assert(m == 0.5);
+        }
+        m = perlin_marble(p, 1e200, 8, 6);
+        ck_assert(isfinite(m) && m >= 0 && m <= 1);
+    }
+    ck_assert_int_gt(overflowed, 0); /* the loop reached amplitude * turbulence = Inf */
+}
+END_TEST
+
 Suite *perlin_suite(void)
 {
     Suite *s = suite_create("perlin");
@@ -309,6 +340,7 @@ Suite *perlin_suite(void)
     tcase_add_test(tc, test_filtered_fbm_is_its_mean_when_the_footprint_exceeds_every_octave);
     tcase_add_test(tc, test_filtered_fbm_is_continuous_in_the_footprint);
     tcase_add_test(tc, test_marble_and_wood_follow_their_formulas_and_stay_in_range);
+    tcase_add_test(tc, test_marble_is_its_mean_where_its_phase_overflows);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -305,6 +305,35 @@ START_TEST(test_raytracer_light_behind_the_surface_adds_nothing)
 }
 END_TEST
 
+/* Rays from a point light aimed (to within 1e-9 rad) at the centre of a ball with a huge
+ * shininess (1e18): N, L and V agree to rounding there, N.H rounds to 1 + 2^-52 for some of
+ * them, and the highlight ks (N.H)^s must still be at most ks, so each ray's radiance is at most
+ * ambient + (kd + ks) * colour.  Catches N.H not clamped to <= 1 ((1 + 2^-52)^1e18 = Inf). */
+START_TEST(test_raytracer_blinn_phong_highlight_with_huge_shininess_never_exceeds_ks)
+{
+    fixture f;
+    load(&f.sc, "size 9 9\ncamera 0 0 5  0 0 0  0 1 0  30\n"
+                "point 0.3 -2.5 1.7  1 1 1\n"
+                "ambient 0.1 0.1 0.1\ndiffuse 0.5 0.5 0.5\nspecular 1 1 1\nshininess 1e18\n"
+                "sphere 0 0 0 1\n");
+    fixture_start(&f);
+    vec3 q = vec3_make(0.3, -2.5, 1.7), axis = vec3_normalize(vec3_neg(q));
+    int bad = 0, lit = 0;
+    for (int i = 0; i < 2000; i++) {
+        /* a direction 1e-9 rad or less from the axis: the highlight's centre */
+        double a = 1e-9 * ((i % 41) - 20) / 20, b = 1e-9 * ((i / 41) % 49 - 24) / 24;
+        vec3 d = vec3_normalize(vec3_add(axis, vec3_make(a, b, 0.5 * a - b)));
+        ray r = {q, d, 0.0, INFINITY};
+        rgb c = raytracer_trace(&f.rt, r);
+        bad += !(c.r <= 0.1 + 0.5 + 1 + 1e-9);
+        lit += c.r > 1.5; /* the highlight is there: ks (N.H)^s = e^(-1e18 * 1e-18 / 2) at most */
+    }
+    ck_assert_int_eq(bad, 0);
+    ck_assert_int_gt(lit, 1000);
+    fixture_end(&f);
+}
+END_TEST
+
 /* A glass ball in a constant environment L: every path ends in the environment, weighted by
  * Fresnel fractions that sum to one, so each pixel is L minus what is cut at maxdepth. */
 static const char *glass_ball =
@@ -377,6 +406,7 @@ Suite *raytracer_suite(void)
     tcase_add_test(tc, test_raytracer_whitted_lighting_matches_the_hand_computation);
     tcase_add_test(tc, test_raytracer_shadowed_point_is_ambient_only);
     tcase_add_test(tc, test_raytracer_light_behind_the_surface_adds_nothing);
+    tcase_add_test(tc, test_raytracer_blinn_phong_highlight_with_huge_shininess_never_exceeds_ks);
     tcase_add_test(tc, test_raytracer_glass_ball_in_a_constant_environment_conserves_energy);
     tcase_add_test(tc, test_raytracer_glass_ball_refracts_the_view_upside_down);
     suite_add_tcase(s, tc);

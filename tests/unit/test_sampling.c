@@ -179,6 +179,67 @@ START_TEST(test_sampling_ggx_d_with_zero_roughness_is_zero_not_nan)
 }
 END_TEST
 
+/* The Phong lobe pdf at its axis with a cosine that rounded above 1 (r.wi of two unit vectors
+ * can be 1 + 2^-52) is the peak (s + 1) / (2 pi), for a huge shininess too.  Catches the cosine
+ * not clamped to <= 1: (1 + 2^-52)^1e18 = Inf, and at s = 1e15 a peak 1.25 times too high. */
+START_TEST(test_sampling_phong_pdf_treats_a_cosine_rounded_above_one_as_the_axis)
+{
+    const double shin[] = {10, 1e15, 1e18, 1e300};
+    for (int i = 0; i < 4; i++) {
+        double s = shin[i], peak = (s + 1) / (2 * M_PI);
+        ck_assert_near(sampling_phong_lobe_pdf(s, 1.0), peak, 1e-15 * peak);
+        ck_assert_near(sampling_phong_lobe_pdf(s, 1 + 0x1p-52), peak, 1e-15 * peak);
+    }
+}
+END_TEST
+
+/* Every roughness the parser accepts (any finite alpha >= 0) gives a finite D and unit half
+ * vectors in the upper hemisphere, at the peak, off it and near the horizon.  Catches alpha^2
+ * overflowing (alpha > 1e154: D = Inf / Inf) and D's peak 1 / (pi alpha^2) overflowing (alpha
+ * below ~1e-81, where (alpha^2)^2 underflows, and below 1e-154). */
+START_TEST(test_sampling_ggx_is_finite_for_every_roughness_the_parser_accepts)
+{
+    const double alphas[] = {0, 4.9e-324, 1e-300, 1e-160, 1e-100, 1e-20, 1e-9, 0.3,
+                             1e10, 1e30, 1e154, 1e155, 1e200, 1e300, 1.7976931348623157e308};
+    const double cosines[] = {1.0, 1 - 0x1p-53, 0.9, 0.5, 1e-8, 1e-160, 4.9e-324};
+    const double xs[] = {0.0, 0x1p-53, 0x1p-32, 0.5, 1 - 0x1p-32, 0x1.fffffffffffffp-1};
+    int bad = 0;
+    for (int i = 0; i < (int)(sizeof alphas / sizeof alphas[0]); i++) {
+        double a = alphas[i];
+        for (int k = 0; k < (int)(sizeof cosines / sizeof cosines[0]); k++) {
+            double d = sampling_ggx_d(a, cosines[k]);
+            bad += !(isfinite(d) && d >= 0);
+        }
+        for (int k = 0; k < (int)(sizeof xs / sizeof xs[0]); k++) {
+            vec3 h = sampling_ggx_half(a, xs[k], 0.3);
+            bad += !vec3_is_finite(h) || !(fabs(vec3_length(h) - 1) < UNIT_TOL) || !(h.z >= 0);
+            bad += !isfinite(sampling_ggx_d(a, h.z) * h.z); /* the half vector's pdf */
+        }
+    }
+    ck_assert_int_eq(bad, 0);
+}
+END_TEST
+
+/* Far too rough for the chi-square bins (the lobe lies within 1e-19 rad of the horizon), the
+ * sampler must still draw from the lobe sampling_ggx_d describes, the one of alpha clamped to
+ * SAMPLING_GGX_ALPHA_MAX: its CDF in tan^2, P(tan^2 theta_h <= T) = T / (alpha^2 + T), is xi1
+ * at the sampled half vector.  Catches the sampler left unclamped while D is clamped (at
+ * alpha = 1e30 the CDF is ~1 for every xi1: samples from another lobe than the pdf's). */
+START_TEST(test_sampling_ggx_half_draws_from_the_lobe_d_describes_at_huge_roughness)
+{
+    const double alphas[] = {0x1p64, 1e30, 1e100, 1e200, 1.7976931348623157e308};
+    double a2 = (double)SAMPLING_GGX_ALPHA_MAX * SAMPLING_GGX_ALPHA_MAX;
+    for (int i = 0; i < 5; i++)
+        for (int k = 1; k < 10; k++) {
+            double xi1 = 0.1 * k;
+            vec3 h = sampling_ggx_half(alphas[i], xi1, 0.3);
+            double tan2 = (h.x * h.x + h.y * h.y) / (h.z * h.z);
+            ck_assert_msg(fabs(tan2 / (a2 + tan2) - xi1) < 1e-9 * xi1, "alpha %g xi1 %g: CDF %.17g",
+                          alphas[i], xi1, tan2 / (a2 + tan2));
+        }
+}
+END_TEST
+
 /* sampling_to_world is a rotation taking +z to n, for normals along and near every axis
  * (n = -z is where the branch-free basis changes sign) */
 START_TEST(test_sampling_to_world_is_a_rotation_taking_z_to_n)
@@ -215,6 +276,9 @@ Suite *sampling_suite(void)
     tcase_add_test(tc, test_sampling_edge_random_numbers_give_unit_directions_in_the_right_hemisphere);
     tcase_add_test(tc, test_sampling_pdfs_vanish_below_their_hemisphere);
     tcase_add_test(tc, test_sampling_ggx_d_with_zero_roughness_is_zero_not_nan);
+    tcase_add_test(tc, test_sampling_phong_pdf_treats_a_cosine_rounded_above_one_as_the_axis);
+    tcase_add_test(tc, test_sampling_ggx_is_finite_for_every_roughness_the_parser_accepts);
+    tcase_add_test(tc, test_sampling_ggx_half_draws_from_the_lobe_d_describes_at_huge_roughness);
     tcase_add_test(tc, test_sampling_to_world_is_a_rotation_taking_z_to_n);
     suite_add_tcase(s, tc);
     return s;

@@ -229,6 +229,65 @@ START_TEST(test_solids_fade_to_their_mean_under_a_huge_footprint)
 }
 END_TEST
 
+/* Every procedural texture the parser accepts (any finite scale, frequency, rings, amplitude
+ * and octaves in range) stays in [c0, c1] at any finite point, point sampled and filtered,
+ * small and huge footprints alike: scale P, frequency x, rings r and amplitude * noise may
+ * overflow to infinities (1e200 * 1e200), and NaN must not come out of them.  Catches the
+ * marble's phase reaching sin as Inf or NaN (unfiltered, and filtered, where the faded veins
+ * are 0 * sin(Inf)); also guards wood's NaN-to-0 fraction and the checker's box filter. */
+START_TEST(test_procedural_textures_stay_in_range_for_every_parameter_the_parser_accepts)
+{
+    const double big = 1.7976931348623157e308;
+    const double scales[] = {1e-300, 1, 1e155, 1e200, big};
+    const double params[] = {0, 4, 1e20, 1e200, big};
+    const double amplitudes[] = {0, 8, -1e200, 1e200, big, -big};
+    const vec3 points[] = {{0.3, -1.2, 0.7}, {1.5, 0.2, -0.1}, {-1e200, 3, 1e-300}, {big, -big, 0.5}};
+    const double footprints[] = {0, 1e-3, 1, 1e300};
+    int bad = 0, n = 0;
+    for (int kind = TEXTURE_PERLIN; kind <= TEXTURE_WOOD; kind++)
+        for (int si = 0; si < 5; si++)
+            for (int pi = 0; pi < 5; pi++)
+                for (int ai = 0; ai < 6; ai++) {
+                    texture_solid_params sp = {.scale = scales[si], .octaves = 6,
+                                               .frequency = params[pi], .amplitude = amplitudes[ai],
+                                               .rings = params[pi], .c0 = {0, 0, 0}, .c1 = {1, 1, 1}};
+                    texture tx;
+                    error err = {0};
+                    ck_assert_int_eq(texture_init_solid(&tx, (texture_kind)kind, &sp, &err), 0);
+                    for (int k = 0; k < 4; k++)
+                        for (int f = 0; f < 4; f++) {
+                            texture_query q;
+                            memset(&q, 0, sizeof q);
+                            q.p = points[k];
+                            q.dp_dx = vec3_make(footprints[f], 0, 0);
+                            q.filter = TEXFILTER_TRILINEAR;
+                            double v = texture_eval(&tx, &q).r;
+                            bad += !(v >= 0 && v <= 1);
+                            n++;
+                        }
+                }
+    for (int pi = 1; pi < 5; pi++) {
+        texture tx;
+        error err = {0};
+        ck_assert_int_eq(texture_init_checker(&tx, rgb_gray(0), rgb_gray(1), params[pi], &err), 0);
+        const uv2 sts[] = {{0.3, 0.7}, {1e200, -0.2}, {big, -big}};
+        for (int k = 0; k < 3; k++)
+            for (int f = 0; f < 4; f++) {
+                texture_query q;
+                memset(&q, 0, sizeof q);
+                q.st = sts[k];
+                q.dst_dx = (uv2){footprints[f], 0};
+                q.dst_dy = (uv2){0, footprints[f]};
+                q.filter = TEXFILTER_TRILINEAR;
+                double v = texture_eval(&tx, &q).r;
+                bad += !(v >= 0 && v <= 1);
+                n++;
+            }
+    }
+    ck_assert_msg(bad == 0, "%d of %d evaluations outside [0, 1] or NaN", bad, n);
+}
+END_TEST
+
 START_TEST(test_scalar_is_the_channel_mean)
 {
     texture tx;
@@ -303,6 +362,7 @@ Suite *texture_suite(void)
     tcase_add_test(tc, test_solid_parameters_are_checked);
     tcase_add_test(tc, test_solids_without_footprint_are_the_perlin_functions);
     tcase_add_test(tc, test_solids_fade_to_their_mean_under_a_huge_footprint);
+    tcase_add_test(tc, test_procedural_textures_stay_in_range_for_every_parameter_the_parser_accepts);
     tcase_add_test(tc, test_scalar_is_the_channel_mean);
     tcase_add_test(tc, test_height_derivs_of_an_image_ramp_are_its_slope);
     tcase_add_test(tc, test_height_derivs_of_a_solid_agree_with_a_fine_difference);
