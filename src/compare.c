@@ -8,8 +8,6 @@
 
 #include "envtex/tonemap.h"
 
-static int pixel_finite(const float *p) { return isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]); }
-
 static int same_size(const image *a, const image *ref, error *err)
 {
     if (!a->px || !ref->px || a->w < 1 || a->h < 1)
@@ -80,7 +78,7 @@ int compare_metrics(const image *a, const image *ref, compare_result *out, error
     for (int y = 0; y < a->h; y++)
         for (int x = 0; x < a->w; x++) {
             const float *p = image_px(a, x, y), *q = image_px(ref, x, y);
-            int fa = pixel_finite(p), fr = pixel_finite(q);
+            int fa = image_px_is_finite(p), fr = image_px_is_finite(q);
             if (!fa) out->nonfinite++;
             if (!fr) out->ref_nonfinite++;
             if (!fa || !fr) continue;
@@ -139,7 +137,7 @@ int compare_thresholds(const image *a, const image *ref, const compare_threshold
         for (int x = 0; x < a->w; x++) {
             const float *pa = image_px(a, x, y), *pr = image_px(ref, x, y);
             v->pixels++;
-            if (!pixel_finite(pa) || !pixel_finite(pr)) {
+            if (!image_px_is_finite(pa) || !image_px_is_finite(pr)) {
                 v->nonfinite++;
                 continue;
             }
@@ -206,7 +204,7 @@ int compare_diff_image(const image *a, const image *ref, image *out, error *err)
         for (int x = 0; x < a->w; x++) {
             const float *pa = image_px(a, x, y), *pr = image_px(ref, x, y);
             float *o = image_px(out, x, y);
-            if (!pixel_finite(pa) || !pixel_finite(pr)) {
+            if (!image_px_is_finite(pa) || !image_px_is_finite(pr)) {
                 for (int k = 0; k < 3; k++) o[k] = (float)tonemap_srgb_decode(diff_nonfinite[k] / 255.0);
                 continue;
             }

@@ -30,9 +30,6 @@ static double now_seconds(void)
     return ts.tv_sec + ts.tv_nsec * 1e-9;
 }
 
-/* all three channels of a stored pixel are finite */
-static inline int pixel_is_finite(const float *p) { return isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]); }
-
 int render_scene(const scene *sc, const render_opts *opts, image *out, render_stats *stats, error *err)
 {
     render_opts def = render_defaults();
@@ -120,11 +117,11 @@ int render_scene(const scene *sc, const render_opts *opts, image *out, render_st
             rgb c = mean;
             if (opts->variance) { /* variance of the mean: M2 / (n - 1) / n */
                 image_set(opts->variance, x, y, rgb_scale(m2, 1.0 / ((double)(spp - 1) * spp)));
-                stats->nonfinite_variance += !pixel_is_finite(image_px(opts->variance, x, y));
+                stats->nonfinite_variance += !image_px_is_finite(image_px(opts->variance, x, y));
             }
             image_set(out, x, y, c);
             /* counted as stored: a finite double above FLT_MAX becomes Inf in the float image */
-            stats->nonfinite_pixels += !pixel_is_finite(image_px(out, x, y));
+            stats->nonfinite_pixels += !image_px_is_finite(image_px(out, x, y));
         }
         if (opts->progress) opts->progress(opts->progress_ctx, y + 1, sc->height);
     }

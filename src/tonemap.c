@@ -69,7 +69,7 @@ long tonemap_image(const tonemap_params *tm, const image *im, uint8_t *out)
     size_t n = (size_t)im->w * (size_t)im->h;
     for (size_t i = 0; i < n; i++) {
         const float *p = im->px + 3 * i;
-        if (!isfinite(p[0]) || !isfinite(p[1]) || !isfinite(p[2])) bad++;
+        bad += !image_px_is_finite(p);
         for (int k = 0; k < 3; k++) out[3 * i + k] = to_byte(tonemap_channel(tm, scale, p[k]));
     }
     return bad;

@@ -53,6 +53,8 @@ static inline void image_set(image *im, int x, int y, rgb c)
     p[1] = (float)c.g;
     p[2] = (float)c.b;
 }
+/* 1 if the three channels of the stored pixel at p (image_px) are all finite */
+static inline int image_px_is_finite(const float *p) { return isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]); }
 
 /* Replace every NaN or infinite channel value by 0 (image_zero_nonfinite), or also every
  * negative one (image_zero_nonfinite_or_negative: radiance cannot be negative).  Returns how
