@@ -92,6 +92,77 @@ static long count_tris(const scene *in, int srate, int trate)
     return n;
 }
 
+/* ---- corner normals of triangles without normals ------------------------------------------
+ * Each displaced triangle is tessellated on its own, so a shared edge is moved alike on both
+ * sides only if both sides move its points along the same normals.  The geometric normals of
+ * two triangles that meet at an angle differ, and would open a crack along the edge as wide as
+ * the displacement; so a corner without a normal takes the angle-weighted mean of the unit
+ * geometric normals of every displaced triangle without normals at the same position
+ * (Thurmer and Wuthrich's weights: a corner's share does not depend on how its face is split
+ * into triangles). */
+
+/* One corner: its position, and which it is (corner `k` of triangle `tri`). */
+typedef struct corner_ref {
+    vec3 p;
+    long tri;
+    int k;
+} corner_ref;
+
+/* Order corners by position (x, then y, then z): equal positions end up adjacent. */
+static int corner_order(const void *a, const void *b)
+{
+    vec3 pa = ((const corner_ref *)a)->p, pb = ((const corner_ref *)b)->p;
+    if (pa.x != pb.x) return pa.x < pb.x ? -1 : 1;
+    if (pa.y != pb.y) return pa.y < pb.y ? -1 : 1;
+    if (pa.z != pb.z) return pa.z < pb.z ? -1 : 1;
+    return 0;
+}
+
+/* The unit geometric normal of tr, or -1 for a zero-area triangle. */
+static int face_normal(const scene_triangle *tr, vec3 *n)
+{
+    return vec3_unit_direction(vec3_cross(vec3_sub(tr->p[1], tr->p[0]), vec3_sub(tr->p[2], tr->p[0])), n);
+}
+
+/* cn[3 i + k] = the welded normal of corner k of triangle i, for every displaced triangle i
+ * without normals and with an area (others untouched):
+ *     n = normalize(sum over the corners c at that position of angle_c n_face(c))
+ * (a sum that cancels keeps the triangle's own geometric normal).  0, or -1 out of memory. */
+static int weld_corner_normals(const scene *in, vec3 *cn)
+{
+    long n = 0;
+    corner_ref *refs = malloc((size_t)(3 * (in->n_triangles > 0 ? in->n_triangles : 1)) * sizeof *refs);
+    if (!refs) return -1;
+    for (long i = 0; i < in->n_triangles; i++) {
+        const scene_triangle *tr = &in->triangles[i];
+        vec3 f;
+        if (!disp_map(in, tr->material) || tr->has_normals || face_normal(tr, &f)) continue;
+        for (int k = 0; k < 3; k++) refs[n++] = (corner_ref){tr->p[k], i, k};
+    }
+    qsort(refs, (size_t)n, sizeof *refs, corner_order);
+    for (long a = 0, b; a < n; a = b) {
+        vec3 sum = {0, 0, 0};
+        for (b = a; b < n && corner_order(&refs[a], &refs[b]) == 0; b++) {
+            const scene_triangle *tr = &in->triangles[refs[b].tri];
+            int k = refs[b].k;
+            vec3 f;
+            face_normal(tr, &f);
+            /* the corner's angle between its two edges */
+            double angle = vec3_angle(vec3_sub(tr->p[(k + 1) % 3], tr->p[k]),
+                                      vec3_sub(tr->p[(k + 2) % 3], tr->p[k]));
+            sum = vec3_madd(sum, f, angle);
+        }
+        for (long c = a; c < b; c++) {
+            const scene_triangle *tr = &in->triangles[refs[c].tri];
+            vec3 u;
+            if (vec3_unit_direction(sum, &u)) face_normal(tr, &u); /* cancelled: its own */
+            cn[3 * refs[c].tri + refs[c].k] = u;
+        }
+    }
+    free(refs);
+    return 0;
+}
+
 void displacemap_free(scene *out)
 {
     free(out->spheres);
@@ -126,9 +197,10 @@ int displacemap_apply(const scene *in, long max_tris, scene *out, displacemap_st
     out->spheres = malloc((size_t)(in->n_spheres > 0 ? in->n_spheres : 1) * sizeof *out->spheres);
     out->triangles = malloc((size_t)(total > 0 ? total : 1) * sizeof *out->triangles);
     vec3 *qv = malloc((size_t)((trate + 1) * (trate + 2) / 2) * sizeof *qv);
+    vec3 *cn = malloc((size_t)(3 * (in->n_triangles > 0 ? in->n_triangles : 1)) * sizeof *cn);
     displace_mesh m;
     memset(&m, 0, sizeof m);
-    if (!out->spheres || !out->triangles || !qv) {
+    if (!out->spheres || !out->triangles || !qv || !cn || weld_corner_normals(in, cn)) {
         error_set(err, in->path, 0, "out of memory for %ld displaced triangles", total);
         goto fail;
     }
@@ -171,7 +243,11 @@ int displacemap_apply(const scene *in, long max_tris, scene *out, displacemap_st
         const material *mt = &in->materials[tr->material];
         long cap = (long)(trate + 1) * (trate + 2) / 2;
         height_ctx c = {tex, mt, scene_material_texmapping(mt, 0), {0, 0, 0}, 0, tr, qv, 0, cap};
-        if (displace_triangle(tr->p, tr->has_normals ? tr->n : NULL, tr->st, trate,
+        /* along its vertex normals, or the welded corner normals (no cracks); NULL for a
+         * zero-area triangle without normals, which displace_triangle refuses */
+        vec3 fn;
+        const vec3 *normals = tr->has_normals ? tr->n : face_normal(tr, &fn) ? NULL : &cn[3 * i];
+        if (displace_triangle(tr->p, normals, tr->st, trate,
                               triangle_height, &c, mt->displacement_scale, 0, &m, err))
             goto fail;
         int q_known = c.n_q == m.n_verts; /* the callback saw every vertex, in index order */
@@ -193,10 +269,12 @@ int displacemap_apply(const scene *in, long max_tris, scene *out, displacemap_st
     }
     st->new_triangles = out->n_triangles;
     free(qv);
+    free(cn);
     return 0;
 fail:
     displace_mesh_free(&m);
     free(qv);
+    free(cn);
     displacemap_free(out);
     return -1;
 }

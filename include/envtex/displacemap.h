@@ -25,8 +25,13 @@
  *             or the material's texmapping of the unit direction; solid textures see the
  *             object-space point center + radius p.
  *   triangle  displace_triangle at DISPLACEMAP_TRIANGLE_RATE (N^2 triangles), in world space,
- *             along the vertex normals (trinormal) or the geometric normal; SCALE world units
- *             per unit of value.  (s, t) is the corners' interpolated st (uv) or the material's
+ *             along the vertex normals (trinormal); SCALE world units per unit of value.  A
+ *             triangle without normals (tri) moves each corner along the angle-weighted mean of
+ *             the unit geometric normals of all displaced triangles without normals that have a
+ *             corner at exactly the same position, and interpolates those across its face:
+ *             neighbours then move their shared edge alike, where their own geometric normals
+ *             would tear it open by up to twice the displacement (a crack).  A lone or flat
+ *             triangle keeps its geometric normal.  (s, t) is the corners' interpolated st (uv) or the material's
  *             point mapping of the object-space point, which solid textures also see.
  * If the whole scene would exceed max_tris (0: DISPLACEMAP_MAX_TRIS, never more than
  * SCENE_MAX_PRIMS) at those rates, both rates are halved together until it fits (down to 2 and
