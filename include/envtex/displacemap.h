@@ -38,7 +38,10 @@
  * 1); if it still does not fit, an error.  The texture is read with the material's filter and
  * no footprint (texture.h's fallback: the full-resolution image, bilinearly).
  * Output triangles keep the material (whose displacement map the renderer ignores from then
- * on), get has_normals = 1 (recomputed, area-weighted), has_st = 1 (the corner st of the
+ * on), get has_normals = 1 (recomputed, area-weighted over every displaced triangle around the
+ * vertex: a vertex on the edge between two displaced triangles' patches, with the same normal
+ * before displacement on both sides, gets one normal from both patches, not a one-sided one
+ * from each, so the shading has no crease along the original edges), has_st = 1 (the corner st of the
  * tessellation), and object-space corners q for point mappings and solid textures.
  */
 #ifndef ENVTEX_DISPLACEMAP_H

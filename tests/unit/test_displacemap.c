@@ -122,6 +122,55 @@ START_TEST(test_triangles_without_normals_that_share_an_edge_are_displaced_witho
 }
 END_TEST
 
+/* A flat quad of two triangles displaced by smooth noise: each patch alone would give the
+ * vertices on the diagonal a one-sided normal (measured: up to 11 degrees apart on the two
+ * sides), a crease in the shading along every edge of the original mesh.  Both sides must
+ * agree, and an inner vertex keeps its area-weighted normal. */
+START_TEST(test_normals_on_the_edge_between_two_patches_are_shared_not_one_sided)
+{
+    scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n"
+                    "texture h perlin 3  0 0 0  1 1 1\ndisplacementmap h 0.3\n"
+                    "vertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\nvertex 0 1 0\n"
+                    "tri 0 1 2\ntri 0 2 3\n");
+    scene out;
+    displacemap_stats st;
+    error err = {0};
+    ck_assert_msg(displacemap_apply(&sc, 0, &out, &st, &err) == 0, "%s", err.msg);
+    long n = DISPLACEMAP_TRIANGLE_RATE, shared = 0;
+    double worst = 0;
+    for (long a = 0; a < n * n; a++)
+        for (long b = n * n; b < 2 * n * n; b++)
+            for (int i = 0; i < 3; i++)
+                for (int j = 0; j < 3; j++) {
+                    const scene_triangle *ta = &out.triangles[a], *tb = &out.triangles[b];
+                    if (!(vec3_length(vec3_sub(ta->p[i], tb->p[j])) == 0)) continue;
+                    shared++;
+                    worst = fmax(worst, vec3_angle(ta->n[i], tb->n[j]));
+                }
+    ck_assert(shared > 0);
+    ck_assert_msg(worst < 1e-9, "normals on the diagonal differ by %g degrees", worst * 180 / M_PI);
+    /* an inner vertex of the first patch (six triangles around it): the normalized sum of
+     * (b - a) x (c - a) over them */
+    vec3 sum = {0, 0, 0}, nv = {0, 0, 0};
+    for (long s0 = 0, around = 0; s0 < n * n && around != 6; s0++) {
+        vec3 v = out.triangles[s0].p[0];
+        sum = nv = vec3_make(0, 0, 0);
+        around = 0;
+        for (long t = 0; t < n * n; t++)
+            for (int k = 0; k < 3; k++)
+                if (vec3_length(vec3_sub(out.triangles[t].p[k], v)) == 0) {
+                    const vec3 *p = out.triangles[t].p;
+                    sum = vec3_add(sum, vec3_cross(vec3_sub(p[1], p[0]), vec3_sub(p[2], p[0])));
+                    nv = out.triangles[t].n[k];
+                    around++;
+                }
+    }
+    ck_assert(vec3_angle(nv, vec3_normalize(sum)) < 1e-9);
+    displacemap_free(&out);
+    scene_free(&sc);
+}
+END_TEST
+
 START_TEST(test_rates_are_halved_until_the_budget_fits_and_an_impossible_budget_fails)
 {
     scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX("1")
@@ -150,6 +199,7 @@ Suite *displacemap_suite(void)
     tcase_add_test(tc, test_displaced_sphere_vertices_lie_at_radius_plus_scale_times_height);
     tcase_add_test(tc, test_displaced_triangle_moves_along_its_normal_and_keeps_object_corners);
     tcase_add_test(tc, test_triangles_without_normals_that_share_an_edge_are_displaced_without_a_crack);
+    tcase_add_test(tc, test_normals_on_the_edge_between_two_patches_are_shared_not_one_sided);
     tcase_add_test(tc, test_rates_are_halved_until_the_budget_fits_and_an_impossible_budget_fails);
     suite_add_tcase(s, tc);
     return s;
