@@ -29,9 +29,10 @@ typedef struct height_ctx {
     /* sphere: object space = center + radius p */
     vec3 center;
     double radius;
-    /* triangle: world corners, object corners; q of each vertex, in the callback's order */
+    /* triangle: world corners, object corners; q and the normal before displacement of each
+     * vertex, in the callback's order */
     const scene_triangle *tr;
-    vec3 *qv;
+    vec3 *qv, *nv;
     long n_q, cap_q;
 } height_ctx;
 
@@ -67,7 +68,6 @@ static void tri_bary(const scene_triangle *tr, vec3 p, double *b1, double *b2)
 
 static double triangle_height(void *ctx, vec3 p, vec3 n, uv2 st)
 {
-    (void)n;
     height_ctx *c = ctx;
     double b1, b2;
     tri_bary(c->tr, p, &b1, &b2);
@@ -75,7 +75,10 @@ static double triangle_height(void *ctx, vec3 p, vec3 n, uv2 st)
     /* P_object = b0 q0 + b1 q1 + b2 q2 */
     vec3 q = vec3_add(vec3_add(vec3_scale(c->tr->q[0], b0), vec3_scale(c->tr->q[1], b1)),
                       vec3_scale(c->tr->q[2], b2));
-    if (c->n_q < c->cap_q) c->qv[c->n_q] = q;
+    if (c->n_q < c->cap_q) {
+        c->qv[c->n_q] = q;
+        c->nv[c->n_q] = n;
+    }
     c->n_q++;
     if (c->mapping != TEXMAPPING_UV) st = texmapping_point(c->mapping, q);
     return eval_height(c, st, q);
@@ -90,6 +93,145 @@ static long count_tris(const scene *in, int srate, int trate)
     for (long i = 0; i < in->n_triangles; i++)
         n += disp_map(in, in->triangles[i].material) ? (long)trate * trate : 1;
     return n;
+}
+
+/* ---- corner normals of triangles without normals ------------------------------------------
+ * Each displaced triangle is tessellated on its own, so a shared edge is moved alike on both
+ * sides only if both sides move its points along the same normals.  The geometric normals of
+ * two triangles that meet at an angle differ, and would open a crack along the edge as wide as
+ * the displacement; so a corner without a normal takes the angle-weighted mean of the unit
+ * geometric normals of every displaced triangle without normals at the same position
+ * (Thurmer and Wuthrich's weights: a corner's share does not depend on how its face is split
+ * into triangles). */
+
+/* One corner: where it is (its position p and a normal n, both compared exactly), and which it
+ * is (corner `k` of triangle `tri`). */
+typedef struct corner_ref {
+    vec3 p, n;
+    long tri;
+    int k;
+} corner_ref;
+
+static int vec3_order(vec3 a, vec3 b)
+{
+    if (a.x != b.x) return a.x < b.x ? -1 : 1;
+    if (a.y != b.y) return a.y < b.y ? -1 : 1;
+    if (a.z != b.z) return a.z < b.z ? -1 : 1;
+    return 0;
+}
+
+/* Order corners by p, then n: corners at the same place end up adjacent. */
+static int corner_order(const void *a, const void *b)
+{
+    const corner_ref *ca = a, *cb = b;
+    int o = vec3_order(ca->p, cb->p);
+    return o ? o : vec3_order(ca->n, cb->n);
+}
+
+/* The unit geometric normal of tr, or -1 for a zero-area triangle. */
+static int face_normal(const scene_triangle *tr, vec3 *n)
+{
+    return vec3_unit_direction(vec3_cross(vec3_sub(tr->p[1], tr->p[0]), vec3_sub(tr->p[2], tr->p[0])), n);
+}
+
+/* cn[3 i + k] = the welded normal of corner k of triangle i, for every displaced triangle i
+ * without normals and with an area (others untouched):
+ *     n = normalize(sum over the corners c at that position of angle_c n_face(c))
+ * (a sum that cancels keeps the triangle's own geometric normal).  0, or -1 out of memory. */
+static int weld_corner_normals(const scene *in, vec3 *cn)
+{
+    long n = 0;
+    corner_ref *refs = malloc((size_t)(3 * (in->n_triangles > 0 ? in->n_triangles : 1)) * sizeof *refs);
+    if (!refs) return -1;
+    for (long i = 0; i < in->n_triangles; i++) {
+        const scene_triangle *tr = &in->triangles[i];
+        vec3 f;
+        if (!disp_map(in, tr->material) || tr->has_normals || face_normal(tr, &f)) continue;
+        for (int k = 0; k < 3; k++) refs[n++] = (corner_ref){tr->p[k], {0, 0, 0}, i, k};
+    }
+    qsort(refs, (size_t)n, sizeof *refs, corner_order);
+    for (long a = 0, b; a < n; a = b) {
+        vec3 sum = {0, 0, 0};
+        for (b = a; b < n && corner_order(&refs[a], &refs[b]) == 0; b++) {
+            const scene_triangle *tr = &in->triangles[refs[b].tri];
+            int k = refs[b].k;
+            vec3 f;
+            face_normal(tr, &f);
+            /* the corner's angle between its two edges */
+            double angle = vec3_angle(vec3_sub(tr->p[(k + 1) % 3], tr->p[k]),
+                                      vec3_sub(tr->p[(k + 2) % 3], tr->p[k]));
+            sum = vec3_madd(sum, f, angle);
+        }
+        for (long c = a; c < b; c++) {
+            const scene_triangle *tr = &in->triangles[refs[c].tri];
+            vec3 u;
+            if (vec3_unit_direction(sum, &u)) face_normal(tr, &u); /* cancelled: its own */
+            cn[3 * refs[c].tri + refs[c].k] = u;
+        }
+    }
+    free(refs);
+    return 0;
+}
+
+/* ---- normals along the edges of the tessellated patches -----------------------------------
+ * displace_triangle averages the normals of a patch's own triangles only, so a vertex on the
+ * edge between two patches gets a one-sided normal from each, and the shading creases along
+ * every edge of the original mesh.  The vertices on a patch's border (fewer than the six
+ * triangles of an inner vertex of the grid) are collected as corners of the output
+ * triangles, keyed by their displaced position and their normal before displacement (equal on
+ * both sides of a smooth edge; different across a hard edge of a trinormal mesh, which stays
+ * hard), and get the area-weighted normal of all the triangles around them:
+ *     n_v = normalize(sum over those triangles of (b - a) x (c - a)). */
+
+typedef struct seam_list {
+    corner_ref *at;
+    long n, cap;
+} seam_list;
+
+static int seam_push(seam_list *sl, corner_ref c)
+{
+    if (sl->n == sl->cap) {
+        long cap = sl->cap ? 2 * sl->cap : 1024;
+        corner_ref *at = realloc(sl->at, (size_t)cap * sizeof *at);
+        if (!at) return -1;
+        sl->at = at;
+        sl->cap = cap;
+    }
+    sl->at[sl->n++] = c;
+    return 0;
+}
+
+/* The border corners of patch m, whose first output triangle is number `first`; nv: its
+ * vertices' normals before displacement; valence: scratch of m.n_verts ints. */
+static int seam_collect(const displace_mesh *m, const vec3 *nv, long first, int *valence,
+                        seam_list *sl)
+{
+    memset(valence, 0, (size_t)m->n_verts * sizeof *valence);
+    for (long t = 0; t < m->n_tris; t++)
+        for (int k = 0; k < 3; k++) valence[m->tris[t].v[k]]++;
+    for (long t = 0; t < m->n_tris; t++)
+        for (int k = 0; k < 3; k++) {
+            long v = m->tris[t].v[k];
+            if (valence[v] < 6 && seam_push(sl, (corner_ref){m->p[v], nv[v], first + t, k})) return -1;
+        }
+    return 0;
+}
+
+/* Each group of border corners at the same place gets the normal of all its triangles. */
+static void seam_weld(seam_list *sl, scene *out)
+{
+    if (sl->n == 0) return; /* no displaced triangle: sl->at is NULL, which qsort must not get */
+    qsort(sl->at, (size_t)sl->n, sizeof *sl->at, corner_order);
+    for (long a = 0, b; a < sl->n; a = b) {
+        vec3 sum = {0, 0, 0};
+        for (b = a; b < sl->n && corner_order(&sl->at[a], &sl->at[b]) == 0; b++) {
+            const vec3 *p = out->triangles[sl->at[b].tri].p;
+            sum = vec3_add(sum, vec3_cross(vec3_sub(p[1], p[0]), vec3_sub(p[2], p[0])));
+        }
+        vec3 u;
+        if (vec3_unit_direction(sum, &u)) continue; /* cancelled: keep the patch's normals */
+        for (long c = a; c < b; c++) out->triangles[sl->at[c].tri].n[sl->at[c].k] = u;
+    }
 }
 
 void displacemap_free(scene *out)
@@ -125,10 +267,15 @@ int displacemap_apply(const scene *in, long max_tris, scene *out, displacemap_st
     st->triangle_rate = trate;
     out->spheres = malloc((size_t)(in->n_spheres > 0 ? in->n_spheres : 1) * sizeof *out->spheres);
     out->triangles = malloc((size_t)(total > 0 ? total : 1) * sizeof *out->triangles);
-    vec3 *qv = malloc((size_t)((trate + 1) * (trate + 2) / 2) * sizeof *qv);
+    size_t patch_verts = (size_t)(trate + 1) * (size_t)(trate + 2) / 2;
+    vec3 *qv = malloc(patch_verts * sizeof *qv), *nv = malloc(patch_verts * sizeof *nv);
+    int *valence = malloc(patch_verts * sizeof *valence);
+    vec3 *cn = malloc((size_t)(3 * (in->n_triangles > 0 ? in->n_triangles : 1)) * sizeof *cn);
+    seam_list seams = {NULL, 0, 0};
     displace_mesh m;
     memset(&m, 0, sizeof m);
-    if (!out->spheres || !out->triangles || !qv) {
+    if (!out->spheres || !out->triangles || !qv || !nv || !valence || !cn ||
+        weld_corner_normals(in, cn)) {
         error_set(err, in->path, 0, "out of memory for %ld displaced triangles", total);
         goto fail;
     }
@@ -140,7 +287,7 @@ int displacemap_apply(const scene *in, long max_tris, scene *out, displacemap_st
             continue;
         }
         const material *mt = &in->materials[sp->material];
-        height_ctx c = {tex, mt, scene_material_texmapping(mt, 1), sp->center, sp->radius, NULL, NULL, 0, 0};
+        height_ctx c = {tex, mt, scene_material_texmapping(mt, 1), sp->center, sp->radius, NULL, NULL, NULL, 0, 0};
         if (c.mapping == TEXMAPPING_UV) c.mapping = TEXMAPPING_SPHERICAL;
         /* SCALE object units along the unit sphere's normal: SCALE / R in its units */
         double scale = sp->radius > 0 ? mt->displacement_scale / sp->radius : 0.0;
@@ -170,11 +317,16 @@ int displacemap_apply(const scene *in, long max_tris, scene *out, displacemap_st
         }
         const material *mt = &in->materials[tr->material];
         long cap = (long)(trate + 1) * (trate + 2) / 2;
-        height_ctx c = {tex, mt, scene_material_texmapping(mt, 0), {0, 0, 0}, 0, tr, qv, 0, cap};
-        if (displace_triangle(tr->p, tr->has_normals ? tr->n : NULL, tr->st, trate,
+        height_ctx c = {tex, mt, scene_material_texmapping(mt, 0), {0, 0, 0}, 0, tr, qv, nv, 0, cap};
+        /* along its vertex normals, or the welded corner normals (no cracks); NULL for a
+         * zero-area triangle without normals, which displace_triangle refuses */
+        vec3 fn;
+        const vec3 *normals = tr->has_normals ? tr->n : face_normal(tr, &fn) ? NULL : &cn[3 * i];
+        if (displace_triangle(tr->p, normals, tr->st, trate,
                               triangle_height, &c, mt->displacement_scale, 0, &m, err))
             goto fail;
         int q_known = c.n_q == m.n_verts; /* the callback saw every vertex, in index order */
+        long first = out->n_triangles;
         for (long t = 0; t < m.n_tris; t++) {
             scene_triangle *o = &out->triangles[out->n_triangles++];
             memset(o, 0, sizeof *o);
@@ -188,15 +340,28 @@ int displacemap_apply(const scene *in, long max_tris, scene *out, displacemap_st
             o->has_normals = o->has_st = 1;
             o->material = tr->material;
         }
+        if (q_known && seam_collect(&m, nv, first, valence, &seams)) {
+            error_set(err, in->path, 0, "out of memory for the normals of %ld displaced triangles", total);
+            goto fail;
+        }
         displace_mesh_free(&m);
         st->triangles++;
     }
+    seam_weld(&seams, out);
     st->new_triangles = out->n_triangles;
     free(qv);
+    free(nv);
+    free(valence);
+    free(cn);
+    free(seams.at);
     return 0;
 fail:
     displace_mesh_free(&m);
     free(qv);
+    free(nv);
+    free(valence);
+    free(cn);
+    free(seams.at);
     displacemap_free(out);
     return -1;
 }

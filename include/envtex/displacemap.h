@@ -25,15 +25,23 @@
  *             or the material's texmapping of the unit direction; solid textures see the
  *             object-space point center + radius p.
  *   triangle  displace_triangle at DISPLACEMAP_TRIANGLE_RATE (N^2 triangles), in world space,
- *             along the vertex normals (trinormal) or the geometric normal; SCALE world units
- *             per unit of value.  (s, t) is the corners' interpolated st (uv) or the material's
+ *             along the vertex normals (trinormal); SCALE world units per unit of value.  A
+ *             triangle without normals (tri) moves each corner along the angle-weighted mean of
+ *             the unit geometric normals of all displaced triangles without normals that have a
+ *             corner at exactly the same position, and interpolates those across its face:
+ *             neighbours then move their shared edge alike, where their own geometric normals
+ *             would tear it open by up to twice the displacement (a crack).  A lone or flat
+ *             triangle keeps its geometric normal.  (s, t) is the corners' interpolated st (uv) or the material's
  *             point mapping of the object-space point, which solid textures also see.
  * If the whole scene would exceed max_tris (0: DISPLACEMAP_MAX_TRIS, never more than
  * SCENE_MAX_PRIMS) at those rates, both rates are halved together until it fits (down to 2 and
  * 1); if it still does not fit, an error.  The texture is read with the material's filter and
  * no footprint (texture.h's fallback: the full-resolution image, bilinearly).
  * Output triangles keep the material (whose displacement map the renderer ignores from then
- * on), get has_normals = 1 (recomputed, area-weighted), has_st = 1 (the corner st of the
+ * on), get has_normals = 1 (recomputed, area-weighted over every displaced triangle around the
+ * vertex: a vertex on the edge between two displaced triangles' patches, with the same normal
+ * before displacement on both sides, gets one normal from both patches, not a one-sided one
+ * from each, so the shading has no crease along the original edges), has_st = 1 (the corner st of the
  * tessellation), and object-space corners q for point mappings and solid textures.
  */
 #ifndef ENVTEX_DISPLACEMAP_H

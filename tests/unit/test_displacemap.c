@@ -81,6 +81,96 @@ START_TEST(test_displaced_triangle_moves_along_its_normal_and_keeps_object_corne
 }
 END_TEST
 
+/* A tent of two flat triangles (no normals) meeting at 90 degrees along the ridge
+ * (0, 0, 1) - (0, 1, 1).  Displaced along their own geometric normals, the two copies of the
+ * ridge would part by 2 * 0.1 * sin 45 = 0.14 (a crack through which the background shows);
+ * along the corners' shared mean normal, (0, 0, 1) here, they stay together. */
+START_TEST(test_triangles_without_normals_that_share_an_edge_are_displaced_without_a_crack)
+{
+    scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX("0.5")
+                    "displacementmap h 0.2\n"
+                    "vertex -1 0 0\nvertex 0 0 1\nvertex 0 1 1\nvertex 1 0 0\n"
+                    "tri 0 1 2\ntri 1 3 2\n");
+    scene out;
+    displacemap_stats st;
+    error err = {0};
+    ck_assert_msg(displacemap_apply(&sc, 0, &out, &st, &err) == 0, "%s", err.msg);
+    long n = DISPLACEMAP_TRIANGLE_RATE, shared = 0;
+    ck_assert_int_eq(out.n_triangles, 2 * n * n);
+    for (long a = 0; a < n * n; a++)          /* the first triangle's patch */
+        for (long b = n * n; b < 2 * n * n; b++) /* the second's */
+            for (int i = 0; i < 3; i++)
+                for (int j = 0; j < 3; j++) {
+                    const scene_triangle *ta = &out.triangles[a], *tb = &out.triangles[b];
+                    if (!(vec3_length(vec3_sub(ta->q[i], tb->q[j])) < 1e-12)) continue;
+                    shared++; /* the same point of the ridge before displacement */
+                    ck_assert_msg(vec3_length(vec3_sub(ta->p[i], tb->p[j])) < 1e-12,
+                                  "the ridge point (%g %g %g) went to (%g %g %g) and (%g %g %g)",
+                                  ta->q[i].x, ta->q[i].y, ta->q[i].z, ta->p[i].x, ta->p[i].y,
+                                  ta->p[i].z, tb->p[j].x, tb->p[j].y, tb->p[j].z);
+                    ck_assert(fabs(ta->p[i].z - 1.1) < 1e-12); /* up by 0.2 * 0.5 along +z */
+                }
+    ck_assert(shared > 0);
+    /* the far corners, used by one triangle each, still move along their own normal */
+    for (long t = 0; t < out.n_triangles; t++)
+        for (int k = 0; k < 3; k++)
+            if (vec3_length(vec3_sub(out.triangles[t].q[k], vec3_make(-1, 0, 0))) < 1e-12)
+                ck_assert(vec3_length(vec3_sub(out.triangles[t].p[k],
+                                               vec3_make(-1 - 0.1 / sqrt(2), 0, 0.1 / sqrt(2)))) < 1e-12);
+    displacemap_free(&out);
+    scene_free(&sc);
+}
+END_TEST
+
+/* A flat quad of two triangles displaced by smooth noise: each patch alone would give the
+ * vertices on the diagonal a one-sided normal (measured: up to 11 degrees apart on the two
+ * sides), a crease in the shading along every edge of the original mesh.  Both sides must
+ * agree, and an inner vertex keeps its area-weighted normal. */
+START_TEST(test_normals_on_the_edge_between_two_patches_are_shared_not_one_sided)
+{
+    scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n"
+                    "texture h perlin 3  0 0 0  1 1 1\ndisplacementmap h 0.3\n"
+                    "vertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\nvertex 0 1 0\n"
+                    "tri 0 1 2\ntri 0 2 3\n");
+    scene out;
+    displacemap_stats st;
+    error err = {0};
+    ck_assert_msg(displacemap_apply(&sc, 0, &out, &st, &err) == 0, "%s", err.msg);
+    long n = DISPLACEMAP_TRIANGLE_RATE, shared = 0;
+    double worst = 0;
+    for (long a = 0; a < n * n; a++)
+        for (long b = n * n; b < 2 * n * n; b++)
+            for (int i = 0; i < 3; i++)
+                for (int j = 0; j < 3; j++) {
+                    const scene_triangle *ta = &out.triangles[a], *tb = &out.triangles[b];
+                    if (!(vec3_length(vec3_sub(ta->p[i], tb->p[j])) == 0)) continue;
+                    shared++;
+                    worst = fmax(worst, vec3_angle(ta->n[i], tb->n[j]));
+                }
+    ck_assert(shared > 0);
+    ck_assert_msg(worst < 1e-9, "normals on the diagonal differ by %g degrees", worst * 180 / M_PI);
+    /* an inner vertex of the first patch (six triangles around it): the normalized sum of
+     * (b - a) x (c - a) over them */
+    vec3 sum = {0, 0, 0}, nv = {0, 0, 0};
+    for (long s0 = 0, around = 0; s0 < n * n && around != 6; s0++) {
+        vec3 v = out.triangles[s0].p[0];
+        sum = nv = vec3_make(0, 0, 0);
+        around = 0;
+        for (long t = 0; t < n * n; t++)
+            for (int k = 0; k < 3; k++)
+                if (vec3_length(vec3_sub(out.triangles[t].p[k], v)) == 0) {
+                    const vec3 *p = out.triangles[t].p;
+                    sum = vec3_add(sum, vec3_cross(vec3_sub(p[1], p[0]), vec3_sub(p[2], p[0])));
+                    nv = out.triangles[t].n[k];
+                    around++;
+                }
+    }
+    ck_assert(vec3_angle(nv, vec3_normalize(sum)) < 1e-9);
+    displacemap_free(&out);
+    scene_free(&sc);
+}
+END_TEST
+
 START_TEST(test_rates_are_halved_until_the_budget_fits_and_an_impossible_budget_fails)
 {
     scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX("1")
@@ -108,6 +198,8 @@ Suite *displacemap_suite(void)
     tcase_add_test(tc, test_scenes_without_displacement_need_none);
     tcase_add_test(tc, test_displaced_sphere_vertices_lie_at_radius_plus_scale_times_height);
     tcase_add_test(tc, test_displaced_triangle_moves_along_its_normal_and_keeps_object_corners);
+    tcase_add_test(tc, test_triangles_without_normals_that_share_an_edge_are_displaced_without_a_crack);
+    tcase_add_test(tc, test_normals_on_the_edge_between_two_patches_are_shared_not_one_sided);
     tcase_add_test(tc, test_rates_are_halved_until_the_budget_fits_and_an_impossible_budget_fails);
     suite_add_tcase(s, tc);
     return s;
