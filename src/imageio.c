@@ -125,6 +125,16 @@ int imageio_read_all(const char *path, unsigned char **data, size_t *size, error
 
 /* ---- by magic / by extension --------------------------------------------------------------- */
 
+/* The format named by a file's first n (<= 8) bytes m. */
+static imageio_format format_of_magic(const unsigned char *m, size_t n)
+{
+    if (n >= 4 && memcmp(m, EXRFILE_MAGIC, 4) == 0) return IMAGEIO_EXR;
+    if (n >= 8 && memcmp(m, PNGFILE_MAGIC, 8) == 0) return IMAGEIO_PNG;
+    if (n >= 2 && m[0] == '#' && m[1] == '?') return IMAGEIO_RGBE;
+    if (n >= 2 && m[0] == 'P' && (m[1] == 'F' || m[1] == 'f')) return IMAGEIO_PFM;
+    return IMAGEIO_UNKNOWN;
+}
+
 int imageio_read(const char *path, image *out, error *err)
 {
     out->w = out->h = 0;
@@ -144,12 +154,26 @@ int imageio_read(const char *path, image *out, error *err)
     if (n < 0) return error_set(err, path, 0, "cannot read: %s", strerror(e));
     if (n == 0) return error_set(err, path, 0, "file is empty");
 
-    if (n >= 4 && memcmp(m, EXRFILE_MAGIC, 4) == 0) return exrfile_read(path, out, err);
-    if (n >= 8 && memcmp(m, PNGFILE_MAGIC, 8) == 0) return pngfile_read(path, out, err);
-    if (n >= 2 && m[0] == '#' && m[1] == '?') return rgbe_read(path, out, err);
-    if (n >= 2 && m[0] == 'P' && (m[1] == 'F' || m[1] == 'f')) return pfm_read(path, out, err);
+    switch (format_of_magic(m, (size_t)n)) {
+    case IMAGEIO_EXR: return exrfile_read(path, out, err);
+    case IMAGEIO_PNG: return pngfile_read(path, out, err);
+    case IMAGEIO_RGBE: return rgbe_read(path, out, err);
+    case IMAGEIO_PFM: return pfm_read(path, out, err);
+    case IMAGEIO_UNKNOWN: break;
+    }
     return error_set(err, path, 0,
                      "unknown image format (not OpenEXR, PNG, Radiance .hdr or PFM)");
+}
+
+imageio_format imageio_detect(const char *path)
+{
+    int fd = open(path, O_RDONLY);
+    if (fd < 0) return IMAGEIO_UNKNOWN;
+    unsigned char m[8] = {0};
+    ssize_t n;
+    do n = read(fd, m, sizeof m); while (n < 0 && errno == EINTR);
+    close(fd);
+    return n > 0 ? format_of_magic(m, (size_t)n) : IMAGEIO_UNKNOWN;
 }
 
 /* ".ext" of path, "" if none (a dot in a folder name does not count) */

@@ -149,6 +149,17 @@ static int check_not_an_input(const char *out, const scene *sc, error *err)
     return 0;
 }
 
+/* An output must not replace one of the command's input images (`compare --diff REF.exr`,
+ * `tonemap a.png a.png`, `convert sky.exr sky.exr`): the command would succeed and the input,
+ * often an instructor's reference, be gone.  `inputs` has n paths (NULL entries are skipped). */
+static int check_not_replacing(const char *out, const char *const *inputs, int n, error *err)
+{
+    for (int k = 0; k < n; k++)
+        if (inputs[k] && (!strcmp(out, inputs[k]) || same_file(out, inputs[k])))
+            return error_set(err, out, 0, "the output would replace the input image %s", inputs[k]);
+    return 0;
+}
+
 /* Output path must be writable before the render starts: try the temporary file now. */
 static int check_output(const char *path, error *err)
 {
@@ -345,9 +356,18 @@ static int cmd_compare_test(int argc, char **argv)
     error err = {0};
     image im[3] = {{0}}, map = {0};
     int status = 1;
-    if (map_path && check_output(map_path, &err)) goto done;
+    if (map_path && (check_output(map_path, &err) || check_not_replacing(map_path, paths, 3, &err))) goto done;
     for (int k = 0; k < 3; k++)
         if (imageio_read(paths[k], &im[k], &err)) goto done;
+    /* A PNG (the course skeleton's raytrace.png) is clamped to [0, 1] and rounded to 8 bits: every
+     * pixel brighter than 1 would fail as a bias and the verdict say nothing about the code */
+    static const char *const roles[3] = {"image", "reference", "variance"};
+    for (int k = 0; k < 3; k++)
+        if (imageio_detect(paths[k]) == IMAGEIO_PNG) {
+            error_set(&err, paths[k], 0, "the %s is a PNG (8 bits clamped to [0, 1]): the noise-aware test needs "
+                      "the linear render (.exr, .pfm or .hdr)", roles[k]);
+            goto done;
+        }
     gradetest_result r;
     if (gradetest_run(&im[0], &im[1], &im[2], &p, &r, map_path ? &map : NULL, &err)) {
         char msg[ERROR_MSG_MAX]; /* err.msg cannot be an argument of error_set on err: they overlap */
@@ -397,7 +417,8 @@ static int cmd_compare(int argc, char **argv)
     error err = {0};
     image a = {0}, b = {0}, d = {0};
     int status = 1;
-    if (diff_path && check_output(diff_path, &err)) goto done;
+    const char *inputs[2] = {a_path, b_path};
+    if (diff_path && (check_output(diff_path, &err) || check_not_replacing(diff_path, inputs, 2, &err))) goto done;
     if (imageio_read(a_path, &a, &err) || imageio_read(b_path, &b, &err)) goto done;
     compare_result cr;
     if (compare_metrics(&a, &b, &cr, &err)) {
@@ -455,7 +476,7 @@ static int cmd_tonemap(int argc, char **argv)
     error err = {0};
     image img = {0};
     int status = 1;
-    if (check_output(out, &err)) goto done;
+    if (check_output(out, &err) || check_not_replacing(out, &in, 1, &err)) goto done;
     if (imageio_read(in, &img, &err)) goto done;
     if (imageio_write(out, &img, &tm, &err)) goto done;
     status = 0;
@@ -500,11 +521,23 @@ static int cmd_convert(int argc, char **argv)
     error err = {0};
     convert_map src = {0}, dst = {0};
     int status = 1;
-    /* every output file must be writable before the work starts */
+    /* every output file must be writable, and none an input, before the work starts: the
+     * input is IN, or IN's six faces when it is read as a cube */
+    char in_faces[CUBEMAP_FACES][ERROR_FILE_MAX];
+    const char *inputs[CUBEMAP_FACES] = {in};
+    int n_inputs = 1;
+    if (from && !strcmp(from, "cube")) {
+        for (int f = 0; f < CUBEMAP_FACES; f++) {
+            if (convert_face_path(in, f, in_faces[f], sizeof in_faces[f], &err)) goto done;
+            inputs[f] = in_faces[f];
+        }
+        n_inputs = CUBEMAP_FACES;
+    }
     for (int f = 0; f < (six ? CUBEMAP_FACES : 1); f++) {
         char name[ERROR_FILE_MAX];
         if (six && convert_face_path(out, f, name, sizeof name, &err)) goto done;
-        if (check_output(six ? name : out, &err)) goto done;
+        if (check_output(six ? name : out, &err) || check_not_replacing(six ? name : out, inputs, n_inputs, &err))
+            goto done;
     }
     if (convert_read(in, from, &src, &err)) goto done;
     convert_env sv = convert_view(&src);

@@ -31,6 +31,14 @@
  * not own pixels; on failure it stays empty. */
 int imageio_read(const char *path, image *out, error *err);
 
+/* The format of the file at `path` by its magic bytes, as imageio_read picks it; unknown when
+ * the file cannot be read or is none of the four (imageio_read then says why).  A PNG holds 8
+ * bits a channel clamped to [0, 1]: a tester of linear HDR renders refuses it (main.c). */
+typedef enum imageio_format {
+    IMAGEIO_UNKNOWN, IMAGEIO_EXR, IMAGEIO_PNG, IMAGEIO_RGBE, IMAGEIO_PFM
+} imageio_format;
+imageio_format imageio_detect(const char *path);
+
 /* Write `im` to `path`, format by extension (.exr .png .pfm .hdr, case-insensitive; an
  * unknown extension is an error).  `tm` is used for .png only; NULL means tonemap_defaults().
  * An empty image (no pixels, or a size image_check_size refuses) is an error and nothing is

@@ -14,7 +14,9 @@
 #include "testdir.h"
 #include "unit.h"
 
-#define COURTYARD "/work/shared/hdri/courtyard.exr"
+/* The shared CC0 maps sit beside the repository (../shared/hdri, as tests/bench and
+ * tests/tools/halve.c use them); tests run from the repository's root. */
+#define COURTYARD "../shared/hdri/courtyard.exr"
 
 /* A test picture with values over many decades, negatives, and a distinct value per pixel. */
 static void fill_test_image(image *im, int w, int h)

@@ -63,6 +63,31 @@ START_TEST(test_reading_goes_by_magic_bytes_not_the_name)
 }
 END_TEST
 
+START_TEST(test_detect_names_the_format_by_magic_bytes_as_read_does)
+{
+    make_dir();
+    image im = {0};
+    error err = {0};
+    fill(&im);
+    const char *names[] = {"a.exr", "b.png", "c.hdr", "d.pfm"};
+    const imageio_format want[] = {IMAGEIO_EXR, IMAGEIO_PNG, IMAGEIO_RGBE, IMAGEIO_PFM};
+    for (int f = 0; f < 4; f++) {
+        ck_assert_int_eq(imageio_write(in_dir(names[f]), &im, NULL, &err), 0);
+        ck_assert_int_eq(imageio_detect(in_dir(names[f])), want[f]);
+    }
+    ck_assert_int_eq(rename(in_dir("b.png"), in_dir("png_named.exr")), 0); /* the name does not count */
+    ck_assert_int_eq(imageio_detect(in_dir("png_named.exr")), IMAGEIO_PNG);
+    FILE *f = fopen(in_dir("text.exr"), "wb");
+    ck_assert_ptr_nonnull(f);
+    fputs("hello", f);
+    fclose(f);
+    ck_assert_int_eq(imageio_detect(in_dir("text.exr")), IMAGEIO_UNKNOWN);
+    ck_assert_int_eq(imageio_detect(in_dir("missing.exr")), IMAGEIO_UNKNOWN);
+    image_free(&im);
+    remove_dir();
+}
+END_TEST
+
 START_TEST(test_unknown_missing_empty_and_folder_inputs_are_clear_errors)
 {
     make_dir();
@@ -171,6 +196,7 @@ Suite *imageio_suite(void)
     TCase *tc = tcase_create("imageio");
     tcase_add_test(tc, test_every_extension_writes_and_reads_back);
     tcase_add_test(tc, test_reading_goes_by_magic_bytes_not_the_name);
+    tcase_add_test(tc, test_detect_names_the_format_by_magic_bytes_as_read_does);
     tcase_add_test(tc, test_unknown_missing_empty_and_folder_inputs_are_clear_errors);
     tcase_add_test(tc, test_truncated_files_of_every_format_are_errors);
     tcase_add_test(tc, test_unknown_extension_and_invalid_images_write_nothing);
