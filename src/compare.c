@@ -183,8 +183,10 @@ int compare_thresholds(const image *a, const image *ref, const compare_threshold
         n = snprintf(v->why + at, sizeof v->why - at, "%ld pixels are NaN or Inf; ", v->nonfinite);
         if (n > 0 && (size_t)n < sizeof v->why - at) at += (size_t)n;
     }
-    snprintf(v->why + at, sizeof v->why - at, "max difference %g at (%d, %d)", v->max_diff,
-             v->max_x, v->max_y);
+    n = snprintf(v->why + at, sizeof v->why - at, "max difference %g", v->max_diff);
+    if (n > 0 && (size_t)n < sizeof v->why - at) at += (size_t)n;
+    if (v->max_x >= 0) /* none when no pixel pair was finite */
+        snprintf(v->why + at, sizeof v->why - at, " at (%d, %d)", v->max_x, v->max_y);
     return -1;
 }
 

@@ -213,13 +213,21 @@ static int cmd_render(int argc, char **argv)
     lo.warn = warn_keep;
     lo.warn_ctx = &ws;
     if (scene_load(scene_path, &lo, &sc, &err)) return fail(&err);
+    int out_from_scene = !out_path; /* the scene's `output` (or its default) */
     if (!out_path) out_path = sc.output;
 
     /* Everything that can refuse the run is checked before the render and before the scene's
      * warnings are printed: a refused run prints one line and writes nothing. */
     int status = 1;
     image img = {0}, ref = {0}, var = {0};
-    if (check_output(out_path, &err) || check_not_an_input(out_path, &sc, &err)) goto done;
+    if (check_output(out_path, &err) || check_not_an_input(out_path, &sc, &err)) {
+        if (out_from_scene && sc.output_line > 0) { /* the name came from this line of the scene */
+            char msg[ERROR_MSG_MAX]; /* err.msg cannot be an argument of error_set on err: they overlap */
+            snprintf(msg, sizeof msg, "%s", err.msg);
+            error_set(&err, scene_path, sc.output_line, "'output' %s: %s", out_path, msg);
+        }
+        goto done;
+    }
     if (var_path && (check_output(var_path, &err) || check_not_an_input(var_path, &sc, &err))) goto done;
     if (var_path && (!strcmp(var_path, out_path) || same_file(var_path, out_path))) {
         error_set(&err, var_path, 0, "--variance names the output file itself");
@@ -437,9 +445,11 @@ static int cmd_compare(int argc, char **argv)
     if (use_thresholds) {
         compare_verdict v;
         compare_thresholds(&a, &b, &th, &v);
-        printf("%s: %ld of %ld pixels (%.3f%%) differ by more than %g (allowed %g%%), max %.6g at (%d, %d) (hard limit %g), %ld NaN/Inf: %s\n",
+        char where[64] = ""; /* where the largest difference is; none when every pixel agrees */
+        if (v.max_x >= 0) snprintf(where, sizeof where, " at (%d, %d)", v.max_x, v.max_y);
+        printf("%s: %ld of %ld pixels (%.3f%%) differ by more than %g (allowed %g%%), max %.6g%s (hard limit %g), %ld NaN/Inf: %s\n",
                v.pass ? "PASS" : "FAIL", v.failed, v.pixels, v.failed_percent, th.fail_thresh,
-               th.fail_percent, v.max_diff, v.max_x, v.max_y, th.hard_thresh, v.nonfinite, v.why);
+               th.fail_percent, v.max_diff, where, th.hard_thresh, v.nonfinite, v.why);
         if (!v.pass) status = 2; /* a failed comparison is not an error: status 2 */
     }
 done:

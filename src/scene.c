@@ -290,6 +290,7 @@ static int cmd_output(parser *p)
     if (n >= sizeof p->sc->output)
         return fail(p, "'output' file name is longer than %zu bytes", sizeof p->sc->output - 1);
     memcpy(p->sc->output, p->tok[1], n + 1);
+    p->sc->output_line = p->line; /* so a refused name points at its line (main.c) */
     return 0;
 }
 

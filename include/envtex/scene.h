@@ -153,6 +153,7 @@ typedef struct scene {
     /* image and camera */
     int width, height;         /* `size`; required */
     char output[1024];         /* `output`, default "raytrace.png", relative to the working folder */
+    int output_line;           /* the line of `output` in the scene file; 0 for the default */
     int has_camera;
     vec3 eye, center, up;      /* `camera` */
     double fovy;               /* degrees */

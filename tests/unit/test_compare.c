@@ -209,6 +209,14 @@ START_TEST(test_threshold_verdicts_follow_the_percent_hard_and_nan_rules)
     ck_assert_int_eq(compare_thresholds(&a, &ref, &p, &v), -1);
     ck_assert_int_eq(v.nonfinite, 1);
     ck_assert_ptr_nonnull(strstr(v.why, "NaN"));
+    ck_assert_ptr_nonnull(strstr(v.why, "at (3, 4)")); /* where the largest difference is */
+    /* no finite pixel pair at all: no place to name (it once said "at (-1, -1)") */
+    for (int y = 0; y < 10; y++)
+        for (int x = 0; x < 10; x++) image_px(&a, x, y)[1] = NAN;
+    ck_assert_int_eq(compare_thresholds(&a, &ref, &p, &v), -1);
+    ck_assert_int_eq(v.nonfinite, 100);
+    ck_assert_int_eq(v.max_x, -1);
+    ck_assert_msg(strstr(v.why, "(-1") == NULL, "why: %s", v.why);
     image_free(&a);
     image_free(&ref);
 }
