@@ -203,7 +203,10 @@ void texshade_delta_diff(const surface *s, const ray_diff *rd, vec3 wo, vec3 wi,
 {
     out->has = 0;
     if (!s->has_diff || !rd || !rd->has) return;
-    if (vec3_dot(wi, s->ng) > 0) { /* reflected: wi on wo's side */
+    /* reflected or refracted, told apart about the normal the direction was made with: a mirror
+     * keeps the side of s->n (wi . n = wo . n), a refraction crosses it.  (The side of ng would
+     * take a mirror direction about a bumped n that dips below the surface for a refraction.) */
+    if (vec3_dot(wi, s->n) * vec3_dot(wo, s->n) >= 0) {
         raydiff_reflect(rd, s->dpdx, s->dpdy, wo, s->n, s->dndx, s->dndy, out);
         return;
     }

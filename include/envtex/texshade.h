@@ -87,7 +87,9 @@ void texshade_surface(const scene *sc, const hit *h, const ray *r, const ray_dif
                       surface *s);
 
 /* The differentials of the ray leaving surface s in direction wi by a perfect mirror
- * (wi on s->ng's side: raydiff_reflect) or refraction (raydiff_refract with eta = n_i / n_t
+ * (wi on wo's side of the shading normal s->n: raydiff_reflect; a bumped s->n can send a
+ * mirror direction below s->ng, and it is still a reflection) or refraction (wi on the other
+ * side: raydiff_refract with eta = n_i / n_t
  * from s->ior and s->entering), about the shading normal s->n.  wo is the unit direction back
  * along the arriving ray, whose differentials were rd.  out->has = 0 when there are none to
  * carry (rd NULL or empty, or s reached without them). */

@@ -267,6 +267,43 @@ START_TEST(test_footprint_of_a_plane_at_known_distance_picks_the_mip_level)
 }
 END_TEST
 
+/* A mirror direction about a bumped shading normal can dip below the geometric surface (near
+ * grazing); it is still a reflection, and carries raydiff_reflect's differentials, not a
+ * refraction's (texshade_delta_diff once told them apart by the side of ng).  A refraction
+ * crosses the shading normal and carries raydiff_refract's. */
+START_TEST(test_delta_diff_tells_reflection_from_refraction_by_the_shading_normal)
+{
+    surface s;
+    memset(&s, 0, sizeof s);
+    s.has_diff = 1;
+    s.entering = 1;
+    s.ior = 1.5;
+    s.ng = vec3_make(0, 0, 1);
+    s.n = vec3_normalize(vec3_make(0.6, 0, 0.8)); /* bumped, on ng's side */
+    s.dpdx = vec3_make(0.01, 0, 0);
+    s.dpdy = vec3_make(0, 0.01, 0);
+    s.dndx = vec3_make(0, 0.002, 0);
+    s.dndy = vec3_make(0.001, 0, -0.00075);
+    ray_diff rd = {1, vec3_make(0.01, 0, 0), vec3_make(0, 0.003, 0.001), vec3_make(0, 0.01, 0), vec3_make(0.002, 0, 0)};
+    vec3 wo = vec3_normalize(vec3_make(-0.5, 0, 1)); /* above ng, and above n */
+    vec3 wi = vec3_sub(vec3_scale(s.n, 2 * vec3_dot(wo, s.n)), wo); /* mirror about n */
+    ck_assert(vec3_dot(wo, s.n) > 0 && wi.z < 0);                    /* below the surface */
+    ray_diff got, want;
+    texshade_delta_diff(&s, &rd, wo, wi, &got);
+    raydiff_reflect(&rd, s.dpdx, s.dpdy, wo, s.n, s.dndx, s.dndy, &want);
+    ck_assert(got.has && want.has);
+    ck_assert_msg(vec3_length(vec3_sub(got.ddx, want.ddx)) < 1e-15 && vec3_length(vec3_sub(got.ddy, want.ddy)) < 1e-15,
+                  "a mirror direction below ng got other differentials than raydiff_reflect's");
+    /* a refraction through the same bumped normal */
+    vec3 wt;
+    ck_assert(fresnel_refract(vec3_scale(wo, -1), s.n, 1.5, &wt));
+    texshade_delta_diff(&s, &rd, wo, wt, &got);
+    ck_assert(raydiff_refract(&rd, s.dpdx, s.dpdy, wo, s.n, s.dndx, s.dndy, 1 / 1.5, wt, &want));
+    ck_assert(got.has);
+    ck_assert(vec3_length(vec3_sub(got.ddx, want.ddx)) < 1e-15 && vec3_length(vec3_sub(got.ddy, want.ddy)) < 1e-15);
+}
+END_TEST
+
 START_TEST(test_barycentric_st_at_a_hit_interpolates_the_corners)
 {
     scene sc;
@@ -339,6 +376,7 @@ Suite *raydiff_suite(void)
     tcase_add_test(tc, test_no_differentials_in_means_none_out);
     tcase_add_test(tc, test_footprint_of_a_plane_at_known_distance_picks_the_mip_level);
     tcase_add_test(tc, test_barycentric_st_at_a_hit_interpolates_the_corners);
+    tcase_add_test(tc, test_delta_diff_tells_reflection_from_refraction_by_the_shading_normal);
     tcase_add_test(tc, test_diffusemap_replaces_kd_and_untextured_materials_are_untouched);
     suite_add_tcase(s, tc);
     return s;
