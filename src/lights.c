@@ -23,6 +23,38 @@ static double light_power(const lights *ls, int k)
     }
 }
 
+/* The quad lights' triangles and their BVH (lights.h).  Testing every light for every ray cost
+ * a path tracer ~90% of its time with 100 quad lights, and 66% with 1000 point lights and no
+ * quad at all. */
+static int build_quads(lights *ls, const scene *sc, error *err)
+{
+    int nq = 0;
+    for (int i = 0; i < sc->n_lights; i++) nq += sc->lights[i].kind == LIGHT_QUAD;
+    if (nq == 0) return 0;
+    ls->quad_scene = calloc(1, sizeof *ls->quad_scene);
+    ls->quad_light = malloc((size_t)nq * sizeof *ls->quad_light);
+    scene_triangle *tris = calloc((size_t)nq * 2, sizeof *tris);
+    if (!ls->quad_scene || !ls->quad_light || !tris) {
+        free(tris);
+        return error_set(err, sc->path, 0, "out of memory for %d quad lights", nq);
+    }
+    memcpy(ls->quad_scene->path, sc->path, sizeof sc->path);
+    ls->quad_scene->triangles = tris;
+    for (int i = 0; i < sc->n_lights; i++) {
+        const scene_light *l = &sc->lights[i];
+        if (l->kind != LIGHT_QUAD) continue;
+        /* the parallelogram a, a+ab, a+ab+ac, a+ac as two triangles */
+        vec3 a = l->pos, b = vec3_add(l->pos, l->ab), c = vec3_add(b, l->ac), d = vec3_add(l->pos, l->ac);
+        int j = ls->n_quads++;
+        ls->quad_light[j] = i;
+        scene_triangle *t = &tris[2 * j];
+        t[0].p[0] = a, t[0].p[1] = b, t[0].p[2] = c;
+        t[1].p[0] = a, t[1].p[1] = c, t[1].p[2] = d;
+    }
+    ls->quad_scene->n_triangles = 2L * nq;
+    return bvh_build(&ls->quad_bvh, ls->quad_scene, err);
+}
+
 int lights_build(lights *ls, const scene *sc, const envlight *env, double scene_radius, error *err)
 {
     memset(ls, 0, sizeof *ls);
@@ -38,10 +70,23 @@ int lights_build(lights *ls, const scene *sc, const envlight *env, double scene_
     /* all zero (e.g. black lights): distrib1d falls back to uniform, which is still correct */
     int st = distrib1d_init(&ls->choose, w, ls->n, err);
     free(w);
+    if (st == 0 && (st = build_quads(ls, sc, err)) != 0) lights_free(ls);
     return st;
 }
 
-void lights_free(lights *ls) { distrib1d_free(&ls->choose); }
+void lights_free(lights *ls)
+{
+    distrib1d_free(&ls->choose);
+    if (ls->quad_scene) {
+        bvh_free(&ls->quad_bvh); /* safe on a zeroed or failed build */
+        free(ls->quad_scene->triangles);
+        free(ls->quad_scene);
+    }
+    free(ls->quad_light);
+    ls->quad_scene = NULL;
+    ls->quad_light = NULL;
+    ls->n_quads = 0;
+}
 
 int lights_pick(const lights *ls, double xi, int *k, double *prob)
 {
@@ -141,19 +186,26 @@ int lights_sample(const lights *ls, int k, vec3 p, vec3 ng, double xi1, double x
 
 int lights_intersect_quad(const lights *ls, const ray *r, int *k, double *t_out)
 {
+    if (ls->n_quads == 0) return 0;
+    if (ls->quad_bvh.is_tree) {
+        hit h;
+        if (!bvh_intersect(&ls->quad_bvh, ls->quad_scene, r, &h)) return 0;
+        *k = ls->quad_light[h.prim / 2]; /* triangles 2 j and 2 j + 1 are quad j */
+        *t_out = h.t;
+        return 1;
+    }
+    /* a few quads (the course's one light): a plain loop costs less than the BVH's bookkeeping */
     int found = 0;
     ray rr = *r;
-    for (int i = 0; i < ls->sc->n_lights; i++) {
-        const scene_light *l = &ls->sc->lights[i];
-        if (l->kind != LIGHT_QUAD) continue;
-        vec3 a = l->pos, b = vec3_add(l->pos, l->ab), c = vec3_add(b, l->ac), d = vec3_add(l->pos, l->ac);
+    for (int j = 0; j < ls->n_quads; j++) {
+        const scene_triangle *tr = &ls->quad_scene->triangles[2 * j];
         double t, b1, b2;
-        /* the parallelogram a, a+ab, a+ab+ac, a+ac as two triangles */
-        if (triangle_intersect(a, b, c, &rr, &t, &b1, &b2) || triangle_intersect(a, c, d, &rr, &t, &b1, &b2)) {
+        if (triangle_intersect(tr[0].p[0], tr[0].p[1], tr[0].p[2], &rr, &t, &b1, &b2) ||
+            triangle_intersect(tr[1].p[0], tr[1].p[1], tr[1].p[2], &rr, &t, &b1, &b2)) {
             found = 1;
-            *k = i;
+            *k = ls->quad_light[j];
             *t_out = t;
-            rr.tmax = t;
+            rr.tmax = t; /* nearest so far */
         }
     }
     return found;

@@ -322,6 +322,15 @@ static int cmd_camera(parser *p)
     return 0;
 }
 
+/* 1 if m is exactly the identity (a sphere without a transform: sphere.c skips the products) */
+static int is_identity(const mat4 *m)
+{
+    for (int i = 0; i < 4; i++)
+        for (int j = 0; j < 4; j++)
+            if (m->m[i][j] != (i == j)) return 0;
+    return 1;
+}
+
 static int cmd_sphere(parser *p)
 {
     double v[4];
@@ -340,6 +349,7 @@ static int cmd_sphere(parser *p)
     s->radius = v[3];
     s->xf = p->xf;
     s->inv = *inv;
+    s->untransformed = is_identity(&s->xf) && is_identity(&s->inv);
     s->material = m;
     return 0;
 }

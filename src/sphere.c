@@ -3,9 +3,16 @@
 
 int sphere_intersect(const scene_sphere *s, const ray *r, double *t_out)
 {
-    /* Object-space ray: o' = M^-1 o - c, d' = M^-1 d (not renormalized: t stays the world t). */
-    vec3 o = vec3_sub(mat4_point(&s->inv, r->o), s->center);
-    vec3 d = mat4_dir(&s->inv, r->d);
+    /* Object-space ray: o' = M^-1 o - c, d' = M^-1 d (not renormalized: t stays the world t);
+     * without a transform M^-1 = I: o' = o - c, d' = d, and the matrix products are skipped. */
+    vec3 o, d;
+    if (s->untransformed) {
+        o = vec3_sub(r->o, s->center);
+        d = r->d;
+    } else {
+        o = vec3_sub(mat4_point(&s->inv, r->o), s->center);
+        d = mat4_dir(&s->inv, r->d);
+    }
     /* |o + t d|^2 = R^2  ->  a t^2 + 2 b t + c = 0 with a = d.d, b = o.d, c = o.o - R^2 */
     double a = vec3_dot(d, d), b = vec3_dot(o, d);
     if (!(a > 0)) return 0;

@@ -8,9 +8,6 @@ int triangle_intersect(vec3 p0, vec3 p1, vec3 p2, const ray *r, double *t_out, d
     vec3 pv = vec3_cross(r->d, e2);
     double det = vec3_dot(e1, pv); /* = -d . (e1 x e2): zero when parallel or degenerate */
     if (det == 0 || !isfinite(det)) return 0;
-    /* det^2 <= eps^2 |d|^2 |e1|^2 |e2|^2: a sliver of rounding (or an edge-on ray): no hit */
-    double bound = vec3_length2(r->d) * vec3_length2(e1) * vec3_length2(e2);
-    if (det * det <= TRIANGLE_DEGENERATE_EPS * TRIANGLE_DEGENERATE_EPS * bound) return 0;
     double inv = 1.0 / det;
     vec3 s = vec3_sub(r->o, p0);
     double b1 = vec3_dot(s, pv) * inv; /* Cramer's rule for o + t d = p0 + b1 e1 + b2 e2 */
@@ -20,6 +17,12 @@ int triangle_intersect(vec3 p0, vec3 p1, vec3 p2, const ray *r, double *t_out, d
     if (b2 < -TRIANGLE_EDGE_EPS || b1 + b2 > 1 + TRIANGLE_EDGE_EPS) return 0;
     double t = vec3_dot(e2, qv) * inv;
     if (!(t > r->tmin && t < r->tmax)) return 0;
+    /* det^2 <= eps^2 |d|^2 |e1|^2 |e2|^2: a sliver of rounding (or an edge-on ray): no hit.
+     * Tested last, only for a ray that passed every other test: the tests above only reject
+     * (a NaN from a tiny det fails the t test), so the order changes no answer, and most rays a
+     * BVH leaf offers miss an edge first. */
+    double bound = vec3_length2(r->d) * vec3_length2(e1) * vec3_length2(e2);
+    if (det * det <= TRIANGLE_DEGENERATE_EPS * TRIANGLE_DEGENERATE_EPS * bound) return 0;
     *t_out = t;
     *b1_out = b1;
     *b2_out = b2;

@@ -7,6 +7,9 @@
  * where R is the radius of the scene's bounding sphere (a distant light's power is what falls
  * on the scene).  A quad light emits on the side of ac x ab (FORMAT.md) and is visible to
  * camera and BRDF rays (lights_intersect_quad); shadow rays are not blocked by quad lights.
+ * Every camera and BRDF ray asks for the nearest quad, so the quads get a BVH of their own
+ * (bvh.h, two triangles a quad): a ray tests O(log n) of n quads, not all of them, and a scene
+ * whose lights are all point or directional tests none.
  *
  *     lights ls;
  *     lights_build(&ls, sc, el, radius, &err);
@@ -16,6 +19,7 @@
 #ifndef ENVTEX_LIGHTS_H
 #define ENVTEX_LIGHTS_H
 
+#include "envtex/bvh.h"
 #include "envtex/distrib.h"
 #include "envtex/envlight.h"
 #include "envtex/ray.h"
@@ -29,6 +33,13 @@ typedef struct lights {
     double radius;
     double env_fraction;  /* c in [0, 1]: a pick of the envmap is sampled with probability c
                            * (1 unless lights_set_env_fraction; see there) */
+    /* the quad lights as triangles 2 j: (a, a+ab, a+ab+ac) and 2 j + 1: (a, a+ab+ac, a+ac) of
+     * a scene of their own (owned; NULL without quads), with a BVH over them; both triangles
+     * of pair j are quad quad_light[j] (an index into sc->lights) */
+    scene *quad_scene;
+    bvh quad_bvh;
+    int *quad_light;
+    int n_quads;
 } lights;
 
 typedef struct light_sample {

@@ -66,6 +66,9 @@ typedef struct scene_sphere {
     vec3 center;    /* object space, as written */
     double radius;
     mat4 xf, inv;   /* object -> world and its inverse (transform current at `sphere`) */
+    int untransformed; /* 1: xf = inv = the identity (no transform at `sphere`, as most are),
+                        * so a ray needs no transform into object space; 0: use xf and inv
+                        * (always correct: a sphere built by hand may leave it 0) */
     int material;   /* index into scene.materials */
 } scene_sphere;
 

@@ -3,10 +3,13 @@
  * pdf is lights_quad_pdf at the sampled point, and a quad emits on the side of ac x ab only. */
 #include "envtex/lights.h"
 
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "envtex/genenv.h"
 #include "envtex/rng.h"
+#include "envtex/triangle.h"
 #include "unit.h"
 
 #define PDF_REL_TOL 1e-6 /* the shadow ray starts 1e-9 off the surface: t is known to ~1e-9 */
@@ -202,6 +205,134 @@ START_TEST(test_lights_delta_lights_give_intensity_over_attenuation)
 }
 END_TEST
 
+/* A scene of n_quads random quad lights (random sizes and orientations in a 10-unit cube), each
+ * after two point lights, so that quad j is sc->lights[3 j + 2]. */
+static void load_many_quads(scene *sc, int n_quads, uint64_t seed)
+{
+    size_t cap = 256 + (size_t)n_quads * 200;
+    char *text = malloc(cap);
+    ck_assert_ptr_nonnull(text);
+    int len = snprintf(text, cap, "size 8 8\ncamera 0 0 20  0 0 0  0 1 0  45\n");
+    rng g;
+    rng_seed(&g, seed, 0);
+    for (int j = 0; j < n_quads; j++) {
+        double v[9];
+        for (int i = 0; i < 3; i++) v[i] = 10 * rng_uniform(&g) - 5;
+        for (int i = 3; i < 9; i++) v[i] = 2 * rng_uniform(&g) - 1;
+        len += snprintf(text + len, cap - (size_t)len,
+                        "point 0 %d 0  1 1 1\ndirectional 1 %d 1  1 1 1\n"
+                        "quadLight %.6f %.6f %.6f  %.6f %.6f %.6f  %.6f %.6f %.6f  1 1 1\n",
+                        j, j + 1, v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8]);
+    }
+    scene_load_opts o = scene_load_defaults();
+    o.load_images = 0;
+    error err = {0};
+    if (scene_load_string(text, "quads.test", &o, sc, &err)) ck_abort_msg("scene: line %d: %s", err.line, err.msg);
+    free(text);
+    ck_assert_int_eq(sc->n_lights, 3 * n_quads);
+}
+
+/* The nearest quad by testing every light, as the lecture's loop does (the reference). */
+static int nearest_quad_by_testing_all(const scene *sc, const ray *r, int *k, double *t_out)
+{
+    int found = 0;
+    ray rr = *r;
+    for (int i = 0; i < sc->n_lights; i++) {
+        const scene_light *l = &sc->lights[i];
+        if (l->kind != LIGHT_QUAD) continue;
+        vec3 a = l->pos, b = vec3_add(a, l->ab), c = vec3_add(b, l->ac), d = vec3_add(a, l->ac);
+        double t, b1, b2;
+        if (triangle_intersect(a, b, c, &rr, &t, &b1, &b2) || triangle_intersect(a, c, d, &rr, &t, &b1, &b2)) {
+            found = 1;
+            *k = i;
+            *t_out = t;
+            rr.tmax = t;
+        }
+    }
+    return found;
+}
+
+/* lights_intersect_quad finds the same nearest quad (index into sc->lights) at the same t as
+ * testing every light, with few quads (a plain loop) and with many (the quads' BVH), for rays
+ * from outside and inside the cloud of quads, and with a finite tmax */
+START_TEST(test_lights_intersect_quad_finds_the_nearest_quad_of_many)
+{
+    static const int counts[] = {1, 4, 5, 300};
+    for (int c = 0; c < 4; c++) {
+        scene sc;
+        load_many_quads(&sc, counts[c], 7 + (uint64_t)c);
+        lights ls;
+        error err = {0};
+        ck_assert_int_eq(lights_build(&ls, &sc, NULL, 3, &err), 0);
+        ck_assert_int_eq(ls.n_quads, counts[c]);
+        rng g;
+        rng_seed(&g, 99, (uint64_t)c);
+        int hits = 0;
+        for (int i = 0; i < 4000; i++) {
+            double s = i % 2 ? 4 : 12; /* inside the cube, or from around it */
+            vec3 o = vec3_make(s * (2 * rng_uniform(&g) - 1), s * (2 * rng_uniform(&g) - 1), s * (2 * rng_uniform(&g) - 1));
+            /* towards a random point of a random quad (the nearest hit may be another one) */
+            const scene_light *l = &sc.lights[3 * (int)(rng_uniform(&g) * counts[c]) + 2];
+            vec3 q = vec3_add(l->pos, vec3_add(vec3_scale(l->ab, rng_uniform(&g)), vec3_scale(l->ac, rng_uniform(&g))));
+            vec3 d = vec3_normalize(vec3_sub(q, o));
+            ray r = {o, d, 0, i % 3 ? INFINITY : 6};
+            int k0 = -1, k1 = -1;
+            double t0 = 0, t1 = 0;
+            int h0 = nearest_quad_by_testing_all(&sc, &r, &k0, &t0);
+            int h1 = lights_intersect_quad(&ls, &r, &k1, &t1);
+            ck_assert_int_eq(h1, h0);
+            if (h0) {
+                ck_assert_int_eq(k1, k0);
+                ck_assert(t1 == t0);
+                hits++;
+            }
+        }
+        ck_assert_int_gt(hits, 1000); /* the rays do meet the quads */
+        lights_free(&ls);
+        scene_free(&sc);
+    }
+}
+END_TEST
+
+/* A ray tests the quads along one path of a BVH, not every light: many quads get a tree of
+ * depth O(log n) (SAH leaves of up to BVH_LEAF_MAX triangles), a few a plain loop, and a scene
+ * of point and directional lights nothing to test at all */
+START_TEST(test_lights_quads_get_a_bvh_and_other_lights_none)
+{
+    scene sc;
+    load_many_quads(&sc, 300, 3);
+    lights ls;
+    error err = {0};
+    ck_assert_int_eq(lights_build(&ls, &sc, NULL, 3, &err), 0);
+    ck_assert(ls.quad_bvh.is_tree);
+    ck_assert_int_eq(ls.quad_bvh.n_prims, 600);
+    ck_assert_int_le(ls.quad_bvh.depth, 24); /* a balanced tree of 600 / 4 leaves: ~9 levels */
+    lights_free(&ls);
+    scene_free(&sc);
+
+    load_many_quads(&sc, 4, 3);
+    ck_assert_int_eq(lights_build(&ls, &sc, NULL, 3, &err), 0);
+    ck_assert(!ls.quad_bvh.is_tree); /* 8 triangles: BVH_MIN_PRIMS, tested in a loop */
+    lights_free(&ls);
+    scene_free(&sc);
+
+    const char *points = "size 8 8\ncamera 0 0 5  0 0 0  0 1 0  45\npoint 0 3 0  1 1 1\ndirectional 0 1 0  1 1 1\n";
+    scene_load_opts o = scene_load_defaults();
+    o.load_images = 0;
+    ck_assert_int_eq(scene_load_string(points, "points.test", &o, &sc, &err), 0);
+    ck_assert_int_eq(lights_build(&ls, &sc, NULL, 3, &err), 0);
+    ck_assert_int_eq(ls.n, 2);
+    ck_assert_int_eq(ls.n_quads, 0);
+    ck_assert_ptr_null(ls.quad_scene);
+    int k;
+    double t;
+    ray r = {vec3_make(0, 0, 0), vec3_make(0, 1, 0), 0, INFINITY};
+    ck_assert(!lights_intersect_quad(&ls, &r, &k, &t));
+    lights_free(&ls);
+    scene_free(&sc);
+}
+END_TEST
+
 Suite *lights_suite(void)
 {
     Suite *s = suite_create("lights");
@@ -211,6 +342,8 @@ Suite *lights_suite(void)
     tcase_add_test(tc, test_lights_quad_sample_pdf_matches_lights_quad_pdf);
     tcase_add_test(tc, test_lights_quad_emits_on_the_side_of_ac_cross_ab);
     tcase_add_test(tc, test_lights_delta_lights_give_intensity_over_attenuation);
+    tcase_add_test(tc, test_lights_intersect_quad_finds_the_nearest_quad_of_many);
+    tcase_add_test(tc, test_lights_quads_get_a_bvh_and_other_lights_none);
     suite_add_tcase(s, tc);
     return s;
 }

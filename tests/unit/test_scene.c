@@ -646,6 +646,26 @@ START_TEST(test_translate_then_rotate_rotates_the_object_first)
 }
 END_TEST
 
+/* only a sphere read under the identity is marked untransformed (sphere.c then skips M^-1): one
+ * under any transform, even one that a later pop undoes, is not, and one after the pop is */
+START_TEST(test_sphere_is_marked_untransformed_only_under_the_identity)
+{
+    scene sc;
+    load_ok(HEAD "sphere 1 2 3 1\npushTransform\ntranslate 1 0 0\nsphere 0 0 0 1\npopTransform\n"
+                 "sphere 0 0 0 1\nscale 1 1 2\nsphere 0 0 0 1\nscale 1 1 0.5\nsphere 0 0 0 1\n"
+                 "rotate 0 0 1 90\nsphere 0 0 0 1\n",
+            &sc);
+    ck_assert_int_eq(sc.n_spheres, 6);
+    ck_assert_int_eq(sc.spheres[0].untransformed, 1);
+    ck_assert_int_eq(sc.spheres[1].untransformed, 0); /* translate */
+    ck_assert_int_eq(sc.spheres[2].untransformed, 1); /* popped back to the identity */
+    ck_assert_int_eq(sc.spheres[3].untransformed, 0); /* scale */
+    ck_assert_int_eq(sc.spheres[4].untransformed, 1); /* scale 2 then 0.5: exactly I again */
+    ck_assert_int_eq(sc.spheres[5].untransformed, 0); /* rotate */
+    scene_free(&sc);
+}
+END_TEST
+
 START_TEST(test_tri_uses_the_transform_current_at_tri_not_at_vertex)
 {
     scene sc;
@@ -1451,6 +1471,7 @@ Suite *scene_suite(void)
     tcase_add_test(cmds, test_each_object_takes_the_material_current_when_read);
     tcase_add_test(cmds, test_materials_are_stored_once_until_the_state_changes);
     tcase_add_test(cmds, test_translate_then_rotate_rotates_the_object_first);
+    tcase_add_test(cmds, test_sphere_is_marked_untransformed_only_under_the_identity);
     tcase_add_test(cmds, test_tri_uses_the_transform_current_at_tri_not_at_vertex);
     tcase_add_test(cmds, test_pop_restores_the_transform_saved_by_push);
     tcase_add_test(cmds, test_a_scaled_sphere_keeps_an_ellipsoid_matrix_and_its_inverse);

@@ -285,6 +285,32 @@ START_TEST(test_sphere_hit_reports_theta_and_phi_of_the_object_point)
 }
 END_TEST
 
+/* a sphere marked untransformed (no matrix products) finds exactly the t of the general path
+ * through the identity matrices, for rays from outside, from inside and missing */
+START_TEST(test_sphere_untransformed_fast_path_gives_the_general_paths_t)
+{
+    rng g;
+    rng_seed(&g, 5, 0);
+    scene_sphere general = make_sphere(vec3_make(0.5, -2, 3), 1.5, mat4_identity());
+    scene_sphere fast = general;
+    fast.untransformed = 1;
+    int hits = 0;
+    for (int i = 0; i < 20000; i++) {
+        double s = i % 2 ? 1 : 6;
+        vec3 o = vec3_add(general.center, vec3_scale(random_unit(&g), s * rng_uniform(&g)));
+        ray r = make_ray(o, vec3_scale(random_unit(&g), 0.5 + rng_uniform(&g)));
+        double t0 = -1, t1 = -1;
+        int h0 = sphere_intersect(&general, &r, &t0), h1 = sphere_intersect(&fast, &r, &t1);
+        EXPECT_INT_EQ(h1, h0);
+        if (h0) {
+            if (t1 != t0) ck_abort_msg("ray %d: t %.17g untransformed, %.17g general", i, t1, t0);
+            hits++;
+        }
+    }
+    ck_assert_int_gt(hits, 12000); /* every inside ray and a share of the outside ones */
+}
+END_TEST
+
 START_TEST(test_sphere_bounds_contain_the_transformed_surface)
 {
     mat4 xf = mat4_mul(mat4_translate(vec3_make(5, 0, -3)),
@@ -321,6 +347,7 @@ Suite *sphere_suite(void)
     tcase_add_test(tc, test_sphere_far_from_the_origin_keeps_precision);
     tcase_add_test(tc, test_sphere_nan_or_zero_ray_misses_without_crashing);
     tcase_add_test(tc, test_sphere_hit_reports_theta_and_phi_of_the_object_point);
+    tcase_add_test(tc, test_sphere_untransformed_fast_path_gives_the_general_paths_t);
     tcase_add_test(tc, test_sphere_bounds_contain_the_transformed_surface);
     suite_add_tcase(s, tc);
     return s;

@@ -150,6 +150,66 @@ START_TEST(test_triangle_slivers_left_by_rounding_collinear_corners_are_never_hi
 }
 END_TEST
 
+/* Moller-Trumbore with the sliver test first, as written before triangle.c moved it last (a
+ * cost only for rays that pass every other test): the reference the reordering must match. */
+static int reference_sliver_test_first(vec3 p0, vec3 p1, vec3 p2, const ray *r, double *t_out,
+                                       double *b1_out, double *b2_out)
+{
+    vec3 e1 = vec3_sub(p1, p0), e2 = vec3_sub(p2, p0);
+    vec3 pv = vec3_cross(r->d, e2);
+    double det = vec3_dot(e1, pv);
+    if (det == 0 || !isfinite(det)) return 0;
+    double bound = vec3_length2(r->d) * vec3_length2(e1) * vec3_length2(e2);
+    if (det * det <= TRIANGLE_DEGENERATE_EPS * TRIANGLE_DEGENERATE_EPS * bound) return 0;
+    double inv = 1.0 / det;
+    vec3 s = vec3_sub(r->o, p0);
+    double b1 = vec3_dot(s, pv) * inv;
+    if (b1 < -TRIANGLE_EDGE_EPS || b1 > 1 + TRIANGLE_EDGE_EPS) return 0;
+    vec3 qv = vec3_cross(s, e1);
+    double b2 = vec3_dot(r->d, qv) * inv;
+    if (b2 < -TRIANGLE_EDGE_EPS || b1 + b2 > 1 + TRIANGLE_EDGE_EPS) return 0;
+    double t = vec3_dot(e2, qv) * inv;
+    if (!(t > r->tmin && t < r->tmax)) return 0;
+    *t_out = t;
+    *b1_out = b1;
+    *b2_out = b2;
+    return 1;
+}
+
+/* the sliver test's place changes no answer: the same hits, t and barycentrics as testing it
+ * first, for ordinary triangles, slivers (collinear corners, rounded) and near-slivers whose det
+ * lies around the threshold, hit or missed, with finite tmax */
+START_TEST(test_triangle_sliver_test_last_gives_the_same_answers_as_first)
+{
+    rng g;
+    rng_seed(&g, 77, 0);
+    int hits = 0, slivers_missed = 0;
+    for (int k = 0; k < 3000; k++) {
+        vec3 a = vec3_make(rng_uniform(&g), rng_uniform(&g), rng_uniform(&g));
+        vec3 v = vec3_make(rng_uniform(&g) - 0.5, rng_uniform(&g) - 0.5, rng_uniform(&g) - 0.5);
+        vec3 w = vec3_make(rng_uniform(&g) - 0.5, rng_uniform(&g) - 0.5, rng_uniform(&g) - 0.5);
+        /* off the line a + s v by 10^-(0..12): ordinary, thin, and slivers at the threshold */
+        double off = pow(10, -12 * rng_uniform(&g)) * (k % 3 != 0);
+        vec3 b = vec3_madd(a, v, 0.3), c = vec3_madd(vec3_madd(a, v, 0.7), w, off);
+        for (int i = 0; i < 20; i++) {
+            vec3 o = vec3_make(rng_uniform(&g) * 4 - 2, rng_uniform(&g) * 4 - 2, rng_uniform(&g) * 4 - 2);
+            vec3 aim = vec3_madd(vec3_madd(a, vec3_sub(b, a), 1.4 * rng_uniform(&g) - 0.2),
+                                 vec3_sub(c, a), 1.4 * rng_uniform(&g) - 0.2);
+            ray r = make_ray(o, vec3_sub(aim, o));
+            r.tmax = i % 4 ? INFINITY : 0.5 + rng_uniform(&g);
+            double t0 = 0, u0 = 0, v0 = 0, t1 = 0, u1 = 0, v1 = 0;
+            int h0 = reference_sliver_test_first(a, b, c, &r, &t0, &u0, &v0);
+            int h1 = triangle_intersect(a, b, c, &r, &t1, &u1, &v1);
+            EXPECT_MSG(h1 == h0, "triangle %d ray %d: hit %d, reference %d", k, i, h1, h0);
+            EXPECT_MSG(!h0 || (t1 == t0 && u1 == u0 && v1 == v0), "triangle %d ray %d: another hit", k, i);
+            hits += h0;
+            slivers_missed += !h0 && k % 3 == 0;
+        }
+    }
+    EXPECT_MSG(hits > 5000 && slivers_missed == 20000, "hits %d, slivers missed %d", hits, slivers_missed);
+}
+END_TEST
+
 START_TEST(test_triangle_is_hit_from_the_back_too)
 {
     double t, b1, b2;
@@ -231,6 +291,7 @@ Suite *triangle_suite(void)
     tcase_add_test(tc, test_triangle_hit_respects_tmin_and_tmax_and_misses_behind);
     tcase_add_test(tc, test_triangle_nan_ray_misses);
     tcase_add_test(tc, test_triangle_random_hits_reproduce_the_aimed_point);
+    tcase_add_test(tc, test_triangle_sliver_test_last_gives_the_same_answers_as_first);
     suite_add_tcase(s, tc);
     return s;
 }
