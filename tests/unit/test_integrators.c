@@ -6,7 +6,8 @@
  *     a mirror sphere is ks L exactly; Phong and GGX spheres with kd + ks <= 1 stay below L.
  *   - The unshadowed direct light of a diffuse surface under a sun map equals the brute-force
  *     sum over texels of L times the texel's integral of max(0, n.w).
- *   - NEE off / on / mis agree; lightstratify lowers the variance (envmap alias tables too).
+ *   - NEE off / on / mis agree; lightstratify lowers the variance (envmap alias tables too);
+ *     a quad light's back blocks shadow rays as it blocks BRDF rays (exact answer).
  *   - analyticdirect's irradiance vector against a numerical integral; zero behind the light.
  *   - Russian roulette keeps the mean: inside a closed emitting sphere L = E / (1 - rho).
  * Monte Carlo comparisons use the sample's own standard error (SE): |a - b| < Z_SE SE.
@@ -393,6 +394,48 @@ START_TEST(test_integrators_nee_off_on_and_mis_agree_under_a_sun_map)
 }
 END_TEST
 
+/* A floor point below a small quad light B that emits up, under a large light A that emits down:
+ * B's back hides the square S of A behind it, and BRDF rays stop at B.  With maxdepth 1 the
+ * exact answer is kd / pi L_A (Phi_A - Phi_S) . n (the irradiance vectors of A and S), and NEE
+ * off, on and MIS must all give it: a shadow ray that passed through B would see all of A. */
+START_TEST(test_integrators_quad_lights_block_shadow_rays_as_they_block_brdf_rays)
+{
+    const char *base = "size 4 4\ncamera 0 -4 2  0 0 0  0 0 1  40\nmaxdepth 1\nintegrator pathtracer\n"
+                       "diffuse 0.6 0.6 0.6\n"
+                       "vertex -10 -10 0\nvertex 10 -10 0\nvertex 10 10 0\nvertex -10 10 0\ntri 0 1 2\ntri 0 2 3\n"
+                       "quadLight -2 -2 3  4 0 0  0 4 0  5 5 5\n"        /* A: ac x ab = -z, emits down */
+                       "quadLight -0.5 -0.5 1  0 1 0  1 0 0  5 5 5\n";   /* B: emits up, its back on the floor */
+    const char *modes[] = {"nexteventestimation off\nimportancesampling cosine\n", "nexteventestimation on\n",
+                           "nexteventestimation mis\nimportancesampling brdf\n"};
+    long ns[] = {400000, 40000, 40000};
+    scene_light A = {0}, S = {0};
+    A.pos = vec3_make(-2, -2, 3);
+    A.ab = vec3_make(4, 0, 0);
+    A.ac = vec3_make(0, 4, 0);
+    S.pos = vec3_make(-1.5, -1.5, 3); /* B seen from the origin, projected onto A's plane z = 3 */
+    S.ab = vec3_make(3, 0, 0);
+    S.ac = vec3_make(0, 3, 0);
+    vec3 n = vec3_make(0, 0, 1), o = vec3_make(0, 0, 0);
+    double want = 0.6 / M_PI * 5 *
+                  (vec3_dot(analyticdirect_irradiance_vector(&A, o), n) - vec3_dot(analyticdirect_irradiance_vector(&S, o), n));
+    ck_assert(want > 0.1);
+    for (int i = 0; i < 3; i++) {
+        char text[2048];
+        snprintf(text, sizeof text, "%s%s", base, modes[i]);
+        scene sc;
+        load(&sc, text);
+        rig rg;
+        rig_init(&rg, &sc);
+        ray r = {sc.eye, vec3_normalize(vec3_sub(o, sc.eye)), 0, INFINITY};
+        stats st = radiance_stats(&rg, r, 1, ns[i], 150 + (uint64_t)i);
+        ck_assert_msg(fabs(st.mean - want) < Z_SE * st.se, "%s: %.5f, want %.5f (SE %.5f)", modes[i], st.mean, want, st.se);
+        ck_assert_msg(st.se < 0.01 * want, "%s: SE %.5f too large to test", modes[i], st.se);
+        rig_free(&rg);
+        scene_free(&sc);
+    }
+}
+END_TEST
+
 /* MIS with the envmap sampled at fraction c = 0 (lights.h) and no other light is BRDF sampling
  * alone: the path tracer runs it as NEE off, so the image is the NEE-off image bit for bit (no
  * light pick's random numbers, no pdf lookup per escaping path).  With a quad light beside it the
@@ -627,6 +670,7 @@ Suite *integrators_suite(void)
     tcase_set_timeout(tc, 120);
     tcase_add_test(tc, test_integrators_nee_off_on_and_mis_agree_under_a_quad_light);
     tcase_add_test(tc, test_integrators_nee_off_on_and_mis_agree_under_a_sun_map);
+    tcase_add_test(tc, test_integrators_quad_lights_block_shadow_rays_as_they_block_brdf_rays);
     tcase_add_test(tc, test_integrators_mis_with_env_fraction_zero_is_brdf_sampling);
     tcase_add_test(tc, test_integrators_russian_roulette_keeps_the_mean);
     suite_add_tcase(s, tc);
