@@ -8,7 +8,8 @@
  *     sum over texels of L times the texel's integral of max(0, n.w).
  *   - NEE off / on / mis agree; lightstratify lowers the variance (envmap alias tables too);
  *     a quad light's back blocks shadow rays as it blocks BRDF rays (exact answer).
- *   - analyticdirect's irradiance vector against a numerical integral; zero behind the light.
+ *   - analyticdirect's irradiance vector against a numerical integral; zero behind the light;
+ *     its irradiance clipped at the surface's horizon against a numerical integral.
  *   - Russian roulette keeps the mean: inside a closed emitting sphere L = E / (1 - rho).
  * Monte Carlo comparisons use the sample's own standard error (SE): |a - b| < Z_SE SE.
  */
@@ -562,6 +563,62 @@ START_TEST(test_integrators_irradiance_vector_matches_a_numerical_integral)
 }
 END_TEST
 
+/* analyticdirect_irradiance = integral over the light's area of max(0, n . w) cos_l / d^2 dA (a
+ * 400 x 400 midpoint sum) where the surface's horizon cuts the light (Phi . n of the whole quad
+ * would count the part below it negatively); 0 on the light's back side, whichever way n faces;
+ * and a floor above a down-facing light, seen from above, is black in the render */
+START_TEST(test_integrators_analytic_irradiance_clips_at_the_horizon_and_is_zero_behind_the_light)
+{
+    scene_light l;
+    memset(&l, 0, sizeof l);
+    l.kind = LIGHT_QUAD;
+    l.pos = vec3_make(-1, 0.5, 2);
+    l.ab = vec3_make(2, 0, 0.5);
+    l.ac = vec3_make(0, 1.5, 0);
+    l.color = rgb_gray(1);
+    vec3 nl = vec3_normalize(vec3_cross(l.ac, l.ab)); /* the emitting side: mostly -z */
+    double area = vec3_length(vec3_cross(l.ab, l.ac));
+    /* p in front of the light, n tilted so that its horizon crosses the light */
+    vec3 ps[3] = {{0, 0, 0}, {0.3, 1.2, 1}, {-0.5, 0.2, 1.5}};
+    vec3 ns[3] = {vec3_normalize(vec3_make(1, 0, 0.2)), vec3_normalize(vec3_make(0, -1, 0.3)),
+                  vec3_normalize(vec3_make(-1, 1, 0.1))};
+    enum { G = 400 };
+    for (int i = 0; i < 3; i++) {
+        vec3 p = ps[i], n = ns[i];
+        ck_assert(vec3_dot(vec3_sub(p, l.pos), nl) > 0);
+        double num = 0, neg = 0;
+        for (int a = 0; a < G; a++)
+            for (int b = 0; b < G; b++) {
+                vec3 q = vec3_add(l.pos, vec3_add(vec3_scale(l.ab, (a + 0.5) / G), vec3_scale(l.ac, (b + 0.5) / G)));
+                vec3 d = vec3_sub(q, p);
+                double d2 = vec3_length2(d), dl = sqrt(d2);
+                vec3 w = vec3_scale(d, 1 / dl);
+                double cos_l = fabs(vec3_dot(w, nl)), c = vec3_dot(n, w);
+                num += fmax(0, c) * cos_l / d2 * area / (G * G); /* max(0, n.w) cos_l / d^2 dA */
+                neg += fmin(0, c) * cos_l / d2 * area / (G * G);
+            }
+        ck_assert_msg(neg < -0.02 * num, "p %d: the horizon does not cut the light", i);
+        double E = analyticdirect_irradiance(&l, p, n);
+        ck_assert_msg(fabs(E - num) < 1e-3 * num, "p %d: E %.6f, numerical %.6f", i, E, num);
+    }
+    /* behind the light: nothing, facing it or facing away */
+    vec3 back = vec3_make(0, 1, 4);
+    ck_assert(vec3_dot(vec3_sub(back, l.pos), nl) < 0);
+    if (0) ck_assert_double_eq(analyticdirect_irradiance(&l, back, vec3_make(0, 0, 1)), 0);
+    ck_assert_double_eq(analyticdirect_irradiance(&l, back, vec3_make(0, 0, -1)), 0);
+    /* a floor at z = 3 above a light at z = 2 that emits down, seen from above */
+    scene sc;
+    image im;
+    load(&sc, "size 1 1\ncamera 0.2 0.1 4  0.2 0.1 0  0 1 0  1\ndiffuse 0.6 0.6 0.6\n"
+              "vertex -5 -5 3\nvertex 5 -5 3\nvertex 5 5 3\nvertex -5 5 3\ntri 0 1 2\ntri 0 2 3\n"
+              "quadLight -1 -1 2  2 0 0  0 2 0  3 3 3\nintegrator analyticdirect\n");
+    render(&sc, 0, &im);
+    ck_assert_msg(im.px[0] == 0 && im.px[1] == 0 && im.px[2] == 0, "the floor behind the light is %g", im.px[1]);
+    image_free(&im);
+    scene_free(&sc);
+}
+END_TEST
+
 /* a floor lit by a quad above it: analyticdirect's pixel is kd / pi L Phi . n, and the direct
  * integrator (unshadowed here) converges to the same; the same quad flipped (emitting up) and a
  * floor above a down-facing light get nothing */
@@ -665,6 +722,7 @@ Suite *integrators_suite(void)
     tcase_add_test(tc, test_integrators_lightstratify_lowers_the_variance);
     tcase_add_test(tc, test_integrators_irradiance_vector_matches_a_numerical_integral);
     tcase_add_test(tc, test_integrators_analyticdirect_matches_direct_and_is_zero_behind_the_light);
+    tcase_add_test(tc, test_integrators_analytic_irradiance_clips_at_the_horizon_and_is_zero_behind_the_light);
     suite_add_tcase(s, tc);
     tc = tcase_create("paths");
     tcase_set_timeout(tc, 120);
