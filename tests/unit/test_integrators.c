@@ -7,7 +7,8 @@
  *   - The unshadowed direct light of a diffuse surface under a sun map equals the brute-force
  *     sum over texels of L times the texel's integral of max(0, n.w).
  *   - NEE off / on / mis agree; lightstratify lowers the variance (envmap alias tables too);
- *     a quad light's back blocks shadow rays as it blocks BRDF rays (exact answer).
+ *     a quad light's back blocks shadow rays as it blocks BRDF rays (exact answer); BRDF rays
+ *     around an interpolated normal do not pass below the geometric surface.
  *   - analyticdirect's irradiance vector against a numerical integral; zero behind the light;
  *     its irradiance clipped at the surface's horizon against a numerical integral.
  *   - Russian roulette keeps the mean: inside a closed emitting sphere L = E / (1 - rho).
@@ -437,6 +438,36 @@ START_TEST(test_integrators_quad_lights_block_shadow_rays_as_they_block_brdf_ray
 }
 END_TEST
 
+/* A floor whose interpolated normals lean towards its centre (up to 35 degrees from ng), above a
+ * light that emits up at its underside: nothing reaches the top of the floor.  Light sampling
+ * sends shadow rays only above ng; BRDF sampling around the leaning n must not go through the
+ * floor either (it did: NEE off saw the light, NEE on did not). */
+START_TEST(test_integrators_brdf_rays_never_pass_below_the_geometric_surface)
+{
+    const char *base = "size 4 4\ncamera 0 3 3  0 0 0  0 1 0  45\nmaxdepth 1\nintegrator pathtracer\n"
+                       "vertexnormal -2 0 -2  0.5 1 0.5\nvertexnormal 2 0 -2  -0.5 1 0.5\n"
+                       "vertexnormal 2 0 2  -0.5 1 -0.5\nvertexnormal -2 0 2  0.5 1 -0.5\n"
+                       "diffuse 0.6 0.6 0.6\ntrinormal 0 2 1\ntrinormal 0 3 2\n"
+                       "quadLight -1 -0.3 -1  2 0 0  0 0 2  3 3 3\n"; /* ac x ab = +y: emits up */
+    const char *modes[] = {"nexteventestimation off\nimportancesampling cosine\n",
+                           "nexteventestimation off\nimportancesampling hemisphere\n",
+                           "nexteventestimation mis\nimportancesampling brdf\n"};
+    for (int i = 0; i < 3; i++) {
+        char text[2048];
+        snprintf(text, sizeof text, "%s%s", base, modes[i]);
+        scene sc;
+        load(&sc, text);
+        rig rg;
+        rig_init(&rg, &sc);
+        ray r = {sc.eye, vec3_normalize(vec3_sub(vec3_make(0.8, 0, 0.6), sc.eye)), 0, INFINITY};
+        stats st = radiance_stats(&rg, r, 1, 20000, 160 + (uint64_t)i);
+        ck_assert_msg(st.mean == 0, "%s: %.6f (SE %.6f), want 0: light through the floor", modes[i], st.mean, st.se);
+        rig_free(&rg);
+        scene_free(&sc);
+    }
+}
+END_TEST
+
 /* MIS with the envmap sampled at fraction c = 0 (lights.h) and no other light is BRDF sampling
  * alone: the path tracer runs it as NEE off, so the image is the NEE-off image bit for bit (no
  * light pick's random numbers, no pdf lookup per escaping path).  With a quad light beside it the
@@ -729,6 +760,7 @@ Suite *integrators_suite(void)
     tcase_add_test(tc, test_integrators_nee_off_on_and_mis_agree_under_a_quad_light);
     tcase_add_test(tc, test_integrators_nee_off_on_and_mis_agree_under_a_sun_map);
     tcase_add_test(tc, test_integrators_quad_lights_block_shadow_rays_as_they_block_brdf_rays);
+    tcase_add_test(tc, test_integrators_brdf_rays_never_pass_below_the_geometric_surface);
     tcase_add_test(tc, test_integrators_mis_with_env_fraction_zero_is_brdf_sampling);
     tcase_add_test(tc, test_integrators_russian_roulette_keeps_the_mean);
     suite_add_tcase(s, tc);
