@@ -1,19 +1,64 @@
 /* analyticdirect.c - exact unshadowed quad-light irradiance (see include/envtex/analyticdirect.h). */
 #include "envtex/analyticdirect.h"
 
-vec3 analyticdirect_irradiance_vector(const scene_light *l, vec3 p)
+/* A quad clipped by one plane has at most 5 corners. */
+#define CLIPPED_MAX 5
+
+/* Phi = 1/2 sum_i theta_i Gamma_i over the n-gon v, seen from p */
+static vec3 polygon_irradiance_vector(const vec3 *v, int n, vec3 p)
 {
-    vec3 v[4] = {l->pos, vec3_add(l->pos, l->ab), vec3_add(vec3_add(l->pos, l->ab), l->ac),
-                 vec3_add(l->pos, l->ac)};
     vec3 phi = vec3_make(0, 0, 0);
-    for (int i = 0; i < 4; i++) {
-        vec3 a = vec3_normalize(vec3_sub(v[i], p)), b = vec3_normalize(vec3_sub(v[(i + 1) % 4], p));
+    for (int i = 0; i < n; i++) {
+        vec3 a = vec3_sub(v[i], p), b = vec3_sub(v[(i + 1) % n], p);
+        double la = vec3_length(a), lb = vec3_length(b);
+        if (!(la > 0) || !(lb > 0)) continue; /* p on a corner: that edge subtends nothing */
+        a = vec3_scale(a, 1 / la);
+        b = vec3_scale(b, 1 / lb);
         double theta = acos(fmax(-1.0, fmin(1.0, vec3_dot(a, b)))); /* theta_i */
         vec3 gamma = vec3_cross(a, b);                             /* Gamma_i, normalized below */
         double gl = vec3_length(gamma);
         if (gl > 0) phi = vec3_madd(phi, gamma, 0.5 * theta / gl); /* Phi = 1/2 sum theta_i Gamma_i */
     }
     return phi;
+}
+
+/* the corners a, a+ab, a+ab+ac, a+ac */
+static void quad_corners(const scene_light *l, vec3 v[4])
+{
+    v[0] = l->pos;
+    v[1] = vec3_add(l->pos, l->ab);
+    v[2] = vec3_add(vec3_add(l->pos, l->ab), l->ac);
+    v[3] = vec3_add(l->pos, l->ac);
+}
+
+vec3 analyticdirect_irradiance_vector(const scene_light *l, vec3 p)
+{
+    vec3 v[4];
+    quad_corners(l, v);
+    return polygon_irradiance_vector(v, 4, p);
+}
+
+double analyticdirect_irradiance(const scene_light *l, vec3 p, vec3 n)
+{
+    vec3 v[4];
+    quad_corners(l, v);
+    /* the back of the light does not emit: p must lie on the side of ac x ab */
+    if (!(vec3_dot(vec3_sub(p, l->pos), vec3_cross(l->ac, l->ab)) > 0)) return 0;
+    /* clip to the upper half-space of p (Sutherland-Hodgman against one plane): height
+     * h = (v - p) . n, and an edge crossing h = 0 is cut at v_i + (v_j - v_i) h_i / (h_i - h_j) */
+    vec3 c[CLIPPED_MAX];
+    int m = 0;
+    for (int i = 0; i < 4; i++) {
+        vec3 a = v[i], b = v[(i + 1) % 4];
+        double ha = vec3_dot(vec3_sub(a, p), n), hb = vec3_dot(vec3_sub(b, p), n);
+        if (ha >= 0) c[m++] = a;
+        if ((ha >= 0) != (hb >= 0)) c[m++] = vec3_add(a, vec3_scale(vec3_sub(b, a), ha / (ha - hb)));
+    }
+    if (m < 3) return 0; /* the whole light is below the horizon */
+    /* The corners turn clockwise seen from the emitting side (ac x ab), so Phi points from p
+     * towards the light; the clipped polygon lies above the horizon, so Phi . n >= 0 up to
+     * rounding */
+    return fmax(0.0, vec3_dot(polygon_irradiance_vector(c, m, p), n));
 }
 
 rgb analyticdirect_radiance(integrator *it, ray r, rng *g)
@@ -28,10 +73,7 @@ rgb analyticdirect_radiance(integrator *it, ray r, rng *g)
     for (int i = 0; i < it->sc->n_lights; i++) {
         const scene_light *l = &it->sc->lights[i];
         if (l->kind != LIGHT_QUAD) continue;
-        /* The corners a, a+ab, a+ab+ac, a+ac turn clockwise seen from the emitting side
-         * (ac x ab), so Phi points from p towards the light when p is on that side, and
-         * Phi . n < 0 (clamped to 0) when p is behind the light or faces away from it. */
-        double irr = vec3_dot(analyticdirect_irradiance_vector(l, s->p), s->n);
+        double irr = analyticdirect_irradiance(l, s->p, s->n); /* Phi . n of the visible part */
         if (irr > 0) L = rgb_fma(L, rgb_scale(s->kd, irr / M_PI), l->color); /* kd/pi L Phi.n */
     }
     return L;

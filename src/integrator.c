@@ -144,7 +144,13 @@ void integrator_intersect_diff(integrator *it, const ray *r, const ray_diff *rd,
 int integrator_occluded(integrator *it, const ray *shadow)
 {
     it->rays++;
-    return bvh_occluded(it->accel, it->sc, shadow);
+    if (bvh_occluded(it->accel, it->sc, shadow)) return 1;
+    /* a quad light is opaque to shadow rays as it is to camera and BRDF rays, which stop at it
+     * (either side): otherwise NEE would light what BRDF sampling finds in its shadow.  The
+     * shadow ray to a point of light k stops short of k's plane, so k never blocks itself. */
+    int k;
+    double t;
+    return it->has_lights && lights_intersect_quad(&it->ls, shadow, &k, &t);
 }
 
 int integrator_strata(int n, int stratify)

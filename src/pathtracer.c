@@ -102,6 +102,10 @@ rgb pathtracer_radiance_diff(integrator *it, ray r, const ray_diff *rd0, rng *g)
         brdf_sample_result bs;
         double xi1 = rng_uniform(g), xi2 = rng_uniform(g), xi3 = rng_uniform(g);
         if (!brdf_sample(s, wo, sc->importancesampling, xi1, xi2, xi3, &bs)) break;
+        /* An interpolated normal n can send a reflected wi below the geometric surface (ng . wi
+         * <= 0): through the object, to light that NEE never sees (its shadow rays leave along
+         * ng only, integrator_light_sample).  Such a wi carries nothing, for both strategies. */
+        if (!bs.is_delta && vec3_dot(s->ng, bs.wi) <= 0) break;
         beta = rgb_mul(beta, bs.weight);
         specular_chain = specular_chain && bs.is_delta;
         last_delta = bs.is_delta;

@@ -81,7 +81,8 @@ void integrator_intersect(integrator *it, const ray *r, scene_hit *out);
  * (s.has_diff, dpdx, ...) and its texture maps are filtered over it (texshade.h). */
 void integrator_intersect_diff(integrator *it, const ray *r, const ray_diff *rd, scene_hit *out);
 
-/* 1 if the shadow ray is blocked by geometry. */
+/* 1 if the shadow ray is blocked by geometry or by a quad light (either side: lights are opaque
+ * to every ray, so light sampling and BRDF sampling see the same visibility). */
 int integrator_occluded(integrator *it, const ray *shadow);
 
 /* `lightstratify on` with n light samples: the side m of the m x m grid of strata (the largest

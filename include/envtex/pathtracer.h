@@ -11,7 +11,9 @@
  *        nothing, so no path is counted twice;
  *   mis  both, weighted by the power heuristic (beta = 2), for quad lights and the envmap.
  * All three converge to the same image (tested).  Geometry with `emission` is not sampled as a
- * light and always counts when hit.
+ * light and always counts when hit.  Both strategies see only directions above the geometric
+ * surface (ng . wi > 0): a diffuse or glossy sample that an interpolated or bumped normal sends
+ * below it ends the path, as light sampling sends no shadow ray there.
  */
 #ifndef ENVTEX_PATHTRACER_H
 #define ENVTEX_PATHTRACER_H

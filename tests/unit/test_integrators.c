@@ -6,8 +6,11 @@
  *     a mirror sphere is ks L exactly; Phong and GGX spheres with kd + ks <= 1 stay below L.
  *   - The unshadowed direct light of a diffuse surface under a sun map equals the brute-force
  *     sum over texels of L times the texel's integral of max(0, n.w).
- *   - NEE off / on / mis agree; lightstratify lowers the variance (envmap alias tables too).
- *   - analyticdirect's irradiance vector against a numerical integral; zero behind the light.
+ *   - NEE off / on / mis agree; lightstratify lowers the variance (envmap alias tables too);
+ *     a quad light's back blocks shadow rays as it blocks BRDF rays (exact answer); BRDF rays
+ *     around an interpolated normal do not pass below the geometric surface.
+ *   - analyticdirect's irradiance vector against a numerical integral; zero behind the light;
+ *     its irradiance clipped at the surface's horizon against a numerical integral.
  *   - Russian roulette keeps the mean: inside a closed emitting sphere L = E / (1 - rho).
  * Monte Carlo comparisons use the sample's own standard error (SE): |a - b| < Z_SE SE.
  */
@@ -393,6 +396,78 @@ START_TEST(test_integrators_nee_off_on_and_mis_agree_under_a_sun_map)
 }
 END_TEST
 
+/* A floor point below a small quad light B that emits up, under a large light A that emits down:
+ * B's back hides the square S of A behind it, and BRDF rays stop at B.  With maxdepth 1 the
+ * exact answer is kd / pi L_A (Phi_A - Phi_S) . n (the irradiance vectors of A and S), and NEE
+ * off, on and MIS must all give it: a shadow ray that passed through B would see all of A. */
+START_TEST(test_integrators_quad_lights_block_shadow_rays_as_they_block_brdf_rays)
+{
+    const char *base = "size 4 4\ncamera 0 -4 2  0 0 0  0 0 1  40\nmaxdepth 1\nintegrator pathtracer\n"
+                       "diffuse 0.6 0.6 0.6\n"
+                       "vertex -10 -10 0\nvertex 10 -10 0\nvertex 10 10 0\nvertex -10 10 0\ntri 0 1 2\ntri 0 2 3\n"
+                       "quadLight -2 -2 3  4 0 0  0 4 0  5 5 5\n"        /* A: ac x ab = -z, emits down */
+                       "quadLight -0.5 -0.5 1  0 1 0  1 0 0  5 5 5\n";   /* B: emits up, its back on the floor */
+    const char *modes[] = {"nexteventestimation off\nimportancesampling cosine\n", "nexteventestimation on\n",
+                           "nexteventestimation mis\nimportancesampling brdf\n"};
+    long ns[] = {400000, 40000, 40000};
+    scene_light A = {0}, S = {0};
+    A.pos = vec3_make(-2, -2, 3);
+    A.ab = vec3_make(4, 0, 0);
+    A.ac = vec3_make(0, 4, 0);
+    S.pos = vec3_make(-1.5, -1.5, 3); /* B seen from the origin, projected onto A's plane z = 3 */
+    S.ab = vec3_make(3, 0, 0);
+    S.ac = vec3_make(0, 3, 0);
+    vec3 n = vec3_make(0, 0, 1), o = vec3_make(0, 0, 0);
+    double want = 0.6 / M_PI * 5 *
+                  (vec3_dot(analyticdirect_irradiance_vector(&A, o), n) - vec3_dot(analyticdirect_irradiance_vector(&S, o), n));
+    ck_assert(want > 0.1);
+    for (int i = 0; i < 3; i++) {
+        char text[2048];
+        snprintf(text, sizeof text, "%s%s", base, modes[i]);
+        scene sc;
+        load(&sc, text);
+        rig rg;
+        rig_init(&rg, &sc);
+        ray r = {sc.eye, vec3_normalize(vec3_sub(o, sc.eye)), 0, INFINITY};
+        stats st = radiance_stats(&rg, r, 1, ns[i], 150 + (uint64_t)i);
+        ck_assert_msg(fabs(st.mean - want) < Z_SE * st.se, "%s: %.5f, want %.5f (SE %.5f)", modes[i], st.mean, want, st.se);
+        ck_assert_msg(st.se < 0.01 * want, "%s: SE %.5f too large to test", modes[i], st.se);
+        rig_free(&rg);
+        scene_free(&sc);
+    }
+}
+END_TEST
+
+/* A floor whose interpolated normals lean towards its centre (up to 35 degrees from ng), above a
+ * light that emits up at its underside: nothing reaches the top of the floor.  Light sampling
+ * sends shadow rays only above ng; BRDF sampling around the leaning n must not go through the
+ * floor either (it did: NEE off saw the light, NEE on did not). */
+START_TEST(test_integrators_brdf_rays_never_pass_below_the_geometric_surface)
+{
+    const char *base = "size 4 4\ncamera 0 3 3  0 0 0  0 1 0  45\nmaxdepth 1\nintegrator pathtracer\n"
+                       "vertexnormal -2 0 -2  0.5 1 0.5\nvertexnormal 2 0 -2  -0.5 1 0.5\n"
+                       "vertexnormal 2 0 2  -0.5 1 -0.5\nvertexnormal -2 0 2  0.5 1 -0.5\n"
+                       "diffuse 0.6 0.6 0.6\ntrinormal 0 2 1\ntrinormal 0 3 2\n"
+                       "quadLight -1 -0.3 -1  2 0 0  0 0 2  3 3 3\n"; /* ac x ab = +y: emits up */
+    const char *modes[] = {"nexteventestimation off\nimportancesampling cosine\n",
+                           "nexteventestimation off\nimportancesampling hemisphere\n",
+                           "nexteventestimation mis\nimportancesampling brdf\n"};
+    for (int i = 0; i < 3; i++) {
+        char text[2048];
+        snprintf(text, sizeof text, "%s%s", base, modes[i]);
+        scene sc;
+        load(&sc, text);
+        rig rg;
+        rig_init(&rg, &sc);
+        ray r = {sc.eye, vec3_normalize(vec3_sub(vec3_make(0.8, 0, 0.6), sc.eye)), 0, INFINITY};
+        stats st = radiance_stats(&rg, r, 1, 20000, 160 + (uint64_t)i);
+        ck_assert_msg(st.mean == 0, "%s: %.6f (SE %.6f), want 0: light through the floor", modes[i], st.mean, st.se);
+        rig_free(&rg);
+        scene_free(&sc);
+    }
+}
+END_TEST
+
 /* MIS with the envmap sampled at fraction c = 0 (lights.h) and no other light is BRDF sampling
  * alone: the path tracer runs it as NEE off, so the image is the NEE-off image bit for bit (no
  * light pick's random numbers, no pdf lookup per escaping path).  With a quad light beside it the
@@ -519,6 +594,62 @@ START_TEST(test_integrators_irradiance_vector_matches_a_numerical_integral)
 }
 END_TEST
 
+/* analyticdirect_irradiance = integral over the light's area of max(0, n . w) cos_l / d^2 dA (a
+ * 400 x 400 midpoint sum) where the surface's horizon cuts the light (Phi . n of the whole quad
+ * would count the part below it negatively); 0 on the light's back side, whichever way n faces;
+ * and a floor above a down-facing light, seen from above, is black in the render */
+START_TEST(test_integrators_analytic_irradiance_clips_at_the_horizon_and_is_zero_behind_the_light)
+{
+    scene_light l;
+    memset(&l, 0, sizeof l);
+    l.kind = LIGHT_QUAD;
+    l.pos = vec3_make(-1, 0.5, 2);
+    l.ab = vec3_make(2, 0, 0.5);
+    l.ac = vec3_make(0, 1.5, 0);
+    l.color = rgb_gray(1);
+    vec3 nl = vec3_normalize(vec3_cross(l.ac, l.ab)); /* the emitting side: mostly -z */
+    double area = vec3_length(vec3_cross(l.ab, l.ac));
+    /* p in front of the light, n tilted so that its horizon crosses the light */
+    vec3 ps[3] = {{0, 0, 0}, {0.3, 1.2, 1}, {-0.5, 0.2, 1.5}};
+    vec3 ns[3] = {vec3_normalize(vec3_make(1, 0, 0.2)), vec3_normalize(vec3_make(0, -1, 0.3)),
+                  vec3_normalize(vec3_make(-1, 1, 0.1))};
+    enum { G = 400 };
+    for (int i = 0; i < 3; i++) {
+        vec3 p = ps[i], n = ns[i];
+        ck_assert(vec3_dot(vec3_sub(p, l.pos), nl) > 0);
+        double num = 0, neg = 0;
+        for (int a = 0; a < G; a++)
+            for (int b = 0; b < G; b++) {
+                vec3 q = vec3_add(l.pos, vec3_add(vec3_scale(l.ab, (a + 0.5) / G), vec3_scale(l.ac, (b + 0.5) / G)));
+                vec3 d = vec3_sub(q, p);
+                double d2 = vec3_length2(d), dl = sqrt(d2);
+                vec3 w = vec3_scale(d, 1 / dl);
+                double cos_l = fabs(vec3_dot(w, nl)), c = vec3_dot(n, w);
+                num += fmax(0, c) * cos_l / d2 * area / (G * G); /* max(0, n.w) cos_l / d^2 dA */
+                neg += fmin(0, c) * cos_l / d2 * area / (G * G);
+            }
+        ck_assert_msg(neg < -0.02 * num, "p %d: the horizon does not cut the light", i);
+        double E = analyticdirect_irradiance(&l, p, n);
+        ck_assert_msg(fabs(E - num) < 1e-3 * num, "p %d: E %.6f, numerical %.6f", i, E, num);
+    }
+    /* behind the light: nothing, facing it or facing away */
+    vec3 back = vec3_make(0, 1, 4);
+    ck_assert(vec3_dot(vec3_sub(back, l.pos), nl) < 0);
+    if (0) ck_assert_double_eq(analyticdirect_irradiance(&l, back, vec3_make(0, 0, 1)), 0);
+    ck_assert_double_eq(analyticdirect_irradiance(&l, back, vec3_make(0, 0, -1)), 0);
+    /* a floor at z = 3 above a light at z = 2 that emits down, seen from above */
+    scene sc;
+    image im;
+    load(&sc, "size 1 1\ncamera 0.2 0.1 4  0.2 0.1 0  0 1 0  1\ndiffuse 0.6 0.6 0.6\n"
+              "vertex -5 -5 3\nvertex 5 -5 3\nvertex 5 5 3\nvertex -5 5 3\ntri 0 1 2\ntri 0 2 3\n"
+              "quadLight -1 -1 2  2 0 0  0 2 0  3 3 3\nintegrator analyticdirect\n");
+    render(&sc, 0, &im);
+    ck_assert_msg(im.px[0] == 0 && im.px[1] == 0 && im.px[2] == 0, "the floor behind the light is %g", im.px[1]);
+    image_free(&im);
+    scene_free(&sc);
+}
+END_TEST
+
 /* a floor lit by a quad above it: analyticdirect's pixel is kd / pi L Phi . n, and the direct
  * integrator (unshadowed here) converges to the same; the same quad flipped (emitting up) and a
  * floor above a down-facing light get nothing */
@@ -622,11 +753,14 @@ Suite *integrators_suite(void)
     tcase_add_test(tc, test_integrators_lightstratify_lowers_the_variance);
     tcase_add_test(tc, test_integrators_irradiance_vector_matches_a_numerical_integral);
     tcase_add_test(tc, test_integrators_analyticdirect_matches_direct_and_is_zero_behind_the_light);
+    tcase_add_test(tc, test_integrators_analytic_irradiance_clips_at_the_horizon_and_is_zero_behind_the_light);
     suite_add_tcase(s, tc);
     tc = tcase_create("paths");
     tcase_set_timeout(tc, 120);
     tcase_add_test(tc, test_integrators_nee_off_on_and_mis_agree_under_a_quad_light);
     tcase_add_test(tc, test_integrators_nee_off_on_and_mis_agree_under_a_sun_map);
+    tcase_add_test(tc, test_integrators_quad_lights_block_shadow_rays_as_they_block_brdf_rays);
+    tcase_add_test(tc, test_integrators_brdf_rays_never_pass_below_the_geometric_surface);
     tcase_add_test(tc, test_integrators_mis_with_env_fraction_zero_is_brdf_sampling);
     tcase_add_test(tc, test_integrators_russian_roulette_keeps_the_mean);
     suite_add_tcase(s, tc);
