@@ -14,6 +14,11 @@
 /* cdf-sintheta: the least remapped value inside a row, so that theta > 0 (sin theta > 0) */
 #define ENVLIGHT_POLE_REM 1e-9
 
+/* transform_is_conformal: how far A A^T may be from s^2 I, relative to s^2.  The
+ * scene's matrices are products of a few rotations in double (errors ~1e-15); 1e-6 still
+ * refuses a scale of 1 + 1e-6 along one axis, which would move a sample by ~1e-6 radians. */
+#define ENVLIGHT_CONFORMAL_TOL 1e-6
+
 /* the phi table's least number of steps round the circle (sample_cos_sin_phi) */
 #define ENVLIGHT_PHI_STEPS 256
 
@@ -186,6 +191,25 @@ cleanup:
     return status;
 }
 
+/* A A^T = s^2 I within ENVLIGHT_CONFORMAL_TOL, s^2 = trace(A A^T) / 3 > 0, for the linear part A
+ * (upper 3 x 3) of m: directions are turned (and maybe mirrored and uniformly scaled), never
+ * distorted. */
+static int transform_is_conformal(const mat4 *m)
+{
+    double aat[3][3], s2 = 0;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) {
+            aat[i][j] = 0;
+            for (int k = 0; k < 3; k++) aat[i][j] += m->m[i][k] * m->m[j][k]; /* (A A^T)_ij */
+        }
+    for (int i = 0; i < 3; i++) s2 += aat[i][i] / 3;
+    if (!(s2 > 0) || !isfinite(s2)) return 0;
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++)
+            if (!(fabs(aat[i][j] - (i == j) * s2) <= ENVLIGHT_CONFORMAL_TOL * s2)) return 0;
+    return 1;
+}
+
 int envlight_build(envlight *el, const envmap *env, envsampling_mode mode, envsampler_kind sampler,
                    int mediancut_n, error *err)
 {
@@ -194,14 +218,18 @@ int envlight_build(envlight *el, const envmap *env, envsampling_mode mode, envsa
     el->mode = mode;
     el->sampler = sampler;
     if (!env->present) return error_set(err, NULL, 0, "no environment map to sample");
-    /* Sampled directions go back to the world through the transpose of to_env: the transform
-     * must be a rotation (a `scale` before `envmap` would distort the pdf). */
-    mat4 m = env->to_env, mmt = mat4_mul(m, mat4_transpose(m));
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 3; j++)
-            if (fabs(mmt.m[i][j] - (i == j)) > 1e-6)
-                return error_set(err, NULL, 0, "the envmap's transform is not a rotation, so it cannot be sampled "
-                                 "as a light (use only 'rotate' before 'envmap')");
+    /* Directions see only the linear part A of to_env (the upper 3 x 3: mat4_dir drops the
+     * translation, the envmap being at infinity).  The tables live in the map's frame and a
+     * sampled direction d goes back to the world as A^T d / |A^T d|, which is A^-1 d up to its
+     * length, with the pdf unchanged, exactly when A A^T = s^2 I: a rotation, possibly times a
+     * uniform scale s or a mirror.  Anything else (a non-uniform scale, a shear) would distort
+     * the pdf, so the table modes refuse it.  Uniform sampling draws in the world and only looks
+     * the map up, like the background: any transform. */
+    mat4 m = env->to_env;
+    if (mode != ENVSAMPLING_UNIFORM && !transform_is_conformal(&m))
+        return error_set(err, NULL, 0, "the envmap's transform is not a rotation (nor a rotation times a uniform "
+                         "scale), so it cannot be sampled as a light (put only 'rotate' before 'envmap', or use "
+                         "'envsampling uniform')");
     clock_t t0 = clock();
     el->map = env->img;
     if (!el->map) { /* another representation: resample it to lat-long once (no-op otherwise) */
@@ -211,9 +239,9 @@ int envlight_build(envlight *el, const envmap *env, envsampling_mode mode, envsa
     }
     int w = el->w = el->map->w, h = el->h = el->map->h;
     el->to_world = mat4_transpose(m);
-    el->identity = 1;
-    for (int i = 0; i < 4; i++)
-        for (int j = 0; j < 4; j++) el->identity &= m.m[i][j] == (i == j);
+    el->identity = 1; /* A = I: lookups and samples skip the matrix (a translation is no matter) */
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 3; j++) el->identity &= m.m[i][j] == (i == j);
     el->cos_edge = malloc((size_t)(h + 1) * sizeof *el->cos_edge);
     el->row_omega = malloc((size_t)h * sizeof *el->row_omega);
     if (!el->cos_edge || !el->row_omega) {
@@ -302,7 +330,9 @@ void envlight_free(envlight *el)
  * lookup so that they agree to the last bit. */
 static inline double cdf_pdf(const envlight *el, int c, int r) { return rgb_avg(texel(el, c, r)) / el->power; }
 
-/* envmap frame -> world for sampled directions (the inverse of a rotation is its transpose) */
+/* envmap frame -> world for sampled directions: A^T d / |A^T d|, which is A^-1 d / |A^-1 d| for
+ * the linear part A of to_env, A A^T = s^2 I (envlight_build; the inverse of a rotation is its
+ * transpose) */
 static inline vec3 frame_to_world(const envlight *el, vec3 d)
 {
     return el->identity ? d : vec3_normalize(mat4_dir(&el->to_world, d));

@@ -69,14 +69,20 @@ typedef struct envlight {
     int phi_sub;         /* table entries per column: ceil(256 / w) */
     double phi_step;     /* 2 pi / (w phi_sub), the table's step */
     int identity;        /* the envmap transform is the identity: skip the matrix per sample */
-    mat4 to_world;       /* envmap frame -> world (the transpose of env->to_env, a rotation) */
+    mat4 to_world;       /* envmap frame -> world: the transpose of env->to_env, whose linear part is
+                          * a rotation times s (its translation is no matter); normalize after it */
     envlight_point *points; int n_points; /* mediancut */
     distrib1d point_choice; /* mediancut: choose a point light by power */
     double build_seconds;
 } envlight;
 
 /* Build the tables `mode` needs (nothing for uniform).  `mediancut_n` is used for mediancut.
- * The envmap must stay alive and unchanged while the envlight is used. */
+ * The envmap must stay alive and unchanged while the envlight is used.  The envmap's transform
+ * acts on directions by its linear part A only (a translation changes nothing).  The table
+ * modes (cdf, cdf-sintheta, mediancut) need A A^T = s^2 I, a rotation, possibly times a uniform
+ * scale or a mirror (sampled directions go back as A^T d, normalized): anything else, a
+ * non-uniform scale or a shear, would distort the pdf and is refused (-1, a message).  Uniform
+ * sampling takes any transform, as the background does. */
 int envlight_build(envlight *el, const envmap *env, envsampling_mode mode, envsampler_kind sampler,
                    int mediancut_n, error *err);
 void envlight_free(envlight *el);

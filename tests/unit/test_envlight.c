@@ -7,7 +7,8 @@
  * exact).  Then the numerics the issue lists: an all-black map falls back to uniform, zero rows
  * and columns are never chosen, xi at 0, 1 - 2^-24 and 1 stay in range, bad texels are counted
  * and dark, a 4096 x 2048 table is normalized, pdf = L / |L| for the cdf mode, the envmap's
- * rotation is respected and a non-rotation refused; and median cut's strata.
+ * rotation is respected, a translation or uniform scale changes nothing and a non-uniform scale
+ * is refused; and median cut's strata.
  */
 #include "envtex/envlight.h"
 #include "envtex/sampling.h"
@@ -265,6 +266,79 @@ START_TEST(test_envlight_rotation_moves_samples_and_pdf_with_the_map)
     ck_assert_near(envlight_pdf(&el, centre) * om, 1, 1e-12);
     ck_assert(envlight_pdf(&el, latlong_uv_to_dir((uv2){5.5 / 16, 3.5 / 8})) == 0);
     envlight_free(&el);
+    image_free(&im);
+}
+END_TEST
+
+static int same_rgb(rgb a, rgb b) { return a.r == b.r && a.g == b.g && a.b == b.b; }
+
+/* Directions see only the linear part of the envmap's transform: a translation (the envmap is at
+ * infinity) and a uniform scale change nothing, so the envlight built with them samples the same
+ * world directions, with the same pdf and L, as the one built with the rotation alone (they were
+ * refused as "not a rotation", so the path tracer would not render a scene the ray tracer
+ * renders).  Uniform sampling, which only looks the map up, takes any transform. */
+START_TEST(test_envlight_translation_and_uniform_scale_sample_as_the_rotation_alone)
+{
+    image im;
+    genenv_params gp = genenv_defaults();
+    gp.width = 64;
+    gp.sun_ratio = 1e3;
+    error err = {0};
+    ck_assert_int_eq(genenv_make(GENENV_SUN, &gp, &im, &err), 0);
+    mat4 rot = mat4_rotate(vec3_make(0.3, 1, 0.2), 40);
+    /* envmap frame -> world: translate(1, -2, 3) rotate scale(2.5); to_env is its inverse */
+    mat4 xf = mat4_mul(mat4_translate(vec3_make(1, -2, 3)), mat4_mul(rot, mat4_scale(vec3_make(2.5, 2.5, 2.5))));
+    mat4 inv_rot, inv_xf;
+    ck_assert_int_eq(mat4_inverse(rot, &inv_rot), 0);
+    ck_assert_int_eq(mat4_inverse(xf, &inv_xf), 0);
+    envmap er = env_of(&im, 1, inv_rot), ex = env_of(&im, 1, inv_xf);
+    const envsampling_mode modes[] = {ENVSAMPLING_CDF, ENVSAMPLING_CDF_SINTHETA, ENVSAMPLING_MEDIANCUT,
+                                      ENVSAMPLING_UNIFORM};
+    long bad = 0;
+    for (int m = 0; m < 4; m++) {
+        envlight a, b;
+        build(&a, &er, modes[m], ENVSAMPLER_ALIAS, 16);
+        build(&b, &ex, modes[m], ENVSAMPLER_ALIAS, 16);
+        rng g;
+        rng_seed(&g, 41, (uint64_t)m);
+        for (int i = 0; i < 2000; i++) {
+            double x1 = rng_uniform(&g), x2 = rng_uniform(&g), x3 = rng_uniform(&g);
+            if (modes[m] == ENVSAMPLING_MEDIANCUT) {
+                int ka, kb;
+                vec3 da, db;
+                double pa, pb;
+                ck_assert(envlight_mediancut_pick(&a, x1, x2, x3, &ka, &da, &pa));
+                ck_assert(envlight_mediancut_pick(&b, x1, x2, x3, &kb, &db, &pb));
+                bad += ka != kb || pa != pb || vec3_length(vec3_sub(da, db)) > 1e-12 ||
+                       vec3_length(vec3_sub(a.points[ka].dir, b.points[kb].dir)) > 1e-12;
+                continue;
+            }
+            envlight_sample_result sa, sb;
+            ck_assert(envlight_sample(&a, x1, x2, 0, &sa));
+            ck_assert(envlight_sample(&b, x1, x2, 0, &sb));
+            vec3 w = sampling_uniform_sphere(x3, rng_uniform(&g)); /* any direction, for the lookups */
+            bad += vec3_length(vec3_sub(sa.wi, sb.wi)) > 1e-12 || fabs(sa.pdf / sb.pdf - 1) > 1e-12 ||
+                   !same_rgb(sa.L, sb.L) || !(fabs(envlight_pdf(&a, w) - envlight_pdf(&b, w)) <= 1e-12 * envlight_pdf(&a, w)) ||
+                   !same_rgb(envlight_radiance(&a, w), envlight_radiance(&b, w));
+        }
+        envlight_free(&a);
+        envlight_free(&b);
+    }
+    ck_assert_msg(bad == 0, "%ld samples or lookups differ from the rotation alone", bad);
+    /* uniform sampling under a non-uniform scale: the light is what the envmap frame holds in
+     * the direction the transform gives, as for the background */
+    mat4 sq = mat4_scale(vec3_make(1, 1, 0.25));
+    envmap es = env_of(&im, 1, sq);
+    envlight u;
+    build(&u, &es, ENVSAMPLING_UNIFORM, ENVSAMPLER_BINARY, 0);
+    rng g;
+    rng_seed(&g, 43, 0);
+    for (int i = 0; i < 500; i++) {
+        vec3 w = sampling_uniform_sphere(rng_uniform(&g), rng_uniform(&g));
+        bad += !same_rgb(envlight_radiance(&u, w), latlong_lookup_nearest(&im, mat4_dir(&sq, w)));
+    }
+    ck_assert_msg(bad == 0, "%ld uniform-mode lookups through a non-uniform scale are off", bad);
+    envlight_free(&u);
     image_free(&im);
 }
 END_TEST
@@ -862,6 +936,7 @@ Suite *envlight_suite(void)
     tcase_add_test(tc, test_envlight_kappa_and_the_combined_lookup);
     tcase_add_test(tc, test_envlight_mis_fraction_model);
     tcase_add_test(tc, test_envlight_non_rotation_transform_is_refused);
+    tcase_add_test(tc, test_envlight_translation_and_uniform_scale_sample_as_the_rotation_alone);
     tcase_add_test(tc, test_envlight_all_black_map_falls_back_to_uniform);
     tcase_add_test(tc, test_envlight_zero_texels_and_edge_xi_are_never_sampled);
     tcase_add_test(tc, test_envlight_sampled_phi_is_unit_and_in_its_column);
