@@ -67,6 +67,15 @@ mat4 mat4_transpose(mat4 a)
     return r;
 }
 
+double mat4_det3(const mat4 *m)
+{
+    /* det A = a00 (a11 a22 - a12 a21) - a01 (a10 a22 - a12 a20) + a02 (a10 a21 - a11 a20) */
+    const double(*a)[4] = m->m;
+    return a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+           a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+           a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+}
+
 int mat4_inverse(mat4 a, mat4 *out)
 {
     /* Gauss-Jordan elimination with partial pivoting on [A | I]. */

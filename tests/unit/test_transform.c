@@ -181,6 +181,31 @@ START_TEST(test_transform_normal_stays_perpendicular_under_nonuniform_scale)
 }
 END_TEST
 
+/* det of the linear part is the volume factor: (M e1 x M e2) . M e3 = det(M) (e1 x e2) . e3
+ * for any vectors, and its sign says whether M mirrors (the scene parser keeps triangles
+ * counter-clockwise with it).  Catches a wrong cofactor sign or a translation column used. */
+START_TEST(test_transform_det3_is_the_volume_factor_and_negative_for_mirrors)
+{
+    rng r;
+    rng_seed(&r, 13, 0);
+    for (int n = 0; n < 2000; n++) {
+        mat4 m = random_affine(&r);
+        vec3 e1 = vec3_make(sym(&r), sym(&r), sym(&r)), e2 = vec3_make(sym(&r), sym(&r), sym(&r));
+        vec3 e3 = vec3_make(sym(&r), sym(&r), sym(&r));
+        double before = vec3_dot(vec3_cross(e1, e2), e3);
+        double after = vec3_dot(vec3_cross(mat4_dir(&m, e1), mat4_dir(&m, e2)), mat4_dir(&m, e3));
+        double det = mat4_det3(&m);
+        EXPECT_NEAR(after, det * before, 1e-9 * fmax(1, fabs(det)));
+    }
+    mat4 t = mat4_translate(vec3_make(5, 6, 7));
+    EXPECT_NEAR(mat4_det3(&t), 1, 0);
+    mat4 s = mat4_scale(vec3_make(-1, 2, 3));
+    EXPECT_NEAR(mat4_det3(&s), -6, 0);
+    mat4 rm = mat4_rotate(vec3_make(1, 2, 3), 77);
+    EXPECT_NEAR(mat4_det3(&rm), 1, 1e-15);
+}
+END_TEST
+
 Suite *transform_suite(void)
 {
     Suite *s = suite_create("transform");
@@ -193,6 +218,7 @@ Suite *transform_suite(void)
     tcase_add_test(tc, test_transform_inverse_of_simple_matrices_is_within_1e_12);
     tcase_add_test(tc, test_transform_singular_matrix_returns_minus_one_and_leaves_out_untouched);
     tcase_add_test(tc, test_transform_normal_stays_perpendicular_under_nonuniform_scale);
+    tcase_add_test(tc, test_transform_det3_is_the_volume_factor_and_negative_for_mirrors);
     suite_add_tcase(s, tc);
     return s;
 }
