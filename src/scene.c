@@ -496,8 +496,10 @@ static int cmd_rotate(parser *p)
 {
     double v[4];
     if (arg_nums(p, 1, 4, v)) return -1;
-    vec3 axis = vec3_make(v[0], v[1], v[2]);
-    if (!(vec3_length(axis) > 0)) return fail(p, "'rotate' axis is zero");
+    vec3 axis = vec3_make(v[0], v[1], v[2]), unit;
+    /* only the direction counts: 1e-300 and 1e300 are axes too (vec3_length underflows or
+     * overflows there) */
+    if (vec3_unit_direction(axis, &unit)) return fail(p, "'rotate' axis is zero");
     return xf_apply(p, mat4_rotate(axis, v[3]));
 }
 

@@ -1,6 +1,7 @@
 /* transform.c - 4x4 affine transforms (see include/envtex/transform.h). */
 #include "envtex/transform.h"
 
+#include <assert.h>
 #include <string.h>
 
 mat4 mat4_identity(void)
@@ -43,8 +44,13 @@ mat4 mat4_scale(vec3 s)
 
 mat4 mat4_rotate(vec3 axis, double degrees)
 {
-    /* Rodrigues: R = cos(t) I + (1 - cos(t)) a a^T + sin(t) [a]x */
-    vec3 a = vec3_normalize(axis);
+    /* Rodrigues: R = cos(t) I + (1 - cos(t)) a a^T + sin(t) [a]x, a = axis / |axis| taken
+     * with vec3_unit_direction: |axis| from sqrt(x^2 + y^2 + z^2) overflows for 1e200 (a = 0:
+     * R = cos(t) I, a scaling) and loses bits for 1e-160 (its squares are subnormal) */
+    vec3 a;
+    int st = vec3_unit_direction(axis, &a);
+    assert(st == 0); /* a zero or non-finite axis is the caller's error */
+    (void)st;
     double t = degrees * M_PI / 180.0, c = cos(t), s = sin(t), k = 1.0 - c;
     mat4 r = mat4_identity();
     r.m[0][0] = c + k * a.x * a.x;

@@ -20,7 +20,8 @@ mat4 mat4_identity(void);
 mat4 mat4_mul(mat4 a, mat4 b); /* a b: b applies first */
 mat4 mat4_translate(vec3 t);
 mat4 mat4_scale(vec3 s);
-/* Rotation by `degrees` about `axis` (any non-zero length; Rodrigues' formula). */
+/* Rotation by `degrees` about `axis` (any finite non-zero length, 1e-300 to 1e300; asserts
+ * otherwise; Rodrigues' formula). */
 mat4 mat4_rotate(vec3 axis, double degrees);
 mat4 mat4_transpose(mat4 a);
 /* Determinant of the linear (upper-left 3x3) part: the factor by which M scales volumes.  It is

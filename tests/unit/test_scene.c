@@ -675,6 +675,29 @@ START_TEST(test_tri_uses_the_transform_current_at_tri_not_at_vertex)
 }
 END_TEST
 
+/* `rotate` accepts any finite non-zero axis, however long or short (as `vertexnormal` and
+ * `camera` do): 1e-300 was refused as "zero" and 1e200 collapsed the object to a point. */
+START_TEST(test_rotate_takes_tiny_and_huge_axes_by_their_direction)
+{
+    static const char *const axes[] = {"1e-300 2e-300 3e-300", "1e-170 2e-170 3e-170", "1e200 2e200 3e200"};
+    scene ref;
+    load_ok(HEAD "rotate 1 2 3 90\nvertex 1 0 0\nvertex 0 1 0\nvertex 0 0 1\ntri 0 1 2\n", &ref);
+    for (int a = 0; a < 3; a++) {
+        char text[512];
+        snprintf(text, sizeof text, HEAD "rotate %s 90\nvertex 1 0 0\nvertex 0 1 0\nvertex 0 0 1\ntri 0 1 2\n", axes[a]);
+        scene sc;
+        load_ok(text, &sc);
+        for (int k = 0; k < 3; k++) {
+            vec3 w = ref.triangles[0].p[k];
+            assert_vec_near(sc.triangles[0].p[k], w.x, w.y, w.z);
+        }
+        scene_free(&sc);
+    }
+    scene_free(&ref);
+    load_fails(HEAD "rotate 0 0 0 90\n", 3, "'rotate' axis is zero");
+}
+END_TEST
+
 START_TEST(test_pop_restores_the_transform_saved_by_push)
 {
     scene sc;
@@ -1533,6 +1556,7 @@ Suite *scene_suite(void)
     tcase_add_test(cmds, test_a_scaled_sphere_keeps_an_ellipsoid_matrix_and_its_inverse);
     tcase_add_test(cmds, test_trinormal_transforms_normals_by_the_inverse_transpose);
     tcase_add_test(cmds, test_a_mirroring_transform_keeps_triangles_counter_clockwise_from_outside);
+    tcase_add_test(cmds, test_rotate_takes_tiny_and_huge_axes_by_their_direction);
     tcase_add_test(cmds, test_lights_are_in_world_space_and_point_takes_the_current_attenuation);
     tcase_add_test(cmds, test_envmap_takes_file_scale_and_the_current_transform);
     tcase_add_test(cmds, test_envmap_paths_are_relative_to_the_scene_folder);

@@ -206,6 +206,24 @@ START_TEST(test_transform_det3_is_the_volume_factor_and_negative_for_mirrors)
 }
 END_TEST
 
+/* Only the axis's direction counts: (1, 2, 3) scaled by 10^-300 .. 10^300 gives the same
+ * rotation.  Catches a length from sqrt(x^2 + y^2 + z^2): it overflowed for 1e200 (axis 0, so
+ * R = cos(t) I: `rotate 1e200 0 0 90` collapsed the object to a point) and lost bits for 1e-160
+ * (subnormal squares: an error of 1e-5). */
+START_TEST(test_transform_rotate_depends_only_on_the_axis_direction)
+{
+    mat4 ref = mat4_rotate(vec3_make(1, 2, 3), 77);
+    for (int e = -300; e <= 300; e += 10) {
+        double k = pow(10, e);
+        mat4 r = mat4_rotate(vec3_make(k, 2 * k, 3 * k), 77);
+        for (int i = 0; i < 4; i++)
+            for (int j = 0; j < 4; j++)
+                EXPECT_MSG(fabs(r.m[i][j] - ref.m[i][j]) <= 1e-15, "axis scale 1e%d: m[%d][%d] = %.17g, "
+                           "expected %.17g", e, i, j, r.m[i][j], ref.m[i][j]);
+    }
+}
+END_TEST
+
 Suite *transform_suite(void)
 {
     Suite *s = suite_create("transform");
@@ -219,6 +237,7 @@ Suite *transform_suite(void)
     tcase_add_test(tc, test_transform_singular_matrix_returns_minus_one_and_leaves_out_untouched);
     tcase_add_test(tc, test_transform_normal_stays_perpendicular_under_nonuniform_scale);
     tcase_add_test(tc, test_transform_det3_is_the_volume_factor_and_negative_for_mirrors);
+    tcase_add_test(tc, test_transform_rotate_depends_only_on_the_axis_direction);
     suite_add_tcase(s, tc);
     return s;
 }
