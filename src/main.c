@@ -15,6 +15,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -486,6 +487,14 @@ static int cmd_tonemap(int argc, char **argv)
     error err = {0};
     image img = {0};
     int status = 1;
+    /* exposure, operator and gamma act only on the 8-bit PNG: an .exr, .hdr or .pfm OUT was
+     * written as an unchanged copy of IN, the options silently ignored */
+    const char *dot = strrchr(out, '.');
+    if (!dot || strchr(dot, '/') || strcasecmp(dot, ".png")) {
+        error_set(&err, out, 0, "tonemap writes an 8-bit PNG: name the output .png (an HDR "
+                                "output would be IN unchanged, without the tone mapping)");
+        goto done;
+    }
     if (check_output(out, &err) || check_not_replacing(out, &in, 1, &err)) goto done;
     if (imageio_read(in, &img, &err)) goto done;
     if (imageio_write(out, &img, &tm, &err)) goto done;

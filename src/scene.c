@@ -407,6 +407,21 @@ static int tri_indices(parser *p, long count, const char *list, long idx[3])
     return 0;
 }
 
+/* Swap a triangle's corners 1 and 2 with everything attached to them. */
+static void swap_corners_1_2(scene_triangle *t)
+{
+    scene_triangle c = *t;
+    t->p[1] = c.p[2];
+    t->p[2] = c.p[1];
+    t->n[1] = c.n[2];
+    t->n[2] = c.n[1];
+    t->st[1] = c.st[2];
+    t->st[2] = c.st[1];
+    t->q[1] = c.q[2];
+    t->q[2] = c.q[1];
+}
+
+/* Store triangle t, whose world corners p[] are the current transform of its object corners. */
 static int add_triangle(parser *p, const scene_triangle *t)
 {
     scene *sc = p->sc;
@@ -423,11 +438,16 @@ static int add_triangle(parser *p, const scene_triangle *t)
     scene_triangle *d = &sc->triangles[sc->n_triangles++];
     *d = *t;
     d->material = m;
-    if (!d->has_st) { /* st = (b1, b2): the corners' barycentric coordinates */
+    if (!d->has_st) { /* st = (b1, b2): the barycentric coordinates of the corners as written */
         d->st[0] = (uv2){0, 0};
         d->st[1] = (uv2){1, 0};
         d->st[2] = (uv2){0, 1};
     }
+    /* A mirroring transform (det < 0) turns the corners clockwise: M e1 x M e2 =
+     * det(M) (M^-1)^T (e1 x e2) would point inward, and glass would refract the wrong way.
+     * Swapping corners 1 and 2 (with their normals, st and object corners, so every point keeps
+     * its attributes) makes e1 x e2 the outward normal again. */
+    if (mat4_det3(&p->xf) < 0) swap_corners_1_2(d);
     return 0;
 }
 
@@ -476,8 +496,10 @@ static int cmd_rotate(parser *p)
 {
     double v[4];
     if (arg_nums(p, 1, 4, v)) return -1;
-    vec3 axis = vec3_make(v[0], v[1], v[2]);
-    if (!(vec3_length(axis) > 0)) return fail(p, "'rotate' axis is zero");
+    vec3 axis = vec3_make(v[0], v[1], v[2]), unit;
+    /* only the direction counts: 1e-300 and 1e300 are axes too (vec3_length underflows or
+     * overflows there) */
+    if (vec3_unit_direction(axis, &unit)) return fail(p, "'rotate' axis is zero");
     return xf_apply(p, mat4_rotate(axis, v[3]));
 }
 

@@ -1,6 +1,7 @@
 /* transform.c - 4x4 affine transforms (see include/envtex/transform.h). */
 #include "envtex/transform.h"
 
+#include <assert.h>
 #include <string.h>
 
 mat4 mat4_identity(void)
@@ -43,8 +44,13 @@ mat4 mat4_scale(vec3 s)
 
 mat4 mat4_rotate(vec3 axis, double degrees)
 {
-    /* Rodrigues: R = cos(t) I + (1 - cos(t)) a a^T + sin(t) [a]x */
-    vec3 a = vec3_normalize(axis);
+    /* Rodrigues: R = cos(t) I + (1 - cos(t)) a a^T + sin(t) [a]x, a = axis / |axis| taken
+     * with vec3_unit_direction: |axis| from sqrt(x^2 + y^2 + z^2) overflows for 1e200 (a = 0:
+     * R = cos(t) I, a scaling) and loses bits for 1e-160 (its squares are subnormal) */
+    vec3 a;
+    int st = vec3_unit_direction(axis, &a);
+    assert(st == 0); /* a zero or non-finite axis is the caller's error */
+    (void)st;
     double t = degrees * M_PI / 180.0, c = cos(t), s = sin(t), k = 1.0 - c;
     mat4 r = mat4_identity();
     r.m[0][0] = c + k * a.x * a.x;
@@ -65,6 +71,15 @@ mat4 mat4_transpose(mat4 a)
     for (int i = 0; i < 4; i++)
         for (int j = 0; j < 4; j++) r.m[i][j] = a.m[j][i];
     return r;
+}
+
+double mat4_det3(const mat4 *m)
+{
+    /* det A = a00 (a11 a22 - a12 a21) - a01 (a10 a22 - a12 a20) + a02 (a10 a21 - a11 a20) */
+    const double(*a)[4] = m->m;
+    return a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+           a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+           a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
 }
 
 int mat4_inverse(mat4 a, mat4 *out)

@@ -17,12 +17,15 @@ int triangle_intersect(vec3 p0, vec3 p1, vec3 p2, const ray *r, double *t_out, d
     if (b2 < -TRIANGLE_EDGE_EPS || b1 + b2 > 1 + TRIANGLE_EDGE_EPS) return 0;
     double t = vec3_dot(e2, qv) * inv;
     if (!(t > r->tmin && t < r->tmax)) return 0;
-    /* det^2 <= eps^2 |d|^2 |e1|^2 |e2|^2: a sliver of rounding (or an edge-on ray): no hit.
-     * Tested last, only for a ray that passed every other test: the tests above only reject
-     * (a NaN from a tiny det fails the t test), so the order changes no answer, and most rays a
-     * BVH leaf offers miss an edge first. */
-    double bound = vec3_length2(r->d) * vec3_length2(e1) * vec3_length2(e2);
-    if (det * det <= TRIANGLE_DEGENERATE_EPS * TRIANGLE_DEGENERATE_EPS * bound) return 0;
+    /* |det| <= eps |d| |e1| |e2|: a sliver of rounding (or an edge-on ray): no hit.  Lengths,
+     * not their squares, and eps first: the product of three squared lengths overflows (or
+     * underflows) for edges beyond ~1e51 (or below ~1e-54), which rejected every such
+     * triangle; this bound stays finite wherever det is.  Tested last, only for a ray that
+     * passed every other test: the tests above only reject (a NaN from a tiny det fails the t
+     * test), so the order changes no answer, and most rays a BVH leaf offers miss an edge
+     * first. */
+    double bound = TRIANGLE_DEGENERATE_EPS * vec3_length(r->d) * vec3_length(e1) * vec3_length(e2);
+    if (fabs(det) <= bound) return 0;
     *t_out = t;
     *b1_out = b1;
     *b2_out = b2;

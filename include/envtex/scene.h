@@ -73,12 +73,15 @@ typedef struct scene_sphere {
 } scene_sphere;
 
 typedef struct scene_triangle {
-    vec3 p[3];      /* world-space corners, counter-clockwise */
+    vec3 p[3];      /* world-space corners, counter-clockwise seen from outside: under a
+                       mirroring transform (det < 0) corners 1 and 2 are stored swapped, with
+                       their n, st and q, so that (p1 - p0) x (p2 - p0) is the outward normal */
     vec3 n[3];      /* world-space unit vertex normals (trinormal); unused if !has_normals */
     int has_normals;
     int material;
     uv2 st[3];      /* texture coordinates of the corners: given by `tritex` or an OBJ's vt
-                       (has_st = 1), else (0,0), (1,0), (0,1) so that st = (b1, b2) */
+                       (has_st = 1), else (0,0), (1,0), (0,1) for the corners as written, so
+                       that st = (b1, b2) of those corners */
     int has_st;
     vec3 q[3];      /* OBJECT-space corners (the vertices as written, before the transform), for
                        the point-based mappings and solid textures: P_object = sum b_i q_i.

@@ -20,9 +20,15 @@ mat4 mat4_identity(void);
 mat4 mat4_mul(mat4 a, mat4 b); /* a b: b applies first */
 mat4 mat4_translate(vec3 t);
 mat4 mat4_scale(vec3 s);
-/* Rotation by `degrees` about `axis` (any non-zero length; Rodrigues' formula). */
+/* Rotation by `degrees` about `axis` (any finite non-zero length, 1e-300 to 1e300; asserts
+ * otherwise; Rodrigues' formula). */
 mat4 mat4_rotate(vec3 axis, double degrees);
 mat4 mat4_transpose(mat4 a);
+/* Determinant of the linear (upper-left 3x3) part: the factor by which M scales volumes.  It is
+ * negative for a transform that mirrors (an odd number of negative `scale` factors): such a
+ * transform turns counter-clockwise corners clockwise, so e1 x e2 of the transformed corners
+ * points inward (M e1 x M e2 = det(M) (M^-1)^T (e1 x e2)). */
+double mat4_det3(const mat4 *m);
 /* Inverse of an affine matrix; returns 0, or -1 (and *out untouched) if it is singular. */
 int mat4_inverse(mat4 a, mat4 *out);
 

@@ -675,6 +675,29 @@ START_TEST(test_tri_uses_the_transform_current_at_tri_not_at_vertex)
 }
 END_TEST
 
+/* `rotate` accepts any finite non-zero axis, however long or short (as `vertexnormal` and
+ * `camera` do): 1e-300 was refused as "zero" and 1e200 collapsed the object to a point. */
+START_TEST(test_rotate_takes_tiny_and_huge_axes_by_their_direction)
+{
+    static const char *const axes[] = {"1e-300 2e-300 3e-300", "1e-170 2e-170 3e-170", "1e200 2e200 3e200"};
+    scene ref;
+    load_ok(HEAD "rotate 1 2 3 90\nvertex 1 0 0\nvertex 0 1 0\nvertex 0 0 1\ntri 0 1 2\n", &ref);
+    for (int a = 0; a < 3; a++) {
+        char text[512];
+        snprintf(text, sizeof text, HEAD "rotate %s 90\nvertex 1 0 0\nvertex 0 1 0\nvertex 0 0 1\ntri 0 1 2\n", axes[a]);
+        scene sc;
+        load_ok(text, &sc);
+        for (int k = 0; k < 3; k++) {
+            vec3 w = ref.triangles[0].p[k];
+            assert_vec_near(sc.triangles[0].p[k], w.x, w.y, w.z);
+        }
+        scene_free(&sc);
+    }
+    scene_free(&ref);
+    load_fails(HEAD "rotate 0 0 0 90\n", 3, "'rotate' axis is zero");
+}
+END_TEST
+
 START_TEST(test_pop_restores_the_transform_saved_by_push)
 {
     scene sc;
@@ -1232,6 +1255,62 @@ START_TEST(test_tritex_keeps_object_corners_world_corners_and_st)
 }
 END_TEST
 
+/* A mirroring transform (odd number of negative scale factors) turns counter-clockwise corners
+ * clockwise: the stored triangle must still have (p1 - p0) x (p2 - p0) pointing outward, along
+ * (M^-1)^T (e1 x e2) of the corners as written, and each stored corner must keep its own object
+ * corner, st and normal.  Catches corners stored as transformed (the mirrored triangle's normal
+ * then points inward: glass refracts the wrong way, docs/scene-format.md). */
+START_TEST(test_a_mirroring_transform_keeps_triangles_counter_clockwise_from_outside)
+{
+    static const char *const xfs[] = {"", "scale -1 1 1\n", "scale -1 -1 1\n", "scale 1 1 -2\n",
+                                      "rotate 1 2 3 40\nscale -1 -1 -1\n"};
+    for (int x = 0; x < 5; x++) {
+        char text[1024];
+        snprintf(text, sizeof text, HEAD "vertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+                 "vertextex 0 0 0 0.1 0.2\nvertextex 1 0 0 0.3 0.4\nvertextex 0 1 0 0.5 0.6\n"
+                 "vertexnormal 0 0 0 1 0 1\nvertexnormal 1 0 0 0 1 1\nvertexnormal 0 1 0 0 0 1\n"
+                 "%stri 0 1 2\ntritex 0 1 2\ntrinormal 0 1 2\n", xfs[x]);
+        scene sc;
+        load_ok(text, &sc);
+        ck_assert_int_eq(sc.n_triangles, 3);
+        mat4 m = mat4_identity(), inv;
+        if (x == 1) m = mat4_scale(vec3_make(-1, 1, 1));
+        if (x == 2) m = mat4_scale(vec3_make(-1, -1, 1));
+        if (x == 3) m = mat4_scale(vec3_make(1, 1, -2));
+        if (x == 4) m = mat4_mul(mat4_rotate(vec3_make(1, 2, 3), 40), mat4_scale(vec3_make(-1, -1, -1)));
+        ck_assert_int_eq(mat4_inverse(m, &inv), 0);
+        /* outward: the object's +z (counter-clockwise corners) through the inverse transpose */
+        vec3 out = vec3_normalize(mat4_normal(&inv, vec3_make(0, 0, 1)));
+        const double st[3][2] = {{0.1, 0.2}, {0.3, 0.4}, {0.5, 0.6}};
+        const vec3 nobj[3] = {{1, 0, 1}, {0, 1, 1}, {0, 0, 1}};
+        for (int i = 0; i < 3; i++) {
+            const scene_triangle *t = &sc.triangles[i];
+            vec3 ng = vec3_normalize(vec3_cross(vec3_sub(t->p[1], t->p[0]), vec3_sub(t->p[2], t->p[0])));
+            ck_assert_msg(vec3_dot(ng, out) > 1 - 1e-12, "transform %d, triangle %d: normal (%g %g %g), "
+                          "outward (%g %g %g)", x, i, ng.x, ng.y, ng.z, out.x, out.y, out.z);
+            for (int k = 0; k < 3; k++) {
+                vec3 q = t->q[k], pw = mat4_point(&m, q);
+                assert_vec_near(t->p[k], pw.x, pw.y, pw.z); /* world corner = M object corner */
+                int c = q.x == 1 ? 1 : q.y == 1 ? 2 : 0;      /* which corner as written */
+                if (i == 0) { /* tri: st = (b1, b2) of the corners as written */
+                    ck_assert_double_eq(t->st[k].u, c == 1);
+                    ck_assert_double_eq(t->st[k].v, c == 2);
+                }
+                if (i == 1) {
+                    ck_assert_double_eq(t->st[k].u, st[c][0]);
+                    ck_assert_double_eq(t->st[k].v, st[c][1]);
+                }
+                if (i == 2) {
+                    vec3 n = vec3_normalize(mat4_normal(&inv, nobj[c]));
+                    assert_vec_near(t->n[k], n.x, n.y, n.z);
+                }
+            }
+        }
+        scene_free(&sc);
+    }
+}
+END_TEST
+
 START_TEST(test_map_commands_are_material_state_stored_once)
 {
     scene sc;
@@ -1476,6 +1555,8 @@ Suite *scene_suite(void)
     tcase_add_test(cmds, test_pop_restores_the_transform_saved_by_push);
     tcase_add_test(cmds, test_a_scaled_sphere_keeps_an_ellipsoid_matrix_and_its_inverse);
     tcase_add_test(cmds, test_trinormal_transforms_normals_by_the_inverse_transpose);
+    tcase_add_test(cmds, test_a_mirroring_transform_keeps_triangles_counter_clockwise_from_outside);
+    tcase_add_test(cmds, test_rotate_takes_tiny_and_huge_axes_by_their_direction);
     tcase_add_test(cmds, test_lights_are_in_world_space_and_point_takes_the_current_attenuation);
     tcase_add_test(cmds, test_envmap_takes_file_scale_and_the_current_transform);
     tcase_add_test(cmds, test_envmap_paths_are_relative_to_the_scene_folder);

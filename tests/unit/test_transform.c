@@ -181,6 +181,49 @@ START_TEST(test_transform_normal_stays_perpendicular_under_nonuniform_scale)
 }
 END_TEST
 
+/* det of the linear part is the volume factor: (M e1 x M e2) . M e3 = det(M) (e1 x e2) . e3
+ * for any vectors, and its sign says whether M mirrors (the scene parser keeps triangles
+ * counter-clockwise with it).  Catches a wrong cofactor sign or a translation column used. */
+START_TEST(test_transform_det3_is_the_volume_factor_and_negative_for_mirrors)
+{
+    rng r;
+    rng_seed(&r, 13, 0);
+    for (int n = 0; n < 2000; n++) {
+        mat4 m = random_affine(&r);
+        vec3 e1 = vec3_make(sym(&r), sym(&r), sym(&r)), e2 = vec3_make(sym(&r), sym(&r), sym(&r));
+        vec3 e3 = vec3_make(sym(&r), sym(&r), sym(&r));
+        double before = vec3_dot(vec3_cross(e1, e2), e3);
+        double after = vec3_dot(vec3_cross(mat4_dir(&m, e1), mat4_dir(&m, e2)), mat4_dir(&m, e3));
+        double det = mat4_det3(&m);
+        EXPECT_NEAR(after, det * before, 1e-9 * fmax(1, fabs(det)));
+    }
+    mat4 t = mat4_translate(vec3_make(5, 6, 7));
+    EXPECT_NEAR(mat4_det3(&t), 1, 0);
+    mat4 s = mat4_scale(vec3_make(-1, 2, 3));
+    EXPECT_NEAR(mat4_det3(&s), -6, 0);
+    mat4 rm = mat4_rotate(vec3_make(1, 2, 3), 77);
+    EXPECT_NEAR(mat4_det3(&rm), 1, 1e-15);
+}
+END_TEST
+
+/* Only the axis's direction counts: (1, 2, 3) scaled by 10^-300 .. 10^300 gives the same
+ * rotation.  Catches a length from sqrt(x^2 + y^2 + z^2): it overflowed for 1e200 (axis 0, so
+ * R = cos(t) I: `rotate 1e200 0 0 90` collapsed the object to a point) and lost bits for 1e-160
+ * (subnormal squares: an error of 1e-5). */
+START_TEST(test_transform_rotate_depends_only_on_the_axis_direction)
+{
+    mat4 ref = mat4_rotate(vec3_make(1, 2, 3), 77);
+    for (int e = -300; e <= 300; e += 10) {
+        double k = pow(10, e);
+        mat4 r = mat4_rotate(vec3_make(k, 2 * k, 3 * k), 77);
+        for (int i = 0; i < 4; i++)
+            for (int j = 0; j < 4; j++)
+                EXPECT_MSG(fabs(r.m[i][j] - ref.m[i][j]) <= 1e-15, "axis scale 1e%d: m[%d][%d] = %.17g, "
+                           "expected %.17g", e, i, j, r.m[i][j], ref.m[i][j]);
+    }
+}
+END_TEST
+
 Suite *transform_suite(void)
 {
     Suite *s = suite_create("transform");
@@ -193,6 +236,8 @@ Suite *transform_suite(void)
     tcase_add_test(tc, test_transform_inverse_of_simple_matrices_is_within_1e_12);
     tcase_add_test(tc, test_transform_singular_matrix_returns_minus_one_and_leaves_out_untouched);
     tcase_add_test(tc, test_transform_normal_stays_perpendicular_under_nonuniform_scale);
+    tcase_add_test(tc, test_transform_det3_is_the_volume_factor_and_negative_for_mirrors);
+    tcase_add_test(tc, test_transform_rotate_depends_only_on_the_axis_direction);
     suite_add_tcase(s, tc);
     return s;
 }

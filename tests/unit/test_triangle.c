@@ -159,8 +159,8 @@ static int reference_sliver_test_first(vec3 p0, vec3 p1, vec3 p2, const ray *r, 
     vec3 pv = vec3_cross(r->d, e2);
     double det = vec3_dot(e1, pv);
     if (det == 0 || !isfinite(det)) return 0;
-    double bound = vec3_length2(r->d) * vec3_length2(e1) * vec3_length2(e2);
-    if (det * det <= TRIANGLE_DEGENERATE_EPS * TRIANGLE_DEGENERATE_EPS * bound) return 0;
+    double bound = TRIANGLE_DEGENERATE_EPS * vec3_length(r->d) * vec3_length(e1) * vec3_length(e2);
+    if (fabs(det) <= bound) return 0;
     double inv = 1.0 / det;
     vec3 s = vec3_sub(r->o, p0);
     double b1 = vec3_dot(s, pv) * inv;
@@ -277,6 +277,36 @@ START_TEST(test_triangle_random_hits_reproduce_the_aimed_point)
 }
 END_TEST
 
+/* Hits do not depend on the scene's unit: the same triangle and ray scaled by 10^-100 .. 10^100
+ * (corners, origin and direction alike) give the same hit, t and barycentrics.  Catches a
+ * sliver bound built from squared lengths, whose product overflowed to inf (or underflowed to
+ * 0) for edges beyond ~1e51 (below ~1e-54) and rejected every such triangle. */
+START_TEST(test_triangle_hits_do_not_depend_on_the_scene_scale)
+{
+    const vec3 a = {-1, -1, 0.5}, b = {2, -1, 0}, c = {0, 1.5, 0.25};
+    const vec3 o = {0.1, 0.2, 3}, d = {0.05, -0.1, -1};
+    for (int e = -100; e <= 100; e += 5) {
+        double s = pow(10, e);
+        ray r = make_ray(vec3_scale(o, s), vec3_scale(d, s));
+        double t, b1, b2;
+        EXPECT_MSG(triangle_intersect(vec3_scale(a, s), vec3_scale(b, s), vec3_scale(c, s), &r, &t, &b1, &b2),
+                   "scale 1e%d: no hit", e);
+        /* o + t d = b0 a + b1 b + b2 c at scale 1: t = 2.7 / 1.005 ... check against scale 1 */
+        ray r1 = make_ray(o, d);
+        double t1, c1, c2;
+        EXPECT(triangle_intersect(a, b, c, &r1, &t1, &c1, &c2));
+        EXPECT_NEAR(t, t1, 1e-13);
+        EXPECT_NEAR(b1, c1, 1e-13);
+        EXPECT_NEAR(b2, c2, 1e-13);
+        /* a unit direction at that scale: t scales instead */
+        r = make_ray(vec3_scale(o, s), vec3_normalize(d));
+        EXPECT_MSG(triangle_intersect(vec3_scale(a, s), vec3_scale(b, s), vec3_scale(c, s), &r, &t, &b1, &b2),
+                   "scale 1e%d, unit direction: no hit", e);
+        EXPECT_NEAR(t / (s * vec3_length(d)), t1, 1e-13);
+    }
+}
+END_TEST
+
 Suite *triangle_suite(void)
 {
     Suite *s = suite_create("triangle");
@@ -292,6 +322,7 @@ Suite *triangle_suite(void)
     tcase_add_test(tc, test_triangle_nan_ray_misses);
     tcase_add_test(tc, test_triangle_random_hits_reproduce_the_aimed_point);
     tcase_add_test(tc, test_triangle_sliver_test_last_gives_the_same_answers_as_first);
+    tcase_add_test(tc, test_triangle_hits_do_not_depend_on_the_scene_scale);
     suite_add_tcase(s, tc);
     return s;
 }
