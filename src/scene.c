@@ -550,10 +550,10 @@ static int cmd_directional(parser *p)
     scene_light l;
     memset(&l, 0, sizeof l);
     if (arg_nums(p, 1, 3, v) || arg_rgb(p, 4, &l.color)) return -1;
-    vec3 d = vec3_make(v[0], v[1], v[2]);
-    if (!(vec3_length(d) > 0)) return fail(p, "'directional' direction is zero");
+    /* only the direction counts, at any length: vec3_length overflows for 1e200 (normalized
+     * to 0: a light that lit nothing) and underflows for 1e-170 (refused as zero) */
+    if (vec3_unit_direction(vec3_make(v[0], v[1], v[2]), &l.dir)) return fail(p, "'directional' direction is zero");
     l.kind = LIGHT_DIRECTIONAL;
-    l.dir = vec3_normalize(d);
     return add_light(p, &l);
 }
 

@@ -698,6 +698,25 @@ START_TEST(test_rotate_takes_tiny_and_huge_axes_by_their_direction)
 }
 END_TEST
 
+/* `directional` likewise: the direction of 1e200 or 1e-170 times (1, 2, 3) is that of (1, 2, 3)
+ * (it was normalized to 0, a light that lit nothing, or refused as zero) */
+START_TEST(test_directional_takes_tiny_and_huge_directions_by_their_direction)
+{
+    static const char *const dirs[] = {"1e-300 2e-300 3e-300", "1e-170 2e-170 3e-170", "1e200 2e200 3e200"};
+    vec3 want = vec3_normalize(vec3_make(1, 2, 3));
+    for (int a = 0; a < 3; a++) {
+        char text[512];
+        snprintf(text, sizeof text, HEAD "directional %s 1 1 1\n", dirs[a]);
+        scene sc;
+        load_ok(text, &sc);
+        ck_assert_int_eq(sc.n_lights, 1);
+        assert_vec_near(sc.lights[0].dir, want.x, want.y, want.z);
+        scene_free(&sc);
+    }
+    load_fails(HEAD "directional 0 0 0 1 1 1\n", 3, "'directional' direction is zero");
+}
+END_TEST
+
 START_TEST(test_pop_restores_the_transform_saved_by_push)
 {
     scene sc;
@@ -1557,6 +1576,7 @@ Suite *scene_suite(void)
     tcase_add_test(cmds, test_trinormal_transforms_normals_by_the_inverse_transpose);
     tcase_add_test(cmds, test_a_mirroring_transform_keeps_triangles_counter_clockwise_from_outside);
     tcase_add_test(cmds, test_rotate_takes_tiny_and_huge_axes_by_their_direction);
+    tcase_add_test(cmds, test_directional_takes_tiny_and_huge_directions_by_their_direction);
     tcase_add_test(cmds, test_lights_are_in_world_space_and_point_takes_the_current_attenuation);
     tcase_add_test(cmds, test_envmap_takes_file_scale_and_the_current_transform);
     tcase_add_test(cmds, test_envmap_paths_are_relative_to_the_scene_folder);
