@@ -61,11 +61,13 @@ double analyticdirect_irradiance(const scene_light *l, vec3 p, vec3 n)
     return fmax(0.0, vec3_dot(polygon_irradiance_vector(c, m, p), n));
 }
 
-rgb analyticdirect_radiance(integrator *it, ray r, rng *g)
+rgb analyticdirect_radiance(integrator *it, ray r, rng *g) { return analyticdirect_radiance_diff(it, r, NULL, g); }
+
+rgb analyticdirect_radiance_diff(integrator *it, ray r, const ray_diff *rd, rng *g)
 {
     (void)g;
     scene_hit sh;
-    integrator_intersect(it, &r, &sh);
+    integrator_intersect_diff(it, &r, rd, &sh); /* the footprint filters kd and emission maps */
     if (sh.kind == 0) return envmap_radiance(&it->env, r.d);
     if (sh.kind == 2) return lights_quad_radiance(&it->ls, sh.light, r.d);
     const surface *s = &sh.s;

@@ -53,6 +53,37 @@ static double sphere_height(void *ctx, vec3 p, vec3 n, uv2 st)
     return eval_height(c, st, vec3_madd(c->center, p, c->radius)); /* P_object = c + R p */
 }
 
+/* Corner (s, t) of a displaced sphere's triangle under the sphere's mapping (never uv), from
+ * the tessellation's spherical corner st (displace.h: s up to 1 across the seam, a pole corner
+ * at the middle s of its segment).  The mapping sees what the undisplaced sphere's does, the
+ * unit direction u = (sin theta cos phi, sin theta sin phi, cos theta) with phi = 2 pi s,
+ * theta = pi (1 - t), and never the displaced object point: texshade would map that point as
+ * a triangle's (no centre, no radius) and show the texture elsewhere.
+ *   spherical    the tessellation's st itself
+ *   cylindrical  its s (seam-aware), t = u.z
+ *   planar       (u.x, u.y)
+ *   cube         every corner projected on the face of the triangle's centre direction
+ *                (texmapping_cube_face), so a triangle across a face edge is not torn apart */
+static void sphere_corner_st(texmapping_kind mapping, const uv2 sph[3], uv2 out[3])
+{
+    vec3 u[3], mid = {0, 0, 0};
+    for (int k = 0; k < 3; k++) {
+        double phi = 2 * M_PI * sph[k].u, theta = M_PI * (1.0 - sph[k].v);
+        u[k] = vec3_make(sin(theta) * cos(phi), sin(theta) * sin(phi), cos(theta));
+        mid = vec3_add(mid, u[k]);
+    }
+    int face = 0;
+    if (mapping == TEXMAPPING_CUBE) texmapping_cube(mid, &face);
+    for (int k = 0; k < 3; k++) {
+        switch (mapping) {
+        case TEXMAPPING_CYLINDRICAL: out[k] = (uv2){sph[k].u, u[k].z}; break; /* (phi / 2 pi, z) */
+        case TEXMAPPING_PLANAR: out[k] = (uv2){u[k].x, u[k].y}; break;        /* (x, y) */
+        case TEXMAPPING_CUBE: out[k] = texmapping_cube_face(u[k], face); break;
+        default: out[k] = sph[k]; break; /* spherical: (phi / 2 pi, 1 - theta / pi) */
+        }
+    }
+}
+
 /* Barycentrics of world point p on triangle tr (least squares in its plane). */
 static void tri_bary(const scene_triangle *tr, vec3 p, double *b1, double *b2)
 {
@@ -300,9 +331,9 @@ int displacemap_apply(const scene *in, long max_tris, scene *out, displacemap_st
                 o->q[k] = vec3_madd(sp->center, m.p[v], sp->radius); /* c + R p */
                 o->p[k] = mat4_point(&sp->xf, o->q[k]);
                 o->n[k] = vec3_normalize(mat4_normal(&sp->inv, m.n[v]));
-                o->st[k] = m.tris[t].st[k];
             }
-            o->has_normals = o->has_st = 1;
+            sphere_corner_st(c.mapping, m.tris[t].st, o->st);
+            o->has_normals = o->has_st = o->st_mapped = 1;
             o->material = sp->material;
         }
         displace_mesh_free(&m);

@@ -99,7 +99,7 @@ rgb integrator_radiance_diff(integrator *it, ray r, const ray_diff *rd, rng *g)
 {
     switch (it->sc->integrator) {
     case INTEGRATOR_RAYTRACER: return raytracer_trace_diff(&it->rt, r, rd);
-    case INTEGRATOR_ANALYTICDIRECT: return analyticdirect_radiance(it, r, g);
+    case INTEGRATOR_ANALYTICDIRECT: return analyticdirect_radiance_diff(it, r, rd, g);
     case INTEGRATOR_DIRECT: return direct_radiance_diff(it, r, rd, g);
     default: return pathtracer_radiance_diff(it, r, rd, g);
     }

@@ -98,7 +98,8 @@ void texshade_point_at(const scene *sc, const hit *h, const surface *s, texshade
     }
     const scene_triangle *tr = &sc->triangles[h->prim];
     double b1 = h->bary.u, b2 = h->bary.v, b0 = 1 - b1 - b2;
-    tp->mapping = scene_material_texmapping(m, 0);
+    /* a displaced sphere's triangles carry its mapping in st (scene_triangle.st_mapped) */
+    tp->mapping = tr->st_mapped ? TEXMAPPING_UV : scene_material_texmapping(m, 0);
     /* P_object = b0 q0 + b1 q1 + b2 q2 */
     tp->q = vec3_add(vec3_add(vec3_scale(tr->q[0], b0), vec3_scale(tr->q[1], b1)),
                      vec3_scale(tr->q[2], b2));

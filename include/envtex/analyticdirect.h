@@ -14,6 +14,9 @@
 #include "envtex/integrator.h"
 
 rgb analyticdirect_radiance(integrator *it, ray r, rng *g);
+/* ... with the camera ray's differentials rd (NULL: none): the footprint that filters the hit's
+ * texture maps (texshade.h), as in the other integrators. */
+rgb analyticdirect_radiance_diff(integrator *it, ray r, const ray_diff *rd, rng *g);
 
 /* The irradiance vector Phi(p) of the whole parallelogram of quad light l, for p in front of it
  * (unclipped: Phi . n counts the part below p's horizon negatively). */

@@ -42,7 +42,11 @@
  * vertex: a vertex on the edge between two displaced triangles' patches, with the same normal
  * before displacement on both sides, gets one normal from both patches, not a one-sided one
  * from each, so the shading has no crease along the original edges), has_st = 1 (the corner st of the
- * tessellation), and object-space corners q for point mappings and solid textures.
+ * tessellation), and object-space corners q for point mappings and solid textures.  A sphere's
+ * triangles also get st_mapped = 1: their corner st is the sphere's own mapping (its texmapping,
+ * uv meaning spherical) of the undisplaced unit direction, which the renderer interpolates, so
+ * the displaced copy shows its maps where the sphere did (texshade would otherwise map the
+ * triangles' object points q, which know no centre or radius).
  */
 #ifndef ENVTEX_DISPLACEMAP_H
 #define ENVTEX_DISPLACEMAP_H

@@ -83,6 +83,10 @@ typedef struct scene_triangle {
                        (has_st = 1), else (0,0), (1,0), (0,1) for the corners as written, so
                        that st = (b1, b2) of those corners */
     int has_st;
+    int st_mapped;  /* 1: st already holds the material's point mapping, made where q cannot make
+                       it (a displaced sphere's tessellation, displacemap.h: its mapping sees the
+                       sphere's unit direction, not q); the renderer then interpolates st as for
+                       `uv`.  0 for every triangle of a scene file */
     vec3 q[3];      /* OBJECT-space corners (the vertices as written, before the transform), for
                        the point-based mappings and solid textures: P_object = sum b_i q_i.
                        Corners, not a matrix index, because they need no inverse (a triangle

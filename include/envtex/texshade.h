@@ -23,7 +23,9 @@
  *             solid textures see P_object itself.
  *   triangle  uv (default): st = b0 st0 + b1 st1 + b2 st2 (the lecture's barycentric
  *             interpolation); a point mapping uses the object-space point
- *             P_object = b0 q0 + b1 q1 + b2 q2, which solid textures see too.
+ *             P_object = b0 q0 + b1 q1 + b2 q2, which solid textures see too.  A triangle
+ *             with st_mapped (a displaced sphere's) interpolates st whatever the mapping: its
+ *             corners already hold the sphere's mapping.
  * Footprints: dp/dx, dp/dy from raydiff_at_hit; triangles turn them into barycentric
  * differentials db (least squares in the triangle's plane), so dst = db1 (st1 - st0) +
  * db2 (st2 - st0) and dP_object = db1 (q1 - q0) + db2 (q2 - q0); spheres take dP_object =

@@ -1,5 +1,10 @@
 /* test_displacemap.c - displacement maps applied to a copy of the scene (displacemap.h). */
 #include "envtex/displacemap.h"
+
+#include <stdio.h>
+
+#include "envtex/bvh.h"
+#include "envtex/texshade.h"
 #include "unit.h"
 
 static scene load(const char *text)
@@ -191,6 +196,58 @@ START_TEST(test_rates_are_halved_until_the_budget_fits_and_an_impossible_budget_
 }
 END_TEST
 
+/* (s, t) where a ray from (x, 10, z) straight down (-y) hits sc, as texshade sees it */
+static uv2 st_seen_from_above(const scene *sc, double x, double z)
+{
+    bvh b;
+    error err = {0};
+    ck_assert_msg(bvh_build(&b, sc, &err) == 0, "%s", err.msg);
+    ray r = {vec3_make(x, 10, z), vec3_make(0, -1, 0), 0, INFINITY};
+    hit h;
+    ck_assert(bvh_intersect(&b, sc, &r, &h));
+    surface s;
+    memset(&s, 0, sizeof s); /* no differentials */
+    texshade_point tp;
+    texshade_point_at(sc, &h, &s, &tp);
+    bvh_free(&b);
+    return tp.st;
+}
+
+/* A sphere's `texmapping` maps the unit direction (P_object - c) / R; its displaced copy is
+ * triangles, and must show the texture where the sphere did, for every mapping (a zero height
+ * moves nothing: only the tessellation differs, by its chord error, < 1e-3 here).  Off the
+ * origin, with a radius other than 1 and under a transform, mapping the triangles' object
+ * points instead put planar, cylindrical, spherical and cube textures elsewhere. */
+START_TEST(test_a_displaced_sphere_keeps_its_texture_mapping)
+{
+    static const char *const mappings[] = {"uv", "planar", "cylindrical", "spherical", "cube"};
+    for (int k = 0; k < 5; k++) {
+        char text[1024];
+        snprintf(text, sizeof text,
+                 "size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX("0")
+                 "texture c checker 4  1 0 0  0 1 0\n"
+                 "texmapping %s\ndiffusemap c\ndisplacementmap h 0.3\n"
+                 "translate 0.2 -0.4 0.3\nscale 1.2 0.8 1.1\nsphere 1 0.5 -0.3 1.5\n",
+                 mappings[k]);
+        scene sc = load(text), out;
+        displacemap_stats st;
+        error err = {0};
+        ck_assert_msg(displacemap_apply(&sc, 0, &out, &st, &err) == 0, "%s", err.msg);
+        /* rays near the top of the ellipsoid, world centre (1.4, 0, 0): object directions
+         * near +y, away from the spherical seam and inside the cube's +y face */
+        for (int i = 0; i < 9; i++) {
+            double x = 1.4 + 0.4 * (i % 3 - 1), z = 0.4 * (i / 3 - 1);
+            uv2 want = st_seen_from_above(&sc, x, z), got = st_seen_from_above(&out, x, z);
+            ck_assert_msg(fabs(got.u - want.u) < 2e-3 && fabs(got.v - want.v) < 2e-3,
+                          "texmapping %s at (%g, %g): displaced copy reads (%g, %g), the sphere "
+                          "(%g, %g)", mappings[k], x, z, got.u, got.v, want.u, want.v);
+        }
+        displacemap_free(&out);
+        scene_free(&sc);
+    }
+}
+END_TEST
+
 Suite *displacemap_suite(void)
 {
     Suite *s = suite_create("displacemap");
@@ -201,6 +258,7 @@ Suite *displacemap_suite(void)
     tcase_add_test(tc, test_triangles_without_normals_that_share_an_edge_are_displaced_without_a_crack);
     tcase_add_test(tc, test_normals_on_the_edge_between_two_patches_are_shared_not_one_sided);
     tcase_add_test(tc, test_rates_are_halved_until_the_budget_fits_and_an_impossible_budget_fails);
+    tcase_add_test(tc, test_a_displaced_sphere_keeps_its_texture_mapping);
     suite_add_tcase(s, tc);
     return s;
 }

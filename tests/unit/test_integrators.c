@@ -740,6 +740,41 @@ START_TEST(test_integrators_russian_roulette_keeps_the_mean)
 }
 END_TEST
 
+/* A light map (emissionmap) is what every integrator shows of an unlit surface, and it must be
+ * filtered alike: by the camera rays' footprint (ray differentials), so a receding checker fades
+ * to grey instead of breaking into moire.  analyticdirect dropped the differentials and read the
+ * finest level at every pixel (566 of 4096 pixels off by more than 0.05 at 64 x 64). */
+START_TEST(test_integrators_every_integrator_filters_textures_by_the_camera_footprint)
+{
+    static const char *const names[] = {"raytracer", "direct", "pathtracer", "analyticdirect"};
+    image ref = {0};
+    for (int k = 0; k < 4; k++) {
+        char text[1024];
+        snprintf(text, sizeof text,
+                 "size 32 32\ncamera 0 1 4  0 0 -4  0 1 0  45\nintegrator %s\nmaxdepth 1\n"
+                 "ambient 0 0 0\ntexture c checker 16  0 0 0  1 1 1\nemissionmap c\n"
+                 "vertex -10 0 10\nvertex 10 0 10\nvertex 10 0 -30\nvertex -10 0 -30\n"
+                 "tri 0 1 2\ntri 0 2 3\n",
+                 names[k]);
+        scene sc;
+        load(&sc, text);
+        image im;
+        render(&sc, 1, &im);
+        if (k == 0) {
+            ref = im;
+        } else {
+            for (long i = 0; i < 32L * 32 * 3; i++)
+                ck_assert_msg(fabs(im.px[i] - ref.px[i]) < 1e-6,
+                              "%s: pixel %ld reads %g, the ray tracer %g", names[k], i / 3,
+                              im.px[i], ref.px[i]);
+            image_free(&im);
+        }
+        scene_free(&sc);
+    }
+    image_free(&ref);
+}
+END_TEST
+
 Suite *integrators_suite(void)
 {
     Suite *s = suite_create("integrators");
@@ -766,6 +801,7 @@ Suite *integrators_suite(void)
     tcase_add_test(tc, test_integrators_brdf_rays_never_pass_below_the_geometric_surface);
     tcase_add_test(tc, test_integrators_mis_with_env_fraction_zero_is_brdf_sampling);
     tcase_add_test(tc, test_integrators_russian_roulette_keeps_the_mean);
+    tcase_add_test(tc, test_integrators_every_integrator_filters_textures_by_the_camera_footprint);
     suite_add_tcase(s, tc);
     return s;
 }
