@@ -323,16 +323,23 @@ int displacemap_apply(const scene *in, long max_tris, scene *out, displacemap_st
         /* SCALE object units along the unit sphere's normal: SCALE / R in its units */
         double scale = sp->radius > 0 ? mt->displacement_scale / sp->radius : 0.0;
         if (displace_sphere(srate, sphere_height, &c, scale, 0, &m, err)) goto fail;
+        /* a mirroring transform (det < 0) turns the corners clockwise seen from outside: take
+         * them in the order 0, 2, 1, as scene.h does for parsed triangles, so that e1 x e2
+         * points out (glass decides entering or leaving by it) */
+        int mirror = mat4_det3(&sp->xf) < 0;
         for (long t = 0; t < m.n_tris; t++) {
             scene_triangle *o = &out->triangles[out->n_triangles++];
             memset(o, 0, sizeof *o);
+            uv2 sph[3];
             for (int k = 0; k < 3; k++) {
-                long v = m.tris[t].v[k];
+                int kk = mirror && k ? 3 - k : k; /* 0, 1, 2 or 0, 2, 1 */
+                long v = m.tris[t].v[kk];
+                sph[k] = m.tris[t].st[kk];
                 o->q[k] = vec3_madd(sp->center, m.p[v], sp->radius); /* c + R p */
                 o->p[k] = mat4_point(&sp->xf, o->q[k]);
                 o->n[k] = vec3_normalize(mat4_normal(&sp->inv, m.n[v]));
             }
-            sphere_corner_st(c.mapping, m.tris[t].st, o->st);
+            sphere_corner_st(c.mapping, sph, o->st);
             o->has_normals = o->has_st = o->st_mapped = 1;
             o->material = sp->material;
         }

@@ -46,7 +46,9 @@
  * triangles also get st_mapped = 1: their corner st is the sphere's own mapping (its texmapping,
  * uv meaning spherical) of the undisplaced unit direction, which the renderer interpolates, so
  * the displaced copy shows its maps where the sphere did (texshade would otherwise map the
- * triangles' object points q, which know no centre or radius).
+ * triangles' object points q, which know no centre or radius).  Under a mirroring transform
+ * (det < 0) a sphere's corners are taken in the order 0, 2, 1, so that every output triangle
+ * is counter-clockwise seen from outside, as scene.h's parsed triangles are.
  */
 #ifndef ENVTEX_DISPLACEMAP_H
 #define ENVTEX_DISPLACEMAP_H

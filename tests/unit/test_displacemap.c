@@ -176,6 +176,35 @@ START_TEST(test_normals_on_the_edge_between_two_patches_are_shared_not_one_sided
 }
 END_TEST
 
+/* A displaced sphere under a mirroring transform (det < 0) stays counter-clockwise seen from
+ * outside, as parsed triangles do (scene.h): every triangle's e1 x e2 points away from the
+ * centre, else glass would refract its index the wrong way round. */
+START_TEST(test_a_displaced_sphere_under_a_mirror_keeps_its_triangles_facing_out)
+{
+    static const char *const xf[] = {"", "scale -1 1 1\n", "scale -1 -1 -1\n", "rotate 0 1 0 30\nscale 1 -2 1\n"};
+    for (int k = 0; k < 4; k++) {
+        char text[512];
+        snprintf(text, sizeof text, "size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX("0.5")
+                 "displacementmap h 0.1\n%ssphere 0.5 0 0 1\n", xf[k]);
+        scene sc = load(text), out;
+        displacemap_stats st;
+        error err = {0};
+        ck_assert_msg(displacemap_apply(&sc, 0, &out, &st, &err) == 0, "%s", err.msg);
+        vec3 c = mat4_point(&sc.spheres[0].xf, sc.spheres[0].center);
+        long inward = 0;
+        for (long i = 0; i < out.n_triangles; i++) {
+            const scene_triangle *t = &out.triangles[i];
+            vec3 ng = vec3_cross(vec3_sub(t->p[1], t->p[0]), vec3_sub(t->p[2], t->p[0]));
+            vec3 mid = vec3_scale(vec3_add(vec3_add(t->p[0], t->p[1]), t->p[2]), 1.0 / 3);
+            inward += vec3_dot(ng, vec3_sub(mid, c)) < 0;
+        }
+        ck_assert_msg(inward == 0, "transform %d: %ld of %ld triangles face the centre", k, inward, out.n_triangles);
+        displacemap_free(&out);
+        scene_free(&sc);
+    }
+}
+END_TEST
+
 START_TEST(test_rates_are_halved_until_the_budget_fits_and_an_impossible_budget_fails)
 {
     scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX("1")
@@ -257,6 +286,7 @@ Suite *displacemap_suite(void)
     tcase_add_test(tc, test_displaced_triangle_moves_along_its_normal_and_keeps_object_corners);
     tcase_add_test(tc, test_triangles_without_normals_that_share_an_edge_are_displaced_without_a_crack);
     tcase_add_test(tc, test_normals_on_the_edge_between_two_patches_are_shared_not_one_sided);
+    tcase_add_test(tc, test_a_displaced_sphere_under_a_mirror_keeps_its_triangles_facing_out);
     tcase_add_test(tc, test_rates_are_halved_until_the_budget_fits_and_an_impossible_budget_fails);
     tcase_add_test(tc, test_a_displaced_sphere_keeps_its_texture_mapping);
     suite_add_tcase(s, tc);
