@@ -558,7 +558,7 @@ END_TEST
 
 /* cdf-sintheta: xi_inner = 0 in a lit top row puts theta exactly at 0, where sin theta = 0:
  * the sample must still succeed with a finite pdf (the header: "never [fails] for a valid
- * table").  PENDING (/tmp/issue4-fixes.patch, fix 1): it returns 0 with pdf 0 today */
+ * table"; it once returned 0 with pdf 0 there) */
 START_TEST(test_envlight_sintheta_sample_on_the_pole_edge_succeeds)
 {
     image im;
@@ -859,10 +859,10 @@ START_TEST(test_envlight_mediancut_strata_partition_the_map_and_its_power)
 }
 END_TEST
 
-/* each point light lies inside its own stratum.  PENDING (/tmp/issue4-fixes.patch, fix 2): the
- * 3D mean direction of a stratum that is wide in phi near a pole (a piece of a ring) lies
- * poleward of it, outside the stratum (N = 64 on this map: stratum columns [32, 49) of row 5,
- * point in row 4) */
+/* each point light lies inside its own stratum: the energy centroid in image coordinates, not
+ * the 3D mean direction, which for a stratum wide in phi near a pole (a piece of a ring) lies
+ * poleward of it, outside (it did: N = 64 on this map, stratum columns [32, 49) of row 5, point
+ * in row 4) */
 START_TEST(test_envlight_mediancut_points_lie_inside_their_strata)
 {
     image im;
@@ -918,10 +918,6 @@ START_TEST(test_envlight_mediancut_strata_of_a_constant_map_have_equal_energy)
 }
 END_TEST
 
-/* Tests of behaviour the lead has not fixed yet (see /tmp/issue4-fixes.patch): set to 1 once
- * the patch is applied. */
-#define ENVLIGHT_PENDING_FIXES 1
-
 Suite *envlight_suite(void)
 {
     Suite *s = suite_create("envlight");
@@ -950,10 +946,8 @@ Suite *envlight_suite(void)
     tcase_set_timeout(tc, 60);
     tcase_add_test(tc, test_envlight_mediancut_strata_partition_the_map_and_its_power);
     tcase_add_test(tc, test_envlight_mediancut_strata_of_a_constant_map_have_equal_energy);
-    if (ENVLIGHT_PENDING_FIXES) {
-        tcase_add_test(tc, test_envlight_mediancut_points_lie_inside_their_strata);
-        tcase_add_test(tc, test_envlight_sintheta_sample_on_the_pole_edge_succeeds);
-    }
+    tcase_add_test(tc, test_envlight_mediancut_points_lie_inside_their_strata);
+    tcase_add_test(tc, test_envlight_sintheta_sample_on_the_pole_edge_succeeds);
     suite_add_tcase(s, tc);
     return s;
 }
