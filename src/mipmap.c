@@ -336,5 +336,4 @@ rgb mipmap_lookup_ewa(const mipmap *m, uv2 st, uv2 dst_dx, uv2 dst_dy)
     if (f <= 0.0) return c0;
     rgb c1 = ewa_level(m, l + 1, st, d0, d1);
     return rgb_madd(rgb_scale(c0, 1.0 - f), c1, f); /* (1 - f) c0 + f c1 */
-    /* END STEP(mipmap) */
 }
