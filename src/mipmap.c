@@ -201,8 +201,8 @@ static inline __attribute__((always_inline)) mip_rgba bilinear_packed(const mipm
  *     c = (1 - f) bilinear(level l, st) + f bilinear(level l + 1, st),  l = floor(lod), f = lod - l */
 static inline __attribute__((always_inline)) rgb trilinear_at(const mipmap *m, uv2 st, double lod)
 {
-    /* STEP(mipmap): trilinear filtering: bilinear in the two nearest levels of the level lod = log2(footprint in texels), blended by the fraction (slides 36-39) */
-    /* STUB: (void)lod; return texlookup_bilinear(&m->level[0], st, m->wrap); */
+    /* STEP(mipmap): trilinear filtering at the level lod = log2(footprint in texels) (given): bilinear in levels l = floor(lod) and l + 1 (bilinear_packed), blended by f = lod - l; lod = levels - 1 has no level above (slides 36-39) */
+    /* STUB: (void)lod; (void)bilinear_packed; return texlookup_bilinear(&m->level[0], st, m->wrap); */
     int l = (int)lod;
     double f = lod - l; /* 0 at the top level, so l + 1 is never read past it */
     mip_rgba c = bilinear_packed(m, l, st); /* texlookup_bilinear(&m->level[l], st, m->wrap) */
