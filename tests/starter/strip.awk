@@ -2,12 +2,12 @@
 #
 # A solution region in the source reads
 #       /* STEP(latlong): direction -> (u, v): theta = acos z, phi = atan2(y, x) (slide 12) */
-#       /* STUB: (void)d; (void)uv; return -1; */
+#       /* STUB: uv->u = 0; uv->v = 0; return -1; */
 #       ... the solution ...
 #       /* END STEP(latlong) */
 # With `steps` (space separated) naming latlong, the region becomes
 #       /* TODO(latlong): direction -> (u, v): theta = acos z, phi = atan2(y, x) (slide 12) */
-#       (void)d; (void)uv; return -1;
+#       uv->u = 0; uv->v = 0; return -1;
 # Regions of other steps keep their solution (the marker lines stay as comments).
 # Every marker is checked, for every step (stripped or not): a STEP line must be followed by its
 # STUB line, regions do not nest, and each END STEP closes the open region of the same name.  A
