@@ -6,7 +6,7 @@
 #   make bench      benchmarks (medians of repeated runs)
 #   make update-golden   re-render the golden references (look at them before committing)
 #   make docs-images     re-render the pictures in docs/images/ from data/scenes/
-#   make starter STEPS="latlong cdf"   an assignment starter tree with those steps as stubs
+#   make starter STEPS="latlong cdf"   an assignment starter tree with those steps as stubs (or all)
 #   make test STEP=cdf   only the tests of one lecture step (tests/steps)
 #   make deps       install the Debian packages envtex needs (apt-get, as root or via sudo)
 #   make fuzz       libFuzzer on every parser, FUZZ_SECONDS each (needs clang; docs/robustness.md)

@@ -201,8 +201,8 @@ static inline __attribute__((always_inline)) mip_rgba bilinear_packed(const mipm
  *     c = (1 - f) bilinear(level l, st) + f bilinear(level l + 1, st),  l = floor(lod), f = lod - l */
 static inline __attribute__((always_inline)) rgb trilinear_at(const mipmap *m, uv2 st, double lod)
 {
-    /* STEP(mipmap): trilinear filtering: bilinear in the two nearest levels of the level lod = log2(footprint in texels), blended by the fraction (slides 36-39) */
-    /* STUB: (void)lod; return texlookup_bilinear(&m->level[0], st, m->wrap); */
+    /* STEP(mipmap): trilinear filtering at the level lod = log2(footprint in texels) (given): bilinear in levels l = floor(lod) and l + 1 (bilinear_packed), blended by f = lod - l; lod = levels - 1 has no level above (slides 36-39) */
+    /* STUB: (void)lod; (void)bilinear_packed; return texlookup_bilinear(&m->level[0], st, m->wrap); */
     int l = (int)lod;
     double f = lod - l; /* 0 at the top level, so l + 1 is never read past it */
     mip_rgba c = bilinear_packed(m, l, st); /* texlookup_bilinear(&m->level[l], st, m->wrap) */
@@ -336,5 +336,4 @@ rgb mipmap_lookup_ewa(const mipmap *m, uv2 st, uv2 dst_dx, uv2 dst_dy)
     if (f <= 0.0) return c0;
     rgb c1 = ewa_level(m, l + 1, st, d0, d1);
     return rgb_madd(rgb_scale(c0, 1.0 - f), c1, f); /* (1 - f) c0 + f c1 */
-    /* END STEP(mipmap) */
 }

@@ -1,6 +1,6 @@
 /* bump.h - bump mapping: a shading normal perturbed by the derivatives of a height texture,
  * without moving the surface (Blinn 1978).  Lecture "Environment, Texture Maps", the bump-map
- * slide of 25-46: "perturb the normal, not the geometry".
+ * slide 42: "perturb the normal, not the geometry".
  *
  *     double h, dh_ds, dh_dt;
  *     texture_height_derivs(tex, &q, &h, &dh_ds, &dh_dt);      // texture.h

@@ -1,6 +1,6 @@
 /* cubemap.h - the cube map: an environment stored as six square images on the faces of a cube
- * around the viewer.  Lecture "Environment, Texture Maps", slides 11-12: "take biggest abs of
- * (x,y,z), divide/renorm by it ... cubemap coord to vec: normalize".
+ * around the viewer.  Lecture "Environment, Texture Maps", slides 6-9 and 13-14: "take biggest
+ * abs of (x,y,z), divide/renorm by it ... cubemap coord to vec: normalize".
  *
  *     cubemap cm = {0};
  *     if (cubemap_from_cross(&cross, &cm, &err)) return -1;  // 4:3 or 3:4 cross image

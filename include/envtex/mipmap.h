@@ -1,7 +1,7 @@
 /* mipmap.h - the image pyramid for minification (Williams 1983): trilinear lookups with a
  * scalar footprint, and elliptical weighted average (EWA, Heckbert 1989, as in pbrt-v3's
  * MIPMap::EWA) for anisotropic footprints.  Lecture "Environment, Texture Maps", the
- * mip-mapping part of slides 25-46: "prefilter the texture at a pyramid of resolutions; pick the
+ * mip-mapping slides 36-39: "prefilter the texture at a pyramid of resolutions; pick the
  * level whose texels match the pixel's footprint; blend the two nearest levels".
  *
  *     mipmap m;

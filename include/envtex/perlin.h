@@ -1,6 +1,6 @@
 /* perlin.h - Ken Perlin's Improved Noise (SIGGRAPH 2002) and the solid textures built from it:
  * fractal sums (fbm), turbulence, marble and wood.  Lecture "Environment, Texture Maps", the
- * procedural (solid) texture part of slides 25-46: noise, turbulence, marble, wood.
+ * procedural (solid) texture slides 44-46: noise, turbulence, marble, wood.
  *
  *     double n = perlin_noise(p.x, p.y, p.z);                        // about [-1, 1]
  *     double f = perlin_fbm(p, 6, 2.0, 0.5);                        // 6 octaves
