@@ -123,7 +123,7 @@ run: deps
 	@echo "rendered out/demo.exr and out/demo.png"
 
 clean:
-	rm -rf build build-asan envtex out
+	rm -rf build build-asan build-o3 envtex out
 
 -include $(LIB_OBJ:.o=.d) $(BUILD)/obj/main.d
 

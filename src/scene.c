@@ -142,7 +142,7 @@ static int arg_nums(parser *p, int first, int n, double *v)
 /* Argument i as an integer in [lo, hi] ("10", "10.0" and "1e1" are 10; "10.5" is an error). */
 static int arg_int(parser *p, int i, double lo, double hi, long *out)
 {
-    double v;
+    double v = 0;
     if (arg_num(p, i, &v)) return -1;
     if (v != floor(v))
         return fail(p, "expected an integer for '%s' argument %d, got '%s'", p->tok[0], i,
@@ -265,7 +265,7 @@ static int material_index(parser *p, int *out)
 
 static int cmd_size(parser *p)
 {
-    long w, h;
+    long w = 0, h = 0;
     if (arg_int(p, 1, 1, SCENE_MAX_SIZE, &w) || arg_int(p, 2, 1, SCENE_MAX_SIZE, &h)) return -1;
     if (w * h > SCENE_MAX_PIXELS)
         return fail(p, "'size' %ld x %ld is %ld pixels, more than the limit %ld", w, h, w * h,
@@ -277,7 +277,7 @@ static int cmd_size(parser *p)
 
 static int cmd_maxdepth(parser *p)
 {
-    long d;
+    long d = 0;
     if (arg_int(p, 1, -1, SCENE_MAX_DEPTH, &d)) return -1;
     p->sc->maxdepth = (int)d;
     return 0;
@@ -335,7 +335,7 @@ static int cmd_sphere(parser *p)
 {
     double v[4];
     if (arg_nums(p, 1, 3, v) || arg_nonneg(p, 4, 1, &v[3])) return -1;
-    const mat4 *inv;
+    const mat4 *inv = NULL;
     if (xf_inverse(p, &inv)) return -1;
     scene *sc = p->sc;
     if (sc->n_spheres >= p->max_prims)
@@ -357,7 +357,7 @@ static int cmd_sphere(parser *p)
 /* maxverts / maxvertnorms: capacity hints, capped at HINT_CAP. */
 static int cmd_maxverts(parser *p)
 {
-    long n;
+    long n = 0;
     if (arg_int(p, 1, 0, 1e18, &n)) return -1;
     if (n > HINT_CAP) n = HINT_CAP;
     if (strcmp(p->tok[0], "maxverts") == 0)
@@ -394,7 +394,7 @@ static int cmd_vertexnormal(parser *p)
 static int tri_indices(parser *p, long count, const char *list, long idx[3])
 {
     for (int k = 0; k < 3; k++) {
-        double v;
+        double v = 0;
         if (arg_num(p, k + 1, &v)) return -1;
         if (v != floor(v))
             return fail(p, "expected an integer for '%s' argument %d, got '%s'", p->tok[0], k + 1,
@@ -468,7 +468,7 @@ static int cmd_trinormal(parser *p)
 {
     long idx[3];
     if (tri_indices(p, p->n_vnorms, "vertexnormals", idx)) return -1;
-    const mat4 *inv;
+    const mat4 *inv = NULL;
     if (xf_inverse(p, &inv)) return -1;
     scene_triangle t;
     memset(&t, 0, sizeof t);
@@ -598,7 +598,7 @@ static int cmd_integrator(parser *p)
 {
     /* in the order of integrator_kind */
     static const char *const w[] = {"raytracer", "analyticdirect", "direct", "pathtracer"};
-    int k;
+    int k = 0;
     if (arg_word(p, w, 4, &k)) return -1;
     p->sc->integrator = (integrator_kind)k;
     return 0;
@@ -623,7 +623,7 @@ static int cmd_quadlight(parser *p)
 
 static int cmd_lightsamples(parser *p)
 {
-    long n;
+    long n = 0;
     if (arg_int(p, 1, 1, SCENE_MAX_LIGHTSAMPLES, &n)) return -1;
     p->sc->lightsamples = (int)n;
     return 0;
@@ -633,7 +633,7 @@ static int cmd_lightstratify(parser *p) { return arg_onoff(p, &p->sc->lightstrat
 
 static int cmd_spp(parser *p)
 {
-    long n;
+    long n = 0;
     if (arg_int(p, 1, 1, SCENE_MAX_SPP, &n)) return -1;
     p->sc->spp = (int)n;
     return 0;
@@ -642,7 +642,7 @@ static int cmd_spp(parser *p)
 static int cmd_nee(parser *p)
 {
     static const char *const w[] = {"off", "on", "mis"}; /* nee_mode order */
-    int k;
+    int k = 0;
     if (arg_word(p, w, 3, &k)) return -1;
     p->sc->nee = (nee_mode)k;
     return 0;
@@ -653,7 +653,7 @@ static int cmd_russianroulette(parser *p) { return arg_onoff(p, &p->sc->russianr
 static int cmd_importancesampling(parser *p)
 {
     static const char *const w[] = {"hemisphere", "cosine", "brdf"}; /* sampling_kind order */
-    int k;
+    int k = 0;
     if (arg_word(p, w, 3, &k)) return -1;
     p->sc->importancesampling = (sampling_kind)k;
     return 0;
@@ -662,7 +662,7 @@ static int cmd_importancesampling(parser *p)
 static int cmd_brdf(parser *p)
 {
     static const char *const w[] = {"phong", "ggx", "mirror", "glass"}; /* brdf_kind order */
-    int k;
+    int k = 0;
     if (arg_word(p, w, 4, &k)) return -1;
     p->mat.brdf = (brdf_kind)k;
     return 0;
@@ -685,7 +685,7 @@ static int cmd_gamma(parser *p)
 static int cmd_envmiss(parser *p)
 {
     static const char *const w[] = {"envmap", "black"}; /* envmiss_mode order */
-    int k;
+    int k = 0;
     if (arg_word(p, w, 2, &k)) return -1;
     p->sc->envmiss = (envmiss_mode)k;
     return 0;
@@ -694,7 +694,7 @@ static int cmd_envmiss(parser *p)
 static int cmd_envsampling(parser *p)
 {
     static const char *const w[] = {"uniform", "cdf", "cdf-sintheta", "mediancut"}; /* enum order */
-    int k;
+    int k = 0;
     if (arg_word(p, w, 4, &k)) return -1;
     if (k != ENVSAMPLING_MEDIANCUT && p->ntok > 2)
         return fail(p, "'envsampling %s' takes no count (only 'mediancut N' does)", w[k]);
@@ -710,7 +710,7 @@ static int cmd_envsampling(parser *p)
 static int cmd_envsampler(parser *p)
 {
     static const char *const w[] = {"binary", "alias"}; /* envsampler_kind order */
-    int k;
+    int k = 0;
     if (arg_word(p, w, 2, &k)) return -1;
     p->sc->envsampler = (envsampler_kind)k;
     return 0;
@@ -723,7 +723,7 @@ static int cmd_envsamplefraction(parser *p)
         p->sc->envsamplefraction = -1;
         return 0;
     }
-    double f;
+    double f = 0;
     if (arg_num(p, 1, &f)) return -1;
     if (!(f >= 0 && f <= 1))
         return fail(p, "'envsamplefraction' must be 'auto' or a number in [0, 1], got '%s'", p->tok[1]);
@@ -792,7 +792,7 @@ static int cmd_envmap(parser *p)
             return fail(p, "'envmap FILE' takes a scale and a representation at most, got '%s' "
                            "after them", p->tok[i]);
     }
-    const mat4 *inv;
+    const mat4 *inv = NULL;
     if (xf_inverse(p, &inv)) return -1;
     if (six) {
         for (int f = 0; f < CUBEMAP_FACES; f++)
@@ -910,7 +910,7 @@ done:
 static int cmd_texmapping(parser *p)
 {
     static const char *const w[] = {"uv", "planar", "cylindrical", "spherical", "cube"};
-    int k;
+    int k = 0;
     if (arg_word(p, w, 5, &k)) return -1; /* texmapping_kind order */
     p->mat.texmapping = (texmapping_kind)k;
     p->mat.texmapping_given = 1;
@@ -920,7 +920,7 @@ static int cmd_texmapping(parser *p)
 static int cmd_texfilter(parser *p)
 {
     static const char *const w[] = {"nearest", "bilinear", "trilinear", "ewa"};
-    int k;
+    int k = 0;
     if (arg_word(p, w, 4, &k)) return -1; /* texture_filter order */
     p->mat.texfilter = (texture_filter)k;
     return 0;
