@@ -19,7 +19,11 @@ CFLAGS ?= -O2 -g
 BUILD ?= build
 # Build on every core: `make test` must finish in under a minute on two.
 NPROC := $(shell nproc 2>/dev/null || echo 1)
+# parallel builds; a sub-make (make run's, make asan's) shares the top make's job slots instead
+# (adding -j again there made make warn "-j2 forced in makefile: resetting jobserver mode")
+ifeq ($(MAKELEVEL),0)
 MAKEFLAGS += -j$(NPROC)
+endif
 
 # Dependencies through pkg-config (lazy: only evaluated when something is compiled, so
 # `make deps` works on a machine that has none of them yet).  Debian's OpenEXR 3.1 ships no
