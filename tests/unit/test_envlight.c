@@ -44,6 +44,16 @@ static void fill(image *im, int w, int h)
 
 static void set_gray(image *im, int c, int r, double v) { image_set(im, c, r, rgb_gray(v)); }
 
+/* A 64 x 32 sun map, the sun 10^3 times the sky: the small map of the rotation and median-cut tests. */
+static void small_sun_map(image *im)
+{
+    genenv_params gp = genenv_defaults();
+    gp.width = 64;
+    gp.sun_ratio = 1e3;
+    error err = {0};
+    ck_assert_int_eq(genenv_make(GENENV_SUN, &gp, im, &err), 0);
+}
+
 static void make_map(int which, image *im)
 {
     error err = {0};
@@ -280,11 +290,7 @@ static int same_rgb(rgb a, rgb b) { return a.r == b.r && a.g == b.g && a.b == b.
 START_TEST(test_envlight_translation_and_uniform_scale_sample_as_the_rotation_alone)
 {
     image im;
-    genenv_params gp = genenv_defaults();
-    gp.width = 64;
-    gp.sun_ratio = 1e3;
-    error err = {0};
-    ck_assert_int_eq(genenv_make(GENENV_SUN, &gp, &im, &err), 0);
+    small_sun_map(&im);
     mat4 rot = mat4_rotate(vec3_make(0.3, 1, 0.2), 40);
     /* envmap frame -> world: translate(1, -2, 3) rotate scale(2.5); to_env is its inverse */
     mat4 xf = mat4_mul(mat4_translate(vec3_make(1, -2, 3)), mat4_mul(rot, mat4_scale(vec3_make(2.5, 2.5, 2.5))));
@@ -806,11 +812,7 @@ START_TEST(test_envlight_mediancut_strata_partition_the_map_and_its_power)
 {
     const int ns[] = {1, 10, 64};
     image im;
-    genenv_params gp = genenv_defaults();
-    gp.width = 64;
-    gp.sun_ratio = 1e3;
-    error err = {0};
-    ck_assert_int_eq(genenv_make(GENENV_SUN, &gp, &im, &err), 0);
+    small_sun_map(&im);
     envmap env = env_of(&im, 2, mat4_rotate(vec3_make(0.3, 1, 0.2), 40));
     static int cover[64 * 32];
     double want[3] = {0, 0, 0};
@@ -866,11 +868,7 @@ END_TEST
 START_TEST(test_envlight_mediancut_points_lie_inside_their_strata)
 {
     image im;
-    genenv_params gp = genenv_defaults();
-    gp.width = 64;
-    gp.sun_ratio = 1e3;
-    error err = {0};
-    ck_assert_int_eq(genenv_make(GENENV_SUN, &gp, &im, &err), 0);
+    small_sun_map(&im);
     envmap env = env_of(&im, 2, mat4_rotate(vec3_make(0.3, 1, 0.2), 40));
     const int ns[] = {1, 10, 64, 256};
     for (int t = 0; t < 4; t++) {
