@@ -56,7 +56,7 @@ typedef struct material {
      * an index into scene.textures (so a zeroed material has no maps): see scene_map(). */
     int diffusemap, specularmap, roughnessmap, emissionmap, bumpmap, displacementmap;
     double bump_strength;      /* `bumpmap NAME STRENGTH`: height units -> world units */
-    double displacement_scale; /* `displacementmap NAME SCALE`: world units per unit of value */
+    double displacement_scale; /* `displacementmap NAME SCALE`: units per unit of value (world for triangles, object for spheres: displacemap.h) */
     texmapping_kind texmapping; /* `texmapping`, used when texmapping_given */
     int texmapping_given;      /* 0: the object's default (scene_material_texmapping) */
     texture_filter texfilter;  /* `texfilter`, default TEXFILTER_TRILINEAR */
