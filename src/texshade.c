@@ -163,6 +163,9 @@ void texshade_tangents(const scene *sc, const hit *h, texshade_point *tp)
     tp->dp_dt = vec3_add(vec3_scale(e1, a), vec3_scale(e2, b));
 }
 
+/* each channel max(0, c) (NaN as 0) */
+static rgb nonnegative(rgb c) { return rgb_make(fmax(0.0, c.r), fmax(0.0, c.g), fmax(0.0, c.b)); }
+
 void texshade_surface(const scene *sc, const hit *h, const ray *r, const ray_diff *rd,
                       surface *s)
 {
@@ -182,10 +185,12 @@ void texshade_surface(const scene *sc, const hit *h, const ray *r, const ray_dif
     q.dp_dy = tp.dq_dy;
     q.filter = m->texfilter;
     const texture *t;
-    if ((t = scene_map(sc, m->diffusemap))) s->kd = texture_eval(t, &q);
-    if ((t = scene_map(sc, m->specularmap))) s->ks = texture_eval(t, &q);
+    /* colours from a map are >= 0 as the parser's are: an HDR image (PFM, EXR) may hold
+     * negative texels, which a height map may mean but a reflectance or a radiance cannot */
+    if ((t = scene_map(sc, m->diffusemap))) s->kd = nonnegative(texture_eval(t, &q));
+    if ((t = scene_map(sc, m->specularmap))) s->ks = nonnegative(texture_eval(t, &q));
     if ((t = scene_map(sc, m->roughnessmap))) s->roughness = fmax(0.0, texture_eval_scalar(t, &q));
-    if ((t = scene_map(sc, m->emissionmap))) s->emission = texture_eval(t, &q);
+    if ((t = scene_map(sc, m->emissionmap))) s->emission = nonnegative(texture_eval(t, &q));
     if ((t = scene_map(sc, m->bumpmap))) {
         texshade_tangents(sc, h, &tp);
         q.dp_ds = tp.dq_ds;

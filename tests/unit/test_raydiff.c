@@ -1,9 +1,12 @@
 /* test_raydiff.c - ray differentials (raydiff.h, camera_ray_differential) against finite
  * differences of the rays themselves, and the footprint they give a texture (texshade.h). */
+#include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "envtex/camera.h"
 #include "envtex/fresnel.h"
+#include "envtex/pfm.h"
 #include "envtex/raydiff.h"
 #include "envtex/texshade.h"
 #include "unit.h"
@@ -363,6 +366,43 @@ START_TEST(test_diffusemap_replaces_kd_and_untextured_materials_are_untouched)
 }
 END_TEST
 
+/* An HDR image map may hold negative texels (a height map may mean them); as a diffuse,
+ * specular or emission colour they read as 0, like the parser's colours, which must be >= 0
+ * (a negative kd once shaded a negative radiance) */
+START_TEST(test_colour_maps_from_negative_texels_read_as_zero)
+{
+    char dir[] = "/tmp/test_raydiff_XXXXXX";
+    ck_assert_ptr_nonnull(mkdtemp(dir));
+    char path[256], text[1024];
+    snprintf(path, sizeof path, "%s/neg.pfm", dir);
+    image img;
+    error err = {0};
+    ck_assert_int_eq(image_alloc(&img, 2, 2, &err), 0);
+    for (int i = 0; i < 2 * 2 * 3; i++) img.px[i] = i % 3 == 1 ? 0.5f : -2.0f; /* (-2, 0.5, -2) */
+    ck_assert_int_eq(pfm_write(path, &img, &err), 0);
+    image_free(&img);
+    snprintf(text, sizeof text, "size 8 8\ncamera 0 0 0  0 0 -1  0 1 0  60\ntexture c %s\ntexfilter nearest\n"
+             "diffusemap c\nspecularmap c\nemissionmap c\nvertex -1 -1 -3\nvertex 1 -1 -3\nvertex 0 1 -3\ntri 0 1 2\n", path);
+    scene sc;
+    ck_assert_msg(scene_load_string(text, NULL, NULL, &sc, &err) == 0, "%s", err.msg);
+    ray r = {vec3_make(0, 0, 0), vec3_make(0, 0, -1), 0, INFINITY};
+    hit h;
+    ck_assert(find_hit(&sc, &r, &h));
+    surface s;
+    memset(&s, 0, sizeof s);
+    s.entering = 1;
+    s.n = s.ng = h.ng;
+    brdf_surface_from_material(&s, &sc.materials[h.material]);
+    texshade_surface(&sc, &h, &r, NULL, &s);
+    ck_assert_msg(s.kd.r == 0 && s.kd.b == 0 && fabs(s.kd.g - 0.5) < 1e-6, "kd (%g %g %g)", s.kd.r, s.kd.g, s.kd.b);
+    ck_assert(s.ks.r == 0 && s.ks.b == 0 && s.emission.r == 0 && s.emission.b == 0);
+    ck_assert(fabs(s.emission.g - 0.5) < 1e-6);
+    scene_free(&sc);
+    remove(path);
+    rmdir(dir);
+}
+END_TEST
+
 Suite *raydiff_suite(void)
 {
     Suite *s = suite_create("raydiff");
@@ -378,6 +418,7 @@ Suite *raydiff_suite(void)
     tcase_add_test(tc, test_barycentric_st_at_a_hit_interpolates_the_corners);
     tcase_add_test(tc, test_delta_diff_tells_reflection_from_refraction_by_the_shading_normal);
     tcase_add_test(tc, test_diffusemap_replaces_kd_and_untextured_materials_are_untouched);
+    tcase_add_test(tc, test_colour_maps_from_negative_texels_read_as_zero);
     suite_add_tcase(s, tc);
     return s;
 }
