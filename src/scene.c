@@ -51,6 +51,7 @@ typedef struct parser {
     int inv_state;             /* 0 not computed, 1 valid, -1 singular */
     mat4 *stack;               /* saved transforms (pushTransform) */
     int depth, stack_cap;
+    int first_quad_line;       /* the first `quadLight`, for the raytracer's warning (finish) */
     /* material and light state */
     material mat;
     double atten[3];
@@ -618,6 +619,7 @@ static int cmd_quadlight(parser *p)
     double area = vec3_length(vec3_cross(l.ab, l.ac));
     if (!(area > QUAD_PARALLEL_EPS * vec3_length(l.ab) * vec3_length(l.ac)))
         return fail(p, "'quadLight' has zero area (edges ab and ac are zero or parallel)");
+    if (!p->first_quad_line) p->first_quad_line = p->line;
     return add_light(p, &l);
 }
 
@@ -1336,6 +1338,12 @@ static int finish(parser *p)
                          sc->width, sc->height, sc->spp, samples);
     if (p->depth > 0)
         warn(p, "%d 'pushTransform' without 'popTransform' at the end of the file", p->depth);
+    if (p->first_quad_line && sc->integrator == INTEGRATOR_RAYTRACER) { /* hw1's renderer with hw2's light */
+        p->line = p->first_quad_line;
+        warn(p, "the 'raytracer' integrator ignores quad lights (they neither light, show nor block): "
+                "use 'integrator analyticdirect', 'direct' or 'pathtracer'");
+        p->line = 0;
+    }
     if (p->opts->load_images && load_textures(p)) return -1;
     if (sc->envmap.present && p->opts->load_images && load_envmap(p)) return -1;
     return 0;

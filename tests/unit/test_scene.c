@@ -396,6 +396,34 @@ START_TEST(test_commands_before_size_warn_once_even_when_strict)
 }
 END_TEST
 
+/* A quad light in a scene rendered by the Whitted raytracer (hw1's renderer, hw2's light): one
+ * warning at the first quadLight's line, since the raytracer ignores quad lights; none when an
+ * integrator that uses them is chosen, before or after the light */
+START_TEST(test_quad_lights_under_the_raytracer_warn_at_the_first_one)
+{
+    warnings ws;
+    scene_load_opts o = opts_counting(&ws);
+    scene sc;
+    error err = {0};
+    const char *quads = "quadLight -1 -1 2  2 0 0  0 2 0  3 3 3\nquadLight 1 1 2  2 0 0  0 2 0  3 3 3\n";
+    char text[512];
+    snprintf(text, sizeof text, HEAD "sphere 0 0 0 1\n%s", quads);
+    ck_assert_int_eq(scene_load_string(text, "t.test", &o, &sc, &err), 0);
+    ck_assert_int_eq(ws.n, 1);
+    ck_assert_int_eq(ws.last.line, 4);
+    ck_assert_ptr_nonnull(strstr(ws.last.msg, "ignores quad lights"));
+    scene_free(&sc);
+    static const char *const others[] = {"integrator analyticdirect\n", "integrator direct\n", "integrator pathtracer\n"};
+    for (int i = 0; i < 3; i++) {
+        snprintf(text, sizeof text, HEAD "%s%sintegrator raytracer\n%s", quads, others[i], others[i]);
+        o = opts_counting(&ws);
+        ck_assert_int_eq(scene_load_string(text, "t.test", &o, &sc, &err), 0);
+        ck_assert_int_eq(ws.n, 0);
+        scene_free(&sc);
+    }
+}
+END_TEST
+
 /* ---- lexical rules ---------------------------------------------------------------------- */
 
 START_TEST(test_comments_blank_lines_crlf_and_tabs_are_tolerated)
@@ -1576,6 +1604,7 @@ Suite *scene_suite(void)
     tcase_add_test(cmds, test_trinormal_transforms_normals_by_the_inverse_transpose);
     tcase_add_test(cmds, test_a_mirroring_transform_keeps_triangles_counter_clockwise_from_outside);
     tcase_add_test(cmds, test_rotate_takes_tiny_and_huge_axes_by_their_direction);
+    tcase_add_test(cmds, test_quad_lights_under_the_raytracer_warn_at_the_first_one);
     tcase_add_test(cmds, test_directional_takes_tiny_and_huge_directions_by_their_direction);
     tcase_add_test(cmds, test_lights_are_in_world_space_and_point_takes_the_current_attenuation);
     tcase_add_test(cmds, test_envmap_takes_file_scale_and_the_current_transform);
