@@ -289,7 +289,7 @@ static int cmd_render(int argc, char **argv)
         } else {
             fprintf(stderr, "envtex: no envmap\n");
         }
-        if (st.lights) fprintf(stderr, "envtex: %d lights to sample (chosen by power)\n", st.lights);
+        if (st.lights) fprintf(stderr, "envtex: %d light%s to sample%s\n", st.lights, st.lights == 1 ? "" : "s", st.lights == 1 ? "" : " (chosen by power)");
         if (sc.n_textures) {
             int mips = 0, packed = 0;
             for (int i = 0; i < sc.n_textures; i++) {
