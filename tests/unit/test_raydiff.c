@@ -34,6 +34,16 @@ static void assert_vec_near(vec3 a, vec3 b, double tol, const char *what)
                   what, a.x, a.y, a.z, b.x, b.y, b.z, e);
 }
 
+/* The frame texshade needs at hit h, seen from its front: n = ng, entering, all else 0. */
+static surface front_frame(const hit *h)
+{
+    surface s;
+    memset(&s, 0, sizeof s);
+    s.entering = 1;
+    s.n = s.ng = h->ng;
+    return s;
+}
+
 START_TEST(test_camera_differentials_are_the_derivatives_of_camera_ray)
 {
     camera c = test_camera();
@@ -244,10 +254,7 @@ START_TEST(test_footprint_of_a_plane_at_known_distance_picks_the_mip_level)
     ray r = camera_ray_differential(&c, 32, 32, 1.0, &rd);
     hit h;
     ck_assert(find_hit(&sc, &r, &h));
-    surface s;
-    memset(&s, 0, sizeof s);
-    s.entering = 1;
-    s.n = s.ng = h.ng;
+    surface s = front_frame(&h);
     texshade_differentials(&sc, &h, &r, &rd, &s);
     ck_assert(s.has_diff);
     texshade_point tp;
@@ -349,10 +356,7 @@ START_TEST(test_diffusemap_replaces_kd_and_untextured_materials_are_untouched)
     ray r = {vec3_make(0, 0, 0), vec3_make(0, 0, -1), 0, INFINITY};
     hit h;
     ck_assert(find_hit(&sc, &r, &h) && h.prim == 0); /* brute force returns the first: tri 0 */
-    surface s;
-    memset(&s, 0, sizeof s);
-    s.entering = 1;
-    s.n = s.ng = h.ng;
+    surface s = front_frame(&h);
     brdf_surface_from_material(&s, &sc.materials[h.material]);
     texshade_surface(&sc, &h, &r, NULL, &s);
     ck_assert(s.kd.r == 0.9 && rgb_is_black(s.emission));
@@ -388,10 +392,7 @@ START_TEST(test_colour_maps_from_negative_texels_read_as_zero)
     ray r = {vec3_make(0, 0, 0), vec3_make(0, 0, -1), 0, INFINITY};
     hit h;
     ck_assert(find_hit(&sc, &r, &h));
-    surface s;
-    memset(&s, 0, sizeof s);
-    s.entering = 1;
-    s.n = s.ng = h.ng;
+    surface s = front_frame(&h);
     brdf_surface_from_material(&s, &sc.materials[h.material]);
     texshade_surface(&sc, &h, &r, NULL, &s);
     ck_assert_msg(s.kd.r == 0 && s.kd.b == 0 && fabs(s.kd.g - 0.5) < 1e-6, "kd (%g %g %g)", s.kd.r, s.kd.g, s.kd.b);
