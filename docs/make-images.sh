@@ -40,3 +40,11 @@ for f in data/scenes/*.test; do
     case $done_list in *" $s "*) continue ;; esac
     render "$s"
 done
+
+# the courtyard in each representation (docs/envmap-representations.md)
+while read -r kind width; do
+    case $kind in ''|'#'*) continue ;; esac
+    "$ENVTEX" convert data/envmaps/courtyard.exr "$BUILD/representation.exr" --to "$kind" --width "$width" >/dev/null
+    "$ENVTEX" tonemap "$BUILD/representation.exr" "$out/representations/$kind.png"
+    echo "docs/images/representations/$kind.png"
+done < docs/images/representations/widths.txt
