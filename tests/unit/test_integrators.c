@@ -121,6 +121,23 @@ static stats radiance_stats(rig *rg, ray r, int ch, long n, uint64_t seed)
     return st;
 }
 
+/* radiance_stats of the scene base + mode (scene text joined), along the camera's ray towards
+ * target (green channel) */
+static stats stats_towards(const char *base, const char *mode, vec3 target, long n, uint64_t seed)
+{
+    char text[2048];
+    snprintf(text, sizeof text, "%s%s", base, mode);
+    scene sc;
+    load(&sc, text);
+    rig rg;
+    rig_init(&rg, &sc);
+    ray r = {sc.eye, vec3_normalize(vec3_sub(target, sc.eye)), 0, INFINITY};
+    stats st = radiance_stats(&rg, r, 1, n, seed);
+    rig_free(&rg);
+    scene_free(&sc);
+    return st;
+}
+
 /* ---- white furnace ---------------------------------------------------------------------------- */
 
 /* a sphere filling the whole frame: every pixel sees its interior */
@@ -422,18 +439,9 @@ START_TEST(test_integrators_quad_lights_block_shadow_rays_as_they_block_brdf_ray
                   (vec3_dot(analyticdirect_irradiance_vector(&A, o), n) - vec3_dot(analyticdirect_irradiance_vector(&S, o), n));
     ck_assert(want > 0.1);
     for (int i = 0; i < 3; i++) {
-        char text[2048];
-        snprintf(text, sizeof text, "%s%s", base, modes[i]);
-        scene sc;
-        load(&sc, text);
-        rig rg;
-        rig_init(&rg, &sc);
-        ray r = {sc.eye, vec3_normalize(vec3_sub(o, sc.eye)), 0, INFINITY};
-        stats st = radiance_stats(&rg, r, 1, ns[i], 150 + (uint64_t)i);
+        stats st = stats_towards(base, modes[i], o, ns[i], 150 + (uint64_t)i);
         ck_assert_msg(fabs(st.mean - want) < Z_SE * st.se, "%s: %.5f, want %.5f (SE %.5f)", modes[i], st.mean, want, st.se);
         ck_assert_msg(st.se < 0.01 * want, "%s: SE %.5f too large to test", modes[i], st.se);
-        rig_free(&rg);
-        scene_free(&sc);
     }
 }
 END_TEST
@@ -453,17 +461,8 @@ START_TEST(test_integrators_brdf_rays_never_pass_below_the_geometric_surface)
                            "nexteventestimation off\nimportancesampling hemisphere\n",
                            "nexteventestimation mis\nimportancesampling brdf\n"};
     for (int i = 0; i < 3; i++) {
-        char text[2048];
-        snprintf(text, sizeof text, "%s%s", base, modes[i]);
-        scene sc;
-        load(&sc, text);
-        rig rg;
-        rig_init(&rg, &sc);
-        ray r = {sc.eye, vec3_normalize(vec3_sub(vec3_make(0.8, 0, 0.6), sc.eye)), 0, INFINITY};
-        stats st = radiance_stats(&rg, r, 1, 20000, 160 + (uint64_t)i);
+        stats st = stats_towards(base, modes[i], vec3_make(0.8, 0, 0.6), 20000, 160 + (uint64_t)i);
         ck_assert_msg(st.mean == 0, "%s: %.6f (SE %.6f), want 0: light through the floor", modes[i], st.mean, st.se);
-        rig_free(&rg);
-        scene_free(&sc);
     }
 }
 END_TEST
