@@ -115,6 +115,10 @@ rgb pathtracer_radiance_diff(integrator *it, ray r, const ray_diff *rd0, rng *g)
             double q = fmin(1.0, rgb_max(beta));
             if (!(rng_uniform(g) < q)) break;
             beta = rgb_scale(beta, 1 / q);
+        } else if (beta.r == 0 && beta.g == 0 && beta.b == 0) {
+            break; /* nothing further along can add to L (a black surface): stop rather than
+                    * bounce up to maxdepth (1000 with -1) for nothing.  With roulette, q = 0
+                    * already stops it. */
         }
         if (bs.is_delta) {
             ray_diff next;

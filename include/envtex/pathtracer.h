@@ -4,7 +4,8 @@
  * A path of k bounces that reaches a light (a quad light or, leaving the scene, the envmap)
  * carries L = Le prod (f cos / pdf).  `maxdepth` d allows paths of at most d bounces
  * (-1: unlimited, with `russianroulette on` to end them: survival probability = the largest
- * component of the throughput, clamped to 1).  `nexteventestimation`:
+ * component of the throughput, clamped to 1; without roulette a path whose throughput is 0, after
+ * a black surface, ends too, as nothing further along can add to it).  `nexteventestimation`:
  *   off  light is found only by hitting it;
  *   on   at every bounce one light is picked by power and sampled (`lightsamples` samples,
  *        stratified with `lightstratify on`); hitting a light after a non-delta bounce adds

@@ -11,7 +11,8 @@
  *     around an interpolated normal do not pass below the geometric surface.
  *   - analyticdirect's irradiance vector against a numerical integral; zero behind the light;
  *     its irradiance clipped at the surface's horizon against a numerical integral.
- *   - Russian roulette keeps the mean: inside a closed emitting sphere L = E / (1 - rho).
+ *   - Russian roulette keeps the mean: inside a closed emitting sphere L = E / (1 - rho); without
+ *     it, a black surface still ends the path (no bounces that add nothing).
  * Monte Carlo comparisons use the sample's own standard error (SE): |a - b| < Z_SE SE.
  */
 #include "envtex/integrator.h"
@@ -739,6 +740,36 @@ START_TEST(test_integrators_russian_roulette_keeps_the_mean)
 }
 END_TEST
 
+/* A black surface ends the path even without roulette: inside a closed black sphere that only
+ * emits, L = E exactly, and a path is one camera ray and one BRDF ray, not the 1000 bounces of
+ * maxdepth -1 (each of which added nothing). */
+START_TEST(test_integrators_a_path_stops_at_zero_throughput_without_roulette)
+{
+    const char *cfg[] = {"importancesampling cosine\n", "importancesampling hemisphere\n",
+                         "importancesampling brdf\nbrdf ggx\nroughness 0.3\n"};
+    for (int i = 0; i < 3; i++) {
+        char text[1024];
+        snprintf(text, sizeof text,
+                 "size 4 4\ncamera 0 0 0  0 0 -1  0 1 0  40\nintegrator pathtracer\n"
+                 "maxdepth -1\nrussianroulette off\nnexteventestimation off\n%s"
+                 "diffuse 0 0 0\nspecular 0 0 0\nemission 0.5 0.5 0.5\nsphere 0 0 0 5\n",
+                 cfg[i]);
+        scene sc;
+        load(&sc, text);
+        rig rg;
+        rig_init(&rg, &sc);
+        ray r = {vec3_make(0, 0, 0), vec3_normalize(vec3_make(0.3, -0.2, -1)), 0, INFINITY};
+        enum { N = 1000 };
+        stats st = radiance_stats(&rg, r, 0, N, 95 + (uint64_t)i);
+        ck_assert_msg(st.mean == 0.5 && st.se == 0, "%s: %.6f (SE %.6f), want 0.5 exactly", cfg[i], st.mean, st.se);
+        ck_assert_msg(rg.it.rays <= 2 * N, "%s: %lld rays for %d paths, want at most 2 a path", cfg[i],
+                      rg.it.rays, N);
+        rig_free(&rg);
+        scene_free(&sc);
+    }
+}
+END_TEST
+
 /* A light map (emissionmap) is what every integrator shows of an unlit surface, and it must be
  * filtered alike: by the camera rays' footprint (ray differentials), so a receding checker fades
  * to grey instead of breaking into moire.  analyticdirect dropped the differentials and read the
@@ -800,6 +831,7 @@ Suite *integrators_suite(void)
     tcase_add_test(tc, test_integrators_brdf_rays_never_pass_below_the_geometric_surface);
     tcase_add_test(tc, test_integrators_mis_with_env_fraction_zero_is_brdf_sampling);
     tcase_add_test(tc, test_integrators_russian_roulette_keeps_the_mean);
+    tcase_add_test(tc, test_integrators_a_path_stops_at_zero_throughput_without_roulette);
     tcase_add_test(tc, test_integrators_every_integrator_filters_textures_by_the_camera_footprint);
     suite_add_tcase(s, tc);
     return s;
