@@ -40,10 +40,7 @@ void sphere_hit(const scene_sphere *s, const ray *r, double t, hit *h)
     h->p = mat4_point(&s->xf, po);
     /* normal: object normal (p - c) through the inverse transpose */
     h->ng = h->ns = vec3_normalize(mat4_normal(&s->inv, local));
-    vec3 u = vec3_normalize(local);
-    double phi = atan2(u.y, u.x);
-    if (phi < 0) phi += 2 * M_PI;
-    h->bary = (uv2){atan2(sqrt(u.x * u.x + u.y * u.y), u.z), phi};
+    h->bary = (uv2){0, 0}; /* a sphere's (s, t) comes from its texture mapping (texshade.h) */
 }
 
 void sphere_bounds(const scene_sphere *s, vec3 *lo, vec3 *hi)

@@ -31,7 +31,7 @@ typedef struct hit {
     vec3 p;         /* world position */
     vec3 ng;        /* unit geometric normal, facing outward (not flipped towards the ray) */
     vec3 ns;        /* unit shading normal (interpolated for trinormal), same side as ng */
-    uv2 bary;       /* triangle barycentrics (b1, b2) of corners 1, 2; sphere: (theta, phi) */
+    uv2 bary;       /* triangle barycentrics (b1, b2) of corners 1, 2; sphere: (0, 0) */
     long prim;      /* index of the primitive in its scene array */
     int is_sphere;  /* 1 sphere, 0 triangle */
     int material;   /* index into scene.materials */

@@ -17,8 +17,10 @@
  * the same t: the identity's products are exact. */
 int sphere_intersect(const scene_sphere *s, const ray *r, double *t);
 
-/* Fill h->p, h->ng = h->ns (unit, outward, world space) and h->bary = (theta, phi) of the
- * object-space point, for the hit at parameter t. */
+/* Fill h->p and h->ng = h->ns (unit, outward, world space) for the hit at parameter t;
+ * h->bary = (0, 0): a sphere has no barycentrics, and its texture coordinates come from the
+ * object-space point through its texture mapping (texshade.h), which is paid for only where
+ * a surface is shaded with a texture. */
 void sphere_hit(const scene_sphere *s, const ray *r, double t, hit *h);
 
 /* World-space axis-aligned bounds of the transformed sphere (corners of the object box). */

@@ -61,7 +61,6 @@ START_TEST(test_sphere_ray_from_outside_hits_the_near_side)
     assert_vec_near(h.p, vec3_make(0, 0, 1), 1e-15);
     assert_vec_near(h.ng, vec3_make(0, 0, 1), 1e-15);
     assert_vec_near(h.ns, h.ng, 0);
-    EXPECT_NEAR(h.bary.u, 0, 1e-15); /* theta = 0 at the object's +z pole */
     /* t is in units of |d|: a direction of length 2 halves it */
     r.d = vec3_make(0, 0, -2);
     EXPECT_INT_EQ(sphere_intersect(&s, &r, &t), 1);
@@ -268,22 +267,6 @@ START_TEST(test_sphere_nan_or_zero_ray_misses_without_crashing)
 }
 END_TEST
 
-START_TEST(test_sphere_hit_reports_theta_and_phi_of_the_object_point)
-{
-    scene_sphere s = unit_sphere();
-    ray r = make_ray(vec3_make(0, 5, 0), vec3_make(0, -1, 0)); /* hits (0,1,0) */
-    double t;
-    EXPECT_INT_EQ(sphere_intersect(&s, &r, &t), 1);
-    hit h;
-    sphere_hit(&s, &r, t, &h);
-    EXPECT_NEAR(h.bary.u, M_PI / 2, 1e-15); /* theta: on the equator */
-    EXPECT_NEAR(h.bary.v, M_PI / 2, 1e-15); /* phi = atan2(1, 0) */
-    r = make_ray(vec3_make(0, -5, 0), vec3_make(0, 1, 0)); /* hits (0,-1,0): phi = 3 pi / 2 */
-    EXPECT_INT_EQ(sphere_intersect(&s, &r, &t), 1);
-    sphere_hit(&s, &r, t, &h);
-    EXPECT_NEAR(h.bary.v, 1.5 * M_PI, 1e-15);
-}
-END_TEST
 
 /* a sphere marked untransformed (no matrix products) finds exactly the t of the general path
  * through the identity matrices, for rays from outside, from inside and missing */
@@ -346,7 +329,6 @@ Suite *sphere_suite(void)
     tcase_add_test(tc, test_sphere_hit_respects_tmin_and_tmax);
     tcase_add_test(tc, test_sphere_far_from_the_origin_keeps_precision);
     tcase_add_test(tc, test_sphere_nan_or_zero_ray_misses_without_crashing);
-    tcase_add_test(tc, test_sphere_hit_reports_theta_and_phi_of_the_object_point);
     tcase_add_test(tc, test_sphere_untransformed_fast_path_gives_the_general_paths_t);
     tcase_add_test(tc, test_sphere_bounds_contain_the_transformed_surface);
     suite_add_tcase(s, tc);
