@@ -61,8 +61,12 @@ int integrator_init(integrator *it, const scene *sc, const bvh *accel, error *er
         /* tables only for an integrator that samples the envmap; otherwise just the
          * piecewise-constant lookup (mode uniform builds no table) */
         envsampling_mode mode = samples_lights ? sc->envsampling : ENVSAMPLING_UNIFORM;
-        if (envlight_build(&it->el, &it->env, mode, sc->envsampler, sc->mediancut_lights, err))
-            return error_prefix(err, "%s: envmap %s", sc->path, sc->envmap.path);
+        if (envlight_build(&it->el, &it->env, mode, sc->envsampler, sc->mediancut_lights, err)) {
+            /* about the scene's `envmap` (its transform, most often): reported at its line */
+            char why[ERROR_MSG_MAX];
+            snprintf(why, sizeof why, "%s", err->msg); /* err->msg cannot be an argument of error_set on err */
+            return error_set(err, sc->path, sc->envmap.line, "envmap %s: %s", sc->envmap.path, why);
+        }
         it->has_envlight = 1;
     }
     if (lights_build(&it->ls, sc, it->has_envlight && samples_lights ? &it->el : NULL, scene_radius(sc), err)) {

@@ -117,6 +117,9 @@ static void warnings_print(const warnings *ws)
         fprintf(stderr, "envtex: warning: ... and %d more warnings\n", ws->n - MAX_WARNINGS_SHOWN);
 }
 
+/* render_opts.start: the render has passed every check, so its warnings can be shown */
+static void warnings_print_at_start(void *ctx) { warnings_print(ctx); }
+
 static void progress_bar(void *ctx, int done, int rows)
 {
     (void)ctx;
@@ -218,7 +221,8 @@ static int cmd_render(int argc, char **argv)
     if (!out_path) out_path = sc.output;
 
     /* Everything that can refuse the run is checked before the render and before the scene's
-     * warnings are printed: a refused run prints one line and writes nothing. */
+     * warnings are printed (render_scene's own checks too: it prints them through ro.start once
+     * they have passed): a refused run prints one line and writes nothing. */
     int status = 1;
     image img = {0}, ref = {0}, var = {0};
     if (check_output(out_path, &err) || check_not_an_input(out_path, &sc, &err)) {
@@ -247,7 +251,10 @@ static int cmd_render(int argc, char **argv)
             goto done;
         }
     }
-    if (!quiet) warnings_print(&ws);
+    if (!quiet) { /* printed once render_scene has passed its own checks (spp, the envmap's transform...) */
+        ro.start = warnings_print_at_start;
+        ro.start_ctx = &ws;
+    }
     if (!quiet && isatty(STDERR_FILENO)) {
         ro.progress = progress_bar;
     }

@@ -42,18 +42,22 @@ static rgb direct_lights(raytracer *rt, const hit *h, const surface *s, vec3 vie
         } else {
             continue; /* quad lights belong to the sampling integrators */
         }
-        double ndotl = vec3_dot(n, ldir);
-        if (ndotl <= 0) continue;
-        rt->rays++;
-        if (bvh_occluded(rt->accel, rt->sc, &shadow)) continue; /* V = 0 */
-        rgb c = rgb_scale(s->kd, ndotl);                       /* kd max(N.L, 0) */
+        /* The course's terms, each clamped on its own (FORMAT.md, and the CSE 167 shader it
+         * comes from): a light below the horizon (N.L < 0) still gives a highlight where
+         * N.H > 0.  On a closed object its shadow ray enters the object and V = 0; on an open
+         * surface (a floor lit from just below its plane) the course shows that highlight, so
+         * skipping the light at N.L <= 0 rendered such course scenes darker than the course. */
+        rgb c = rgb_scale(s->kd, fmax(vec3_dot(n, ldir), 0.0)); /* kd max(N.L, 0) */
         if (has_ks) {
             vec3 half = vec3_normalize(vec3_add(ldir, view));  /* H = (L + V) / |L + V| */
             /* N.H in [0, 1]: two unit vectors' dot product rounds up to 1 + 2^-52, and
              * (1 + 2^-52)^s is Inf for a huge s (1e18): clamp to the highlight's centre */
-            double ndoth = fmin(vec3_dot(n, half), 1.0);
-            if (ndoth > 0) c = rgb_madd(c, s->ks, pow(ndoth, s->shininess)); /* ks (N.H)^s */
+            double ndoth = fmin(fmax(vec3_dot(n, half), 0.0), 1.0);
+            c = rgb_madd(c, s->ks, pow(ndoth, s->shininess)); /* ks max(N.H, 0)^s; 0^0 = 1 */
         }
+        if (rgb_is_black(c)) continue; /* nothing to shadow: no shadow ray */
+        rt->rays++;
+        if (bvh_occluded(rt->accel, rt->sc, &shadow)) continue; /* V = 0 */
         sum = rgb_fma(sum, l->color, rgb_scale(c, 1 / atten));
     }
     return sum;

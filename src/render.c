@@ -83,6 +83,8 @@ int render_scene(const scene *sc, const render_opts *opts, image *out, render_st
         return error_prefix(err, "%s: output image", sc->path);
     }
 
+    if (opts->start) opts->start(opts->start_ctx); /* nothing below refuses the render */
+
     camera cam;
     camera_init(&cam, sc->eye, sc->center, sc->up, sc->fovy, sc->width, sc->height);
     /* ray differentials only where a texture map can use them: other scenes pay nothing */

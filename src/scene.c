@@ -381,8 +381,11 @@ static int cmd_vertexnormal(parser *p)
 {
     double v[6];
     if (arg_nums(p, 1, 6, v)) return -1;
-    vec3 n; /* a direction: only its direction is kept (so 1e300 or 1e-300 components work) */
-    if (vec3_unit_direction(vec3_make(v[3], v[4], v[5]), &n)) return fail(p, "'vertexnormal' normal is zero");
+    /* a direction: only its direction is kept (so 1e300 or 1e-300 components work).  A zero
+     * normal is kept as zero, not refused: OBJ converters write `vertexnormal 0 0 0 0 0 0` as a
+     * placeholder for OBJ's unused index 0; a `trinormal` that uses it is flat shaded. */
+    vec3 n;
+    if (vec3_unit_direction(vec3_make(v[3], v[4], v[5]), &n)) n = vec3_make(0, 0, 0);
     if (p->n_vnorms >= p->max_prims)
         return fail(p, "more than %ld vertex normals", p->max_prims);
     if (grow(p, (void **)&p->vnorms, &p->cap_vnorms, p->n_vnorms + 1, sizeof *p->vnorms))
@@ -465,6 +468,9 @@ static int cmd_tri(parser *p)
     return add_triangle(p, &t);
 }
 
+/* 1 for the zero normal cmd_vertexnormal keeps for a `vertexnormal` written with normal 0 0 0 */
+static int is_zero_normal(vec3 n) { return n.x == 0 && n.y == 0 && n.z == 0; }
+
 static int cmd_trinormal(parser *p)
 {
     long idx[3];
@@ -473,11 +479,15 @@ static int cmd_trinormal(parser *p)
     if (xf_inverse(p, &inv)) return -1;
     scene_triangle t;
     memset(&t, 0, sizeof t);
+    /* a corner with a zero normal (cmd_vertexnormal) has no normal to interpolate: the triangle
+     * is flat shaded, as an OBJ face with a degenerate normal (cmd_obj) */
     t.has_normals = 1;
+    for (int k = 0; k < 3; k++) t.has_normals &= !is_zero_normal(p->vnorms[idx[k]].n);
     for (int k = 0; k < 3; k++) {
         const vertex_normal *v = &p->vnorms[idx[k]];
         t.q[k] = v->p;
         t.p[k] = mat4_point(&p->xf, v->p);
+        if (!t.has_normals) continue;
         /* n' = (M^-1)^T n, normalized */
         if (vec3_unit_direction(mat4_normal(inv, v->n), &t.n[k]))
             return fail(p, "'trinormal' normal of vertex '%s' degenerates under the current "

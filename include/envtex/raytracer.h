@@ -5,6 +5,9 @@
  * At a hit with material (ambient A, emission E, diffuse kd, specular ks, shininess s):
  *   I = A + E + sum over point/directional lights of  V L / atten (kd max(N.L,0) + ks max(N.H,0)^s)
  *         + ks I(reflected ray)                          (brdf phong / ggx, up to maxdepth)
+ * with each term clamped on its own, as the course writes it: a light below the horizon
+ * (N.L < 0) still adds ks max(N.H,0)^s unless its shadow ray is blocked (a closed object blocks
+ * it; an open floor lit from just below its plane shows the highlight, as in the course).
  * `brdf mirror` drops the highlight term (a perfect mirror shows a point light as a point of
  * zero size) and keeps ks I(reflected).  `brdf glass` replaces the specular part by
  *   F I(reflected) + (1 - F) I(refracted)  with exact Fresnel F and total internal reflection.

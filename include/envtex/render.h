@@ -22,12 +22,18 @@
 #include "envtex/scene.h"
 
 typedef void (*render_progress_fn)(void *ctx, int rows_done, int rows);
+typedef void (*render_start_fn)(void *ctx);
 
 typedef struct render_opts {
     int spp;                   /* samples per pixel; 0: the scene's `spp` */
     uint64_t seed;             /* default 0 */
     render_progress_fn progress; /* called after each row (may be NULL) */
     void *progress_ctx;
+    render_start_fn start;     /* called once, when every check that can refuse the render has
+                                * passed and what it needs is built, before the first pixel (may
+                                * be NULL).  A refused render never calls it: a caller prints the
+                                * scene's warnings here, so a refused run prints its error alone */
+    void *start_ctx;
     image *variance;           /* if not NULL: receives the per-pixel variance of the mean,
                                 * s^2 / spp with s^2 the unbiased sample variance of the pixel's
                                 * samples (needs spp >= 2; allocated here, free with image_free) */

@@ -305,6 +305,28 @@ START_TEST(test_raytracer_light_behind_the_surface_adds_nothing)
 }
 END_TEST
 
+/* FORMAT.md's Whitted sum clamps each term on its own: kd max(N.L, 0) + ks max(N.H, 0)^s.  An
+ * open floor (two triangles, normal +y) under a directional light 0.1 below its plane, seen from
+ * above: N.L < 0, so no diffuse, but N.H > 0 and the course shows the highlight (nothing blocks
+ * the shadow ray: the floor has no underside).  Catches a light skipped at N.L <= 0. */
+START_TEST(test_raytracer_a_light_just_below_an_open_floor_still_gives_the_courses_highlight)
+{
+    fixture f;
+    load(&f.sc, "size 9 9\ncamera 0 3 3  0 0 0  0 1 0  45\n"
+                "directional 1 -0.1 0  1 1 1\n"
+                "ambient 0 0 0\ndiffuse 0.5 0.5 0.5\nspecular 0.5 0.5 0.5\nshininess 1\n"
+                "vertex -2 0 -2\nvertex 2 0 -2\nvertex 2 0 2\nvertex -2 0 2\n"
+                "tri 0 2 1\ntri 0 3 2\n");
+    fixture_start(&f);
+    /* the centre pixel sees the origin: V = (0, 1, 1) / sqrt 2, L = (1, -0.1, 0) / |...| */
+    vec3 l = vec3_normalize(vec3_make(1, -0.1, 0)), v = vec3_normalize(vec3_make(0, 1, 1));
+    double ndoth = vec3_normalize(vec3_add(l, v)).y;
+    ck_assert(ndoth > 0.1);
+    assert_rgb_near(pixel(&f, 4, 4), rgb_gray(0.5 * ndoth), 1e-12); /* ks (N.H)^1, no kd term */
+    fixture_end(&f);
+}
+END_TEST
+
 /* Rays from a point light aimed (to within 1e-9 rad) at the centre of a ball with a huge
  * shininess (1e18): N, L and V agree to rounding there, N.H rounds to 1 + 2^-52 for some of
  * them, and the highlight ks (N.H)^s must still be at most ks, so each ray's radiance is at most
@@ -406,6 +428,7 @@ Suite *raytracer_suite(void)
     tcase_add_test(tc, test_raytracer_whitted_lighting_matches_the_hand_computation);
     tcase_add_test(tc, test_raytracer_shadowed_point_is_ambient_only);
     tcase_add_test(tc, test_raytracer_light_behind_the_surface_adds_nothing);
+    tcase_add_test(tc, test_raytracer_a_light_just_below_an_open_floor_still_gives_the_courses_highlight);
     tcase_add_test(tc, test_raytracer_blinn_phong_highlight_with_huge_shininess_never_exceeds_ks);
     tcase_add_test(tc, test_raytracer_glass_ball_in_a_constant_environment_conserves_energy);
     tcase_add_test(tc, test_raytracer_glass_ball_refracts_the_view_upside_down);

@@ -144,7 +144,6 @@ static const bad_case bad_cases[] = {
      "expected an integer for 'tri' argument 3, got '1.5'"},
     {"vertex 0 0 0\ntrinormal 0 0 0\n", 4, "'trinormal' vertex index '0' is out of range"},
     {"vertexnormal 0 0 0 0 0 1\ntrinormal 0 0 1\n", 4, "'1'"},
-    {"vertexnormal 0 0 0 0 0 0\n", 3, "'vertexnormal' normal is zero"},
     /* transforms */
     {"popTransform\n", 3, "'popTransform' without a matching 'pushTransform'"},
     {"pushTransform\npopTransform\npopTransform\n", 5, "popTransform"},
@@ -800,6 +799,25 @@ START_TEST(test_trinormal_transforms_normals_by_the_inverse_transpose)
     load_ok(HEAD "vertexnormal 0 0 0 1 1 0\nvertexnormal 1 0 0 0 0 1\nvertexnormal 0 1 0 0 0 1\n"
                  "scale 1e-300 1 1\ntrinormal 0 1 2\n", &sc);
     assert_vec_near(sc.triangles[0].n[0], 1, 0, 0); /* (1e300, 1, 0) normalised */
+    scene_free(&sc);
+}
+END_TEST
+
+/* OBJ-to-scene converters write `vertexnormal 0 0 0 0 0 0` as a placeholder for OBJ's index 0,
+ * which no trinormal uses: the scene loads (it was refused at that line).  A trinormal that does
+ * use a zero normal is flat shaded, as an OBJ face with a degenerate normal. */
+START_TEST(test_a_zero_vertexnormal_loads_and_a_trinormal_using_it_is_flat)
+{
+    scene sc;
+    load_ok(HEAD "maxvertnorms 4\nvertexnormal 0 0 0 0 0 0\n"
+                 "vertexnormal 0 0 0 0 0 1\nvertexnormal 1 0 0 0 0 1\nvertexnormal 0 1 0 1 0 0\n"
+                 "trinormal 1 2 3\ntrinormal 0 2 3\n",
+            &sc);
+    ck_assert_int_eq(sc.n_triangles, 2);
+    ck_assert_int_eq(sc.triangles[0].has_normals, 1);
+    assert_vec_near(sc.triangles[0].n[2], 1, 0, 0);
+    ck_assert_int_eq(sc.triangles[1].has_normals, 0); /* corner 0 has no normal */
+    assert_vec_near(sc.triangles[1].p[1], 1, 0, 0);
     scene_free(&sc);
 }
 END_TEST
@@ -1602,6 +1620,7 @@ Suite *scene_suite(void)
     tcase_add_test(cmds, test_pop_restores_the_transform_saved_by_push);
     tcase_add_test(cmds, test_a_scaled_sphere_keeps_an_ellipsoid_matrix_and_its_inverse);
     tcase_add_test(cmds, test_trinormal_transforms_normals_by_the_inverse_transpose);
+    tcase_add_test(cmds, test_a_zero_vertexnormal_loads_and_a_trinormal_using_it_is_flat);
     tcase_add_test(cmds, test_a_mirroring_transform_keeps_triangles_counter_clockwise_from_outside);
     tcase_add_test(cmds, test_rotate_takes_tiny_and_huge_axes_by_their_direction);
     tcase_add_test(cmds, test_quad_lights_under_the_raytracer_warn_at_the_first_one);
