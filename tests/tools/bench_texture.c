@@ -10,8 +10,11 @@
  *       "lookup-rows" every row on its own (st0 random): no row reuses another's texels, the
  *                     pessimistic case, bound by cache misses at large footprints.
  *     Random (s, t) for every query would measure cache misses instead of the filter;
- *   - ns per perlin_noise evaluation at random points in [-100, 100]^3.
- * The queries are made before the clock starts; a running sum keeps the compiler honest.
+ *   - ns per perlin_noise evaluation, 512 steps of 0.37 along each scanline's line, from a random
+ *     start in [-100, 100]^3 (a ray marching through a solid texture; the 16 rows of a patch
+ *     share their line, so 32 lines are walked 16 times each).
+ * The queries are made in the timed loop, from one small record per scanline made before the
+ * clock starts, as a renderer makes them per pixel; a running sum keeps the compiler honest.
  * Output lines (parsed by the script):
  *     lookup FILTER NS
  *     lookup-rows FILTER NS
