@@ -555,8 +555,15 @@ int convert_read(const char *path, const char *from, convert_map *out, error *er
     rc = 0;
 done:
     image_free(&img);
-    if (rc) convert_map_free(out);
-    return rc;
+    if (rc) {
+        convert_map_free(out);
+        return rc;
+    }
+    /* radiance is finite and >= 0: a bad value becomes 0 once, here (convert.h) */
+    convert_env v = convert_view(out);
+    for (int f = 0; f < convert_faces(&v); f++)
+        out->bad_texels += image_zero_nonfinite_or_negative((image *)convert_face_image(&v, f));
+    return 0;
 }
 
 int convert_write(const char *path, const convert_map *m, error *err)

@@ -79,6 +79,7 @@ typedef struct convert_map {
     image img;            /* every kind but CONVERT_CUBE */
     cubemap cube;         /* CONVERT_CUBE */
     double max_height;    /* CONVERT_CYLINDRICAL */
+    long bad_texels;      /* convert_read: NaN, infinite or negative channel values it read as 0 */
 } convert_map;
 
 /* "latlong", "cube", "cross" (also CONVERT_CUBE: one image holding the faces), "mirrorball",
@@ -164,8 +165,11 @@ int convert_face_path(const char *path, int face, char *out, size_t size, error 
 /* Read an environment: `from` is a keyword of convert_kind_parse or NULL to detect the kind
  * from the image's shape (convert_kind_detect).  "cube" reads the six files
  * convert_face_path(path, 0..5) (same size, square); "cross" (or a detected 4:3 / 3:4 image)
- * splits one cross image.  A cylindrical map gets convert_cylindrical_height.  *out is
- * overwritten; on failure it is empty and err names the file. */
+ * splits one cross image.  A cylindrical map gets convert_cylindrical_height.  Radiance is
+ * never NaN, infinite or negative: such channel values become 0 (image_zero_nonfinite_or_negative,
+ * as the scene's envmap does), counted in out->bad_texels for the caller to report; left in, one
+ * NaN texel would spread through the bilinear lookups into its neighbours and make the power
+ * NaN.  *out is overwritten; on failure it is empty and err names the file. */
 int convert_read(const char *path, const char *from, convert_map *out, error *err);
 
 /* Write *m to `path` (format by extension, imageio.h).  A cube map becomes six files named by

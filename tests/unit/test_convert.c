@@ -566,6 +566,48 @@ START_TEST(test_six_faces_are_written_as_a_set_and_read_back)
 }
 END_TEST
 
+/* A NaN, Inf or negative texel in an input file (a PFM keeps them) is read as 0 and counted:
+ * left in, the NaN spreads through the bilinear lookups into the output and the power is NaN. */
+START_TEST(test_bad_texels_in_a_file_are_read_as_zero_and_counted)
+{
+    char dir[] = "/tmp/test_convert_XXXXXX";
+    ck_assert_ptr_nonnull(mkdtemp(dir));
+    char path[128];
+    snprintf(path, sizeof path, "%s/bad.pfm", dir);
+    convert_map src = {0}, again, out;
+    make_latlong(&src, GENENV_CONSTANT, 16);
+    image_px(&src.img, 5, 3)[0] = NAN;
+    image_px(&src.img, 9, 4)[1] = INFINITY;
+    image_px(&src.img, 2, 5)[2] = -5.0f;
+    error err = {0};
+    ck_assert_int_eq(imageio_write(path, &src.img, NULL, &err), 0);
+    ck_assert_msg(convert_read(path, NULL, &again, &err) == 0, "%s", err.msg);
+    ck_assert_int_eq(again.bad_texels, 3);
+    ck_assert(image_get(&again.img, 5, 3).r == 0 && image_get(&again.img, 9, 4).g == 0 &&
+              image_get(&again.img, 2, 5).b == 0);
+    rgb p = power_of(&again);
+    ck_assert_msg(isfinite(p.r) && isfinite(p.g) && isfinite(p.b), "power %g %g %g", p.r, p.g, p.b);
+    resample_ok(&again, CONVERT_CUBE, 4, 2, &out);
+    for (int f = 0; f < CUBEMAP_FACES; f++)
+        for (int k = 0; k < 4 * 4 * 3; k++) ck_assert(out.cube.face[f].px[k] >= 0 && isfinite(out.cube.face[f].px[k]));
+    /* six faces: every face is cleaned */
+    snprintf(path, sizeof path, "%s/cube.pfm", dir);
+    out.cube.face[CUBEMAP_NEG_Y].px[7] = NAN;
+    out.cube.face[CUBEMAP_POS_Z].px[0] = -1;
+    ck_assert_int_eq(convert_write(path, &out, &err), 0);
+    convert_map_free(&again);
+    ck_assert_msg(convert_read(path, "cube", &again, &err) == 0, "%s", err.msg);
+    ck_assert_int_eq(again.bad_texels, 2);
+    ck_assert(again.cube.face[CUBEMAP_NEG_Y].px[7] == 0 && again.cube.face[CUBEMAP_POS_Z].px[0] == 0);
+    convert_map_free(&again);
+    convert_map_free(&out);
+    convert_map_free(&src);
+    char cmd[128];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    ck_assert_int_eq(system(cmd), 0);
+}
+END_TEST
+
 Suite *convert_suite(void)
 {
     Suite *s = suite_create("convert");
@@ -595,6 +637,7 @@ Suite *convert_suite(void)
     t = tcase_create("files");
     tcase_add_test(t, test_face_paths_put_the_suffix_before_the_extension);
     tcase_add_test(t, test_six_faces_are_written_as_a_set_and_read_back);
+    tcase_add_test(t, test_bad_texels_in_a_file_are_read_as_zero_and_counted);
     suite_add_tcase(s, t);
     return s;
 }
