@@ -304,6 +304,33 @@ START_TEST(test_every_representation_keeps_the_orientation_of_the_axes_map)
 }
 END_TEST
 
+/* The default samples resolve texels far larger than the default K assumes: the equal-area map's
+ * pole rows (uniform in z: the top row reaches 7 degrees from the zenith at 512 x 256) and the
+ * mirror ball's rim ring (10 degrees towards -x).  One centre per stratum there missed a sun at
+ * the zenith (-67% of the power) or counted one behind the ball five times (+20%). */
+START_TEST(test_default_samples_keep_the_power_of_a_sun_in_a_pole_row_or_the_rim_ring)
+{
+    static const struct { convert_kind to; double elevation, azimuth; } cases[] = {
+        {CONVERT_EQUALAREA, 89, 30}, {CONVERT_EQUALAREA, 83, 30},
+        {CONVERT_MIRRORBALL, 20, 180}, {CONVERT_MIRRORBALL, 5, 180}};
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        genenv_params p = genenv_defaults();
+        p.sun_elevation_deg = cases[i].elevation;
+        p.sun_azimuth_deg = cases[i].azimuth;
+        convert_map src = {0}, out;
+        error err = {0};
+        ck_assert_msg(genenv_make(GENENV_SUN, &p, &src.img, &err) == 0, "%s", err.msg);
+        resample_ok(&src, cases[i].to, 0, 0, &out);
+        rgb p0 = power_of(&src), p1 = power_of(&out);
+        ck_assert_msg(fabs(p1.r / p0.r - 1) < 0.01, "%s, sun at elevation %g azimuth %g: power %+.3f%%",
+                      convert_kind_name(cases[i].to), cases[i].elevation, cases[i].azimuth,
+                      100 * (p1.r / p0.r - 1));
+        convert_map_free(&out);
+        convert_map_free(&src);
+    }
+}
+END_TEST
+
 /* One bright texel comes back where it was (blurred, never moved). */
 START_TEST(test_a_one_hot_texel_comes_back_in_place)
 {
@@ -624,6 +651,7 @@ Suite *convert_suite(void)
     tcase_set_timeout(t, 30); /* a few seconds under AddressSanitizer */
     tcase_add_test(t, test_a_texel_is_the_solid_angle_average_not_the_uv_average);
     tcase_add_test(t, test_round_trips_keep_the_power_of_a_sun_map);
+    tcase_add_test(t, test_default_samples_keep_the_power_of_a_sun_in_a_pole_row_or_the_rim_ring);
     tcase_add_test(t, test_every_representation_keeps_the_orientation_of_the_axes_map);
     tcase_add_test(t, test_a_one_hot_texel_comes_back_in_place);
     tcase_add_test(t, test_converting_to_the_same_layout_copies_exactly);
