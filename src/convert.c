@@ -341,6 +341,89 @@ static int sample_dir(convert_kind to, int face, double hh, uv2 uv, vec3 *d, dou
     }
 }
 
+/* One stratum of an output texel: the square [u0, u1] x [v0, v1] of face `face`, adding
+ * w J L and w J to sum and jsum at its centre, w = 2^-splits its share of the unsplit stratum.
+ * The default K assumes that a texel spans about 2 pi / E_out radians in each direction, but
+ * some span far more along one axis: the top row of an equal-area map reaches from the pole
+ * to 7 degrees (rows are uniform in z, and theta ~ 2 sqrt(v) near the pole), a mirror ball's
+ * rim texels reach 10 degrees towards -x.  A single centre there misses or over-counts a sun
+ * smaller than that (measured: a 0.5-degree sun at the zenith lost 67% of the power to a
+ * default equal-area map, one behind a mirror ball gained 20%).  So with the default samples a
+ * stratum whose centre lines span more than max_angle (half an input texel, 2 pi / E_in / 2,
+ * the spacing the default K aims at) is halved along the longer one, up to
+ * CONVERT_MAX_SPLITS times.  Strata within it (everywhere on most maps) are the K x K grid. */
+typedef struct stratum_job {
+    const convert_env *in;
+    convert_kind to;
+    int face;
+    double hh;        /* a cylindrical output's h */
+    double max_angle; /* radians; 0: never split (samples given explicitly) */
+    int split;        /* this texel's strata may split (texel_may_split) */
+    rgb sum;          /* sum w J L */
+    double jsum;      /* sum w J */
+} stratum_job;
+
+/* Halvings of one stratum at most: 2^12 = 4096 centres, enough for the pole row of a
+ * 32768-wide equal-area map. */
+#define CONVERT_MAX_SPLITS 12
+
+/* The direction through uv of the output, a point outside a disc output's circle taken on the
+ * circle (pulled in by DISC_PULL): a rim stratum spans from its inside to the rim's -x. */
+static int span_dir(const stratum_job *job, uv2 uv, vec3 *d)
+{
+    double jac;
+    if (sample_dir(job->to, job->face, job->hh, uv, d, &jac) == 0) return 0;
+    if (job->to != CONVERT_MIRRORBALL && job->to != CONVERT_ANGULAR) return -1;
+    double a = 2.0 * uv.u - 1.0, b = 1.0 - 2.0 * uv.v, k = (1.0 - DISC_PULL) / sqrt(a * a + b * b);
+    return sample_dir(job->to, job->face, job->hh, (uv2){(a * k + 1.0) / 2.0, (1.0 - b * k) / 2.0}, d, &jac);
+}
+
+/* Angle between the directions through uv points a and b of the output (span_dir); 0 if either
+ * holds none (beyond a cylinder's extent: nothing to resolve there). */
+static double span_angle(const stratum_job *job, uv2 a, uv2 b)
+{
+    vec3 da, db;
+    if (span_dir(job, a, &da) || span_dir(job, b, &db)) return 0;
+    return atan2(vec3_length(vec3_cross(da, db)), vec3_dot(da, db));
+}
+
+/* Can a K x K stratum of texel [u0, u1] x [v0, v1] be wider than max_angle?  The texel's centre
+ * lines, over K, against max_angle: where that holds, the texel is split no further and costs
+ * what it always did (most texels of most maps); the pole rows and rim rings fail it. */
+static int texel_may_split(const stratum_job *job, double u0, double u1, double v0, double v1, int k)
+{
+    if (!(job->max_angle > 0)) return 0;
+    double um = 0.5 * (u0 + u1), vm = 0.5 * (v0 + v1);
+    double au = span_angle(job, (uv2){u0, vm}, (uv2){u1, vm});
+    double av = span_angle(job, (uv2){um, v0}, (uv2){um, v1});
+    return fmax(au, av) > k * job->max_angle;
+}
+
+static void stratum(stratum_job *job, double u0, double u1, double v0, double v1, int splits)
+{
+    double um = 0.5 * (u0 + u1), vm = 0.5 * (v0 + v1);
+    if (job->split && splits < CONVERT_MAX_SPLITS) {
+        double au = span_angle(job, (uv2){u0, vm}, (uv2){u1, vm});
+        double av = span_angle(job, (uv2){um, v0}, (uv2){um, v1});
+        if (au > job->max_angle || av > job->max_angle) {
+            if (au >= av) {
+                stratum(job, u0, um, v0, v1, splits + 1);
+                stratum(job, um, u1, v0, v1, splits + 1);
+            } else {
+                stratum(job, u0, u1, v0, vm, splits + 1);
+                stratum(job, u0, u1, vm, v1, splits + 1);
+            }
+            return;
+        }
+    }
+    vec3 d;
+    double jac;
+    if (sample_dir(job->to, job->face, job->hh, (uv2){um, vm}, &d, &jac)) return;
+    jac = ldexp(jac, -splits); /* w J, w = 2^-splits (exact: 1 when unsplit) */
+    job->sum = rgb_madd(job->sum, convert_lookup(job->in, d), jac); /* sum w J L */
+    job->jsum += jac;
+}
+
 /* "Equivalent lat-long width": texels per 2 pi radians of the map (convert.h). */
 static long equivalent_width(convert_kind kind, long width)
 {
@@ -414,6 +497,7 @@ int convert_resample(const convert_env *in, convert_kind to, int width, int samp
     assert(in && out && to >= 0 && to < CONVERT_KINDS);
     memset(out, 0, sizeof *out);
     if (width <= 0) width = convert_default_width(in, to);
+    int adaptive = samples <= 0;
     if (samples <= 0) samples = convert_default_samples(in, to, width);
     if (samples > CONVERT_MAX_SAMPLES)
         return error_set(err, NULL, 0, "samples per side must be in [1, %d], got %d",
@@ -431,22 +515,24 @@ int convert_resample(const convert_env *in, convert_kind to, int width, int samp
         return 0;
     }
     int k = samples;
+    stratum_job job = {in, to, 0, out->max_height, 0, 0, rgb_gray(0), 0};
+    /* the default also splits a stratum wider than half an input texel (see stratum_job) */
+    job.max_angle = adaptive ? M_PI / (double)input_equivalent_width(in) : 0;
     for (int f = 0; f < convert_faces(&ov); f++) {
         image *o = (image *)convert_face_image(&ov, f); /* out owns it: writable */
+        job.face = f;
         for (int r = 0; r < o->h; r++)
             for (int c = 0; c < o->w; c++) {
-                rgb sum = rgb_gray(0);
-                double jsum = 0;
+                job.sum = rgb_gray(0);
+                job.jsum = 0;
+                job.split = texel_may_split(&job, (double)c / o->w, (c + 1.0) / o->w,
+                                            (double)r / o->h, (r + 1.0) / o->h, k);
                 for (int j = 0; j < k; j++)
-                    for (int i = 0; i < k; i++) {
-                        /* the centre of stratum (i, j) of the texel's square */
-                        uv2 uv = {(c + (i + 0.5) / k) / o->w, (r + (j + 0.5) / k) / o->h};
-                        vec3 d;
-                        double jac;
-                        if (sample_dir(to, f, out->max_height, uv, &d, &jac)) continue;
-                        sum = rgb_madd(sum, convert_lookup(in, d), jac); /* sum J L */
-                        jsum += jac;
-                    }
+                    for (int i = 0; i < k; i++) /* stratum (i, j) of the texel's square */
+                        stratum(&job, (c + (double)i / k) / o->w, (c + (i + 1.0) / k) / o->w,
+                                (r + (double)j / k) / o->h, (r + (j + 1.0) / k) / o->h, 0);
+                rgb sum = job.sum;
+                double jsum = job.jsum;
                 if (jsum == 0 && (to == CONVERT_MIRRORBALL || to == CONVERT_ANGULAR) &&
                     disc_texel_valid(c, r, o->w, o->h)) {
                     /* a sliver of the disc: its nearest point to the centre stands for it */
@@ -555,8 +641,15 @@ int convert_read(const char *path, const char *from, convert_map *out, error *er
     rc = 0;
 done:
     image_free(&img);
-    if (rc) convert_map_free(out);
-    return rc;
+    if (rc) {
+        convert_map_free(out);
+        return rc;
+    }
+    /* radiance is finite and >= 0: a bad value becomes 0 once, here (convert.h) */
+    convert_env v = convert_view(out);
+    for (int f = 0; f < convert_faces(&v); f++)
+        out->bad_texels += image_zero_nonfinite_or_negative((image *)convert_face_image(&v, f));
+    return 0;
 }
 
 int convert_write(const char *path, const convert_map *m, error *err)

@@ -566,6 +566,9 @@ static int cmd_convert(int argc, char **argv)
             goto done;
     }
     if (convert_read(in, from, &src, &err)) goto done;
+    if (src.bad_texels)
+        fprintf(stderr, "envtex: warning: %s: %ld NaN, infinite or negative texel value%s (used as 0)\n",
+                in, src.bad_texels, src.bad_texels == 1 ? "" : "s");
     convert_env sv = convert_view(&src);
     if (convert_resample(&sv, kind, (int)width, (int)samples, &dst, &err)) {
         char msg[ERROR_MSG_MAX];

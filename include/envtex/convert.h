@@ -29,6 +29,13 @@
  * valid point is 0 and has no solid angle.  Directions the input does not hold (a cylinder's
  * caps) look up as 0, so power there is lost, as it must be.
  *
+ * With the default samples a stratum is also halved along its longer side while its centre
+ * lines span more than half an input texel (pi / E_in radians, E_in as for
+ * convert_default_samples), so that texels far larger than 2 pi / E_out along one axis -- the
+ * pole rows of an equal-area map, the rim ring of a mirror ball -- still see every input texel
+ * twice; the halves are weighted by their share of the stratum.  (Without it a 0.5-degree sun
+ * at the zenith lost 67% of its power to a default equal-area map.)
+ *
  * The Jacobians (dA = du dv, (a, b) = (2u - 1, 1 - 2v) the disc coordinates, rho = |(a, b)|):
  *     latlong      d(omega) = sin(theta) d(theta) d(phi)       J = 2 pi^2 sin(pi v)
  *     equalarea    d(omega) = d(cos theta) d(phi)              J = 4 pi
@@ -79,6 +86,7 @@ typedef struct convert_map {
     image img;            /* every kind but CONVERT_CUBE */
     cubemap cube;         /* CONVERT_CUBE */
     double max_height;    /* CONVERT_CYLINDRICAL */
+    long bad_texels;      /* convert_read: NaN, infinite or negative channel values it read as 0 */
 } convert_map;
 
 /* "latlong", "cube", "cross" (also CONVERT_CUBE: one image holding the faces), "mirrorball",
@@ -138,7 +146,8 @@ rgb convert_power(const convert_env *env);
  * directions) gives E for the 2:1 kinds, E/4 for cube faces, E/2 for a mirror ball, 2E/3 for
  * an angular map (at least 1).
  * Default samples: K = ceil(2 E_in / E_out) clamped to [4, CONVERT_MAX_SAMPLES], so a texel
- * that shrinks the input still sees every input texel about twice per side. */
+ * that shrinks the input still sees every input texel about twice per side (and strata wider
+ * than that are split further: convert_resample). */
 int convert_default_width(const convert_env *in, convert_kind to);
 int convert_default_samples(const convert_env *in, convert_kind to, int width);
 
@@ -146,7 +155,8 @@ int convert_default_samples(const convert_env *in, convert_kind to, int width);
 
 /* Resample *in into representation `to` (see above) into *out (overwritten, not freed first;
  * on failure it is empty).  width <= 0: convert_default_width; samples <= 0:
- * convert_default_samples, else K in [1, CONVERT_MAX_SAMPLES].  A cylindrical output gets
+ * convert_default_samples with wide strata split (see above), else exactly K x K points, K in
+ * [1, CONVERT_MAX_SAMPLES].  A cylindrical output gets
  * h = convert_cylindrical_height.  When `to` is the input's own kind at the same size (and
  * cylinder height) the texels are copied exactly.  Fails on a size image_check_size refuses or
  * a bad sample count. */
@@ -164,8 +174,11 @@ int convert_face_path(const char *path, int face, char *out, size_t size, error 
 /* Read an environment: `from` is a keyword of convert_kind_parse or NULL to detect the kind
  * from the image's shape (convert_kind_detect).  "cube" reads the six files
  * convert_face_path(path, 0..5) (same size, square); "cross" (or a detected 4:3 / 3:4 image)
- * splits one cross image.  A cylindrical map gets convert_cylindrical_height.  *out is
- * overwritten; on failure it is empty and err names the file. */
+ * splits one cross image.  A cylindrical map gets convert_cylindrical_height.  Radiance is
+ * never NaN, infinite or negative: such channel values become 0 (image_zero_nonfinite_or_negative,
+ * as the scene's envmap does), counted in out->bad_texels for the caller to report; left in, one
+ * NaN texel would spread through the bilinear lookups into its neighbours and make the power
+ * NaN.  *out is overwritten; on failure it is empty and err names the file. */
 int convert_read(const char *path, const char *from, convert_map *out, error *err);
 
 /* Write *m to `path` (format by extension, imageio.h).  A cube map becomes six files named by

@@ -304,6 +304,33 @@ START_TEST(test_every_representation_keeps_the_orientation_of_the_axes_map)
 }
 END_TEST
 
+/* The default samples resolve texels far larger than the default K assumes: the equal-area map's
+ * pole rows (uniform in z: the top row reaches 7 degrees from the zenith at 512 x 256) and the
+ * mirror ball's rim ring (10 degrees towards -x).  One centre per stratum there missed a sun at
+ * the zenith (-67% of the power) or counted one behind the ball five times (+20%). */
+START_TEST(test_default_samples_keep_the_power_of_a_sun_in_a_pole_row_or_the_rim_ring)
+{
+    static const struct { convert_kind to; double elevation, azimuth; } cases[] = {
+        {CONVERT_EQUALAREA, 89, 30}, {CONVERT_EQUALAREA, 83, 30},
+        {CONVERT_MIRRORBALL, 20, 180}, {CONVERT_MIRRORBALL, 5, 180}};
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        genenv_params p = genenv_defaults();
+        p.sun_elevation_deg = cases[i].elevation;
+        p.sun_azimuth_deg = cases[i].azimuth;
+        convert_map src = {0}, out;
+        error err = {0};
+        ck_assert_msg(genenv_make(GENENV_SUN, &p, &src.img, &err) == 0, "%s", err.msg);
+        resample_ok(&src, cases[i].to, 0, 0, &out);
+        rgb p0 = power_of(&src), p1 = power_of(&out);
+        ck_assert_msg(fabs(p1.r / p0.r - 1) < 0.01, "%s, sun at elevation %g azimuth %g: power %+.3f%%",
+                      convert_kind_name(cases[i].to), cases[i].elevation, cases[i].azimuth,
+                      100 * (p1.r / p0.r - 1));
+        convert_map_free(&out);
+        convert_map_free(&src);
+    }
+}
+END_TEST
+
 /* One bright texel comes back where it was (blurred, never moved). */
 START_TEST(test_a_one_hot_texel_comes_back_in_place)
 {
@@ -566,6 +593,48 @@ START_TEST(test_six_faces_are_written_as_a_set_and_read_back)
 }
 END_TEST
 
+/* A NaN, Inf or negative texel in an input file (a PFM keeps them) is read as 0 and counted:
+ * left in, the NaN spreads through the bilinear lookups into the output and the power is NaN. */
+START_TEST(test_bad_texels_in_a_file_are_read_as_zero_and_counted)
+{
+    char dir[] = "/tmp/test_convert_XXXXXX";
+    ck_assert_ptr_nonnull(mkdtemp(dir));
+    char path[128];
+    snprintf(path, sizeof path, "%s/bad.pfm", dir);
+    convert_map src = {0}, again, out;
+    make_latlong(&src, GENENV_CONSTANT, 16);
+    image_px(&src.img, 5, 3)[0] = NAN;
+    image_px(&src.img, 9, 4)[1] = INFINITY;
+    image_px(&src.img, 2, 5)[2] = -5.0f;
+    error err = {0};
+    ck_assert_int_eq(imageio_write(path, &src.img, NULL, &err), 0);
+    ck_assert_msg(convert_read(path, NULL, &again, &err) == 0, "%s", err.msg);
+    ck_assert_int_eq(again.bad_texels, 3);
+    ck_assert(image_get(&again.img, 5, 3).r == 0 && image_get(&again.img, 9, 4).g == 0 &&
+              image_get(&again.img, 2, 5).b == 0);
+    rgb p = power_of(&again);
+    ck_assert_msg(isfinite(p.r) && isfinite(p.g) && isfinite(p.b), "power %g %g %g", p.r, p.g, p.b);
+    resample_ok(&again, CONVERT_CUBE, 4, 2, &out);
+    for (int f = 0; f < CUBEMAP_FACES; f++)
+        for (int k = 0; k < 4 * 4 * 3; k++) ck_assert(out.cube.face[f].px[k] >= 0 && isfinite(out.cube.face[f].px[k]));
+    /* six faces: every face is cleaned */
+    snprintf(path, sizeof path, "%s/cube.pfm", dir);
+    out.cube.face[CUBEMAP_NEG_Y].px[7] = NAN;
+    out.cube.face[CUBEMAP_POS_Z].px[0] = -1;
+    ck_assert_int_eq(convert_write(path, &out, &err), 0);
+    convert_map_free(&again);
+    ck_assert_msg(convert_read(path, "cube", &again, &err) == 0, "%s", err.msg);
+    ck_assert_int_eq(again.bad_texels, 2);
+    ck_assert(again.cube.face[CUBEMAP_NEG_Y].px[7] == 0 && again.cube.face[CUBEMAP_POS_Z].px[0] == 0);
+    convert_map_free(&again);
+    convert_map_free(&out);
+    convert_map_free(&src);
+    char cmd[128];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", dir);
+    ck_assert_int_eq(system(cmd), 0);
+}
+END_TEST
+
 Suite *convert_suite(void)
 {
     Suite *s = suite_create("convert");
@@ -582,6 +651,7 @@ Suite *convert_suite(void)
     tcase_set_timeout(t, 30); /* a few seconds under AddressSanitizer */
     tcase_add_test(t, test_a_texel_is_the_solid_angle_average_not_the_uv_average);
     tcase_add_test(t, test_round_trips_keep_the_power_of_a_sun_map);
+    tcase_add_test(t, test_default_samples_keep_the_power_of_a_sun_in_a_pole_row_or_the_rim_ring);
     tcase_add_test(t, test_every_representation_keeps_the_orientation_of_the_axes_map);
     tcase_add_test(t, test_a_one_hot_texel_comes_back_in_place);
     tcase_add_test(t, test_converting_to_the_same_layout_copies_exactly);
@@ -595,6 +665,7 @@ Suite *convert_suite(void)
     t = tcase_create("files");
     tcase_add_test(t, test_face_paths_put_the_suffix_before_the_extension);
     tcase_add_test(t, test_six_faces_are_written_as_a_set_and_read_back);
+    tcase_add_test(t, test_bad_texels_in_a_file_are_read_as_zero_and_counted);
     suite_add_tcase(s, t);
     return s;
 }
