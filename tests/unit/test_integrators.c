@@ -712,6 +712,25 @@ END_TEST
 
 /* ---- Russian roulette -------------------------------------------------------------------------- */
 
+/* radiance_stats of the path tracer at the centre of a closed sphere of radius 5 (`cfg`, then the
+ * sphere's `material`), along one ray; *rays: the rays it traced */
+static stats inside_a_sphere(const char *cfg, const char *material, long n, uint64_t seed, long long *rays)
+{
+    char text[1024];
+    snprintf(text, sizeof text, "size 4 4\ncamera 0 0 0  0 0 -1  0 1 0  40\nintegrator pathtracer\n%s%ssphere 0 0 0 5\n",
+             cfg, material);
+    scene sc;
+    load(&sc, text);
+    rig rg;
+    rig_init(&rg, &sc);
+    ray r = {vec3_make(0, 0, 0), vec3_normalize(vec3_make(0.3, -0.2, -1)), 0, INFINITY};
+    stats st = radiance_stats(&rg, r, 0, n, seed);
+    if (rays) *rays = rg.it.rays;
+    rig_free(&rg);
+    scene_free(&sc);
+    return st;
+}
+
 /* inside a closed sphere of emission E and albedo rho the radiance is L = E + rho L = E / (1 - rho)
  * everywhere.  maxdepth 60 without roulette (truncation rho^61, negligible) and maxdepth -1 with
  * roulette both give it, with hemisphere and cosine sampling */
@@ -721,21 +740,9 @@ START_TEST(test_integrators_russian_roulette_keeps_the_mean)
                          "maxdepth -1\nrussianroulette on\nimportancesampling hemisphere\n",
                          "maxdepth -1\nrussianroulette on\nimportancesampling cosine\n"};
     for (int i = 0; i < 3; i++) {
-        char text[1024];
-        snprintf(text, sizeof text,
-                 "size 4 4\ncamera 0 0 0  0 0 -1  0 1 0  40\nintegrator pathtracer\n%s"
-                 "diffuse 0.5 0.5 0.5\nemission 0.5 0.5 0.5\nsphere 0 0 0 5\n",
-                 cfg[i]);
-        scene sc;
-        load(&sc, text);
-        rig rg;
-        rig_init(&rg, &sc);
-        ray r = {vec3_make(0, 0, 0), vec3_normalize(vec3_make(0.3, -0.2, -1)), 0, INFINITY};
-        stats st = radiance_stats(&rg, r, 0, 40000, 90 + (uint64_t)i);
+        stats st = inside_a_sphere(cfg[i], "diffuse 0.5 0.5 0.5\nemission 0.5 0.5 0.5\n", 40000, 90 + (uint64_t)i, NULL);
         ck_assert_msg(fabs(st.mean - 1) < Z_SE * st.se + 1e-9, "%s: %.5f, want 1 (SE %.5f)", cfg[i], st.mean, st.se);
         ck_assert(st.se < 0.01);
-        rig_free(&rg);
-        scene_free(&sc);
     }
 }
 END_TEST
@@ -748,24 +755,13 @@ START_TEST(test_integrators_a_path_stops_at_zero_throughput_without_roulette)
     const char *cfg[] = {"importancesampling cosine\n", "importancesampling hemisphere\n",
                          "importancesampling brdf\nbrdf ggx\nroughness 0.3\n"};
     for (int i = 0; i < 3; i++) {
-        char text[1024];
-        snprintf(text, sizeof text,
-                 "size 4 4\ncamera 0 0 0  0 0 -1  0 1 0  40\nintegrator pathtracer\n"
-                 "maxdepth -1\nrussianroulette off\nnexteventestimation off\n%s"
-                 "diffuse 0 0 0\nspecular 0 0 0\nemission 0.5 0.5 0.5\nsphere 0 0 0 5\n",
-                 cfg[i]);
-        scene sc;
-        load(&sc, text);
-        rig rg;
-        rig_init(&rg, &sc);
-        ray r = {vec3_make(0, 0, 0), vec3_normalize(vec3_make(0.3, -0.2, -1)), 0, INFINITY};
+        char text[256];
+        snprintf(text, sizeof text, "maxdepth -1\nrussianroulette off\nnexteventestimation off\n%s", cfg[i]);
         enum { N = 1000 };
-        stats st = radiance_stats(&rg, r, 0, N, 95 + (uint64_t)i);
+        long long rays = 0;
+        stats st = inside_a_sphere(text, "diffuse 0 0 0\nspecular 0 0 0\nemission 0.5 0.5 0.5\n", N, 95 + (uint64_t)i, &rays);
         ck_assert_msg(st.mean == 0.5 && st.se == 0, "%s: %.6f (SE %.6f), want 0.5 exactly", cfg[i], st.mean, st.se);
-        ck_assert_msg(rg.it.rays <= 2 * N, "%s: %lld rays for %d paths, want at most 2 a path", cfg[i],
-                      rg.it.rays, N);
-        rig_free(&rg);
-        scene_free(&sc);
+        ck_assert_msg(rays <= 2 * N, "%s: %lld rays for %d paths, want at most 2 a path", cfg[i], rays, N);
     }
 }
 END_TEST
