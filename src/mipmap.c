@@ -305,7 +305,11 @@ static rgb ewa_level(const mipmap *m, int l, uv2 st, uv2 d0, uv2 d1)
 
 rgb mipmap_lookup_ewa(const mipmap *m, uv2 st, uv2 dst_dx, uv2 dst_dy)
 {
-    uv2 d0 = dst_dx, d1 = dst_dy;
+    /* the axes in level-0 texels, (ds W, dt H): every level halves both sides, so the level
+     * and the anisotropy are measured there (texture units would stretch a non-square image's
+     * shorter side: a footprint of one texel each way on a 2:1 image would read half a level up) */
+    double W = m->level[0].w, H = m->level[0].h;
+    uv2 d0 = {dst_dx.u * W, dst_dx.v * H}, d1 = {dst_dy.u * W, dst_dy.v * H};
     double l0 = d0.u * d0.u + d0.v * d0.v, l1 = d1.u * d1.u + d1.v * d1.v;
     if (!(isfinite(l0) && isfinite(l1))) return image_get(&m->level[m->nlevels - 1], 0, 0);
     if (l0 < l1) { /* d0 is the major axis */
@@ -328,8 +332,10 @@ rgb mipmap_lookup_ewa(const mipmap *m, uv2 st, uv2 dst_dx, uv2 dst_dy)
         }
         minor = target;
     }
-    double lod = mipmap_level_for_footprint(m, minor * max_side(&m->level[0]));
+    double lod = mipmap_level_for_footprint(m, minor); /* minor is in texels */
     if (lod >= m->nlevels - 1) return image_get(&m->level[m->nlevels - 1], 0, 0); /* 1 x 1 */
+    d0 = (uv2){d0.u / W, d0.v / H}; /* back to texture units */
+    d1 = (uv2){d1.u / W, d1.v / H};
     int l = (int)lod;
     double f = lod - l;
     rgb c0 = ewa_level(m, l, st, d0, d1);

@@ -66,6 +66,12 @@ void texshade_differentials(const scene *sc, const hit *h, const ray *r, const r
     }
     const scene_triangle *tr = &sc->triangles[h->prim];
     if (!tr->has_normals) return; /* a flat triangle: dn = 0 */
+    /* the integrators shade with s->n = s->ng where the interpolated normal faces away from
+     * the viewer: that n is the facet's, constant, and a mirror about it has dn = 0 (the vertex
+     * normals' change would bend the reflected footprint by a curvature the mirror lacks).
+     * s->n follows the normal field when it is at least as close to +-ns as to ng. */
+    vec3 ns = vec3_scale(h->ns, sign);
+    if (vec3_dot(s->n, ns) < vec3_dot(s->n, s->ng)) return;
     vec3 e1 = vec3_sub(tr->p[1], tr->p[0]), e2 = vec3_sub(tr->p[2], tr->p[0]);
     double bx1, bx2, by1, by2;
     if (plane_coords(e1, e2, s->dpdx, &bx1, &bx2) || plane_coords(e1, e2, s->dpdy, &by1, &by2))

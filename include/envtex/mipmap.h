@@ -110,11 +110,13 @@ rgb mipmap_lookup_trilinear_axes(const mipmap *m, uv2 st, double len2_a, double 
 
 /* EWA lookup (pbrt-v3 MIPMap::EWA).  dst_dx, dst_dy: the change of (s, t) per pixel step in x
  * and y (texture units), i.e. the two axes of the pixel's footprint in texture space.
- *   - The longer is the major axis; if the minor axis is shorter than major /
- *     MIPMAP_MAX_ANISOTROPY it is lengthened to that (a zero minor axis becomes perpendicular to
- *     the major one).
- *   - Level L = log2(minor length * max(W, H)) clamped to [0, levels - 1]; the two nearest
- *     levels are filtered and blended by the fraction of L, as in trilinear.
+ *   - Axes are measured in level-0 texels, (ds W, dt H) (every level halves both sides, so a
+ *     non-square image's texels, not its texture units, say how far up to go).  The longer is
+ *     the major axis; if the minor axis is shorter than major / MIPMAP_MAX_ANISOTROPY it is
+ *     lengthened to that (a zero minor axis becomes perpendicular to the major one).
+ *   - Level L = log2(minor length in texels) clamped to [0, levels - 1] (for a square image,
+ *     minor length in texture units * W); the two nearest levels are filtered and blended by
+ *     the fraction of L, as in trilinear.
  *   - On a level, texels (i, j) whose centres lie in the ellipse r^2 < 1 of the footprint's
  *     covariance plus one texel^2 (so the filter never falls between texels) are averaged with
  *     weights exp(-alpha r^2) - exp(-alpha), normalised by their sum; indices wrap.

@@ -65,8 +65,10 @@ int texshade_scene_has_maps(const scene *sc);
 
 /* The hit's differentials into s: s->has_diff, dpdx, dpdy (raydiff_at_hit with the geometric
  * normal) and dndx, dndy (the change of the unbumped shading normal, oriented like s->n: the
- * sphere's normal field, or the interpolated vertex normals; zero for a flat triangle).  rd may
- * be NULL.  s->n and s->entering must be set (s->entering = 1 when s->n is the outward ns). */
+ * sphere's normal field, or the interpolated vertex normals; zero for a flat triangle, and
+ * zero where s->n is the geometric normal s->ng instead of +-ns, the integrators' fallback when
+ * the interpolated normal faces away from the viewer).  rd may be NULL.  s->n, s->ng and
+ * s->entering must be set (s->entering = 1 when s->n is the outward ns). */
 void texshade_differentials(const scene *sc, const hit *h, const ray *r, const ray_diff *rd,
                             surface *s);
 

@@ -502,6 +502,37 @@ START_TEST(test_build_rejects_an_empty_image_and_an_unknown_wrap_mode)
 }
 END_TEST
 
+/* A footprint says how many texels it covers, whatever the image's aspect ratio: every level
+ * halves both sides, so EWA measures its axes in texels, (ds W, dt H).  Two images of stripes
+ * 4 rows wide, 64 x 64 and 64 x 16, read around the same texel with the same footprint in
+ * texels (2 across, 1 up, the minor axis one texel: level 0) give the same answer.  In texture
+ * units the 64 x 16 image's minor axis once measured 2 of the longer side's texels: level 1,
+ * blurrier stripes. */
+START_TEST(test_ewa_measures_a_non_square_images_footprint_in_texels)
+{
+    image sq = new_image(64, 64), wide = new_image(64, 16);
+    for (int j = 0; j < 64; j++)
+        for (int i = 0; i < 64; i++) {
+            image_set(&sq, i, j, rgb_gray((j / 4) % 2));
+            if (j < 16) image_set(&wide, i, j, rgb_gray((j / 4) % 2));
+        }
+    mipmap a, b;
+    error err = {0};
+    ck_assert_int_eq(mipmap_build(&a, &sq, WRAP_REPEAT, &err), 0);
+    ck_assert_int_eq(mipmap_build(&b, &wide, WRAP_REPEAT, &err), 0);
+    /* texel (20, 5) from the top of both, in a stripe of 1: the same texels around it */
+    uv2 sta = {20.5 / 64, (64 - 5.5) / 64}, stb = {20.5 / 64, (16 - 5.5) / 16};
+    rgb ca = mipmap_lookup_ewa(&a, sta, (uv2){2.0 / 64, 0}, (uv2){0, 1.0 / 64});
+    rgb cb = mipmap_lookup_ewa(&b, stb, (uv2){2.0 / 64, 0}, (uv2){0, 1.0 / 16});
+    ck_assert_msg(ca.r > 0.75, "the square image's level 0 shows the stripe: %g", ca.r);
+    ck_assert_msg(fabs(ca.r - cb.r) < 1e-6, "64 x 64 gives %.9g, 64 x 16 %.9g", ca.r, cb.r);
+    mipmap_free(&a);
+    mipmap_free(&b);
+    image_free(&sq);
+    image_free(&wide);
+}
+END_TEST
+
 Suite *mipmap_suite(void)
 {
     Suite *s = suite_create("mipmap");
@@ -524,6 +555,7 @@ Suite *mipmap_suite(void)
     tcase_add_test(tc, test_ewa_of_a_checkerboard_with_a_large_footprint_is_its_average);
     tcase_add_test(tc, test_ewa_filters_along_the_major_axis_only);
     tcase_add_test(tc, test_ewa_clamps_the_anisotropy);
+    tcase_add_test(tc, test_ewa_measures_a_non_square_images_footprint_in_texels);
     tcase_add_test(tc, test_ewa_far_coordinates_read_like_near_ones);
     tcase_add_test(tc, test_only_pack_makes_trilinears_copy_and_only_once);
     tcase_add_test(tc, test_build_rejects_an_empty_image_and_an_unknown_wrap_mode);

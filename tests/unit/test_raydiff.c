@@ -314,6 +314,55 @@ START_TEST(test_delta_diff_tells_reflection_from_refraction_by_the_shading_norma
 }
 END_TEST
 
+/* Where an interpolated normal faces away from the viewer the integrators shade with s->n =
+ * s->ng: a flat mirror, whose reflected differentials are the incoming ones mirrored,
+ * dwi = dd - 2 (dd . ng) ng.  The vertex normals' change (dn) once went into them anyway and
+ * bent the reflected footprint by a curvature the facet does not have (ds/dx several times
+ * the neighbouring pixel's). */
+START_TEST(test_a_mirror_falling_back_to_the_geometric_normal_reflects_the_footprint_flat)
+{
+    const char *text =
+        "size 64 64\ncamera -4 0 5  0 0 0  0 1 0  45\n"
+        "texture chk checker 8  0 0 0  1 1 1\ndiffusemap chk\nbrdf mirror\n"
+        "vertexnormal -2 -2 0  1 0.3 0.3\nvertexnormal 2 -2 0  1 -0.3 0.25\n"
+        "vertexnormal 0 2 0  1 0.1 0.35\ntrinormal 0 1 2\n";
+    scene sc;
+    error err = {0};
+    ck_assert_msg(scene_load_string(text, NULL, NULL, &sc, &err) == 0, "%s", err.msg);
+    const scene_triangle *tr = &sc.triangles[0];
+    ck_assert(tr->has_normals);
+    camera c;
+    camera_init(&c, sc.eye, sc.center, sc.up, sc.fovy, sc.width, sc.height);
+    ray_diff rd;
+    ray r = camera_ray_differential(&c, 36, 36, 1.0, &rd);
+    hit h;
+    ck_assert(find_hit(&sc, &r, &h));
+    double b1 = h.bary.u, b2 = h.bary.v; /* the interpolated normal, as the triangle's hit has */
+    h.ns = vec3_normalize(vec3_add(vec3_add(vec3_scale(tr->n[0], 1 - b1 - b2), vec3_scale(tr->n[1], b1)),
+                                   vec3_scale(tr->n[2], b2)));
+    vec3 view = vec3_neg(r.d);
+    /* the integrators' frame: ns faces away from the viewer here, so n = ng */
+    ck_assert(vec3_dot(view, h.ng) > 0 && vec3_dot(view, h.ns) < 0);
+    surface s;
+    memset(&s, 0, sizeof s);
+    s.entering = 1;
+    s.ng = s.n = h.ng;
+    texshade_differentials(&sc, &h, &r, &rd, &s);
+    ck_assert(s.has_diff);
+    ray_diff out;
+    texshade_delta_diff(&s, &rd, view, vec3_reflect(r.d, s.n), &out);
+    ck_assert(out.has);
+    vec3 n = s.ng; /* dwi = dd - 2 (dd . n) n */
+    assert_vec_near(out.ddx, vec3_madd(rd.ddx, n, -2 * vec3_dot(rd.ddx, n)), 1e-12, "ddx of a flat mirror");
+    assert_vec_near(out.ddy, vec3_madd(rd.ddy, n, -2 * vec3_dot(rd.ddy, n)), 1e-12, "ddy of a flat mirror");
+    /* seen with its own interpolated normal the same hit does curve: dn is not zero */
+    s.n = h.ns;
+    texshade_differentials(&sc, &h, &r, &rd, &s);
+    ck_assert(vec3_length(s.dndx) > 1e-4 && vec3_length(s.dndy) > 1e-4);
+    scene_free(&sc);
+}
+END_TEST
+
 START_TEST(test_barycentric_st_at_a_hit_interpolates_the_corners)
 {
     scene sc;
@@ -418,6 +467,7 @@ Suite *raydiff_suite(void)
     tcase_add_test(tc, test_footprint_of_a_plane_at_known_distance_picks_the_mip_level);
     tcase_add_test(tc, test_barycentric_st_at_a_hit_interpolates_the_corners);
     tcase_add_test(tc, test_delta_diff_tells_reflection_from_refraction_by_the_shading_normal);
+    tcase_add_test(tc, test_a_mirror_falling_back_to_the_geometric_normal_reflects_the_footprint_flat);
     tcase_add_test(tc, test_diffusemap_replaces_kd_and_untextured_materials_are_untouched);
     tcase_add_test(tc, test_colour_maps_from_negative_texels_read_as_zero);
     suite_add_tcase(s, tc);

@@ -350,6 +350,41 @@ START_TEST(test_height_derivs_of_a_solid_agree_with_a_fine_difference)
 }
 END_TEST
 
+/* Trilinear's level comes from the footprint in texels, (ds W, dt H): every level halves both
+ * sides.  A footprint one texel wide each way on a 64 x 16 one-texel checker is level 0 (the
+ * texel itself at its centre), as on a square image; measured in texture units against the
+ * longer side it once read 2 texels, level 1, the checker's grey.  Four texels each way is
+ * level 2 on both. */
+START_TEST(test_trilinear_measures_a_non_square_images_footprint_in_texels)
+{
+    int sizes[3][2] = {{64, 64}, {64, 16}, {16, 64}};
+    for (int k = 0; k < 3; k++) {
+        int w = sizes[k][0], h = sizes[k][1];
+        image im = {0};
+        error err = {0};
+        ck_assert_int_eq(image_alloc(&im, w, h, &err), 0);
+        for (int j = 0; j < h; j++)
+            for (int i = 0; i < w; i++) image_set(&im, i, j, rgb_gray((i + j) % 2));
+        texture t;
+        texture_init_image(&t, &im, WRAP_REPEAT);
+        ck_assert_int_eq(texture_prepare(&t, TEXFILTER_TRILINEAR, &err), 0);
+        texture_query q = {0};
+        q.filter = TEXFILTER_TRILINEAR;
+        q.st = (uv2){5.5 / w, (h - 2.5) / h}; /* the centre of texel (5, 2) from the top: 1 */
+        q.dst_dx = (uv2){1.0 / w, 0};
+        q.dst_dy = (uv2){0, 1.0 / h};
+        double v = texture_eval_scalar(&t, &q);
+        ck_assert_msg(fabs(v - 1.0) < 1e-6, "%d x %d, one texel each way: %.9g, want 1 (level 0)", w, h, v);
+        q.dst_dx = (uv2){4.0 / w, 0};
+        q.dst_dy = (uv2){0, 4.0 / h};
+        v = texture_eval_scalar(&t, &q);
+        ck_assert_msg(fabs(v - 0.5) < 1e-6, "%d x %d, four texels each way: %.9g, want 0.5", w, h, v);
+        texture_free(&t);
+        image_free(&im);
+    }
+}
+END_TEST
+
 Suite *texture_suite(void)
 {
     Suite *s = suite_create("texture");
@@ -366,6 +401,7 @@ Suite *texture_suite(void)
     tcase_add_test(tc, test_scalar_is_the_channel_mean);
     tcase_add_test(tc, test_height_derivs_of_an_image_ramp_are_its_slope);
     tcase_add_test(tc, test_height_derivs_of_a_solid_agree_with_a_fine_difference);
+    tcase_add_test(tc, test_trilinear_measures_a_non_square_images_footprint_in_texels);
     suite_add_tcase(s, tc);
     return s;
 }
