@@ -224,15 +224,18 @@ rgb texture_eval(const texture *t, const texture_query *q)
              * plane: the long axis (pbrt's max) blurs the short one away, the short axis
              * aliases; the area's side measured 3.4x less error than max on the receding
              * checkerboard at 1 spp (docs/texture-mapping.md).  Equal to both when isotropic. */
-            {
+            if (t->img->w != t->img->h) {
                 /* each axis in units of the longer side's texels, (ds W, dt H) / max(W, H), which
                  * is what mipmap_lookup_trilinear_axes measures: every level halves both sides,
-                 * so a footprint one texel each way on a 2:1 image is level 0, not 0.5 */
+                 * so a footprint one texel each way on a 2:1 image is level 0, not 0.5 (a square
+                 * image, the usual texture, needs no scaling: ks = kt = 1) */
                 double side = t->img->w > t->img->h ? t->img->w : t->img->h;
                 double ks = t->img->w / side, kt = t->img->h / side;
                 uv2 a = {q->dst_dx.u * ks, q->dst_dx.v * kt}, b = {q->dst_dy.u * ks, q->dst_dy.v * kt};
                 return mipmap_lookup_trilinear_axes(&t->mip, q->st, uv_dot(a, a), uv_dot(b, b));
             }
+            return mipmap_lookup_trilinear_axes(&t->mip, q->st, uv_dot(q->dst_dx, q->dst_dx),
+                                                uv_dot(q->dst_dy, q->dst_dy));
         case TEXFILTER_EWA:
             assert(t->has_mip && "texture_prepare(t, TEXFILTER_EWA) first");
             return mipmap_lookup_ewa(&t->mip, q->st, q->dst_dx, q->dst_dy);
