@@ -358,9 +358,11 @@ double envlight_pdf(const envlight *el, vec3 wi)
 rgb envlight_radiance_pdf(const envlight *el, vec3 wi, double *pdf)
 {
     int c, r;
-    double sin_t;
+    double sin_t = 0;
     *pdf = 0;
-    if (!el->env->present || world_to_texel(el, wi, &c, &r, &sin_t)) return rgb_gray(0);
+    /* sin theta only where the pdf needs it (cdf-sintheta): a sin() call a lookup otherwise */
+    double *want_sin = el->mode == ENVSAMPLING_CDF_SINTHETA ? &sin_t : NULL;
+    if (!el->env->present || world_to_texel(el, wi, &c, &r, want_sin)) return rgb_gray(0);
     switch (el->mode) {
     case ENVSAMPLING_UNIFORM: *pdf = 1 / (4 * M_PI); break;
     case ENVSAMPLING_CDF: { rgb L = texel(el, c, r); *pdf = rgb_avg(L) / el->power; return L; } /* cdf_pdf */
