@@ -434,18 +434,39 @@ double distrib2d_pmf(const distrib2d *d, int outer, int inner)
     return distrib2d_pmf_outer(d, outer) * distrib2d_pmf_inner(d, outer, inner);
 }
 
+static const int32_t *column_guide(const distrib2d *d, int outer)
+{
+    return d->cond_guide + (size_t)outer * ((size_t)d->n_guide_inner + 1);
+}
+
+int distrib2d_sample_inner(const distrib2d *d, int outer, double xi_inner, double *pmf_inner,
+                           double *rem_inner)
+{
+    assert(outer >= 0 && outer < d->n_outer);
+    const double *cdf = column_cdf(d, outer);
+    double x = clamp_xi(xi_inner);
+    int i = guide_search(cdf, d->n_inner, column_guide(d, outer), d->n_guide_inner, x);
+    double p_inner = cdf[i + 1] - cdf[i]; /* p(inner | outer) */
+    if (pmf_inner) *pmf_inner = p_inner;
+    if (rem_inner) *rem_inner = cdf_remap(cdf, i, x, p_inner);
+    return i;
+}
+
+int distrib2d_guide_first_bin(const distrib2d *d, int outer, double xi_inner)
+{
+    assert(outer >= 0 && outer < d->n_outer);
+    int m = d->n_guide_inner;
+    int g = (int)(clamp_xi(xi_inner) * (double)m); /* as guide_search */
+    return column_guide(d, outer)[g < m - 1 ? g : m - 1];
+}
+
 void distrib2d_sample(const distrib2d *d, double xi_outer, double xi_inner, int *outer,
                       int *inner, double *pmf, double *rem_outer, double *rem_inner)
 {
     assert(outer && inner);
-    double p_outer;
+    double p_outer, p_inner;
     int o = distrib1d_sample(&d->marginal, xi_outer, &p_outer, rem_outer);
-    const double *cdf = column_cdf(d, o);
-    double x = clamp_xi(xi_inner);
-    const int32_t *guide = d->cond_guide + (size_t)o * ((size_t)d->n_guide_inner + 1);
-    int i = guide_search(cdf, d->n_inner, guide, d->n_guide_inner, x);
-    double p_inner = cdf[i + 1] - cdf[i];
-    if (rem_inner) *rem_inner = cdf_remap(cdf, i, x, p_inner);
+    int i = distrib2d_sample_inner(d, o, xi_inner, &p_inner, rem_inner);
     if (pmf) *pmf = p_outer * p_inner; /* p(outer, inner) = p(outer) p(inner | outer) */
     *outer = o;
     *inner = i;

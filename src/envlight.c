@@ -417,8 +417,15 @@ int envlight_sample(const envlight *el, double xi1, double xi2, int force_invers
         __builtin_prefetch(image_px(el->map, c, distrib_alias_first_bin(el->h, xi2)));
         r = distrib2d_sample_alias_inner(&el->table, c, xi2, &rr);
         if (want_pmf) pmf = distrib2d_pmf(&el->table, c, r);
-    } else
-        distrib2d_sample(&el->table, xi1, xi2, &c, &r, want_pmf, &rc, &rr);
+    } else {
+        /* distrib2d_sample in its two halves, the same way: between them, ask for the texel of
+         * the row the column's guide points at (the row returned, but for dim rows) */
+        double p_outer, p_inner;
+        c = distrib1d_sample(&el->table.marginal, xi1, &p_outer, &rc);
+        __builtin_prefetch(image_px(el->map, c, distrib2d_guide_first_bin(&el->table, c, xi2)));
+        r = distrib2d_sample_inner(&el->table, c, xi2, &p_inner, &rr);
+        pmf = p_outer * p_inner; /* p(c, r) = p(c) p(r | c), as distrib2d_sample */
+    }
     double cos_phi, sin_phi; /* phi = 2 pi (c + rc) / w: uniform in phi inside the column */
     sample_cos_sin_phi(el, c, rc, &cos_phi, &sin_phi);
     double cos_t, sin_t;

@@ -58,7 +58,8 @@
  * far bigger than the cache, with samples spread over it, both samplers are bound by memory
  * latency: ~120 ns alias (2 misses), ~140-200 ns binary search with the guide (~550 without).
  * A caller that reads its own data at the sampled cell can overlap that miss with the
- * table's: see distrib2d_sample_alias_inner and distrib_alias_first_bin.
+ * table's: see distrib2d_sample_alias_inner and distrib_alias_first_bin (alias), distrib2d_sample_inner
+ * and distrib2d_guide_first_bin (binary search).
  */
 #ifndef ENVTEX_DISTRIB_H
 #define ENVTEX_DISTRIB_H
@@ -165,6 +166,24 @@ double distrib2d_pmf_inner(const distrib2d *d, int outer, int inner);
  * distrib1d_sample (monotone).  outer and inner must not be NULL; pmf, rem_* may be NULL. */
 void distrib2d_sample(const distrib2d *d, double xi_outer, double xi_inner, int *outer,
                       int *inner, double *pmf, double *rem_outer, double *rem_inner);
+
+/* distrib2d_sample in two halves, for a caller that prefetches between them:
+ *     int o = distrib1d_sample(&d->marginal, xi_outer, &p_outer, &rem_outer);
+ *     __builtin_prefetch(data_of(o, distrib2d_guide_first_bin(d, o, xi_inner)));
+ *     int i = distrib2d_sample_inner(d, o, xi_inner, &p_inner, &rem_inner);
+ * give the same o, i, remapped values and pmf = p_outer * p_inner as distrib2d_sample.
+ * distrib2d_sample_inner: inversion of the conditional CDF of column `outer` (in range, assert)
+ * with xi_inner; *pmf_inner = p(inner | outer); pmf_inner and rem_inner may be NULL. */
+int distrib2d_sample_inner(const distrib2d *d, int outer, double xi_inner, double *pmf_inner,
+                           double *rem_inner);
+
+/* The bin the guided search of xi_inner in column `outer` starts from (its guide entry,
+ * clamped as the search clamps xi): the bin distrib2d_sample_inner returns whenever xi falls
+ * in the same CDF step as the guide cell's start, which is most of the time for the bins of
+ * probability well above 1 / n_guide_inner, where most samples go.  On a table far bigger than
+ * the cache, a caller that reads its own data at the returned bin can prefetch it here: its
+ * miss and the CDF's then overlap instead of following each other.  Reads one guide entry. */
+int distrib2d_guide_first_bin(const distrib2d *d, int outer, double xi_inner);
 
 /* The same distribution with the alias method at both levels, O(1); distrib2d_alias_build must
  * have been called (assert).  Same outputs as distrib2d_sample, not monotone in xi. */

@@ -906,6 +906,37 @@ START_TEST(test_distrib2d_alias_in_two_halves_is_the_whole)
 }
 END_TEST
 
+/* The two halves a caller prefetches between (distrib2d_sample_inner after distrib1d_sample of
+ * the marginal) give what distrib2d_sample gives, bit for bit (cells, remapped values, the pmf
+ * as p_outer p_inner), and distrib2d_guide_first_bin names a bin of the column, for the sweep of
+ * xi (its edges, NaN and out-of-range values included). */
+START_TEST(test_distrib2d_search_in_two_halves_is_the_whole)
+{
+    double w[T2_MAX];
+    int no, ni;
+    distrib2d d = {0};
+    zero_grid_tables(&d, w, &no, &ni);
+    long differ = 0, at_first = 0;
+    for (int a = 0; a < N_SWEEP; a++) {
+        for (int b = 0; b < N_SWEEP; b++) {
+            double xs[2] = {sweep_xi(a), sweep_xi(b)};
+            int o, i;
+            double pmf, ro, ri, po, pi, ro2, ri2;
+            distrib2d_sample(&d, xs[0], xs[1], &o, &i, &pmf, &ro, &ri);
+            int o2 = distrib1d_sample(&d.marginal, xs[0], &po, &ro2);
+            int first = distrib2d_guide_first_bin(&d, o2, xs[1]);
+            int i2 = distrib2d_sample_inner(&d, o2, xs[1], &pi, &ri2);
+            differ += o2 != o || i2 != i || ro2 != ro || ri2 != ri || po * pi != pmf;
+            ck_assert(first >= 0 && first < ni);
+            at_first += i == first;
+        }
+    }
+    ck_assert_msg(differ == 0, "%ld samples differ in two halves", differ);
+    ck_assert_msg(at_first > 0, "the guide's first bin was never the bin sampled");
+    distrib2d_free(&d);
+}
+END_TEST
+
 /* Catches the ends of either search landing on a zero column or cell. */
 START_TEST(test_distrib2d_edge_xi_give_the_first_and_last_nonzero_cells)
 {
@@ -1135,6 +1166,7 @@ Suite *distrib_suite(void)
     tcase_add_test(tc, test_distrib2d_remapped_values_are_uniform_on_0_1);
     tcase_add_test(tc, test_distrib2d_zero_columns_and_cells_are_never_chosen);
     tcase_add_test(tc, test_distrib2d_alias_in_two_halves_is_the_whole);
+    tcase_add_test(tc, test_distrib2d_search_in_two_halves_is_the_whole);
     tcase_add_test(tc, test_distrib2d_edge_xi_give_the_first_and_last_nonzero_cells);
     tcase_add_test(tc, test_distrib2d_inversion_is_monotone_in_each_xi);
     tcase_add_test(tc, test_distrib2d_all_zero_weights_fall_back_to_uniform);
