@@ -48,6 +48,32 @@ static int world_to_texel(const envlight *el, vec3 wi, int *c, int *r, double *s
     return 0;
 }
 
+/* atan2(y, x) within ~1e-5 rad, for envlight_prefetch only (a texel is 2 pi / w >= 7.7e-4 rad
+ * wide for w <= 2^13): atan(a) for a = min / max in [0, 1] by the odd polynomial of degree 9 of
+ * Abramowitz & Stegun 4.4.49 (error <= 1e-5), then the octant.  (0, 0) gives 0. */
+static inline double approx_atan2(double y, double x)
+{
+    double ax = fabs(x), ay = fabs(y);
+    double mx = ax > ay ? ax : ay, mn = ax > ay ? ay : ax;
+    double a = mx > 0 ? mn / mx : 0.0, a2 = a * a;
+    double t = a * (0.9998660 + a2 * (-0.3302995 + a2 * (0.1801410 + a2 * (-0.0851330 + a2 * 0.0208351))));
+    if (ay > ax) t = M_PI / 2 - t;
+    if (x < 0) t = M_PI - t;
+    return y < 0 ? -t : t;
+}
+
+long envlight_prefetch(const envlight *el, vec3 wi)
+{
+    vec3 d = el->identity ? wi : envmap_to_frame(el->env, wi);
+    double rxy = sqrt(d.x * d.x + d.y * d.y);
+    double u = approx_atan2(d.y, d.x) * (0.5 / M_PI), v = approx_atan2(rxy, d.z) * (1 / M_PI);
+    if (u < 0) u += 1;
+    double x = u * el->w, y = v * el->h; /* NaN fails both tests below: texel (0, 0) */
+    int c = x >= 0 && x < el->w ? (int)x : 0, r = y >= 0 && y < el->h ? (int)y : 0;
+    __builtin_prefetch(image_px(el->map, c, r));
+    return (long)r * el->w + c;
+}
+
 rgb envlight_radiance(const envlight *el, vec3 wi)
 {
     int c, r;

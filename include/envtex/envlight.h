@@ -91,6 +91,14 @@ void envlight_free(envlight *el);
  * value (piecewise constant), scaled, bad texels as 0. */
 rgb envlight_radiance(const envlight *el, vec3 wi);
 
+/* Ask the cache for the texel envlight_radiance(wi) / envlight_radiance_pdf(wi) will read, and
+ * return at once: a path tracer calls it when it spawns a ray that, should it leave the scene,
+ * is looked up in the light, so that the texel's miss (a map of several MB is not in the cache)
+ * overlaps tracing the ray.  Only a hint: it finds the texel with an approximate atan2 (within
+ * ~1e-5 rad: the texel or a neighbour), reads and changes nothing; any wi, even NaN (texel 0).
+ * Returns the texel asked for, r w + c (for the tests). */
+long envlight_prefetch(const envlight *el, vec3 wi);
+
 typedef struct envlight_sample_result {
     vec3 wi;     /* world direction towards the environment */
     rgb L;       /* envlight_radiance(wi) */

@@ -770,6 +770,43 @@ START_TEST(test_envlight_radiance_is_the_scaled_texel)
 }
 END_TEST
 
+/* envlight_prefetch asks for the texel of wi or a neighbour (its atan2 is within 1e-5 rad): on a
+ * 2048-wide map under a rotation, for directions spread over the sphere, the poles and the
+ * seam of phi, every guess is within one column (cyclically) and one row of the exact texel,
+ * and at most 2% of them are off at all (a texel is 3e-3 rad: 1e-5 puts ~0.7% beside it; a
+ * polynomial ten times worse would put ~7%).  NaN and zero directions ask for a texel too. */
+START_TEST(test_envlight_prefetch_asks_for_the_texel_or_a_neighbour)
+{
+    image im = {0};
+    error err = {0};
+    ck_assert_int_eq(image_alloc(&im, 2048, 1024, &err), 0);
+    envmap env = env_of(&im, 1, mat4_rotate(vec3_make(1, 2, 3), 0.7));
+    envlight el;
+    build(&el, &env, ENVSAMPLING_UNIFORM, ENVSAMPLER_BINARY, 0);
+    rng g;
+    rng_seed(&g, 5, 0);
+    int n = 200000, far = 0, off = 0;
+    for (int k = 0; k < n + 6; k++) {
+        static const vec3 special[6] = {{0, 0, 1}, {0, 0, -1}, {1, 0, 0}, {1, -1e-300, 0}, {-1, 1e-17, 0}, {0, -1, 0}};
+        vec3 w = k < n ? sampling_uniform_sphere(rng_uniform(&g), rng_uniform(&g)) : special[k - n];
+        int c, r;
+        texel_of(&el, w, &c, &r);
+        long t = envlight_prefetch(&el, w);
+        int gc = (int)(t % el.w), gr = (int)(t / el.w);
+        int dc = abs(gc - c);
+        if (dc > el.w / 2) dc = el.w - dc;
+        far += dc > 1 || abs(gr - r) > 1;
+        off += dc != 0 || gr != r;
+    }
+    ck_assert_msg(far == 0, "%d of %d guesses are more than a texel away", far, n + 6);
+    ck_assert_msg(off <= n / 50, "%d of %d guesses are a neighbour, not the texel", off, n + 6);
+    vec3 nan = {NAN, 0, 0};
+    ck_assert(envlight_prefetch(&el, nan) >= 0 && envlight_prefetch(&el, vec3_make(0, 0, 0)) >= 0);
+    envlight_free(&el);
+    image_free(&im);
+}
+END_TEST
+
 /* with alias tables, force_inversion = 1 gives exactly the binary search's samples, which are
  * monotone in xi1 (the column, phi): stratified inputs stay stratified */
 START_TEST(test_envlight_forced_inversion_keeps_strata_with_alias_tables)
@@ -938,6 +975,7 @@ Suite *envlight_suite(void)
     tcase_add_test(tc, test_envlight_large_table_is_normalized);
     tcase_add_test(tc, test_envlight_cdf_pdf_is_radiance_over_power);
     tcase_add_test(tc, test_envlight_radiance_is_the_scaled_texel);
+    tcase_add_test(tc, test_envlight_prefetch_asks_for_the_texel_or_a_neighbour);
     tcase_add_test(tc, test_envlight_forced_inversion_keeps_strata_with_alias_tables);
     suite_add_tcase(s, tc);
     tc = tcase_create("mediancut");
