@@ -452,12 +452,14 @@ int distrib2d_sample_inner(const distrib2d *d, int outer, double xi_inner, doubl
     return i;
 }
 
-int distrib2d_guide_first_bin(const distrib2d *d, int outer, double xi_inner)
+int distrib2d_guide_bins(const distrib2d *d, int outer, double xi_inner, int *last)
 {
     assert(outer >= 0 && outer < d->n_outer);
     int m = d->n_guide_inner;
     int g = (int)(clamp_xi(xi_inner) * (double)m); /* as guide_search */
-    return column_guide(d, outer)[g < m - 1 ? g : m - 1];
+    const int32_t *guide = column_guide(d, outer) + (g < m - 1 ? g : m - 1);
+    *last = guide[1];
+    return guide[0];
 }
 
 void distrib2d_sample(const distrib2d *d, double xi_outer, double xi_inner, int *outer,

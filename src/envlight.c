@@ -19,6 +19,12 @@
  * refuses a scale of 1 + 1e-6 along one axis, which would move a sample by ~1e-6 radians. */
 #define ENVLIGHT_CONFORMAL_TOL 1e-6
 
+/* envlight_sample, binary search: the most rows of the guide's interval whose texels are asked
+ * for before the search.  The guide's first row is the sampled one for only 31% of samples of
+ * the sunset map (the interval holds it); 4 rows cover the interval most of the time for one
+ * prefetch a row (8 rows measured no faster). */
+#define ENVLIGHT_PREFETCH_ROWS 4
+
 /* the phi table's least number of steps round the circle (sample_cos_sin_phi) */
 #define ENVLIGHT_PHI_STEPS 256
 
@@ -444,11 +450,14 @@ int envlight_sample(const envlight *el, double xi1, double xi2, int force_invers
         r = distrib2d_sample_alias_inner(&el->table, c, xi2, &rr);
         if (want_pmf) pmf = distrib2d_pmf(&el->table, c, r);
     } else {
-        /* distrib2d_sample in its two halves, the same way: between them, ask for the texel of
-         * the row the column's guide points at (the row returned, but for dim rows) */
+        /* distrib2d_sample in its two halves, the same way: between them, ask for the texels of
+         * the rows the search will look in (the guide's interval, its first
+         * ENVLIGHT_PREFETCH_ROWS rows) */
         double p_outer, p_inner;
         c = distrib1d_sample(&el->table.marginal, xi1, &p_outer, &rc);
-        __builtin_prefetch(image_px(el->map, c, distrib2d_guide_first_bin(&el->table, c, xi2)));
+        int last, first = distrib2d_guide_bins(&el->table, c, xi2, &last);
+        if (last > first + ENVLIGHT_PREFETCH_ROWS - 1) last = first + ENVLIGHT_PREFETCH_ROWS - 1;
+        for (int k = first; k <= last; k++) __builtin_prefetch(image_px(el->map, c, k));
         r = distrib2d_sample_inner(&el->table, c, xi2, &p_inner, &rr);
         pmf = p_outer * p_inner; /* p(c, r) = p(c) p(r | c), as distrib2d_sample */
     }

@@ -59,7 +59,7 @@
  * latency: ~120 ns alias (2 misses), ~140-200 ns binary search with the guide (~550 without).
  * A caller that reads its own data at the sampled cell can overlap that miss with the
  * table's: see distrib2d_sample_alias_inner and distrib_alias_first_bin (alias), distrib2d_sample_inner
- * and distrib2d_guide_first_bin (binary search).
+ * and distrib2d_guide_bins (binary search).
  */
 #ifndef ENVTEX_DISTRIB_H
 #define ENVTEX_DISTRIB_H
@@ -169,7 +169,8 @@ void distrib2d_sample(const distrib2d *d, double xi_outer, double xi_inner, int 
 
 /* distrib2d_sample in two halves, for a caller that prefetches between them:
  *     int o = distrib1d_sample(&d->marginal, xi_outer, &p_outer, &rem_outer);
- *     __builtin_prefetch(data_of(o, distrib2d_guide_first_bin(d, o, xi_inner)));
+ *     int last, first = distrib2d_guide_bins(d, o, xi_inner, &last);
+ *     for (int k = first; k <= last; k++) __builtin_prefetch(data_of(o, k));
  *     int i = distrib2d_sample_inner(d, o, xi_inner, &p_inner, &rem_inner);
  * give the same o, i, remapped values and pmf = p_outer * p_inner as distrib2d_sample.
  * distrib2d_sample_inner: inversion of the conditional CDF of column `outer` (in range, assert)
@@ -177,13 +178,14 @@ void distrib2d_sample(const distrib2d *d, double xi_outer, double xi_inner, int 
 int distrib2d_sample_inner(const distrib2d *d, int outer, double xi_inner, double *pmf_inner,
                            double *rem_inner);
 
-/* The bin the guided search of xi_inner in column `outer` starts from (its guide entry,
- * clamped as the search clamps xi): the bin distrib2d_sample_inner returns whenever xi falls
- * in the same CDF step as the guide cell's start, which is most of the time for the bins of
- * probability well above 1 / n_guide_inner, where most samples go.  On a table far bigger than
- * the cache, a caller that reads its own data at the returned bin can prefetch it here: its
- * miss and the CDF's then overlap instead of following each other.  Reads one guide entry. */
-int distrib2d_guide_first_bin(const distrib2d *d, int outer, double xi_inner);
+/* The bins the guided search of xi_inner in column `outer` looks in, [first, *last] (the guide
+ * entries of xi's cell, xi clamped as the search clamps it): distrib2d_sample_inner returns one
+ * of them (but, rarely, a bin just before first when x m rounds up to the next cell; distrib.c,
+ * guide_search).  On a table far bigger than the cache, a caller that reads its own data at the
+ * returned bin can prefetch it for these few bins here (a handful on average, one in the
+ * bright steps where most samples go): its miss and the CDF's then overlap instead of following
+ * each other.  Reads two guide entries, which the search then finds in the cache. */
+int distrib2d_guide_bins(const distrib2d *d, int outer, double xi_inner, int *last);
 
 /* The same distribution with the alias method at both levels, O(1); distrib2d_alias_build must
  * have been called (assert).  Same outputs as distrib2d_sample, not monotone in xi. */

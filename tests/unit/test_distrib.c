@@ -908,8 +908,8 @@ END_TEST
 
 /* The two halves a caller prefetches between (distrib2d_sample_inner after distrib1d_sample of
  * the marginal) give what distrib2d_sample gives, bit for bit (cells, remapped values, the pmf
- * as p_outer p_inner), and distrib2d_guide_first_bin names a bin of the column, for the sweep of
- * xi (its edges, NaN and out-of-range values included). */
+ * as p_outer p_inner), and distrib2d_guide_bins names bins of the column whose last is at or
+ * after the bin sampled, for the sweep of xi (its edges, NaN and out-of-range values included). */
 START_TEST(test_distrib2d_search_in_two_halves_is_the_whole)
 {
     double w[T2_MAX];
@@ -924,10 +924,10 @@ START_TEST(test_distrib2d_search_in_two_halves_is_the_whole)
             double pmf, ro, ri, po, pi, ro2, ri2;
             distrib2d_sample(&d, xs[0], xs[1], &o, &i, &pmf, &ro, &ri);
             int o2 = distrib1d_sample(&d.marginal, xs[0], &po, &ro2);
-            int first = distrib2d_guide_first_bin(&d, o2, xs[1]);
+            int last, first = distrib2d_guide_bins(&d, o2, xs[1], &last);
             int i2 = distrib2d_sample_inner(&d, o2, xs[1], &pi, &ri2);
             differ += o2 != o || i2 != i || ro2 != ro || ri2 != ri || po * pi != pmf;
-            ck_assert(first >= 0 && first < ni);
+            ck_assert(first >= 0 && first <= last && last < ni && i <= last);
             at_first += i == first;
         }
     }
