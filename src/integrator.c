@@ -125,7 +125,8 @@ void integrator_intersect_diff(integrator *it, const ray *r, const ray_diff *rd,
     }
     int k;
     double t;
-    if (it->has_lights && lights_intersect_quad(&it->ls, &rr, &k, &t)) {
+    /* (n_quads tested here: a scene without quad lights pays no call a ray) */
+    if (it->has_lights && it->ls.n_quads > 0 && lights_intersect_quad(&it->ls, &rr, &k, &t)) {
         out->kind = 2;
         out->light = k;
         out->t = t;
@@ -154,7 +155,7 @@ int integrator_occluded(integrator *it, const ray *shadow)
      * shadow ray to a point of light k stops short of k's plane, so k never blocks itself. */
     int k;
     double t;
-    return it->has_lights && lights_intersect_quad(&it->ls, shadow, &k, &t);
+    return it->has_lights && it->ls.n_quads > 0 && lights_intersect_quad(&it->ls, shadow, &k, &t);
 }
 
 int integrator_strata(int n, int stratify)
