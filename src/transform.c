@@ -125,14 +125,6 @@ vec3 mat4_point(const mat4 *m, vec3 p)
                   a[2][0] * p.x + a[2][1] * p.y + a[2][2] * p.z + a[2][3]};
 }
 
-vec3 mat4_dir(const mat4 *m, vec3 d)
-{
-    const double(*a)[4] = m->m;
-    return (vec3){a[0][0] * d.x + a[0][1] * d.y + a[0][2] * d.z,
-                  a[1][0] * d.x + a[1][1] * d.y + a[1][2] * d.z,
-                  a[2][0] * d.x + a[2][1] * d.y + a[2][2] * d.z};
-}
-
 vec3 mat4_normal(const mat4 *inverse, vec3 n)
 {
     /* n' = (M^-1)^T n */

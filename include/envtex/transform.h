@@ -33,7 +33,14 @@ double mat4_det3(const mat4 *m);
 int mat4_inverse(mat4 a, mat4 *out);
 
 vec3 mat4_point(const mat4 *m, vec3 p);  /* M (p, 1) */
-vec3 mat4_dir(const mat4 *m, vec3 d);    /* M (d, 0) */
+/* M (d, 0).  Inline: the envmap turns every lookup and every sampled direction by it. */
+static inline vec3 mat4_dir(const mat4 *m, vec3 d)
+{
+    const double(*a)[4] = m->m;
+    return (vec3){a[0][0] * d.x + a[0][1] * d.y + a[0][2] * d.z,
+                  a[1][0] * d.x + a[1][1] * d.y + a[1][2] * d.z,
+                  a[2][0] * d.x + a[2][1] * d.y + a[2][2] * d.z};
+}
 /* Transform a normal by the inverse transpose: pass the INVERSE of the object's matrix. */
 vec3 mat4_normal(const mat4 *inverse, vec3 n);
 
