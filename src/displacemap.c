@@ -186,7 +186,7 @@ static int weld_corner_normals(const scene *in, vec3 *cn)
         for (b = a; b < n && corner_order(&refs[a], &refs[b]) == 0; b++) {
             const scene_triangle *tr = &in->triangles[refs[b].tri];
             int k = refs[b].k;
-            vec3 f;
+            vec3 f = {0, 0, 0}; /* face_normal succeeded for every collected corner (above) */
             face_normal(tr, &f);
             /* the corner's angle between its two edges */
             double angle = vec3_angle(vec3_sub(tr->p[(k + 1) % 3], tr->p[k]),
