@@ -616,7 +616,10 @@ static int cmd_gen_env(int argc, char **argv)
         else if (!strcmp(a, "--sun-azimuth")) target = &p.sun_azimuth_deg;
         if (target) {
             if (!(v = opt_value(argc, argv, &i))) return 1;
-            if (parse_double(v, target)) return usage_error("option needs a finite number, got '%s'", v);
+            if (parse_double(v, target)) {
+                fprintf(stderr, "envtex: %s needs a finite number, got '%s' (envtex --help for usage)\n", a, v);
+                return 1;
+            }
         } else if (a[0] == '-' && a[1]) return usage_error("unknown option '%s'", a);
         else if (!kind_name) kind_name = a;
         else if (!out) out = a;
