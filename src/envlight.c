@@ -41,7 +41,8 @@ static inline rgb texel(const envlight *el, int c, int r)
 /* solid angle of a texel in row r: (cos theta_r - cos theta_{r+1}) 2 pi / w (tabulated) */
 static inline double texel_omega(const envlight *el, int r) { return el->row_omega[r]; }
 
-/* world direction -> the texel that holds it (nearest), in the envmap frame */
+/* world direction -> the texel that holds it (nearest), in the envmap frame.  uv here is
+ * latlong's image (u = phi / 2 pi, v = theta / pi), not the lecture's u = cos theta, v = phi. */
 static int world_to_texel(const envlight *el, vec3 wi, int *c, int *r, double *sin_theta)
 {
     uv2 uv;
