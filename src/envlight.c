@@ -556,6 +556,8 @@ double envlight_mis_fraction(const envlight *el, double light_cost, double *rel_
         if (rel_var_out) rel_var_out[i] = cost[i];
         cost[i] *= 1 + light_cost * mis_fractions[i]; /* variance x time: the inefficiency */
     }
+    /* a smaller fraction must win by more than rounding (1e-9 relative, far above the ~1e-15
+     * of these sums, far below any real difference): on a tie the larger c, more light samples */
     for (int i = NC - 1; i >= 0; i--)
         if (cost[i] < cost[best] * (1 - 1e-9)) best = i;
     return mis_fractions[best];
