@@ -3,9 +3,10 @@
  * Paths start at the camera and bounce with `importancesampling hemisphere|cosine|brdf`.
  * A path of k bounces that reaches a light (a quad light or, leaving the scene, the envmap)
  * carries L = Le prod (f cos / pdf).  `maxdepth` d allows paths of at most d bounces
- * (-1: unlimited, with `russianroulette on` to end them: survival probability = the largest
- * component of the throughput, clamped to 1; without roulette a path whose throughput is 0, after
- * a black surface, ends too, as nothing further along can add to it).  `nexteventestimation`:
+ * (-1: unlimited, though never past INTEGRATOR_UNLIMITED_DEPTH = 1000, with `russianroulette on`
+ * to end them: survival probability = the largest component of the throughput, clamped to 1;
+ * without roulette a path whose throughput is 0, after a black surface, ends too, as nothing
+ * further along can add to it).  `nexteventestimation`:
  *   off  light is found only by hitting it;
  *   on   at every non-delta bounce `lightsamples` light samples (stratified with
  *        `lightstratify on`), each of a light picked by power on its own; hitting a light after
