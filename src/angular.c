@@ -3,8 +3,6 @@
 
 #include <assert.h>
 
-/* d / |d| for a finite non-zero d, else -1.  Divides by the largest |component| first, so the
- * length of a huge or subnormal vector neither overflows nor underflows. */
 /* How far rho may exceed 1 and still count as the rim: a few ulps of 1, the rounding of
  * sqrt(a^2 + b^2) for a rim point computed with cos / sin or by angular_dir_to_uv. */
 #define ANGULAR_RIM_SLACK 1e-15

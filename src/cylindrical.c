@@ -3,8 +3,6 @@
 
 #include <assert.h>
 
-/* d / |d| for a finite non-zero d, else -1.  Divides by the largest |component| first, so the
- * length of a huge or subnormal vector neither overflows nor underflows. */
 static int valid_height(double h) { return isfinite(h) && h > 0; }
 
 int cylindrical_dir_to_uv(vec3 d, double max_height, uv2 *uv)

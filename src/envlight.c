@@ -41,7 +41,8 @@ static inline rgb texel(const envlight *el, int c, int r)
 /* solid angle of a texel in row r: (cos theta_r - cos theta_{r+1}) 2 pi / w (tabulated) */
 static inline double texel_omega(const envlight *el, int r) { return el->row_omega[r]; }
 
-/* world direction -> the texel that holds it (nearest), in the envmap frame */
+/* world direction -> the texel that holds it (nearest), in the envmap frame.  uv here is
+ * latlong's image (u = phi / 2 pi, v = theta / pi), not the lecture's u = cos theta, v = phi. */
 static int world_to_texel(const envlight *el, vec3 wi, int *c, int *r, double *sin_theta)
 {
     uv2 uv;
@@ -555,6 +556,8 @@ double envlight_mis_fraction(const envlight *el, double light_cost, double *rel_
         if (rel_var_out) rel_var_out[i] = cost[i];
         cost[i] *= 1 + light_cost * mis_fractions[i]; /* variance x time: the inefficiency */
     }
+    /* a smaller fraction must win by more than rounding (1e-9 relative, far above the ~1e-15
+     * of these sums, far below any real difference): on a tie the larger c, more light samples */
     for (int i = NC - 1; i >= 0; i--)
         if (cost[i] < cost[best] * (1 - 1e-9)) best = i;
     return mis_fractions[best];

@@ -3,8 +3,6 @@
 
 #include <assert.h>
 
-/* d / |d| for a finite non-zero d, else -1.  Divides by the largest |component| first, so the
- * length of a huge or subnormal vector neither overflows nor underflows. */
 int mirrorball_dir_to_uv(vec3 d, uv2 *uv)
 {
     vec3 r;

@@ -4,8 +4,8 @@
 
 #include "envtex/texshade.h"
 
-/* Next-event estimation at surface s: `lightsamples` samples of one light picked by power
- * (each sample picks its own light).  With MIS each is weighted against BRDF sampling. */
+/* Next-event estimation at surface s: `lightsamples` light samples, each of a light picked by
+ * power on its own, averaged.  With MIS each is weighted against BRDF sampling. */
 static rgb next_event(integrator *it, const surface *s, vec3 wo, rng *g, int mis)
 {
     const scene *sc = it->sc;

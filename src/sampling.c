@@ -33,8 +33,8 @@ double sampling_cosine_hemisphere_pdf(double cos_theta) { return cos_theta > 0 ?
 
 vec3 sampling_phong_lobe(double s, double xi1, double xi2)
 {
-    /* CDF of cos(alpha) under pdf (s+1)/(2 pi) cos^s: P(cos <= c) = 1 - c^(s+1); invert with
-     * 1 - xi1 -> xi1.  pow(0, 1/(s+1)) is 0: the sample lies on the lobe's equator. */
+    /* CDF of cos(alpha) under pdf (s+1)/(2 pi) cos^s: P(cos >= c) = 1 - c^(s+1) = xi1 gives
+     * c = (1 - xi1)^(1/(s+1)).  xi1 is clamped below 1, so the base is at least 2^-53 > 0. */
     return from_cos(pow(1 - clamp01(xi1), 1 / (s + 1)), 2 * M_PI * clamp01(xi2));
 }
 

@@ -16,8 +16,9 @@ int sphere_intersect(const scene_sphere *s, const ray *r, double *t_out)
     /* |o + t d|^2 = R^2  ->  a t^2 + 2 b t + c = 0 with a = d.d, b = o.d, c = o.o - R^2 */
     double a = vec3_dot(d, d), b = vec3_dot(o, d);
     if (!(a > 0)) return 0;
-    /* c computed as |o - (o.d/a) d|^2 - (R^2 - ...) form loses less precision far away:
-     * discriminant/a^2 = R^2 - |o - (b/a) d|^2  (Hearn & Baker; Ray Tracing Gems ch. 7) */
+    /* the discriminant b^2 - a c cancels badly for a far origin; the same quantity over a,
+     * (b^2 - a c) / a = R^2 - |o - (b/a) d|^2, loses far less  (Hearn & Baker; Ray Tracing Gems
+     * ch. 7) */
     vec3 perp = vec3_madd(o, d, -b / a);
     double R2 = s->radius * s->radius;
     double disc = R2 - vec3_dot(perp, perp); /* = (b^2 - a c) / a */

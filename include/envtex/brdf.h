@@ -7,7 +7,8 @@
  *           alpha = roughness clamped by sampling_ggx_alpha (0 stays 0, and lies outside f: a
  *           delta), so any finite roughness >= 0 gives finite f, pdfs and weights
  *   BRDF sampling picks the specular lobe with probability t = avg(ks) / (avg(ks) + avg(kd))
- *   (GGX: t at least 0.25, as the course's scenes do), else the cosine-weighted diffuse lobe.
+ *   (GGX with ks > 0: t at least 0.25, as the course's scenes do), else the cosine-weighted
+ *   diffuse lobe.
  *
  *     surface s; ... (filled by the integrator from the hit and its material)
  *     brdf_sample_result r;

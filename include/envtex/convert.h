@@ -1,7 +1,7 @@
 /* convert.h - one environment held in any of the six representations (latlong.h, cubemap.h,
  * mirrorball.h, angular.h, cylindrical.h, equalarea.h), looked up, measured, and resampled into
- * any other.  Lecture "Environment, Texture Maps", slides 11-12: "cubemap coord to vec:
- * normalize ... easy convert between cube, latlong"; slides 13-14: d(omega) = d(cos theta) d(phi).
+ * any other.  Lecture "Environment, Texture Maps", slides 13-14: "cubemap coord to vec:
+ * normalize ... easy convert between cube, latlong"; slide 22: d(omega) = d(cos theta) d(phi).
  *
  *     convert_map ll = {0}, cube = {0};
  *     if (convert_read("sky.exr", NULL, &ll, &err)) ...              // 2:1: lat-long

@@ -19,9 +19,9 @@
  *
  *     side view:   z_cyl  ^        the ray from the centre through direction d meets the
  *                   +h ---|---     cylinder at height z_cyl = cot theta; rows are uniform in
- *                         | /d     that height (not in angle), so they crowd towards the
- *                         |/ )theta   horizon as seen from the centre
- *                   ------o------>  (x, y)
+ *                         | /d     that height (not in angle): seen from the centre a row at
+ *                         |/ )theta   height z spans 1 / (1 + z^2) of the angle a horizon row
+ *                   ------o------>  (x, y)    spans, so rows crowd towards the cuts at +-h
  *                   -h ---|---
  *
  * For square texels at the horizon, h = pi H / W (the image's vertical extent 2h in the same

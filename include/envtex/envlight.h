@@ -41,7 +41,8 @@
 #include "envtex/envmap.h"
 
 typedef struct envlight_point {
-    vec3 dir;        /* world-space unit direction of the stratum's energy centroid */
+    vec3 dir;        /* world-space unit direction of the stratum's energy centroid, taken in
+                      * image coordinates (c, r) so that it lies inside the stratum */
     rgb power;       /* integral of L over the stratum (W/m^2 of irradiance at normal incidence) */
     int c0, c1, r0, r1; /* the stratum: columns [c0, c1), rows [r0, r1) */
 } envlight_point;

@@ -7,8 +7,9 @@
  *
  *     envmap env;
  *     envmap_init(&env, sc);                       // no envmap in the scene: black everywhere
- *     rgb L = envmap_radiance(&env, world_dir);    // radiance arriving FROM direction -world_dir
- *                                                  // i.e. seen looking along world_dir
+ *     rgb L = envmap_radiance(&env, world_dir);    // radiance arriving from direction world_dir
+ *                                                  // (travelling along -world_dir), i.e. seen
+ *                                                  // looking along world_dir
  *     image ll = {0};                              // any representation as a lat-long map:
  *     if (envmap_to_latlong(&env, 0, 0, &ll, &err)) ...  // (envlight samples lat-long maps)
  */

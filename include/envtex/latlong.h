@@ -5,6 +5,8 @@
  * phi = atan2(y, x) wrapped to [0, 2 pi).  Image coordinates: u = phi / (2 pi) to the right,
  * v = theta / pi downwards, so row 0 is the zenith and the middle row the horizon.  In a W x H
  * map, column c is centred at phi = 2 pi (c + 0.5) / W and row r at theta = pi (r + 0.5) / H.
+ * These (u, v) are image coordinates; the lecture's sampling slides (16-23, envlight.h) name
+ * other variables u and v: u = cos theta, v = phi.
  *
  *            u=0 (phi=0, +x)     u=0.25 (+y)      u=0.5 (-x)      u=0.75 (-y)     u=1
  *     v=0    +----------------------------------------------------------------+  zenith (+z)

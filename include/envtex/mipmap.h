@@ -83,7 +83,8 @@ void mipmap_free(mipmap *m);
 /* Number of levels, 1 + floor(log2(max(W, H))). */
 int mipmap_levels(const mipmap *m);
 
-/* Level `l` (0 = the base), 0 <= l < mipmap_levels (assert).  Owned by the mipmap. */
+/* Level `l` (0 = the base), 0 <= l < mipmap_levels (assert).  Do not free it: levels 1.. are
+ * owned by the mipmap, and level 0's pixels are the caller's base (mipmap_build). */
 const image *mipmap_level(const mipmap *m, int l);
 
 /* Continuous level for a footprint `width_in_texels` wide (in level-0 texels):
@@ -103,9 +104,10 @@ double mipmap_level_for_footprint(const mipmap *m, double width_in_texels);
 rgb mipmap_lookup_trilinear(const mipmap *m, uv2 st, double footprint_width);
 
 /* mipmap_lookup_trilinear with the footprint given by the SQUARED lengths of its two axes (texture
- * units; e.g. |dst/dx|^2 and |dst/dy|^2): footprint_width = (len2_a len2_b)^(1/4), the side of
- * the square of the footprint's area, found by a single log2 with no square root (the level
- * is within rounding of mipmap_lookup_trilinear's). */
+ * units; e.g. |dst/dx|^2 and |dst/dy|^2): footprint_width = (len2_a len2_b)^(1/4), the geometric
+ * mean of the axes' lengths (the side of a square of the footprint's area only when the axes are
+ * perpendicular: the area is |a x b|), found by a single log2 with no square root (the level is
+ * within rounding of mipmap_lookup_trilinear's). */
 rgb mipmap_lookup_trilinear_axes(const mipmap *m, uv2 st, double len2_a, double len2_b);
 
 /* EWA lookup (pbrt-v3 MIPMap::EWA).  dst_dx, dst_dy: the change of (s, t) per pixel step in x

@@ -3,13 +3,14 @@
  * Paths start at the camera and bounce with `importancesampling hemisphere|cosine|brdf`.
  * A path of k bounces that reaches a light (a quad light or, leaving the scene, the envmap)
  * carries L = Le prod (f cos / pdf).  `maxdepth` d allows paths of at most d bounces
- * (-1: unlimited, with `russianroulette on` to end them: survival probability = the largest
- * component of the throughput, clamped to 1; without roulette a path whose throughput is 0, after
- * a black surface, ends too, as nothing further along can add to it).  `nexteventestimation`:
+ * (-1: unlimited, though never past INTEGRATOR_UNLIMITED_DEPTH = 1000, with `russianroulette on`
+ * to end them: survival probability = the largest component of the throughput, clamped to 1;
+ * without roulette a path whose throughput is 0, after a black surface, ends too, as nothing
+ * further along can add to it).  `nexteventestimation`:
  *   off  light is found only by hitting it;
- *   on   at every bounce one light is picked by power and sampled (`lightsamples` samples,
- *        stratified with `lightstratify on`); hitting a light after a non-delta bounce adds
- *        nothing, so no path is counted twice;
+ *   on   at every non-delta bounce `lightsamples` light samples (stratified with
+ *        `lightstratify on`), each of a light picked by power on its own; hitting a light after
+ *        a non-delta bounce adds nothing, so no path is counted twice;
  *   mis  both, weighted by the power heuristic (beta = 2), for quad lights and the envmap.
  * All three converge to the same image (tested).  Geometry with `emission` is not sampled as a
  * light and always counts when hit.  Both strategies see only directions above the geometric

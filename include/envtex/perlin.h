@@ -59,7 +59,9 @@ double perlin_turbulence(vec3 p, int octaves, double lacunarity, double gain);
  * kept whole while its whole band is under the limit (f_i w <= 1/2), gone once its peak passes
  * it (f_i w >= 1), faded smoothly between: the result is continuous in footprint (no pop).
  * A faded octave is replaced by its mean, 0.  footprint <= 0 (or NaN) gives perlin_fbm.
- * Assumes lacunarity > 1 (otherwise no octave is ever faded). */
+ * Assumes lacunarity > 1: the first octave faded away entirely ends the sum (every later one is
+ * finer), so with lacunarity < 1 a footprint >= 1 fades octave 0 and with it the coarser octaves
+ * after it (the scene's textures use 2). */
 double perlin_fbm_filtered(vec3 p, double footprint, int octaves, double lacunarity, double gain);
 
 /* Band-limited turbulence: as perlin_fbm_filtered, but a faded octave is replaced by the mean

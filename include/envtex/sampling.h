@@ -24,8 +24,8 @@ double sampling_uniform_hemisphere_pdf(double cos_theta);
 vec3 sampling_cosine_hemisphere(double xi1, double xi2);
 double sampling_cosine_hemisphere_pdf(double cos_theta);
 
-/* Phong lobe around +z: cos(alpha) = xi1^(1/(s+1)); pdf = (s + 1) / (2 pi) cos(alpha)^s
- * (may point below a surface: the caller rejects those). */
+/* Phong lobe around +z: cos(alpha) = (1 - xi1)^(1/(s+1)), xi1 = 0 on the axis;
+ * pdf = (s + 1) / (2 pi) cos(alpha)^s (may point below a surface: the caller rejects those). */
 vec3 sampling_phong_lobe(double s, double xi1, double xi2);
 double sampling_phong_lobe_pdf(double s, double cos_alpha);
 

@@ -84,7 +84,9 @@ static inline int texlookup_fast_floor(double x)
 /* One axis of a bilinear lookup: the two texels blended and the weight of the second. */
 typedef struct texlookup_axis {
     int i0, i1; /* floor(x) and floor(x) + 1, wrapped into [0, n) */
-    double f;   /* x - floor(x) in [0, 1): i1's weight (0 for a non-finite x) */
+    double f;   /* x - floor(x) in [0, 1]: i1's weight (0 for a non-finite x).  It rounds to
+                 * exactly 1 for x just below an integer (x = -1e-17: i0 = -1 wrapped, f = 1),
+                 * which reads i1 alone, the texel at that integer: still the right blend */
 } texlookup_axis;
 
 texlookup_axis texlookup_bilinear_axis_far(double x, int n, wrap_mode wrap);

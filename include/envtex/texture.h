@@ -32,7 +32,8 @@
  *   bilinear   image: texlookup_bilinear; checker, solids: the point value.
  *   trilinear  image: mip level from the footprint width w = sqrt(|dst/dx| |dst/dy|) in
  *              texels (each axis as (ds W, dt H): the side of the square of the footprint's
- *              area; a non-square image's s and t texels differ in texture units),
+ *              area when the axes are perpendicular, their geometric mean always; a non-square
+ *              image's s and t texels differ in texture units),
  *              mipmap_lookup_trilinear_axes; checker: the exact box-filtered value over the box
  *              max(|ds/dx|, |ds/dy|) wide in s (likewise t); solids: octaves band-limited by
  *              the footprint max(|dP/dx|, |dP/dy|) (perlin.h's filtered sums).
