@@ -135,8 +135,9 @@ int mipmap_build(mipmap *m, const image *base, wrap_mode wrap, error *err)
     while (m->level[m->nlevels - 1].w > 1 || m->level[m->nlevels - 1].h > 1) {
         assert(m->nlevels < MIPMAP_MAX_LEVELS); /* sides <= 2^15 */
         if (downsample(&m->level[m->nlevels - 1], &m->level[m->nlevels], wrap, err)) {
+            int failed = m->nlevels; /* mipmap_free zeroes m */
             mipmap_free(m);
-            return error_prefix(err, "mipmap level %d", m->nlevels);
+            return error_prefix(err, "mipmap level %d", failed);
         }
         m->nlevels++;
     }

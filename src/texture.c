@@ -221,9 +221,9 @@ rgb texture_eval(const texture *t, const texture_query *q)
             assert(t->has_mip && t->mip.packed && "texture_prepare(t, TEXFILTER_TRILINEAR) first");
             /* footprint width w = sqrt(|dst/dx| |dst/dy|): the side of the square with the area
              * of the pixel's footprint when its axes are perpendicular (the area is
-             * |dst/dx x dst/dy|, smaller for skewed axes).  An isotropic filter must compromise on a receding
-             * plane: the long axis (pbrt's max) blurs the short one away, the short axis
-             * aliases; the area's side measured 3.4x less error than max on the receding
+             * |dst/dx x dst/dy|, smaller for skewed axes).  An isotropic filter must compromise
+             * on a receding plane: the long axis (pbrt's max) blurs the short one away, the short
+             * axis aliases; the area's side measured 3.4x less error than max on the receding
              * checkerboard at 1 spp (docs/texture-mapping.md).  Equal to both when isotropic. */
             if (t->img->w != t->img->h) {
                 /* each axis in units of the longer side's texels, (ds W, dt H) / max(W, H), which

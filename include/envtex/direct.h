@@ -2,8 +2,8 @@
  * hit:  L = Le + sum over lights of (1/N) sum_j f(wo, wi_j) cos(theta_j) Li(wi_j) V / pdf(wi_j)
  * with N = `lightsamples` samples per quad light and for the environment (sampled as
  * `envsampling` says; `lightstratify on`: a sqrt(N) x sqrt(N) grid), N = 1 for a point or
- * directional light (a delta: more samples would all be the same).  Perfect mirror and glass surfaces are
- * followed (up to maxdepth bounces) to the first surface that can be lit.
+ * directional light (a delta: more samples would all be the same).  Perfect mirror and glass
+ * surfaces are followed (up to maxdepth bounces) to the first surface that can be lit.
  */
 #ifndef ENVTEX_DIRECT_H
 #define ENVTEX_DIRECT_H

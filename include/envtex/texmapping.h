@@ -33,9 +33,10 @@
  * but a naive finite difference across it is ~1, which would pick the coarsest mip level (a
  * visible line of blur).  texmapping_differentials wraps every s difference into (-0.5, 0.5].
  * At a pole (x = y = 0) phi is undefined: atan2(0, 0) = 0 gives s = 0 (never NaN; s = 0.5 if x
- * is -0.0, as atan2(0, -0.0) = pi), and the wrapped differential stays bounded by 0.5.  The cube's edges are seams of the mapping itself
- * (the image changes there); its differentials use the face of the point, analytically, so
- * they never jump.  The zero point q = 0 maps to (0, 0.5) (spherical) or face 0's centre (cube).
+ * is -0.0, as atan2(0, -0.0) = pi), and the wrapped differential stays bounded by 0.5.  The
+ * cube's edges are seams of the mapping itself (the image changes there); its differentials use
+ * the face of the point, analytically, so they never jump.  The zero point q = 0 maps to
+ * (0, 0.5) (spherical) or face 0's centre (cube).
  *
  * Everything here is pure and allocation free.
  */
