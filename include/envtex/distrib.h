@@ -129,7 +129,8 @@ typedef struct distrib2d {
     distrib1d marginal;       /* p(outer): n_outer bins */
     double *cond_cdf;         /* n_outer rows of n_inner + 1 entries: the conditional CDF of
                                * column o is cond_cdf + o * (n_inner + 1); a column of weight 0
-                               * gets a uniform one (never used: its marginal is 0) */
+                               * gets a uniform one (its marginal is 0, so it is used only
+                               * when every column is 0: the uniform fallback) */
     int32_t *cond_guide;      /* n_outer rows of n_guide_inner + 1 entries: the guide of
                                * each column, as distrib1d.guide */
     int n_guide_inner;
