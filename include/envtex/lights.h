@@ -15,7 +15,8 @@
  *     lights ls;
  *     lights_build(&ls, sc, el, radius, &err);
  *     int k; double prob; lights_pick(&ls, xi, &k, &prob);
- *     light_sample s; if (lights_sample(&ls, k, p, xi1, xi2, stratified, &s)) ... trace s.shadow ...
+ *     light_sample s;
+ *     if (lights_sample(&ls, k, p, ng, xi1, xi2, xi3, stratified, &s)) ... trace s.shadow ...
  */
 #ifndef ENVTEX_LIGHTS_H
 #define ENVTEX_LIGHTS_H
@@ -52,6 +53,9 @@ typedef struct light_sample {
     ray shadow;     /* the visibility ray: blocked means no light */
 } light_sample;
 
+/* The light set of sc plus the environment env (NULL: none), both referenced: they must outlive
+ * ls.  scene_radius is R above (<= 0: 1).  Returns 0, or -1 with *err set (out of memory);
+ * free with lights_free. */
 int lights_build(lights *ls, const scene *sc, const envlight *env, double scene_radius, error *err);
 void lights_free(lights *ls);
 
