@@ -1,7 +1,8 @@
 /* integrator.h - which renderer runs (`integrator raytracer|analyticdirect|direct|pathtracer`)
- * and the context they share, built once per render with only what the scene needs: lights and
- * environment sampling tables exist only for integrators that sample lights (direct, and the
- * path tracer with next-event estimation); `raytracer` and `analyticdirect` build none.
+ * and the context they share, built once per render with only what the scene needs: environment
+ * sampling tables exist only for integrators that sample lights (direct, and the path tracer
+ * with next-event estimation); the light set (lights.h: the quads' BVH that every ray stops at,
+ * the pick table) for every integrator but `raytracer`, which builds nothing.
  *
  *     integrator it;
  *     if (integrator_init(&it, sc, &accel, &err)) ...
