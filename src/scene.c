@@ -1140,6 +1140,17 @@ static const command commands[] = {
     {"envsamplefraction", cmd_envsamplefraction, 1, 1},
 };
 
+/* The forms of a command whose handler checks its own argument counts, for a count outside
+ * [min_args, max_args]: "'texture' takes 2 or 12 arguments" would misstate what it takes.
+ * NULL for the others ("N arguments", "N or M arguments" say it). */
+static const char *command_forms(const command *c)
+{
+    if (c->run == cmd_texture) return "NAME FILE [WRAP] or NAME KIND PARAMS... R0 G0 B0 R1 G1 B1";
+    if (c->run == cmd_envmap)
+        return "FILE [SCALE] [REPRESENTATION] or cube PX NX PY NY PZ NZ [SCALE]";
+    return NULL;
+}
+
 /* ---- lines ------------------------------------------------------------------------------ */
 
 static int is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
@@ -1182,6 +1193,9 @@ static int run_line(parser *p)
     }
     int nargs = p->ntok - 1;
     if (nargs < c->min_args || nargs > c->max_args) {
+        if (command_forms(c))
+            return fail(p, "'%s' takes %s, got %d argument%s", name, command_forms(c), nargs,
+                        nargs == 1 ? "" : "s");
         char takes[64];
         if (c->min_args == c->max_args)
             snprintf(takes, sizeof takes, "%d argument%s", c->min_args,

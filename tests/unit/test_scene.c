@@ -96,6 +96,10 @@ static const bad_case bad_cases[] = {
     {"pushTransform x\n", 3, "'x'"},
     {"output\n", 3, "'output' takes 1 argument, got 0"},
     {"envmap\n", 3, "'envmap' takes FILE [SCALE] [REPRESENTATION] or cube PX NX PY NY PZ NZ"},
+    /* more than the 14 arguments run_line lets through: the forms, not "takes 0 or 14" */
+    {"envmap cube a b c d e f 1 x x x x x x x\n", 3,
+     "'envmap' takes FILE [SCALE] [REPRESENTATION] or cube PX NX PY NY PZ NZ [SCALE], got 15 "
+     "arguments"},
     {"envmap a.exr 1 c\n", 3, "'envmap' representation must be 'latlong', 'cube', 'cross', "
                               "'mirrorball', 'angular', 'cylindrical' or 'equalarea', got 'c'"},
     {"quadLight 0 0 0 1 0 0 0 1 0 1 1\n", 3, "'quadLight' takes 12 arguments, got 11"},
@@ -1458,7 +1462,10 @@ START_TEST(test_texture_errors_name_their_line_and_token)
     load_fails(HEAD "texture a img.png wrap\n", 3, "wrap mode must be 'repeat', 'clamp' or "
                                                    "'mirror', got 'wrap'");
     load_fails(HEAD "texture a img.png clamp x\n", 3, "got 'x' after it");
-    load_fails(HEAD "texture a\n", 3, "'texture' takes 2 or 12 arguments");
+    load_fails(HEAD "texture a\n", 3, "'texture' takes NAME FILE [WRAP] or NAME KIND PARAMS... "
+                                       "R0 G0 B0 R1 G1 B1, got 1 argument");
+    load_fails(HEAD "texture a marble 1 2 3 4 0 0 0 1 1 1 9\n", 3, "'texture' takes NAME FILE "
+               "[WRAP] or NAME KIND PARAMS... R0 G0 B0 R1 G1 B1, got 13 arguments");
     load_fails(HEAD "texmapping sphere\n", 3, "got 'sphere'");
     load_fails(HEAD "texfilter linear\n", 3, "got 'linear'");
     load_fails(HEAD "texture t checker 1 0 0 0 1 1 1\nbumpmap t\n", 4, "takes 2 arguments");
