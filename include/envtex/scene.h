@@ -201,7 +201,8 @@ typedef struct scene_load_opts {
     int strict;          /* unknown commands are errors instead of warnings */
     scene_warn_fn warn;  /* called for each warning (may be NULL: warnings are dropped) */
     void *warn_ctx;
-    int load_images;     /* 1 (default): read the envmap image; 0: leave it (parser tests) */
+    int load_images;     /* 1 (default): read the envmap and texture images (and build the
+                          * pyramids their filters need); 0: leave them (parser tests) */
     long max_prims;      /* 0 (default): SCENE_MAX_PRIMS; a smaller limit lets tests reach it */
 } scene_load_opts;
 
