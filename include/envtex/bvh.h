@@ -43,6 +43,9 @@ typedef struct bvh {
     double build_seconds;
 } bvh;
 
+/* Build b over sc's spheres and triangles.  Returns 0, or -1 with *err set (more than 2^31 - 1
+ * primitives, out of memory) and b holding nothing.  Free with bvh_free, which is safe on a
+ * zeroed or failed bvh. */
 int bvh_build(bvh *b, const scene *sc, error *err);
 void bvh_free(bvh *b);
 

@@ -70,8 +70,11 @@ typedef struct render_stats {
 
 render_opts render_defaults(void);
 
-/* Render `sc` into *out (allocated here, width x height; free with image_free).  Fails with a
- * message (naming the scene file) if the scene asks for something this build cannot render. */
+/* Render `sc` into *out (allocated here, width x height; free with image_free).  opts may be
+ * NULL (render_defaults()); stats may not.  Returns 0, or -1 with *err set, naming the scene file:
+ * spp out of [1, SCENE_MAX_SPP] or over SCENE_MAX_CAMERA_SAMPLES, a variance asked for at spp 1,
+ * a displacement budget, BVH or envmap table that cannot be built, out of memory.  On failure
+ * *out (and opts->variance) hold nothing to free and opts->start was not called. */
 int render_scene(const scene *sc, const render_opts *opts, image *out, render_stats *stats, error *err);
 
 #endif
