@@ -36,7 +36,8 @@ int image_alloc(image *im, int w, int h, error *err);
 /* Free the pixels and reset *im to 0 x 0.  Safe on a zeroed or already freed image. */
 void image_free(image *im);
 
-/* Pointer to the 3 floats of pixel (x, y); x, y must be in range (assert). */
+/* Pointer to the 3 floats of pixel (x, y); x, y must be in range: not checked (it is on every
+ * texel fetch), and x = w reads pixel (0, y + 1) without any sanitizer noticing. */
 static inline float *image_px(const image *im, int x, int y)
 {
     return im->px + 3 * ((size_t)y * (size_t)im->w + (size_t)x);
