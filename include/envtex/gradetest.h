@@ -14,9 +14,10 @@
  * p-values are compared with alpha / N (Bonferroni over the N pixels); the render passes if at
  * most `max_fail_fraction` of the pixels fail (variance estimates are themselves noisy, and
  * fireflies exist) AND the image total passes its own z-test,
- *   Z = sum (img - ref) / sqrt(sum (var_img + var_ref)),   |Z| <= global_z:
- * a bias spread thinly over the whole image (a missing 1/pi, a pdf off by sin theta) adds up
- * there even when no single pixel fails.
+ *   Z = sum (img - ref) / sqrt(sum (var_img + var_ref + floor^2)),   |Z| <= global_z,
+ * with each pixel's own VAR here, not the neighbourhood's largest V: a bias spread thinly over
+ * the whole image (a missing 1/pi, a pdf off by sin theta) adds up there even when no single
+ * pixel fails.  floor = rel_floor max(|ref|, 1e-3) (a black pixel still gets a floor).
  *
  *     gradetest_params p = gradetest_defaults();
  *     gradetest_result r;
@@ -53,8 +54,11 @@ typedef struct gradetest_result {
     char why[256];            /* one line */
 } gradetest_result;
 
-/* Run the test.  `fail_map` (may be NULL) receives a w x h image: red where a pixel failed
- * with img too bright, blue where too dark, grey elsewhere (allocated; free with image_free). */
+/* Run the test: 0 with the verdict in *out (pass or fail), or -1 with *err set when it cannot
+ * run (sizes differ, a sample count <= 0, a reference or variance pixel whose channel average is
+ * not finite or is negative, out of memory; fail_map then holds nothing).  `fail_map` (may be
+ * NULL) receives a w x h image: red where a pixel failed with img too bright, blue where too
+ * dark, magenta where img is NaN or Inf, grey elsewhere (allocated; free with image_free). */
 int gradetest_run(const image *img, const image *ref, const image *var, const gradetest_params *p,
                   gradetest_result *out, image *fail_map, error *err);
 
