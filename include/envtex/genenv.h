@@ -33,8 +33,9 @@ genenv_params genenv_defaults(void);
 /* Parse "constant", "sky", "sun", "axes"; -1 if unknown. */
 int genenv_kind_parse(const char *name, genenv_kind *kind);
 
-/* Make the map into *out (allocated; free with image_free).  Fails on absurd sizes or
- * non-positive / non-finite parameters. */
+/* Make the map into *out (allocated; free with image_free).  Returns 0, or -1 with *err set on
+ * a size image_check_size refuses or a parameter out of range: value finite and >= 0 (0 is a
+ * black map), sun_ratio finite and > 0, sun_radius_deg in (0, 90), the sun's angles finite. */
 int genenv_make(genenv_kind kind, const genenv_params *p, image *out, error *err);
 
 #endif
