@@ -1,10 +1,13 @@
 /* main.c - the envtex command line.  Parses arguments, calls the library, prints results.
- * Every failure prints one line `envtex: FILE:LINE: what is wrong` and exits with status 1.
+ * Every failure prints one line `envtex: FILE:LINE: what is wrong` and exits with status 1; a
+ * comparison that runs and finds the images differ (`compare` with thresholds, `compare --test`)
+ * prints FAIL and exits with status 2.
  *
  *   envtex SCENE                    same as `envtex render SCENE`
  *   envtex render SCENE [-o OUT] [--spp N] [--seed N] [--ref REF] [--variance VAR] [--quiet] [--verbose] [--strict]
- *   envtex compare A B [--diff D.png] [--fail-percent P --fail T --hard H]
- *   envtex compare --test IMG REF VAR [--img-spp N --ref-spp M] [--diff MAP.png]
+ *   envtex compare A B [--diff D.png] [--fail-percent P] [--fail T] [--hard H]
+ *   envtex compare --test IMG REF VAR [--img-spp N --ref-spp M] [--alpha A] [--max-fail F]
+ *                                     [--diff MAP.png]
  *   envtex tonemap IN OUT.png [--exposure EV] [--op clamp|reinhard|aces] [--gamma G]
  *   envtex convert IN OUT --to KIND [--from KIND] [--width W] [--samples K]
  *   envtex gen-env KIND OUT [--width W] [--value V] [--sun-ratio R] [--sun-radius DEG]
