@@ -129,11 +129,11 @@ static long count_tris(const scene *in, int srate, int trate)
 /* ---- corner normals of triangles without normals ------------------------------------------
  * Each displaced triangle is tessellated on its own, so a shared edge is moved alike on both
  * sides only if both sides move its points along the same normals.  The geometric normals of
- * two triangles that meet at an angle differ, and would open a crack along the edge as wide as
- * the displacement; so a corner without a normal takes the angle-weighted mean of the unit
- * geometric normals of every displaced triangle without normals at the same position
- * (Thurmer and Wuthrich's weights: a corner's share does not depend on how its face is split
- * into triangles). */
+ * two triangles that meet at an angle differ, and would open a crack along the edge up to
+ * twice as wide as the displacement h (2 h sin(a / 2), a the angle between the normals); so a
+ * corner without a normal takes the angle-weighted mean of the unit geometric normals of every
+ * displaced triangle without normals at the same position (Thurmer and Wuthrich's weights: a
+ * corner's share does not depend on how its face is split into triangles). */
 
 /* One corner: where it is (its position p and a normal n, both compared exactly), and which it
  * is (corner `k` of triangle `tri`). */

@@ -36,7 +36,8 @@
  * If the whole scene would exceed max_tris (0: DISPLACEMAP_MAX_TRIS, never more than
  * SCENE_MAX_PRIMS) at those rates, both rates are halved together until it fits (down to 2 and
  * 1); if it still does not fit, an error.  The texture is read with the material's filter and
- * no footprint (texture.h's fallback: the full-resolution image, bilinearly).
+ * no footprint (texture.h's fallback: trilinear and EWA read the full-resolution image
+ * bilinearly; nearest reads its nearest texel).
  * Output triangles keep the material (whose displacement map the renderer ignores from then
  * on), get has_normals = 1 (recomputed, area-weighted over every displaced triangle around the
  * vertex: a vertex on the edge between two displaced triangles' patches, with the same normal
