@@ -7,6 +7,10 @@
  * (the integral of max(n . w, 0)) only for the part of the light above p's horizon: the light
  * is first clipped to the half-space (v - p) . n >= 0.  A point on the back side of the light
  * (the side ac x ab does not point to) receives nothing from it.
+ *
+ *     const scene_light *l = &sc->lights[k];              // a LIGHT_QUAD
+ *     double E = analyticdirect_irradiance(l, p, n);      // per unit radiance, unit n
+ *     rgb Lo = rgb_scale(rgb_mul(kd, l->color), E / M_PI); // kd / pi L (Phi . n)
  */
 #ifndef ENVTEX_ANALYTICDIRECT_H
 #define ENVTEX_ANALYTICDIRECT_H
