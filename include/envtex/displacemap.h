@@ -1,8 +1,8 @@
 /* displacemap.h - `displacementmap NAME SCALE` applied to a scene before rendering: every sphere
  * and triangle whose material has a displacement map is tessellated and its vertices moved
  * along the normal by SCALE times the texture (displace.h), and the renderer traces the
- * resulting triangles instead.  Lecture "Environment, Texture Maps", the displacement-mapping
- * slide of 25-46: unlike a bump map, the silhouette and the shadows change.
+ * resulting triangles instead.  Lecture "Environment, Texture Maps", slide 43 (displacement
+ * mapping, docs/lecture-map.md): unlike a bump map, the silhouette and the shadows change.
  *
  *     scene work;
  *     if (displacemap_needed(sc)) {

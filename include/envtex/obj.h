@@ -1,5 +1,5 @@
 /* obj.h - a Wavefront OBJ mesh reader: positions, texture coordinates and normals, with faces
- * fan-triangulated.  Lecture "Environment, Texture Maps", slides 25-46: texture coordinates are
+ * fan-triangulated.  Lecture "Environment, Texture Maps", slides 25-27: texture coordinates are
  * given at the vertices (the `vt` records) and interpolated across each triangle.
  *
  *     obj_mesh m;
