@@ -3,7 +3,7 @@
  * PFM; textures may also be PNG.
  *
  *     image im = {0};
- *     if (imageio_read("data/env/sky.exr", &im, &err)) ...   // err: "sky.exr: truncated ..."
+ *     if (imageio_read("data/envmaps/sky.exr", &im, &err)) ... // err: "sky.exr: truncated ..."
  *     if (imageio_write("out/demo.png", &im, NULL, &err)) ...  // tone mapped sRGB, atomic
  *
  * Reading picks the format by the file's magic bytes (not its name): OpenEXR (76 2f 31 01),

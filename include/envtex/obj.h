@@ -3,7 +3,7 @@
  * given at the vertices (the `vt` records) and interpolated across each triangle.
  *
  *     obj_mesh m;
- *     if (obj_load("data/meshes/bunny.obj", 0, &m, &err)) ...  // err: "bunny.obj:12: ..."
+ *     if (obj_load("scenes/bunny.obj", 0, &m, &err)) ...  // err: "scenes/bunny.obj:12: ..."
  *     for (long i = 0; i < m.n_tris; i++) { const obj_triangle *t = &m.tris[i]; ... }
  *     obj_free(&m);
  *

@@ -3,7 +3,8 @@
  *
  *     scene sc;
  *     scene_load_opts o = scene_load_defaults();
- *     if (scene_load("data/scenes/mirror.test", &o, &sc, &err)) { error_print(&err, stderr); }
+ *     if (scene_load("data/scenes/mirror_sphere.test", &o, &sc, &err))
+ *         error_print(&err, stderr);
  *     ... render ...
  *     scene_free(&sc);
  *
