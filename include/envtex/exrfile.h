@@ -21,9 +21,10 @@
  * - sizes are checked (image_check_size) before anything is allocated; a truncated or corrupt
  *   file is an error naming the file, never a crash.
  * Writing: one scanline part, channels R, G, B as float (half = 0) or half (half = 1, values
- * rounded to nearest; beyond +-65504 they become +-Inf), ZIP compression, increasing y,
- * display window = data window = (0,0)-(w-1,h-1).  Atomic: a temporary file beside `path` is
- * renamed over it only when complete (imageio_tmp_*).
+ * rounded to nearest: below 65520 in magnitude at most the largest half, 65504; from +-65520
+ * on, +-Inf), ZIP compression, increasing y, display window = data window = (0,0)-(w-1,h-1).
+ * Atomic: a temporary file beside `path` is renamed over it only when complete
+ * (imageio_tmp_*).
  */
 #ifndef ENVTEX_EXRFILE_H
 #define ENVTEX_EXRFILE_H
