@@ -21,7 +21,8 @@
 #define BVH_MIN_PRIMS 8
 #define BVH_LEAF_MAX 4   /* a node with this many primitives or fewer becomes a leaf */
 #define BVH_BINS 16      /* SAH bins per axis */
-#define BVH_MAX_DEPTH 64 /* traversal stack size; the build stops splitting at this depth */
+#define BVH_MAX_DEPTH 64 /* traversal stack size; the build stops splitting at depth 62
+                         * (traversal stacks one child per interior node on its path) */
 
 typedef struct bvh_node {
     vec3 lo, hi;   /* bounds */
