@@ -953,6 +953,40 @@ START_TEST(test_envlight_mediancut_strata_of_a_constant_map_have_equal_energy)
 }
 END_TEST
 
+/* the poles read the first and the last row: v = theta / pi is exactly 1 at the south pole
+ * (0, 0, -1), which the row index floor(v H) must clamp to H - 1.  The map's memory goes on past
+ * its last row with a bright sentinel row, so an unclamped index reads it (deterministically,
+ * without a sanitizer); radiance, pdf and the combined lookup must all see the last row. */
+START_TEST(test_envlight_south_pole_reads_the_last_row)
+{
+    enum { W = 3, H = 2 };
+    static float px[3 * W * (H + 1)];
+    for (int i = 0; i < 3 * W * (H + 1); i++) /* texel k is 0.25 (k + 1); then the sentinel row */
+        px[i] = i < 3 * W * H ? 0.25f * (float)(1 + i / 3) : 1000.0f;
+    image im = {W, H, px};
+    envmap env = env_of(&im, 1, mat4_identity());
+    const envsampling_mode modes[2] = {ENVSAMPLING_CDF, ENVSAMPLING_UNIFORM};
+    for (int m = 0; m < 2; m++) {
+        envlight el;
+        build(&el, &env, modes[m], ENVSAMPLER_BINARY, 0);
+        const vec3 pole[2] = {{0, 0, 1}, {0, 0, -1}};
+        for (int k = 0; k < 2; k++) {
+            double want = image_px(&im, 0, k * (H - 1))[1]; /* phi = 0 at the poles: column 0 */
+            rgb L = envlight_radiance(&el, pole[k]);
+            ck_assert_msg(L.g == want, "pole %d: L = %g, want the texel of row %d, %g", k, L.g, k * (H - 1), want);
+            double pdf;
+            L = envlight_radiance_pdf(&el, pole[k], &pdf);
+            ck_assert(L.g == want);
+            double want_pdf = modes[m] == ENVSAMPLING_CDF ? want / el.power : 1 / (4 * M_PI);
+            double got = envlight_pdf(&el, pole[k]);
+            ck_assert_msg(fabs(got - want_pdf) <= 1e-12 * want_pdf && fabs(pdf - want_pdf) <= 1e-12 * want_pdf,
+                          "pole %d: pdf %g and %g, want %g", k, got, pdf, want_pdf);
+        }
+        envlight_free(&el);
+    }
+}
+END_TEST
+
 Suite *envlight_suite(void)
 {
     Suite *s = suite_create("envlight");
@@ -975,6 +1009,7 @@ Suite *envlight_suite(void)
     tcase_add_test(tc, test_envlight_large_table_is_normalized);
     tcase_add_test(tc, test_envlight_cdf_pdf_is_radiance_over_power);
     tcase_add_test(tc, test_envlight_radiance_is_the_scaled_texel);
+    tcase_add_test(tc, test_envlight_south_pole_reads_the_last_row);
     tcase_add_test(tc, test_envlight_prefetch_asks_for_the_texel_or_a_neighbour);
     tcase_add_test(tc, test_envlight_forced_inversion_keeps_strata_with_alias_tables);
     suite_add_tcase(s, tc);
