@@ -990,6 +990,39 @@ START_TEST(test_envlight_south_pole_reads_the_last_row)
 }
 END_TEST
 
+/* median cut splits a stratum across its longer side measured in angle, the phi side shortened
+ * by sin theta (Debevec 2005).  A 64 x 32 map lit only in its two polar rows: the first cuts
+ * give 4 strata of about 16 columns (15 to 17: a cut falls where the energy halves) x rows
+ * [0, 2) holding all the light; each is ~16 * 2 pi / 64 * sin(pi / 32) = 0.15 rad long in phi
+ * but 2 pi / 32 = 0.20 rad tall in theta, so it is cut across theta, into one-row strata.
+ * Measuring phi without sin theta (0.15 rad as pi / 2) would cut it into strata two rows tall.
+ * (The halves of the map, pi by pi, are a tie, cut either way: the test holds for both.) */
+START_TEST(test_envlight_mediancut_cuts_polar_strata_across_theta)
+{
+    image im;
+    fill(&im, 64, 32);
+    for (int c = 0; c < 64; c++) {
+        set_gray(&im, c, 0, 1.0);
+        set_gray(&im, c, 1, 1.0);
+    }
+    envmap env = env_of(&im, 1, mat4_identity());
+    envlight el;
+    build(&el, &env, ENVSAMPLING_MEDIANCUT, ENVSAMPLER_BINARY, 12); /* 4 dark strata, 8 lit */
+    ck_assert_int_eq(el.n_points, 12);
+    int lit = 0, tall = 0;
+    for (int k = 0; k < el.n_points; k++) {
+        const envlight_point *pt = &el.points[k];
+        if (!(rgb_avg(pt->power) > 0)) continue;
+        lit++;
+        tall += pt->r1 - pt->r0 != 1;
+    }
+    ck_assert_int_ge(lit, 4);
+    ck_assert_msg(tall == 0, "%d of the %d lit strata are more than one row tall", tall, lit);
+    envlight_free(&el);
+    image_free(&im);
+}
+END_TEST
+
 Suite *envlight_suite(void)
 {
     Suite *s = suite_create("envlight");
@@ -1021,6 +1054,7 @@ Suite *envlight_suite(void)
     tcase_add_test(tc, test_envlight_mediancut_strata_partition_the_map_and_its_power);
     tcase_add_test(tc, test_envlight_mediancut_strata_of_a_constant_map_have_equal_energy);
     tcase_add_test(tc, test_envlight_mediancut_points_lie_inside_their_strata);
+    tcase_add_test(tc, test_envlight_mediancut_cuts_polar_strata_across_theta);
     tcase_add_test(tc, test_envlight_sintheta_sample_on_the_pole_edge_succeeds);
     suite_add_tcase(s, tc);
     return s;
