@@ -520,6 +520,40 @@ START_TEST(test_envlight_sampled_phi_is_unit_and_in_its_column)
 }
 END_TEST
 
+/* The last column at xi1 -> 1: its remapped rc is within an ulp of 1, so c + rc rounds to w and
+ * the phi table's index (c + rc) phi_sub to its size; sample_cos_sin_phi must clamp it to the
+ * last entry, not read one past the table.  With only the last column lit (p = 1, so rc is
+ * 1 - 2^-53), the sample is a unit vector in that column, at its phi = 2 pi edge. */
+START_TEST(test_envlight_last_column_at_xi_one_stays_in_the_table)
+{
+    const int widths[] = {2, 3, 7, 257, 2000};
+    const double xi1s[] = {1.0, 0x1.fffffffffffffp-1, 1 - 0x1p-40};
+    long bad = 0;
+    for (size_t k = 0; k < sizeof widths / sizeof widths[0]; k++) {
+        int w = widths[k], h = w / 2 > 0 ? w / 2 : 1;
+        image im;
+        fill(&im, w, h);
+        for (int r = 0; r < h; r++) set_gray(&im, w - 1, r, 1.0);
+        envmap env = env_of(&im, 1, mat4_identity());
+        for (int cfg = C_CDF_BINARY; cfg < C_COUNT; cfg++) {
+            envlight el;
+            build(&el, &env, cfg_mode[cfg], cfg_sampler[cfg], 0);
+            for (size_t i = 0; i < sizeof xi1s / sizeof xi1s[0]; i++) {
+                envlight_sample_result s;
+                ck_assert(envlight_sample(&el, xi1s[i], 0.3, 0, &s));
+                uv2 uv;
+                ck_assert_int_eq(latlong_dir_to_uv(s.wi, &uv), 0);
+                double x = uv.u * w; /* in [w - 1, w], or 0 at the seam */
+                bad += !(fabs(vec3_dot(s.wi, s.wi) - 1) <= UNIT_TOL) || !(x > w - 1 - EDGE_TOL || x < EDGE_TOL);
+            }
+            envlight_free(&el);
+        }
+        image_free(&im);
+    }
+    ck_assert_msg(bad == 0, "%ld samples at xi1 -> 1 are not unit or not in the last column", bad);
+}
+END_TEST
+
 /* NaN, +-Inf and negative channels are counted and used as 0: radiance 0 there (that channel),
  * never sampled when the whole texel is bad, not part of the power */
 START_TEST(test_envlight_bad_texels_are_counted_dark_and_never_sampled)
@@ -1041,6 +1075,7 @@ Suite *envlight_suite(void)
     tcase_add_test(tc, test_envlight_all_black_map_falls_back_to_uniform);
     tcase_add_test(tc, test_envlight_zero_texels_and_edge_xi_are_never_sampled);
     tcase_add_test(tc, test_envlight_sampled_phi_is_unit_and_in_its_column);
+    tcase_add_test(tc, test_envlight_last_column_at_xi_one_stays_in_the_table);
     tcase_add_test(tc, test_envlight_bad_texels_are_counted_dark_and_never_sampled);
     tcase_add_test(tc, test_envlight_large_table_is_normalized);
     tcase_add_test(tc, test_envlight_cdf_pdf_is_radiance_over_power);
