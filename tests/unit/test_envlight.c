@@ -844,6 +844,36 @@ START_TEST(test_envlight_prefetch_asks_for_the_texel_or_a_neighbour)
 }
 END_TEST
 
+/* envlight_mis_fraction returns the c that minimizes V(c) (1 + light_cost c), its variance x time
+ * (envlight.h), whatever light_cost is: on the sun map (V falls like 1/c) a free light sample
+ * or the integrator's 0.6 gives c = 1, a light sample 100 or 10^4 times a BRDF sample's cost a
+ * smaller c.  Checked against the V it reports, so the model itself is not under test here. */
+START_TEST(test_envlight_mis_fraction_minimizes_variance_times_time)
+{
+    static const double fractions[ENVLIGHT_MIS_FRACTIONS] = {0, 1.0 / 32, 1.0 / 16, 1.0 / 8, 0.25, 0.5, 0.75, 1};
+    const double costs[] = {0, 0.6, 100, 1e4};
+    image im;
+    make_map(M_SUN, &im);
+    envmap env = env_of(&im, 1, mat4_identity());
+    envlight el;
+    build(&el, &env, ENVSAMPLING_CDF, ENVSAMPLER_BINARY, 0);
+    for (size_t k = 0; k < sizeof costs / sizeof costs[0]; k++) {
+        double v[ENVLIGHT_MIS_FRACTIONS], best = INFINITY, got_cost = NAN;
+        double c = envlight_mis_fraction(&el, costs[k], v);
+        for (int i = 0; i < ENVLIGHT_MIS_FRACTIONS; i++) {
+            double cost = v[i] * (1 + costs[k] * fractions[i]);
+            best = fmin(best, cost);
+            if (fractions[i] == c) got_cost = cost;
+        }
+        ck_assert_msg(got_cost <= best * (1 + 1e-9), "light_cost %g: c = %g costs %g, the least is %g", costs[k], c,
+                      got_cost, best);
+        ck_assert_msg(costs[k] < 100 ? c == 1 : c < 1, "light_cost %g: c = %g", costs[k], c);
+    }
+    envlight_free(&el);
+    image_free(&im);
+}
+END_TEST
+
 /* with alias tables, force_inversion = 1 gives exactly the binary search's samples, which are
  * monotone in xi1 (the column, phi): stratified inputs stay stratified */
 START_TEST(test_envlight_forced_inversion_keeps_strata_with_alias_tables)
@@ -1070,6 +1100,7 @@ Suite *envlight_suite(void)
     tcase_add_test(tc, test_envlight_rotation_moves_samples_and_pdf_with_the_map);
     tcase_add_test(tc, test_envlight_kappa_and_the_combined_lookup);
     tcase_add_test(tc, test_envlight_mis_fraction_model);
+    tcase_add_test(tc, test_envlight_mis_fraction_minimizes_variance_times_time);
     tcase_add_test(tc, test_envlight_non_rotation_transform_is_refused);
     tcase_add_test(tc, test_envlight_translation_and_uniform_scale_sample_as_the_rotation_alone);
     tcase_add_test(tc, test_envlight_all_black_map_falls_back_to_uniform);
