@@ -992,6 +992,33 @@ START_TEST(test_envlight_mediancut_points_lie_inside_their_strata)
 }
 END_TEST
 
+/* the shadow direction is uniform in (cos theta, phi) over its stratum: with one stratum, the
+ * whole map, cos theta = 1 - 2 xi1 and phi = 2 pi xi2, which is sampling_uniform_sphere(xi1, xi2)
+ * (a jitter over only part of the stratum, in either coordinate, would not be) */
+START_TEST(test_envlight_mediancut_shadow_directions_cover_the_stratum)
+{
+    image im;
+    small_sun_map(&im);
+    envmap env = env_of(&im, 1, mat4_identity());
+    envlight el;
+    build(&el, &env, ENVSAMPLING_MEDIANCUT, ENVSAMPLER_BINARY, 1);
+    ck_assert_int_eq(el.n_points, 1);
+    rng g;
+    rng_seed(&g, 47, 0);
+    double worst = 0;
+    for (int i = 0; i < 1000; i++) {
+        double xi1 = i == 0 ? 0 : rng_uniform(&g), xi2 = i == 0 ? 0 : rng_uniform(&g), prob;
+        int k;
+        vec3 sd;
+        ck_assert(envlight_mediancut_pick(&el, rng_uniform(&g), xi1, xi2, &k, &sd, &prob));
+        worst = fmax(worst, vec3_length(vec3_sub(sd, sampling_uniform_sphere(xi1, xi2))));
+    }
+    ck_assert_msg(worst < 1e-12, "shadow directions off the uniform sphere's by up to %g", worst);
+    envlight_free(&el);
+    image_free(&im);
+}
+END_TEST
+
 /* on a constant map the strata carry about equal energy (median cut splits energy in halves) */
 START_TEST(test_envlight_mediancut_strata_of_a_constant_map_have_equal_energy)
 {
@@ -1120,6 +1147,7 @@ Suite *envlight_suite(void)
     tcase_add_test(tc, test_envlight_mediancut_strata_partition_the_map_and_its_power);
     tcase_add_test(tc, test_envlight_mediancut_strata_of_a_constant_map_have_equal_energy);
     tcase_add_test(tc, test_envlight_mediancut_points_lie_inside_their_strata);
+    tcase_add_test(tc, test_envlight_mediancut_shadow_directions_cover_the_stratum);
     tcase_add_test(tc, test_envlight_mediancut_cuts_polar_strata_across_theta);
     tcase_add_test(tc, test_envlight_sintheta_sample_on_the_pole_edge_succeeds);
     suite_add_tcase(s, tc);
