@@ -426,6 +426,42 @@ START_TEST(test_distrib1d_xi_of_one_reaches_a_tiny_last_bin)
 }
 END_TEST
 
+/* Catches a remap without its clamp: (x - cdf[i]) / p rounds up to exactly 1 for some x just
+ * below a CDF step (x = 1 - 2^-53 with weights {0.46274883486330509, 0.71087739639915526} does),
+ * and remapped must stay in [0, 1).  Every bin of 2000 random tables, 1D and a 2D column, at the
+ * last double below its step. */
+START_TEST(test_distrib_remapped_stays_below_one_just_below_a_step)
+{
+    const double w2[2] = {0.46274883486330509, 0.71087739639915526};
+    distrib1d d = {0};
+    error err = {0};
+    double rem;
+    ck_assert_int_eq(distrib1d_init(&d, w2, 2, &err), 0);
+    ck_assert_int_eq(distrib1d_sample(&d, 1.0 - 0x1p-53, NULL, &rem), 1);
+    ck_assert_msg(rem < 1.0, "remapped %a", rem);
+    distrib1d_free(&d);
+    pcg32 rng = pcg32_seeded(29);
+    long bad = 0;
+    for (int t = 0; t < 2000; t++) {
+        int n = 2 + (int)(pcg32_double(&rng) * 7);
+        double w[8];
+        for (int k = 0; k < n; k++) w[k] = pcg32_double(&rng);
+        distrib2d d2 = {0};
+        ck_assert_int_eq(distrib1d_init(&d, w, n, &err), 0);
+        ck_assert_int_eq(distrib2d_init(&d2, w, 1, n, &err), 0); /* one column: the same CDF */
+        for (int i = 0; i < n; i++) {
+            double x = nextafter(d.cdf[i + 1], 0.0), r2;
+            distrib1d_sample(&d, x, NULL, &rem);
+            distrib2d_sample_inner(&d2, 0, x, NULL, &r2);
+            bad += !(rem >= 0.0 && rem < 1.0) || !(r2 >= 0.0 && r2 < 1.0);
+        }
+        distrib1d_free(&d);
+        distrib2d_free(&d2);
+    }
+    ck_assert_msg(bad == 0, "%ld remapped values outside [0, 1)", bad);
+}
+END_TEST
+
 /* Catches a zero bin reachable anywhere inside [0, 1) (e.g. a search for cdf >= xi). */
 START_TEST(test_distrib1d_zero_bins_are_never_chosen_over_a_sweep_of_xi)
 {
@@ -1148,6 +1184,7 @@ Suite *distrib_suite(void)
     tcase_add_loop_test(tc, test_distrib1d_binary_search_samples_fit_the_pmf, 0, T1_COUNT);
     tcase_add_loop_test(tc, test_distrib1d_alias_samples_fit_the_binary_search_pmf, 0, T1_COUNT);
     tcase_add_test(tc, test_distrib1d_remapped_values_are_uniform_on_0_1);
+    tcase_add_test(tc, test_distrib_remapped_stays_below_one_just_below_a_step);
     tcase_add_test(tc, test_distrib1d_edge_xi_give_the_first_and_last_nonzero_bins);
     tcase_add_test(tc, test_distrib1d_xi_of_one_reaches_a_tiny_last_bin);
     tcase_add_test(tc, test_distrib1d_zero_bins_are_never_chosen_over_a_sweep_of_xi);
