@@ -1087,7 +1087,9 @@ END_TEST
  * [0, 2) holding all the light; each is ~16 * 2 pi / 64 * sin(pi / 32) = 0.15 rad long in phi
  * but 2 pi / 32 = 0.20 rad tall in theta, so it is cut across theta, into one-row strata.
  * Measuring phi without sin theta (0.15 rad as pi / 2) would cut it into strata two rows tall.
- * (The halves of the map, pi by pi, are a tie, cut either way: the test holds for both.) */
+ * (The halves of the map, pi by pi, are a tie, cut either way: the test holds for both.)  With
+ * 24 strata the one-row strata must be cut again, across phi (a stratum one texel tall but many
+ * wide still splits), rather than the dark strata. */
 START_TEST(test_envlight_mediancut_cuts_polar_strata_across_theta)
 {
     image im;
@@ -1097,19 +1099,22 @@ START_TEST(test_envlight_mediancut_cuts_polar_strata_across_theta)
         set_gray(&im, c, 1, 1.0);
     }
     envmap env = env_of(&im, 1, mat4_identity());
-    envlight el;
-    build(&el, &env, ENVSAMPLING_MEDIANCUT, ENVSAMPLER_BINARY, 12); /* 4 dark strata, 8 lit */
-    ck_assert_int_eq(el.n_points, 12);
-    int lit = 0, tall = 0;
-    for (int k = 0; k < el.n_points; k++) {
-        const envlight_point *pt = &el.points[k];
-        if (!(rgb_avg(pt->power) > 0)) continue;
-        lit++;
-        tall += pt->r1 - pt->r0 != 1;
+    const int ns[2] = {12, 24}; /* 12: 4 dark strata, 8 lit; 24: the one-row strata cut across phi */
+    for (int t = 0; t < 2; t++) {
+        envlight el;
+        build(&el, &env, ENVSAMPLING_MEDIANCUT, ENVSAMPLER_BINARY, ns[t]);
+        ck_assert_int_eq(el.n_points, ns[t]);
+        int lit = 0, tall = 0;
+        for (int k = 0; k < el.n_points; k++) {
+            const envlight_point *pt = &el.points[k];
+            if (!(rgb_avg(pt->power) > 0)) continue;
+            lit++;
+            tall += pt->r1 - pt->r0 != 1;
+        }
+        ck_assert_int_ge(lit, ns[t] - 4); /* lit strata are cut before dark ones (energy ~0) */
+        ck_assert_msg(tall == 0, "N = %d: %d of the %d lit strata are more than one row tall", ns[t], tall, lit);
+        envlight_free(&el);
     }
-    ck_assert_int_ge(lit, 4);
-    ck_assert_msg(tall == 0, "%d of the %d lit strata are more than one row tall", tall, lit);
-    envlight_free(&el);
     image_free(&im);
 }
 END_TEST
