@@ -429,7 +429,9 @@ END_TEST
 /* Catches a remap without its clamp: (x - cdf[i]) / p rounds up to exactly 1 for some x just
  * below a CDF step (x = 1 - 2^-53 with weights {0.46274883486330509, 0.71087739639915526} does),
  * and remapped must stay in [0, 1).  Every bin of 2000 random tables, 1D and a 2D column, at the
- * last double below its step. */
+ * last double below its step.  The alias remap too: weights {3 2^-55, 1} give cell 0 the
+ * probability 3 2^-54, and at xi = 1/2 - 2^-54 (f = 1 - 2^-53, its alias's part) both
+ * f - prob and 1 - prob round to 1 - 2^-52, so (f - prob) / (1 - prob) is exactly 1. */
 START_TEST(test_distrib_remapped_stays_below_one_just_below_a_step)
 {
     const double w2[2] = {0.46274883486330509, 0.71087739639915526};
@@ -439,6 +441,12 @@ START_TEST(test_distrib_remapped_stays_below_one_just_below_a_step)
     ck_assert_int_eq(distrib1d_init(&d, w2, 2, &err), 0);
     ck_assert_int_eq(distrib1d_sample(&d, 1.0 - 0x1p-53, NULL, &rem), 1);
     ck_assert_msg(rem < 1.0, "remapped %a", rem);
+    distrib1d_free(&d);
+    const double w_alias[2] = {0x3p-55, 1.0};
+    ck_assert_int_eq(distrib1d_init(&d, w_alias, 2, &err), 0);
+    ck_assert_int_eq(distrib1d_alias_build(&d, &err), 0);
+    ck_assert_int_eq(distrib1d_sample_alias(&d, 0.5 - 0x1p-54, NULL, &rem), 1);
+    ck_assert_msg(rem < 1.0, "alias: remapped %a", rem);
     distrib1d_free(&d);
     pcg32 rng = pcg32_seeded(29);
     long bad = 0;
