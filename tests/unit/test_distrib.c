@@ -639,11 +639,13 @@ START_TEST(test_distrib1d_all_zero_weights_fall_back_to_uniform)
     ck_assert_int_eq(distrib1d_sample(&d, 0.5, NULL, NULL), 2);
     ck_assert_int_eq(distrib1d_sample(&d, 1.0, NULL, NULL), 4);
     ck_assert(d.cdf[5] == 1.0);
+    ck_assert(d.total == 5.0); /* n, as distrib.h promises, not the sum 0 */
     distrib1d_free(&d);
 
     const double w_ok[2] = {0.0, 1.0};
     ck_assert_int_eq(distrib1d_init(&d, w_ok, 2, &err), 0);
     ck_assert_int_eq(d.fell_back_to_uniform, 0);
+    ck_assert(d.total == 1.0);
     distrib1d_free(&d);
 }
 END_TEST
@@ -1054,6 +1056,7 @@ START_TEST(test_distrib2d_all_zero_weights_fall_back_to_uniform)
     ck_assert_int_eq(distrib2d_init(&d, w, 4, 3, &err), 0);
     ck_assert_int_eq(d.fell_back_to_uniform, 1);
     ck_assert_int_eq(d.n_bad, 1);
+    ck_assert(d.total == 12.0); /* n_outer n_inner, as distrib.h promises */
     for (int o = 0; o < 4; o++)
         for (int i = 0; i < 3; i++) ck_assert_near(distrib2d_pmf(&d, o, i), 1.0 / 12.0, 1e-15);
     ck_assert_int_eq(distrib2d_alias_build(&d, &err), 0);
