@@ -451,6 +451,39 @@ START_TEST(test_ewa_far_coordinates_read_like_near_ones)
 }
 END_TEST
 
+/* Catches an EWA ellipse of the wrong size or shape: the filter is the ellipse x^T S^-1 x < 1 with
+ * S = J J^T + I (J the footprint's axes in texels, I the texel's own reconstruction).  A single
+ * lit texel on black, read with axes of 4 and 1 texels (level 0: the minor axis is 1 texel):
+ * S has the axes' directions with variances 17 and 2, so the texel counts (> 0) at 4.05 texels
+ * along the major axis and 1.38 across it (r^2 = 0.965, 0.952) and not at all (exactly 0) at
+ * 4.5 and 1.6 (r^2 = 1.19, 1.28); axis-aligned and turned by 45 degrees (where S has a cross
+ * term).  A bounding box of half the ellipse's extent, a lost "+ 1" (variances 16 or 1: r^2 =
+ * 1.03, 1.90) or a wrong det S would move these edges. */
+START_TEST(test_ewa_ellipse_is_the_footprint_plus_one_texel)
+{
+    enum { N = 32, I0 = 16, J0 = 16 };
+    image im = new_image(N, N);
+    image_set(&im, I0, N - 1 - J0, rgb_gray(1)); /* texel (I0, J0), J0 from the bottom */
+    mipmap m = build(&im, WRAP_CLAMP);
+    for (int turned = 0; turned < 2; turned++) {
+        double c = turned ? sqrt(0.5) : 1, sn = turned ? sqrt(0.5) : 0; /* major axis (c, sn) */
+        uv2 d0 = {4 * c / N, 4 * sn / N}, d1 = {-sn / N, c / N};
+        const double along[4] = {4.05, 4.5, 0, 0}, across[4] = {0, 0, 1.38, 1.6};
+        for (int k = 0; k < 4; k++) {
+            /* the lit texel's offset from the lookup point, in texels */
+            double ox = along[k] * c - across[k] * sn, oy = along[k] * sn + across[k] * c;
+            uv2 st = {(I0 + 0.5 - ox) / N, (J0 + 0.5 - oy) / N};
+            double v = mipmap_lookup_ewa(&m, st, d0, d1).g;
+            int inside = k % 2 == 0;
+            ck_assert_msg(inside ? v > 0 : v == 0, "%s, %g along and %g across: %g", turned ? "turned" : "aligned",
+                          along[k], across[k], v);
+        }
+    }
+    mipmap_free(&m);
+    image_free(&im);
+}
+END_TEST
+
 /* Catches a pyramid that always pays for trilinear's packed copy (EWA alone never reads it), a
  * pack that copies again on a second call, and a packed copy that differs from the levels. */
 START_TEST(test_only_pack_makes_trilinears_copy_and_only_once)
@@ -557,6 +590,7 @@ Suite *mipmap_suite(void)
     tcase_add_test(tc, test_ewa_clamps_the_anisotropy);
     tcase_add_test(tc, test_ewa_measures_a_non_square_images_footprint_in_texels);
     tcase_add_test(tc, test_ewa_far_coordinates_read_like_near_ones);
+    tcase_add_test(tc, test_ewa_ellipse_is_the_footprint_plus_one_texel);
     tcase_add_test(tc, test_only_pack_makes_trilinears_copy_and_only_once);
     tcase_add_test(tc, test_build_rejects_an_empty_image_and_an_unknown_wrap_mode);
     suite_add_tcase(s, tc);
