@@ -559,6 +559,10 @@ START_TEST(test_ewa_measures_a_non_square_images_footprint_in_texels)
     rgb cb = mipmap_lookup_ewa(&b, stb, (uv2){2.0 / 64, 0}, (uv2){0, 1.0 / 16});
     ck_assert_msg(ca.r > 0.75, "the square image's level 0 shows the stripe: %g", ca.r);
     ck_assert_msg(fabs(ca.r - cb.r) < 1e-6, "64 x 64 gives %.9g, 64 x 16 %.9g", ca.r, cb.r);
+    /* the same axes given the other way round (dst/dx along t): each axis's t by H, not W */
+    rgb sa = mipmap_lookup_ewa(&a, sta, (uv2){0, 1.0 / 64}, (uv2){2.0 / 64, 0});
+    rgb sb = mipmap_lookup_ewa(&b, stb, (uv2){0, 1.0 / 16}, (uv2){2.0 / 64, 0});
+    ck_assert_msg(fabs(sa.r - ca.r) < 1e-6 && fabs(sb.r - cb.r) < 1e-6, "axes swapped: %.9g and %.9g", sa.r, sb.r);
     mipmap_free(&a);
     mipmap_free(&b);
     image_free(&sq);
