@@ -435,9 +435,13 @@ START_TEST(test_ewa_far_coordinates_read_like_near_ones)
 {
     image im = random_image(8, 8);
     uv2 dx = {0.05, 0}, dy = {0, 0.03}; /* axis aligned: clamp's far result is exact */
-    mipmap rep = build(&im, WRAP_REPEAT), cla = build(&im, WRAP_CLAMP);
+    mipmap rep = build(&im, WRAP_REPEAT), cla = build(&im, WRAP_CLAMP), mir = build(&im, WRAP_MIRROR);
     ck_rgb_near(mipmap_lookup_ewa(&rep, (uv2){0.3 + 1e6, 0.6 - 1e6}, dx, dy),
                 mipmap_lookup_ewa(&rep, (uv2){0.3, 0.6}, dx, dy), 1e-6);
+    /* mirror's period is 2 (2n texels): s = 0.3 + an odd number of units is the mirrored 1.3 (far:
+     * 4000001 units are 3.2e7 texels, past the 2^24 where reduce_coordinate steps in) */
+    ck_rgb_near(mipmap_lookup_ewa(&mir, (uv2){0.3 + 4000001.0, 0.6}, dx, dy),
+                mipmap_lookup_ewa(&mir, (uv2){1.3, 0.6}, dx, dy), 1e-6);
     ck_rgb_near(mipmap_lookup_ewa(&cla, (uv2){-1e9, 0.6}, dx, dy),
                 mipmap_lookup_ewa(&cla, (uv2){-3.0, 0.6}, dx, dy), 1e-9);
     ck_rgb_near(mipmap_lookup_ewa(&cla, (uv2){0.4, 1e12}, dx, dy),
@@ -447,6 +451,7 @@ START_TEST(test_ewa_far_coordinates_read_like_near_ones)
     ck_assert(rgb_is_finite(mipmap_lookup_trilinear(&cla, (uv2){INFINITY, NAN}, 0.1)));
     mipmap_free(&rep);
     mipmap_free(&cla);
+    mipmap_free(&mir);
     image_free(&im);
 }
 END_TEST
