@@ -236,6 +236,22 @@ START_TEST(test_trilinear_below_one_texel_is_bilinear_on_the_base)
 }
 END_TEST
 
+/* Catches a footprint measured by the width instead of the longer side (mipmap.h: width in texels
+ * = footprint_width * max(W, H)): on a TALL 4 x 16 image a footprint of 1/4 is 4 texels, level
+ * 2 exactly (the 1 x 4 level, bilinear there); by the width it would be 1 texel, level 0. */
+START_TEST(test_trilinear_measures_a_tall_images_footprint_by_its_longer_side)
+{
+    image im = random_image(4, 16);
+    mipmap m = build(&im, WRAP_REPEAT);
+    for (int k = 0; k < 50; k++) {
+        uv2 st = {rng_uniform(0, 1), rng_uniform(0, 1)};
+        ck_rgb_near(mipmap_lookup_trilinear(&m, st, 0.25), texlookup_bilinear(mipmap_level(&m, 2), st, WRAP_REPEAT), 1e-6);
+    }
+    mipmap_free(&m);
+    image_free(&im);
+}
+END_TEST
+
 START_TEST(test_trilinear_blends_the_two_nearest_levels_by_the_fraction)
 {
     image im = random_image(32, 20);
@@ -588,6 +604,7 @@ Suite *mipmap_suite(void)
     tcase_add_test(tc, test_repeat_blends_the_opposite_border_at_every_level_and_clamp_does_not);
     tcase_add_test(tc, test_level_for_footprint_is_log2_of_the_width_in_texels);
     tcase_add_test(tc, test_trilinear_below_one_texel_is_bilinear_on_the_base);
+    tcase_add_test(tc, test_trilinear_measures_a_tall_images_footprint_by_its_longer_side);
     tcase_add_test(tc, test_trilinear_blends_the_two_nearest_levels_by_the_fraction);
     tcase_add_test(tc, test_trilinear_axes_is_trilinear_of_the_area_side);
     tcase_add_test(tc, test_trilinear_is_continuous_in_the_footprint);
