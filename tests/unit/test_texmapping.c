@@ -222,6 +222,16 @@ START_TEST(test_triangle_tangents_and_differentials_agree_with_a_known_plane)
                                                        vec3_make(0, 1, 0), &dx, &dy), -1);
     ck_uv_near(dx, 0, 0, 0);
     ck_assert_int_eq(texmapping_triangle_tangents(line, st, &ds, &dt), -1);
+    /* the thresholds are relative: a tiny st patch (extents 1e-7, det 1e-14) is not degenerate,
+     * its tangents are 1e7 times as long; a sliver whose |e1 x e2|^2 is ~1e-14 of |e1|^2 |e2|^2
+     * has no differentials though its det is far from 0 in absolute terms */
+    const uv2 tiny[3] = {{0.5, 0.5}, {0.5 + 1e-7, 0.5}, {0.5, 0.5 + 1e-7}};
+    ck_assert_int_eq(texmapping_triangle_tangents(p, tiny, &ds, &dt), 0);
+    ck_assert_near(ds.x / 2e7, 1, 1e-6);
+    ck_assert_near(dt.y / 3e7, 1, 1e-6);
+    const vec3 sliver[3] = {{0, 0, 0}, {1, 0, 0}, {2, 1e-7, 0}};
+    ck_assert_int_eq(texmapping_triangle_differentials(sliver, st, vec3_make(1, 0, 0),
+                                                       vec3_make(0, 1, 0), &dx, &dy), -1);
 }
 END_TEST
 
