@@ -564,6 +564,7 @@ START_TEST(test_envlight_bad_texels_are_counted_dark_and_never_sampled)
     p = image_px(&im, 2, 2); p[0] = p[1] = p[2] = NAN;       /* 3 bad channels */
     p = image_px(&im, 9, 4); p[0] = INFINITY; p[1] = -INFINITY; p[2] = -1; /* 3 */
     p = image_px(&im, 12, 6); p[1] = NAN;                     /* 1: red and blue still 0.7 */
+    p = image_px(&im, 5, 1); p[0] = p[1] = 0; p[2] = -0.0f;   /* black, not bad: 0 */
     envmap env = env_of(&im, 1, mat4_identity());
     for (int cfg = C_UNIFORM; cfg < C_COUNT; cfg++) {
         envlight el;
