@@ -505,6 +505,32 @@ START_TEST(test_ewa_ellipse_is_the_footprint_plus_one_texel)
 }
 END_TEST
 
+/* Catches EWA switching levels without the blend (or blending only part of the way): as the
+ * footprint grows by steps of 1e-3 in log2, from half a texel to 8 texels, the colour moves
+ * smoothly (measured: at most 0.016 in g, whose texels span [0, 5); the LUT's steps), while a
+ * level switched without the blend jumps by half the difference between two levels or more
+ * (0.28 here). */
+START_TEST(test_ewa_is_continuous_in_the_footprint)
+{
+    image im = random_image(40, 24);
+    mipmap m = build(&im, WRAP_REPEAT);
+    double worst = 0;
+    for (int k = 0; k < 3; k++) {
+        uv2 st = {rng_uniform(0, 1), rng_uniform(0, 1)}, dx = {0.5 / 40, 0}, dy = {0, 0.5 / 24};
+        rgb prev = mipmap_lookup_ewa(&m, st, dx, dy);
+        for (double e = -1 + 1e-3; e < 3.0; e += 1e-3) {
+            double r = exp2(e); /* the footprint in texels, each way */
+            rgb c = mipmap_lookup_ewa(&m, st, (uv2){r / 40, 0}, (uv2){0, r / 24});
+            worst = fmax(worst, fabs(c.g - prev.g));
+            prev = c;
+        }
+    }
+    ck_assert_msg(worst < 0.05, "the colour jumps by %g between footprints 1e-3 apart in log2", worst);
+    mipmap_free(&m);
+    image_free(&im);
+}
+END_TEST
+
 /* Catches a pyramid that always pays for trilinear's packed copy (EWA alone never reads it), a
  * pack that copies again on a second call, and a packed copy that differs from the levels. */
 START_TEST(test_only_pack_makes_trilinears_copy_and_only_once)
@@ -617,6 +643,7 @@ Suite *mipmap_suite(void)
     tcase_add_test(tc, test_ewa_measures_a_non_square_images_footprint_in_texels);
     tcase_add_test(tc, test_ewa_far_coordinates_read_like_near_ones);
     tcase_add_test(tc, test_ewa_ellipse_is_the_footprint_plus_one_texel);
+    tcase_add_test(tc, test_ewa_is_continuous_in_the_footprint);
     tcase_add_test(tc, test_only_pack_makes_trilinears_copy_and_only_once);
     tcase_add_test(tc, test_build_rejects_an_empty_image_and_an_unknown_wrap_mode);
     suite_add_tcase(s, tc);
