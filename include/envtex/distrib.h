@@ -134,7 +134,7 @@ typedef struct distrib2d {
     int32_t *cond_guide;      /* n_outer rows of n_guide_inner + 1 entries: the guide of
                                * each column, as distrib1d.guide */
     int n_guide_inner;
-    double total;             /* sum of all weights used */
+    double total;             /* sum of all weights used (n_outer n_inner if all were 0) */
     int n_bad;                /* weights that were NaN, +-Inf or negative (used as 0) */
     int fell_back_to_uniform; /* 1 if every weight was 0 and the grid is uniform */
     distrib_alias *cond_alias; /* n_outer * n_inner cells after distrib2d_alias_build, else NULL */

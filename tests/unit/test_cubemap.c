@@ -475,6 +475,20 @@ START_TEST(test_cubemap_from_cross_rejects_other_shapes)
         ck_assert(err.msg[0] != 0);
         image_free(&im);
     }
+    /* the layouts' own entry points check the face size too: 8 x 3 is 4 x 3 cells but of 2 x 1
+     * pixels (cells must be square, or a face would be read past the image's last row) */
+    const int cells[2][2] = {{8, 3}, {3, 8}};
+    for (int k = 0; k < 2; k++) {
+        image im = {0};
+        ck_assert_int_eq(image_alloc(&im, cells[k][0], cells[k][1], NULL), 0);
+        cubemap cm = {0};
+        error err = {0};
+        int rc = k == 0 ? cubemap_from_horizontal_cross(&im, &cm, &err) : cubemap_from_vertical_cross(&im, &cm, &err);
+        ck_assert_msg(rc == -1, "a %d x %d cross was accepted", cells[k][0], cells[k][1]);
+        ck_assert_int_eq(cm.size, 0);
+        ck_assert(err.msg[0] != 0);
+        image_free(&im);
+    }
 }
 END_TEST
 

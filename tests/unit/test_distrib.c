@@ -426,6 +426,50 @@ START_TEST(test_distrib1d_xi_of_one_reaches_a_tiny_last_bin)
 }
 END_TEST
 
+/* Catches a remap without its clamp: (x - cdf[i]) / p rounds up to exactly 1 for some x just
+ * below a CDF step (x = 1 - 2^-53 with weights {0.46274883486330509, 0.71087739639915526} does),
+ * and remapped must stay in [0, 1).  Every bin of 2000 random tables, 1D and a 2D column, at the
+ * last double below its step.  The alias remap too: weights {3 2^-55, 1} give cell 0 the
+ * probability 3 2^-54, and at xi = 1/2 - 2^-54 (f = 1 - 2^-53, its alias's part) both
+ * f - prob and 1 - prob round to 1 - 2^-52, so (f - prob) / (1 - prob) is exactly 1. */
+START_TEST(test_distrib_remapped_stays_below_one_just_below_a_step)
+{
+    const double w2[2] = {0.46274883486330509, 0.71087739639915526};
+    distrib1d d = {0};
+    error err = {0};
+    double rem;
+    ck_assert_int_eq(distrib1d_init(&d, w2, 2, &err), 0);
+    ck_assert_int_eq(distrib1d_sample(&d, 1.0 - 0x1p-53, NULL, &rem), 1);
+    ck_assert_msg(rem < 1.0, "remapped %a", rem);
+    distrib1d_free(&d);
+    const double w_alias[2] = {0x3p-55, 1.0};
+    ck_assert_int_eq(distrib1d_init(&d, w_alias, 2, &err), 0);
+    ck_assert_int_eq(distrib1d_alias_build(&d, &err), 0);
+    ck_assert_int_eq(distrib1d_sample_alias(&d, 0.5 - 0x1p-54, NULL, &rem), 1);
+    ck_assert_msg(rem < 1.0, "alias: remapped %a", rem);
+    distrib1d_free(&d);
+    pcg32 rng = pcg32_seeded(29);
+    long bad = 0;
+    for (int t = 0; t < 2000; t++) {
+        int n = 2 + (int)(pcg32_double(&rng) * 7);
+        double w[8];
+        for (int k = 0; k < n; k++) w[k] = pcg32_double(&rng);
+        distrib2d d2 = {0};
+        ck_assert_int_eq(distrib1d_init(&d, w, n, &err), 0);
+        ck_assert_int_eq(distrib2d_init(&d2, w, 1, n, &err), 0); /* one column: the same CDF */
+        for (int i = 0; i < n; i++) {
+            double x = nextafter(d.cdf[i + 1], 0.0), r2;
+            distrib1d_sample(&d, x, NULL, &rem);
+            distrib2d_sample_inner(&d2, 0, x, NULL, &r2);
+            bad += !(rem >= 0.0 && rem < 1.0) || !(r2 >= 0.0 && r2 < 1.0);
+        }
+        distrib1d_free(&d);
+        distrib2d_free(&d2);
+    }
+    ck_assert_msg(bad == 0, "%ld remapped values outside [0, 1)", bad);
+}
+END_TEST
+
 /* Catches a zero bin reachable anywhere inside [0, 1) (e.g. a search for cdf >= xi). */
 START_TEST(test_distrib1d_zero_bins_are_never_chosen_over_a_sweep_of_xi)
 {
@@ -595,11 +639,13 @@ START_TEST(test_distrib1d_all_zero_weights_fall_back_to_uniform)
     ck_assert_int_eq(distrib1d_sample(&d, 0.5, NULL, NULL), 2);
     ck_assert_int_eq(distrib1d_sample(&d, 1.0, NULL, NULL), 4);
     ck_assert(d.cdf[5] == 1.0);
+    ck_assert(d.total == 5.0); /* n, as distrib.h promises, not the sum 0 */
     distrib1d_free(&d);
 
     const double w_ok[2] = {0.0, 1.0};
     ck_assert_int_eq(distrib1d_init(&d, w_ok, 2, &err), 0);
     ck_assert_int_eq(d.fell_back_to_uniform, 0);
+    ck_assert(d.total == 1.0);
     distrib1d_free(&d);
 }
 END_TEST
@@ -1010,6 +1056,7 @@ START_TEST(test_distrib2d_all_zero_weights_fall_back_to_uniform)
     ck_assert_int_eq(distrib2d_init(&d, w, 4, 3, &err), 0);
     ck_assert_int_eq(d.fell_back_to_uniform, 1);
     ck_assert_int_eq(d.n_bad, 1);
+    ck_assert(d.total == 12.0); /* n_outer n_inner, as distrib.h promises */
     for (int o = 0; o < 4; o++)
         for (int i = 0; i < 3; i++) ck_assert_near(distrib2d_pmf(&d, o, i), 1.0 / 12.0, 1e-15);
     ck_assert_int_eq(distrib2d_alias_build(&d, &err), 0);
@@ -1148,6 +1195,7 @@ Suite *distrib_suite(void)
     tcase_add_loop_test(tc, test_distrib1d_binary_search_samples_fit_the_pmf, 0, T1_COUNT);
     tcase_add_loop_test(tc, test_distrib1d_alias_samples_fit_the_binary_search_pmf, 0, T1_COUNT);
     tcase_add_test(tc, test_distrib1d_remapped_values_are_uniform_on_0_1);
+    tcase_add_test(tc, test_distrib_remapped_stays_below_one_just_below_a_step);
     tcase_add_test(tc, test_distrib1d_edge_xi_give_the_first_and_last_nonzero_bins);
     tcase_add_test(tc, test_distrib1d_xi_of_one_reaches_a_tiny_last_bin);
     tcase_add_test(tc, test_distrib1d_zero_bins_are_never_chosen_over_a_sweep_of_xi);

@@ -349,13 +349,16 @@ START_TEST(test_envlight_translation_and_uniform_scale_sample_as_the_rotation_al
 }
 END_TEST
 
-/* a transform with a scale (or shear) cannot be sampled: refused with a message */
+/* a transform with a scale (or shear) cannot be sampled: refused with a message.  The tolerance
+ * is relative to the overall scale: a tiny transform (1e-4, 1e-4, 2e-4) distorts as much as
+ * (1, 1, 2), though A A^T is within 1e-6 of s^2 I in absolute terms. */
 START_TEST(test_envlight_non_rotation_transform_is_refused)
 {
     image im;
     make_map(M_CONSTANT, &im);
-    mat4 bad[2] = {mat4_scale(vec3_make(2, 1, 1)), mat4_mul(mat4_rotate(vec3_make(0, 0, 1), 30), mat4_scale(vec3_make(1, 1, 0.5)))};
-    for (int i = 0; i < 2; i++) {
+    mat4 bad[3] = {mat4_scale(vec3_make(2, 1, 1)), mat4_mul(mat4_rotate(vec3_make(0, 0, 1), 30), mat4_scale(vec3_make(1, 1, 0.5))),
+                   mat4_scale(vec3_make(1e-4, 1e-4, 2e-4))};
+    for (int i = 0; i < 3; i++) {
         envmap env = env_of(&im, 1, bad[i]);
         envlight el;
         error err = {0};
@@ -517,6 +520,40 @@ START_TEST(test_envlight_sampled_phi_is_unit_and_in_its_column)
 }
 END_TEST
 
+/* The last column at xi1 -> 1: its remapped rc is within an ulp of 1, so c + rc rounds to w and
+ * the phi table's index (c + rc) phi_sub to its size; sample_cos_sin_phi must clamp it to the
+ * last entry, not read one past the table.  With only the last column lit (p = 1, so rc is
+ * 1 - 2^-53), the sample is a unit vector in that column, at its phi = 2 pi edge. */
+START_TEST(test_envlight_last_column_at_xi_one_stays_in_the_table)
+{
+    const int widths[] = {2, 3, 7, 257, 2000};
+    const double xi1s[] = {1.0, 0x1.fffffffffffffp-1, 1 - 0x1p-40};
+    long bad = 0;
+    for (size_t k = 0; k < sizeof widths / sizeof widths[0]; k++) {
+        int w = widths[k], h = w / 2 > 0 ? w / 2 : 1;
+        image im;
+        fill(&im, w, h);
+        for (int r = 0; r < h; r++) set_gray(&im, w - 1, r, 1.0);
+        envmap env = env_of(&im, 1, mat4_identity());
+        for (int cfg = C_CDF_BINARY; cfg < C_COUNT; cfg++) {
+            envlight el;
+            build(&el, &env, cfg_mode[cfg], cfg_sampler[cfg], 0);
+            for (size_t i = 0; i < sizeof xi1s / sizeof xi1s[0]; i++) {
+                envlight_sample_result s;
+                ck_assert(envlight_sample(&el, xi1s[i], 0.3, 0, &s));
+                uv2 uv;
+                ck_assert_int_eq(latlong_dir_to_uv(s.wi, &uv), 0);
+                double x = uv.u * w; /* in [w - 1, w], or 0 at the seam */
+                bad += !(fabs(vec3_dot(s.wi, s.wi) - 1) <= UNIT_TOL) || !(x > w - 1 - EDGE_TOL || x < EDGE_TOL);
+            }
+            envlight_free(&el);
+        }
+        image_free(&im);
+    }
+    ck_assert_msg(bad == 0, "%ld samples at xi1 -> 1 are not unit or not in the last column", bad);
+}
+END_TEST
+
 /* NaN, +-Inf and negative channels are counted and used as 0: radiance 0 there (that channel),
  * never sampled when the whole texel is bad, not part of the power */
 START_TEST(test_envlight_bad_texels_are_counted_dark_and_never_sampled)
@@ -527,6 +564,7 @@ START_TEST(test_envlight_bad_texels_are_counted_dark_and_never_sampled)
     p = image_px(&im, 2, 2); p[0] = p[1] = p[2] = NAN;       /* 3 bad channels */
     p = image_px(&im, 9, 4); p[0] = INFINITY; p[1] = -INFINITY; p[2] = -1; /* 3 */
     p = image_px(&im, 12, 6); p[1] = NAN;                     /* 1: red and blue still 0.7 */
+    p = image_px(&im, 5, 1); p[0] = p[1] = 0; p[2] = -0.0f;   /* black, not bad: 0 */
     envmap env = env_of(&im, 1, mat4_identity());
     for (int cfg = C_UNIFORM; cfg < C_COUNT; cfg++) {
         envlight el;
@@ -807,6 +845,36 @@ START_TEST(test_envlight_prefetch_asks_for_the_texel_or_a_neighbour)
 }
 END_TEST
 
+/* envlight_mis_fraction returns the c that minimizes V(c) (1 + light_cost c), its variance x time
+ * (envlight.h), whatever light_cost is: on the sun map (V falls like 1/c) a free light sample
+ * or the integrator's 0.6 gives c = 1, a light sample 100 or 10^4 times a BRDF sample's cost a
+ * smaller c.  Checked against the V it reports, so the model itself is not under test here. */
+START_TEST(test_envlight_mis_fraction_minimizes_variance_times_time)
+{
+    static const double fractions[ENVLIGHT_MIS_FRACTIONS] = {0, 1.0 / 32, 1.0 / 16, 1.0 / 8, 0.25, 0.5, 0.75, 1};
+    const double costs[] = {0, 0.6, 100, 1e4};
+    image im;
+    make_map(M_SUN, &im);
+    envmap env = env_of(&im, 1, mat4_identity());
+    envlight el;
+    build(&el, &env, ENVSAMPLING_CDF, ENVSAMPLER_BINARY, 0);
+    for (size_t k = 0; k < sizeof costs / sizeof costs[0]; k++) {
+        double v[ENVLIGHT_MIS_FRACTIONS], best = INFINITY, got_cost = NAN;
+        double c = envlight_mis_fraction(&el, costs[k], v);
+        for (int i = 0; i < ENVLIGHT_MIS_FRACTIONS; i++) {
+            double cost = v[i] * (1 + costs[k] * fractions[i]);
+            best = fmin(best, cost);
+            if (fractions[i] == c) got_cost = cost;
+        }
+        ck_assert_msg(got_cost <= best * (1 + 1e-9), "light_cost %g: c = %g costs %g, the least is %g", costs[k], c,
+                      got_cost, best);
+        ck_assert_msg(costs[k] < 100 ? c == 1 : c < 1, "light_cost %g: c = %g", costs[k], c);
+    }
+    envlight_free(&el);
+    image_free(&im);
+}
+END_TEST
+
 /* with alias tables, force_inversion = 1 gives exactly the binary search's samples, which are
  * monotone in xi1 (the column, phi): stratified inputs stay stratified */
 START_TEST(test_envlight_forced_inversion_keeps_strata_with_alias_tables)
@@ -925,6 +993,33 @@ START_TEST(test_envlight_mediancut_points_lie_inside_their_strata)
 }
 END_TEST
 
+/* the shadow direction is uniform in (cos theta, phi) over its stratum: with one stratum, the
+ * whole map, cos theta = 1 - 2 xi1 and phi = 2 pi xi2, which is sampling_uniform_sphere(xi1, xi2)
+ * (a jitter over only part of the stratum, in either coordinate, would not be) */
+START_TEST(test_envlight_mediancut_shadow_directions_cover_the_stratum)
+{
+    image im;
+    small_sun_map(&im);
+    envmap env = env_of(&im, 1, mat4_identity());
+    envlight el;
+    build(&el, &env, ENVSAMPLING_MEDIANCUT, ENVSAMPLER_BINARY, 1);
+    ck_assert_int_eq(el.n_points, 1);
+    rng g;
+    rng_seed(&g, 47, 0);
+    double worst = 0;
+    for (int i = 0; i < 1000; i++) {
+        double xi1 = i == 0 ? 0 : rng_uniform(&g), xi2 = i == 0 ? 0 : rng_uniform(&g), prob;
+        int k;
+        vec3 sd;
+        ck_assert(envlight_mediancut_pick(&el, rng_uniform(&g), xi1, xi2, &k, &sd, &prob));
+        worst = fmax(worst, vec3_length(vec3_sub(sd, sampling_uniform_sphere(xi1, xi2))));
+    }
+    ck_assert_msg(worst < 1e-12, "shadow directions off the uniform sphere's by up to %g", worst);
+    envlight_free(&el);
+    image_free(&im);
+}
+END_TEST
+
 /* on a constant map the strata carry about equal energy (median cut splits energy in halves) */
 START_TEST(test_envlight_mediancut_strata_of_a_constant_map_have_equal_energy)
 {
@@ -953,6 +1048,78 @@ START_TEST(test_envlight_mediancut_strata_of_a_constant_map_have_equal_energy)
 }
 END_TEST
 
+/* the poles read the first and the last row: v = theta / pi is exactly 1 at the south pole
+ * (0, 0, -1), which the row index floor(v H) must clamp to H - 1.  The map's memory goes on past
+ * its last row with a bright sentinel row, so an unclamped index reads it (deterministically,
+ * without a sanitizer); radiance, pdf and the combined lookup must all see the last row. */
+START_TEST(test_envlight_south_pole_reads_the_last_row)
+{
+    enum { W = 3, H = 2 };
+    static float px[3 * W * (H + 1)];
+    for (int i = 0; i < 3 * W * (H + 1); i++) /* texel k is 0.25 (k + 1); then the sentinel row */
+        px[i] = i < 3 * W * H ? 0.25f * (float)(1 + i / 3) : 1000.0f;
+    image im = {W, H, px};
+    envmap env = env_of(&im, 1, mat4_identity());
+    const envsampling_mode modes[2] = {ENVSAMPLING_CDF, ENVSAMPLING_UNIFORM};
+    for (int m = 0; m < 2; m++) {
+        envlight el;
+        build(&el, &env, modes[m], ENVSAMPLER_BINARY, 0);
+        const vec3 pole[2] = {{0, 0, 1}, {0, 0, -1}};
+        for (int k = 0; k < 2; k++) {
+            double want = image_px(&im, 0, k * (H - 1))[1]; /* phi = 0 at the poles: column 0 */
+            rgb L = envlight_radiance(&el, pole[k]);
+            ck_assert_msg(L.g == want, "pole %d: L = %g, want the texel of row %d, %g", k, L.g, k * (H - 1), want);
+            double pdf;
+            L = envlight_radiance_pdf(&el, pole[k], &pdf);
+            ck_assert(L.g == want);
+            double want_pdf = modes[m] == ENVSAMPLING_CDF ? want / el.power : 1 / (4 * M_PI);
+            double got = envlight_pdf(&el, pole[k]);
+            ck_assert_msg(fabs(got - want_pdf) <= 1e-12 * want_pdf && fabs(pdf - want_pdf) <= 1e-12 * want_pdf,
+                          "pole %d: pdf %g and %g, want %g", k, got, pdf, want_pdf);
+        }
+        envlight_free(&el);
+    }
+}
+END_TEST
+
+/* median cut splits a stratum across its longer side measured in angle, the phi side shortened
+ * by sin theta (Debevec 2005).  A 64 x 32 map lit only in its two polar rows: the first cuts
+ * give 4 strata of about 16 columns (15 to 17: a cut falls where the energy halves) x rows
+ * [0, 2) holding all the light; each is ~16 * 2 pi / 64 * sin(pi / 32) = 0.15 rad long in phi
+ * but 2 pi / 32 = 0.20 rad tall in theta, so it is cut across theta, into one-row strata.
+ * Measuring phi without sin theta (0.15 rad as pi / 2) would cut it into strata two rows tall.
+ * (The halves of the map, pi by pi, are a tie, cut either way: the test holds for both.)  With
+ * 24 strata the one-row strata must be cut again, across phi (a stratum one texel tall but many
+ * wide still splits), rather than the dark strata. */
+START_TEST(test_envlight_mediancut_cuts_polar_strata_across_theta)
+{
+    image im;
+    fill(&im, 64, 32);
+    for (int c = 0; c < 64; c++) {
+        set_gray(&im, c, 0, 1.0);
+        set_gray(&im, c, 1, 1.0);
+    }
+    envmap env = env_of(&im, 1, mat4_identity());
+    const int ns[2] = {12, 24}; /* 12: 4 dark strata, 8 lit; 24: the one-row strata cut across phi */
+    for (int t = 0; t < 2; t++) {
+        envlight el;
+        build(&el, &env, ENVSAMPLING_MEDIANCUT, ENVSAMPLER_BINARY, ns[t]);
+        ck_assert_int_eq(el.n_points, ns[t]);
+        int lit = 0, tall = 0;
+        for (int k = 0; k < el.n_points; k++) {
+            const envlight_point *pt = &el.points[k];
+            if (!(rgb_avg(pt->power) > 0)) continue;
+            lit++;
+            tall += pt->r1 - pt->r0 != 1;
+        }
+        ck_assert_int_ge(lit, ns[t] - 4); /* lit strata are cut before dark ones (energy ~0) */
+        ck_assert_msg(tall == 0, "N = %d: %d of the %d lit strata are more than one row tall", ns[t], tall, lit);
+        envlight_free(&el);
+    }
+    image_free(&im);
+}
+END_TEST
+
 Suite *envlight_suite(void)
 {
     Suite *s = suite_create("envlight");
@@ -966,15 +1133,18 @@ Suite *envlight_suite(void)
     tcase_add_test(tc, test_envlight_rotation_moves_samples_and_pdf_with_the_map);
     tcase_add_test(tc, test_envlight_kappa_and_the_combined_lookup);
     tcase_add_test(tc, test_envlight_mis_fraction_model);
+    tcase_add_test(tc, test_envlight_mis_fraction_minimizes_variance_times_time);
     tcase_add_test(tc, test_envlight_non_rotation_transform_is_refused);
     tcase_add_test(tc, test_envlight_translation_and_uniform_scale_sample_as_the_rotation_alone);
     tcase_add_test(tc, test_envlight_all_black_map_falls_back_to_uniform);
     tcase_add_test(tc, test_envlight_zero_texels_and_edge_xi_are_never_sampled);
     tcase_add_test(tc, test_envlight_sampled_phi_is_unit_and_in_its_column);
+    tcase_add_test(tc, test_envlight_last_column_at_xi_one_stays_in_the_table);
     tcase_add_test(tc, test_envlight_bad_texels_are_counted_dark_and_never_sampled);
     tcase_add_test(tc, test_envlight_large_table_is_normalized);
     tcase_add_test(tc, test_envlight_cdf_pdf_is_radiance_over_power);
     tcase_add_test(tc, test_envlight_radiance_is_the_scaled_texel);
+    tcase_add_test(tc, test_envlight_south_pole_reads_the_last_row);
     tcase_add_test(tc, test_envlight_prefetch_asks_for_the_texel_or_a_neighbour);
     tcase_add_test(tc, test_envlight_forced_inversion_keeps_strata_with_alias_tables);
     suite_add_tcase(s, tc);
@@ -983,6 +1153,8 @@ Suite *envlight_suite(void)
     tcase_add_test(tc, test_envlight_mediancut_strata_partition_the_map_and_its_power);
     tcase_add_test(tc, test_envlight_mediancut_strata_of_a_constant_map_have_equal_energy);
     tcase_add_test(tc, test_envlight_mediancut_points_lie_inside_their_strata);
+    tcase_add_test(tc, test_envlight_mediancut_shadow_directions_cover_the_stratum);
+    tcase_add_test(tc, test_envlight_mediancut_cuts_polar_strata_across_theta);
     tcase_add_test(tc, test_envlight_sintheta_sample_on_the_pole_edge_succeeds);
     suite_add_tcase(s, tc);
     return s;

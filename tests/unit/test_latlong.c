@@ -44,6 +44,11 @@ START_TEST(test_latlong_axes_land_where_the_convention_says)
     EXPECT(to_uv(vec3_make(0, 0, 1)).v == 0);  /* zenith: top row */
     EXPECT(to_uv(vec3_make(0, 0, -1)).v == 1); /* nadir: bottom row */
     EXPECT(to_uv(vec3_make(0, 0, 1)).u == 0);  /* phi = 0 at the poles */
+    /* ... also where x or y is -0 (a negated or rotated direction): atan2(0, -0) is pi and
+     * atan2(-0, -0) is -pi, which would put the pole at u = 1/2 */
+    EXPECT(to_uv(vec3_make(-0.0, 0, 1)).u == 0);
+    EXPECT(to_uv(vec3_make(-0.0, -0.0, -1)).u == 0);
+    EXPECT(to_uv(vec3_make(0, -0.0, 2)).u == 0);
     /* any length: (2, 2, 0) is phi = 45 degrees on the horizon */
     uv = to_uv(vec3_make(2, 2, 0));
     EXPECT_NEAR(uv.u, 0.125, 1e-16);

@@ -236,6 +236,22 @@ START_TEST(test_trilinear_below_one_texel_is_bilinear_on_the_base)
 }
 END_TEST
 
+/* Catches a footprint measured by the width instead of the longer side (mipmap.h: width in texels
+ * = footprint_width * max(W, H)): on a TALL 4 x 16 image a footprint of 1/4 is 4 texels, level
+ * 2 exactly (the 1 x 4 level, bilinear there); by the width it would be 1 texel, level 0. */
+START_TEST(test_trilinear_measures_a_tall_images_footprint_by_its_longer_side)
+{
+    image im = random_image(4, 16);
+    mipmap m = build(&im, WRAP_REPEAT);
+    for (int k = 0; k < 50; k++) {
+        uv2 st = {rng_uniform(0, 1), rng_uniform(0, 1)};
+        ck_rgb_near(mipmap_lookup_trilinear(&m, st, 0.25), texlookup_bilinear(mipmap_level(&m, 2), st, WRAP_REPEAT), 1e-6);
+    }
+    mipmap_free(&m);
+    image_free(&im);
+}
+END_TEST
+
 START_TEST(test_trilinear_blends_the_two_nearest_levels_by_the_fraction)
 {
     image im = random_image(32, 20);
@@ -435,9 +451,13 @@ START_TEST(test_ewa_far_coordinates_read_like_near_ones)
 {
     image im = random_image(8, 8);
     uv2 dx = {0.05, 0}, dy = {0, 0.03}; /* axis aligned: clamp's far result is exact */
-    mipmap rep = build(&im, WRAP_REPEAT), cla = build(&im, WRAP_CLAMP);
+    mipmap rep = build(&im, WRAP_REPEAT), cla = build(&im, WRAP_CLAMP), mir = build(&im, WRAP_MIRROR);
     ck_rgb_near(mipmap_lookup_ewa(&rep, (uv2){0.3 + 1e6, 0.6 - 1e6}, dx, dy),
                 mipmap_lookup_ewa(&rep, (uv2){0.3, 0.6}, dx, dy), 1e-6);
+    /* mirror's period is 2 (2n texels): s = 0.3 + an odd number of units is the mirrored 1.3 (far:
+     * 4000001 units are 3.2e7 texels, past the 2^24 where reduce_coordinate steps in) */
+    ck_rgb_near(mipmap_lookup_ewa(&mir, (uv2){0.3 + 4000001.0, 0.6}, dx, dy),
+                mipmap_lookup_ewa(&mir, (uv2){1.3, 0.6}, dx, dy), 1e-6);
     ck_rgb_near(mipmap_lookup_ewa(&cla, (uv2){-1e9, 0.6}, dx, dy),
                 mipmap_lookup_ewa(&cla, (uv2){-3.0, 0.6}, dx, dy), 1e-9);
     ck_rgb_near(mipmap_lookup_ewa(&cla, (uv2){0.4, 1e12}, dx, dy),
@@ -447,6 +467,66 @@ START_TEST(test_ewa_far_coordinates_read_like_near_ones)
     ck_assert(rgb_is_finite(mipmap_lookup_trilinear(&cla, (uv2){INFINITY, NAN}, 0.1)));
     mipmap_free(&rep);
     mipmap_free(&cla);
+    mipmap_free(&mir);
+    image_free(&im);
+}
+END_TEST
+
+/* Catches an EWA ellipse of the wrong size or shape: the filter is the ellipse x^T S^-1 x < 1 with
+ * S = J J^T + I (J the footprint's axes in texels, I the texel's own reconstruction).  A single
+ * lit texel on black, read with axes of 4 and 1 texels (level 0: the minor axis is 1 texel):
+ * S has the axes' directions with variances 17 and 2, so the texel counts (> 0) at 4.05 texels
+ * along the major axis and 1.38 across it (r^2 = 0.965, 0.952) and not at all (exactly 0) at
+ * 4.5 and 1.6 (r^2 = 1.19, 1.28); axis-aligned and turned by 45 degrees (where S has a cross
+ * term).  A bounding box of half the ellipse's extent, a lost "+ 1" (variances 16 or 1: r^2 =
+ * 1.03, 1.90) or a wrong det S would move these edges. */
+START_TEST(test_ewa_ellipse_is_the_footprint_plus_one_texel)
+{
+    enum { N = 32, I0 = 16, J0 = 16 };
+    image im = new_image(N, N);
+    image_set(&im, I0, N - 1 - J0, rgb_gray(1)); /* texel (I0, J0), J0 from the bottom */
+    mipmap m = build(&im, WRAP_CLAMP);
+    for (int turned = 0; turned < 2; turned++) {
+        double c = turned ? sqrt(0.5) : 1, sn = turned ? sqrt(0.5) : 0; /* major axis (c, sn) */
+        uv2 d0 = {4 * c / N, 4 * sn / N}, d1 = {-sn / N, c / N};
+        const double along[4] = {4.05, 4.5, 0, 0}, across[4] = {0, 0, 1.38, 1.6};
+        for (int k = 0; k < 4; k++) {
+            /* the lit texel's offset from the lookup point, in texels */
+            double ox = along[k] * c - across[k] * sn, oy = along[k] * sn + across[k] * c;
+            uv2 st = {(I0 + 0.5 - ox) / N, (J0 + 0.5 - oy) / N};
+            double v = mipmap_lookup_ewa(&m, st, d0, d1).g;
+            int inside = k % 2 == 0;
+            ck_assert_msg(inside ? v > 0 : v == 0, "%s, %g along and %g across: %g", turned ? "turned" : "aligned",
+                          along[k], across[k], v);
+        }
+    }
+    mipmap_free(&m);
+    image_free(&im);
+}
+END_TEST
+
+/* Catches EWA switching levels without the blend (or blending only part of the way): as the
+ * footprint grows by steps of 1e-3 in log2, from half a texel to 8 texels, the colour moves
+ * smoothly (measured: at most 0.016 in g, whose texels span [0, 5); the LUT's steps), while a
+ * level switched without the blend jumps by half the difference between two levels or more
+ * (0.28 here). */
+START_TEST(test_ewa_is_continuous_in_the_footprint)
+{
+    image im = random_image(40, 24);
+    mipmap m = build(&im, WRAP_REPEAT);
+    double worst = 0;
+    for (int k = 0; k < 3; k++) {
+        uv2 st = {rng_uniform(0, 1), rng_uniform(0, 1)}, dx = {0.5 / 40, 0}, dy = {0, 0.5 / 24};
+        rgb prev = mipmap_lookup_ewa(&m, st, dx, dy);
+        for (double e = -1 + 1e-3; e < 3.0; e += 1e-3) {
+            double r = exp2(e); /* the footprint in texels, each way */
+            rgb c = mipmap_lookup_ewa(&m, st, (uv2){r / 40, 0}, (uv2){0, r / 24});
+            worst = fmax(worst, fabs(c.g - prev.g));
+            prev = c;
+        }
+    }
+    ck_assert_msg(worst < 0.05, "the colour jumps by %g between footprints 1e-3 apart in log2", worst);
+    mipmap_free(&m);
     image_free(&im);
 }
 END_TEST
@@ -526,6 +606,10 @@ START_TEST(test_ewa_measures_a_non_square_images_footprint_in_texels)
     rgb cb = mipmap_lookup_ewa(&b, stb, (uv2){2.0 / 64, 0}, (uv2){0, 1.0 / 16});
     ck_assert_msg(ca.r > 0.75, "the square image's level 0 shows the stripe: %g", ca.r);
     ck_assert_msg(fabs(ca.r - cb.r) < 1e-6, "64 x 64 gives %.9g, 64 x 16 %.9g", ca.r, cb.r);
+    /* the same axes given the other way round (dst/dx along t): each axis's t by H, not W */
+    rgb sa = mipmap_lookup_ewa(&a, sta, (uv2){0, 1.0 / 64}, (uv2){2.0 / 64, 0});
+    rgb sb = mipmap_lookup_ewa(&b, stb, (uv2){0, 1.0 / 16}, (uv2){2.0 / 64, 0});
+    ck_assert_msg(fabs(sa.r - ca.r) < 1e-6 && fabs(sb.r - cb.r) < 1e-6, "axes swapped: %.9g and %.9g", sa.r, sb.r);
     mipmap_free(&a);
     mipmap_free(&b);
     image_free(&sq);
@@ -546,6 +630,7 @@ Suite *mipmap_suite(void)
     tcase_add_test(tc, test_repeat_blends_the_opposite_border_at_every_level_and_clamp_does_not);
     tcase_add_test(tc, test_level_for_footprint_is_log2_of_the_width_in_texels);
     tcase_add_test(tc, test_trilinear_below_one_texel_is_bilinear_on_the_base);
+    tcase_add_test(tc, test_trilinear_measures_a_tall_images_footprint_by_its_longer_side);
     tcase_add_test(tc, test_trilinear_blends_the_two_nearest_levels_by_the_fraction);
     tcase_add_test(tc, test_trilinear_axes_is_trilinear_of_the_area_side);
     tcase_add_test(tc, test_trilinear_is_continuous_in_the_footprint);
@@ -557,6 +642,8 @@ Suite *mipmap_suite(void)
     tcase_add_test(tc, test_ewa_clamps_the_anisotropy);
     tcase_add_test(tc, test_ewa_measures_a_non_square_images_footprint_in_texels);
     tcase_add_test(tc, test_ewa_far_coordinates_read_like_near_ones);
+    tcase_add_test(tc, test_ewa_ellipse_is_the_footprint_plus_one_texel);
+    tcase_add_test(tc, test_ewa_is_continuous_in_the_footprint);
     tcase_add_test(tc, test_only_pack_makes_trilinears_copy_and_only_once);
     tcase_add_test(tc, test_build_rejects_an_empty_image_and_an_unknown_wrap_mode);
     suite_add_tcase(s, tc);

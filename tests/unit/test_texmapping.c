@@ -222,6 +222,27 @@ START_TEST(test_triangle_tangents_and_differentials_agree_with_a_known_plane)
                                                        vec3_make(0, 1, 0), &dx, &dy), -1);
     ck_uv_near(dx, 0, 0, 0);
     ck_assert_int_eq(texmapping_triangle_tangents(line, st, &ds, &dt), -1);
+    /* the thresholds are relative: a tiny st patch (extents 1e-7, det 1e-14) is not degenerate,
+     * its tangents are 1e7 times as long; a sliver whose |e1 x e2|^2 is ~1e-14 of |e1|^2 |e2|^2
+     * has no differentials though its det is far from 0 in absolute terms */
+    /* a general triangle (edges not orthogonal, no st coordinate shared by two vertices) with
+     * st an affine function of P: s = 0.3 x + 0.1 y + 0.2, t = -0.2 x + 0.4 y + 0.5, so
+     * dst = (0.3 dx + 0.1 dy, -0.2 dx + 0.4 dy) for any dP in the plane */
+    const vec3 pg[3] = {{0, 0, 0}, {2, 1.5, 0}, {0.5, 3, 0}};
+    uv2 sg[3];
+    for (int k = 0; k < 3; k++)
+        sg[k] = (uv2){0.3 * pg[k].x + 0.1 * pg[k].y + 0.2, -0.2 * pg[k].x + 0.4 * pg[k].y + 0.5};
+    ck_assert_int_eq(texmapping_triangle_differentials(pg, sg, vec3_make(0.2, 0.1, 0.7),
+                                                       vec3_make(0, 0.3, 0), &dx, &dy), 0);
+    ck_uv_near(dx, 0.07, 0.0, 1e-15);
+    ck_uv_near(dy, 0.03, 0.12, 1e-15);
+    const uv2 tiny[3] = {{0.5, 0.5}, {0.5 + 1e-7, 0.5}, {0.5, 0.5 + 1e-7}};
+    ck_assert_int_eq(texmapping_triangle_tangents(p, tiny, &ds, &dt), 0);
+    ck_assert_near(ds.x / 2e7, 1, 1e-6);
+    ck_assert_near(dt.y / 3e7, 1, 1e-6);
+    const vec3 sliver[3] = {{0, 0, 0}, {1, 0, 0}, {2, 1e-7, 0}};
+    ck_assert_int_eq(texmapping_triangle_differentials(sliver, st, vec3_make(1, 0, 0),
+                                                       vec3_make(0, 1, 0), &dx, &dy), -1);
 }
 END_TEST
 
