@@ -76,6 +76,19 @@ START_TEST(test_exposure_multiplies_by_two_to_the_ev)
     tm.exposure = -1.0;
     px(&tm, 1.0, 0.0, 0.0, o); /* x 1/2 */
     ck_assert_int_eq(o[0], 128);
+    /* the image path scales by 2^EV too (it computes its own scale; with EV = 0 only, e^EV would
+     * pass): 0.75 x 2^-1.5 = 0.265 -> 68, where e^-1.5 would give 0.167 -> 43 */
+    image im = {0};
+    error err = {0};
+    ck_assert_int_eq(image_alloc(&im, 1, 1, &err), 0);
+    im.px[0] = im.px[1] = im.px[2] = 0.75f;
+    tm.exposure = -1.5;
+    uint8_t out[3];
+    tonemap_image(&tm, &im, out);
+    px(&tm, 0.75, 0.75, 0.75, o);
+    ck_assert_int_eq(o[0], 68);
+    ck_assert(out[0] == o[0] && out[1] == o[1] && out[2] == o[2]);
+    image_free(&im);
 }
 END_TEST
 
