@@ -15,6 +15,7 @@
  *   envtex noise X Y Z              Perlin's improved noise at (X, Y, Z), 9 significant digits
  */
 #include <errno.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -52,11 +53,16 @@ static int fail(const error *err)
     return 1;
 }
 
-static int usage_error(const char *fmt, const char *arg)
+/* One line `envtex: WHAT (envtex --help for usage)`, WHAT formatted as printf does; returns 1. */
+static int usage_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+static int usage_error(const char *fmt, ...)
 {
+    va_list ap;
+    va_start(ap, fmt);
     fprintf(stderr, "envtex: ");
-    fprintf(stderr, fmt, arg);
+    vfprintf(stderr, fmt, ap);
     fprintf(stderr, " (envtex --help for usage)\n");
+    va_end(ap);
     return 1;
 }
 
@@ -619,10 +625,7 @@ static int cmd_gen_env(int argc, char **argv)
         else if (!strcmp(a, "--sun-azimuth")) target = &p.sun_azimuth_deg;
         if (target) {
             if (!(v = opt_value(argc, argv, &i))) return 1;
-            if (parse_double(v, target)) {
-                fprintf(stderr, "envtex: %s needs a finite number, got '%s' (envtex --help for usage)\n", a, v);
-                return 1;
-            }
+            if (parse_double(v, target)) return usage_error("%s needs a finite number, got '%s'", a, v);
         } else if (a[0] == '-' && a[1]) return usage_error("unknown option '%s'", a);
         else if (!kind_name) kind_name = a;
         else if (!out) out = a;
