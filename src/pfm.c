@@ -71,6 +71,10 @@ int pfm_read(const char *path, image *out, error *err)
     at++; /* exactly one white-space character ends the header */
     if (image_check_size(w, h, path, err)) goto done;
     size_t count = (size_t)w * (size_t)h * (size_t)chans; /* floats in the file */
+    /* A header written with Windows line ends ends in "\r\n": one line end, not "\r" followed
+     * by a first pixel byte of 0x0A (read that way every float would be shifted by a byte).  The
+     * file's size tells the two apart: after a lone "\r" the pixels leave no byte to spare. */
+    if (d[at - 1] == '\r' && at < n && d[at] == '\n' && n - (at + 1) >= count * 4) at++;
     if (n - at < count * 4) {
         error_set(err, path, 0, "truncated PFM: %zu bytes of pixels, %zu expected", n - at, count * 4);
         goto done;

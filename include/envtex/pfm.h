@@ -6,7 +6,8 @@
  *
  * Format: "PF" (colour) or "Pf" (grey, replicated to r = g = b on read), white space, width,
  * height, white space, a scale whose sign gives the byte order (negative: little endian,
- * positive: big endian; its magnitude is ignored), exactly one white-space character, then
+ * positive: big endian; its magnitude is ignored), exactly one white-space character (or a
+ * Windows line end "\r\n", when the file has room for the pixels after it), then
  * w * h * (3 or 1) floats.  Rows are stored BOTTOM to TOP; our images keep row 0 at the top, so
  * both functions flip.  Sizes are checked before allocation; a file shorter than its header
  * promises is an error.  Writing uses "PF", little endian (scale -1.0), atomically.

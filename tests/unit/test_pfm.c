@@ -60,6 +60,41 @@ START_TEST(test_pfm_rows_are_stored_bottom_to_top)
 }
 END_TEST
 
+/* A header with Windows line ends ("PF\r\n2 1\r\n-1.0\r\n") ends in one "\r\n": the pixels start
+ * after the "\n" (read from the "\n", every float came out shifted by a byte: garbage, no error).
+ * A header ending in a lone "\r" whose first pixel byte is 0x0A still reads that byte as a pixel. */
+START_TEST(test_pfm_header_with_crlf_line_ends)
+{
+    make_dir();
+    unsigned char d[15 + 24];
+    memcpy(d, "PF\r\n2 1\r\n-1.0\r\n", 15);
+    float v[6] = {1, 2, 3, 4, 5, 6};
+    for (int i = 0; i < 6; i++) little_float(d + 15 + 4 * i, v[i]);
+    write_bytes(in_dir("crlf.pfm"), d, sizeof d);
+    image im = {0};
+    error err = {0};
+    ck_assert_msg(pfm_read(in_dir("crlf.pfm"), &im, &err) == 0, "%s", err.msg);
+    ck_assert_int_eq(im.w, 2);
+    for (int i = 0; i < 6; i++) ck_assert_msg(im.px[i] == v[i], "px[%d] = %g, want %g", i, im.px[i], v[i]);
+    image_free(&im);
+
+    /* lone "\r", grey, first float 0x3F80000A little endian: its first byte is the 0x0A */
+    unsigned char e[12 + 8];
+    memcpy(e, "Pf\r2 1\r-1.0\r", 12);
+    uint32_t bits = 0x3F80000Au;
+    float first;
+    memcpy(&first, &bits, 4);
+    little_float(e + 12, first);
+    little_float(e + 16, 2.0f);
+    ck_assert_int_eq(e[12], 0x0A);
+    write_bytes(in_dir("cr.pfm"), e, sizeof e);
+    ck_assert_msg(pfm_read(in_dir("cr.pfm"), &im, &err) == 0, "%s", err.msg);
+    ck_assert(im.px[0] == first && im.px[3] == 2.0f);
+    image_free(&im);
+    remove_dir();
+}
+END_TEST
+
 START_TEST(test_big_endian_grey_pfm_is_replicated)
 {
     make_dir();
@@ -149,6 +184,7 @@ Suite *pfm_suite(void)
     TCase *tc = tcase_create("pfm");
     tcase_add_test(tc, test_pfm_roundtrip_is_bit_exact_including_nan_and_inf);
     tcase_add_test(tc, test_pfm_rows_are_stored_bottom_to_top);
+    tcase_add_test(tc, test_pfm_header_with_crlf_line_ends);
     tcase_add_test(tc, test_big_endian_grey_pfm_is_replicated);
     tcase_add_test(tc, test_absurd_pfm_size_is_refused_before_allocation);
     tcase_add_test(tc, test_truncated_pfm_is_an_error_at_every_offset);
