@@ -205,6 +205,75 @@ START_TEST(test_lights_delta_lights_give_intensity_over_attenuation)
 }
 END_TEST
 
+/* A point light is divided by c + l d + q d^2 at its distance d (FORMAT.md's attenuation), each
+ * term counted: at d = 2 with attenuation 0.5 0.25 0.125 that is 0.5 + 0.5 + 0.5 = 1.5. */
+START_TEST(test_lights_point_attenuation_uses_all_three_terms_at_the_distance)
+{
+    scene sc;
+    scene_load_opts o = scene_load_defaults();
+    o.load_images = 0;
+    error err = {0};
+    const char *text = "size 8 8\ncamera 0 1 5  0 0 0  0 1 0  45\n"
+                       "attenuation 0.5 0.25 0.125\npoint 0 3 0  3 6 9\n";
+    if (scene_load_string(text, "atten.test", &o, &sc, &err)) ck_abort_msg("scene: %s", err.msg);
+    lights ls;
+    ck_assert_int_eq(lights_build(&ls, &sc, NULL, 3, &err), 0);
+    light_sample s;
+    ck_assert(lights_sample(&ls, 0, vec3_make(0, 1, 0), vec3_make(0, 1, 0), 0.5, 0.5, 0.5, 0, &s));
+    ck_assert_near(s.Li.r, 3 / 1.5, 1e-12);
+    ck_assert_near(s.Li.b, 9 / 1.5, 1e-12);
+    lights_free(&ls);
+    scene_free(&sc);
+}
+END_TEST
+
+/* median cut through the light set: the light is the stratum's point (its centroid, its power
+ * over the pick probability), but the shadow ray is jittered inside the stratum (slides 18-21),
+ * so it follows envlight_mediancut_pick's direction, not the centroid's. */
+START_TEST(test_lights_median_cut_shadow_ray_is_jittered_in_the_stratum)
+{
+    scene sc;
+    load(&sc);
+    image im;
+    genenv_params gp = genenv_defaults();
+    gp.width = 64;
+    error err = {0};
+    ck_assert_int_eq(genenv_make(GENENV_SKY, &gp, &im, &err), 0);
+    envmap env;
+    memset(&env, 0, sizeof env);
+    env.present = 1;
+    env.img = &im;
+    env.scale = 1.0;
+    env.to_env = mat4_identity();
+    envlight el;
+    ck_assert_int_eq(envlight_build(&el, &env, ENVSAMPLING_MEDIANCUT, ENVSAMPLER_BINARY, 4, &err), 0);
+    lights ls;
+    ck_assert_int_eq(lights_build(&ls, &sc, &el, 3, &err), 0);
+    int ke = lights_env_index(&ls);
+    vec3 p = vec3_make(0, 1, 0), n = vec3_make(0, 1, 0);
+    int moved = 0;
+    for (int i = 0; i < 16; i++) {
+        double xi = 0.3, xi1 = (i % 4 + 0.5) / 4, xi2 = (i / 4 + 0.5) / 4;
+        light_sample s;
+        int k;
+        vec3 sd;
+        double prob;
+        ck_assert(lights_sample(&ls, ke, p, n, xi, xi1, xi2, 0, &s));
+        ck_assert(envlight_mediancut_pick(&el, xi, xi1, xi2, &k, &sd, &prob));
+        ck_assert(s.is_delta);
+        ck_assert(vec3_dot(s.wi, el.points[k].dir) > 1 - 1e-12);         /* shaded with the centroid */
+        ck_assert_near(s.Li.g, el.points[k].power.g / prob, 1e-9 * s.Li.g); /* its power / P(pick) */
+        ck_assert_msg(vec3_dot(vec3_normalize(s.shadow.d), sd) > 1 - 1e-12, "shadow ray %d is not the jittered one", i);
+        moved += vec3_dot(sd, s.wi) < 1 - 1e-6;
+    }
+    ck_assert_int_gt(moved, 8); /* the jitter does move it off the centroid */
+    lights_free(&ls);
+    envlight_free(&el);
+    image_free(&im);
+    scene_free(&sc);
+}
+END_TEST
+
 /* A scene of n_quads random quad lights (random sizes and orientations in a 10-unit cube), each
  * after two point lights, so that quad j is sc->lights[3 j + 2]. */
 static void load_many_quads(scene *sc, int n_quads, uint64_t seed)
@@ -342,6 +411,8 @@ Suite *lights_suite(void)
     tcase_add_test(tc, test_lights_quad_sample_pdf_matches_lights_quad_pdf);
     tcase_add_test(tc, test_lights_quad_emits_on_the_side_of_ac_cross_ab);
     tcase_add_test(tc, test_lights_delta_lights_give_intensity_over_attenuation);
+    tcase_add_test(tc, test_lights_point_attenuation_uses_all_three_terms_at_the_distance);
+    tcase_add_test(tc, test_lights_median_cut_shadow_ray_is_jittered_in_the_stratum);
     tcase_add_test(tc, test_lights_intersect_quad_finds_the_nearest_quad_of_many);
     tcase_add_test(tc, test_lights_quads_get_a_bvh_and_other_lights_none);
     suite_add_tcase(s, tc);
