@@ -512,6 +512,207 @@ START_TEST(test_integrators_mis_with_env_fraction_zero_is_brdf_sampling)
 }
 END_TEST
 
+/* The power heuristic (Veach), w_f = (n_f p_f)^2 / ((n_f p_f)^2 + (n_g p_g)^2), not the balance
+ * heuristic (both are unbiased, so no agreement test can tell them apart); a zero or NaN pdf has
+ * weight 0, an infinite one weight 1. */
+START_TEST(test_integrators_power_heuristic_values)
+{
+    ck_assert_near(integrator_power_heuristic(1, 2, 1, 1), 0.8, 1e-15);      /* 4 / (4 + 1) */
+    ck_assert_near(integrator_power_heuristic(1, 1, 3, 1), 0.1, 1e-15);      /* 1 / (1 + 9) */
+    ck_assert_near(integrator_power_heuristic(4, 0.5, 1, 1), 0.8, 1e-15);    /* n_f p_f = 2 */
+    ck_assert(integrator_power_heuristic(1, 0, 1, 1) == 0);
+    ck_assert(integrator_power_heuristic(1, NAN, 1, 1) == 0);
+    ck_assert(integrator_power_heuristic(1, INFINITY, 1, 1e300) == 1);
+    ck_assert(integrator_power_heuristic(1, 1, 1, 0) == 1);
+}
+END_TEST
+
+/* Several lights, several light samples: NEE and MIS pick a light per sample by power, and a BRDF
+ * ray that finds a quad light weighs it against lightsamples x P(pick) x pdf.  With one light and
+ * one sample both factors are 1, which is all the agreement tests above exercise. */
+START_TEST(test_integrators_nee_and_mis_agree_with_two_quad_lights_and_several_samples)
+{
+    const char *lights = "quadLight -0.5 -0.4 1  3 0 0  0 3 0  1 1 1\n"   /* large and near: emits down */
+                         "quadLight 1 -2 2  1 0 0  0 1 0  20 20 20\n";     /* smaller, brighter */
+    const char *modes[] = {"nexteventestimation off\nimportancesampling cosine\n",
+                           "nexteventestimation on\nlightsamples 3\n",
+                           "nexteventestimation mis\nimportancesampling brdf\nlightsamples 3\n"};
+    long ns[] = {400000, 40000, 40000};
+    stats st[3];
+    for (int i = 0; i < 3; i++) {
+        char extra[512];
+        snprintf(extra, sizeof extra, "maxdepth 1\n%s%s", lights, modes[i]);
+        st[i] = nee_run(extra, 0, 170 + (uint64_t)i, ns[i]);
+    }
+    ck_assert_msg(st[0].mean > 0.05, "the pixel is dark: %g", st[0].mean);
+    for (int i = 1; i < 3; i++)
+        ck_assert_msg(fabs(st[i].mean - st[0].mean) < Z_SE * sqrt(st[i].se * st[i].se + st[0].se * st[0].se),
+                      "%s: %.5f vs nee off %.5f (SE %.5f, %.5f)", modes[i], st[i].mean, st[0].mean, st[i].se, st[0].se);
+}
+END_TEST
+
+/* A point light beside a quad light: it is picked with probability P < 1, so its sample is
+ * divided by P.  Straight above the floor point at height 3 with attenuation 1 0 0 (the
+ * default: no fall-off) it adds exactly kd / pi I to what the quad light gives. */
+START_TEST(test_integrators_a_delta_light_among_others_is_divided_by_its_pick_probability)
+{
+    const char *quad = "quadLight -1 -1 3  2 0 0  0 2 0  5 5 5\n";
+    const char *point = "point 0.9 -0.6 3  1 1 1\n";
+    const char *integ[] = {"integrator pathtracer\nnexteventestimation on\n", "integrator direct\n"};
+    for (int k = 0; k < 2; k++) {
+        stats st[2];
+        for (int i = 0; i < 2; i++) {
+            char text[2048];
+            snprintf(text, sizeof text, "%s%smaxdepth 1\nlightsamples 2\n%s%s", nee_scene, integ[k], quad, i ? point : "");
+            scene sc;
+            load(&sc, text);
+            rig rg;
+            rig_init(&rg, &sc);
+            ray r = {sc.eye, vec3_normalize(vec3_sub(vec3_make(0.9, -0.6, 0), sc.eye)), 0, INFINITY};
+            st[i] = radiance_stats(&rg, r, 1, 40000, 180 + (uint64_t)(2 * k + i));
+            rig_free(&rg);
+            scene_free(&sc);
+        }
+        double want = 0.6 / M_PI * 1.0; /* kd / pi I cos, cos = 1 */
+        double got = st[1].mean - st[0].mean, se = sqrt(st[0].se * st[0].se + st[1].se * st[1].se);
+        ck_assert_msg(fabs(got - want) < Z_SE * se, "%s: the point light adds %.5f, want %.5f (SE %.5f)", integ[k], got,
+                      want, se);
+        ck_assert(se < 0.05 * want);
+    }
+}
+END_TEST
+
+/* A quad light is seen at its radiance by a camera ray and by a ray off a perfect mirror, whatever
+ * the NEE mode: light sampling cannot reach a path through a delta bounce, so nothing else counts
+ * it.  Mirror floor (ks = 0.8) under a light emitting down, maxdepth 2: exactly 5 and 0.8 x 5. */
+START_TEST(test_integrators_lights_seen_directly_and_in_a_mirror_count_with_every_nee_mode)
+{
+    const char *base = "size 4 4\ncamera 0 -4 2  0 0 0  0 0 1  40\nmaxdepth 2\nintegrator pathtracer\n"
+                       "brdf mirror\ndiffuse 0 0 0\nspecular 0.8 0.8 0.8\n"
+                       "vertex -10 -10 0\nvertex 10 -10 0\nvertex 10 10 0\nvertex -10 10 0\ntri 0 1 2\ntri 0 2 3\n"
+                       "quadLight -1 -1 3  2 0 0  0 2 0  5 5 5\n";
+    const char *modes[] = {"nexteventestimation off\n", "nexteventestimation on\n", "nexteventestimation mis\n"};
+    for (int i = 0; i < 3; i++) {
+        /* (0, -2.4, 0) reflects the eye's ray to the light's centre (0, 0, 3) */
+        stats direct = stats_towards(base, modes[i], vec3_make(0, 0, 3), 64, 190);
+        stats mirror = stats_towards(base, modes[i], vec3_make(0, -2.4, 0), 64, 191);
+        ck_assert_msg(direct.mean == 5 && direct.se == 0, "%s: the light seen directly: %g", modes[i], direct.mean);
+        ck_assert_msg(fabs(mirror.mean - 4) < 1e-12 && mirror.se == 0, "%s: the light in the mirror: %g", modes[i],
+                      mirror.mean);
+    }
+}
+END_TEST
+
+/* NEE's cosine is the shading normal's, as BRDF sampling's is: a floor whose interpolated normal
+ * leans 20 degrees (constant over the floor, so every estimator sees the same n) under a quad
+ * light gives the same answer with NEE off, on and MIS. */
+START_TEST(test_integrators_nee_uses_the_shading_normal_like_brdf_sampling)
+{
+    const char *base = "size 4 4\ncamera 0 -4 2  0 0 0  0 0 1  40\nmaxdepth 1\nintegrator pathtracer\n"
+                       "diffuse 0.6 0.6 0.6\n"
+                       "vertexnormal -10 -10 0  0.364 0 1\nvertexnormal 10 -10 0  0.364 0 1\n"
+                       "vertexnormal 10 10 0  0.364 0 1\nvertexnormal -10 10 0  0.364 0 1\n"
+                       "trinormal 0 1 2\ntrinormal 0 2 3\n"
+                       "quadLight -1 -1 3  2 0 0  0 2 0  5 5 5\n";
+    const char *modes[] = {"nexteventestimation off\nimportancesampling cosine\n", "nexteventestimation on\n",
+                           "nexteventestimation mis\nimportancesampling brdf\n"};
+    long ns[] = {400000, 40000, 40000};
+    stats st[3];
+    for (int i = 0; i < 3; i++) st[i] = stats_towards(base, modes[i], vec3_make(0.9, -0.6, 0), ns[i], 200 + (uint64_t)i);
+    ck_assert(st[0].mean > 0.05);
+    for (int i = 1; i < 3; i++)
+        ck_assert_msg(fabs(st[i].mean - st[0].mean) < Z_SE * sqrt(st[i].se * st[i].se + st[0].se * st[0].se),
+                      "%s: %.5f vs nee off %.5f (SE %.5f, %.5f)", modes[i], st[i].mean, st[0].mean, st[i].se, st[0].se);
+}
+END_TEST
+
+/* The shading frame integrator_intersect makes: `entering` is 1 from outside a sphere and 0 from
+ * inside (glass picks eta by it), the normals face the ray, and an interpolated normal that faces
+ * away from the ray is replaced by the geometric one. */
+START_TEST(test_integrators_shading_frame_faces_the_ray)
+{
+    scene sc;
+    load(&sc, "size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\nsphere 0 0 0 1\n"
+              "vertexnormal -1 -1 -3  0.866 0 0.5\nvertexnormal 1 -1 -3  0.866 0 0.5\nvertexnormal 0 1 -3  0.866 0 0.5\n"
+              "trinormal 0 1 2\n");
+    rig rg;
+    rig_init(&rg, &sc);
+    scene_hit sh;
+    ray out = {vec3_make(0, 0, 5), vec3_make(0, 0, -1), 0, INFINITY};
+    integrator_intersect(&rg.it, &out, &sh);
+    ck_assert_int_eq(sh.kind, 1);
+    ck_assert_int_eq(sh.s.entering, 1);
+    ck_assert(sh.s.ng.z > 0.999 && sh.s.n.z > 0.999);
+    ray in = {vec3_make(0, 0, 0), vec3_make(0, 0, 1), 0, INFINITY};
+    integrator_intersect(&rg.it, &in, &sh);
+    ck_assert_int_eq(sh.s.entering, 0);
+    ck_assert(sh.s.ng.z < -0.999 && sh.s.n.z < -0.999);
+    /* the triangle at z = -3 (ng = +z), its interpolated normal leaning 60 degrees to +x: a ray
+     * from above going +x sees ng but would see n from behind (a smooth-shaded silhouette) */
+    ray tri = {vec3_make(-0.5, -0.3, -2.9), vec3_normalize(vec3_make(0.9, 0, -0.2)), 0, INFINITY};
+    integrator_intersect(&rg.it, &tri, &sh);
+    ck_assert_int_eq(sh.kind, 1);
+    ck_assert(vec3_dot(sh.s.n, tri.d) < 0);
+    ck_assert(sh.s.n.x == sh.s.ng.x && sh.s.n.y == sh.s.ng.y && sh.s.n.z == sh.s.ng.z);
+    rig_free(&rg);
+    scene_free(&sc);
+}
+END_TEST
+
+/* `envmiss black`: the envmap is a background for camera rays only; a mirror shows black where it
+ * would reflect the sky.  The default shows the sky. */
+START_TEST(test_integrators_envmiss_black_keeps_the_envmap_out_of_reflections)
+{
+    const char *base = "size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\nintegrator pathtracer\n"
+                       "brdf mirror\ndiffuse 0 0 0\nspecular 0.8 0.8 0.8\nsphere 0 0 0 1\n";
+    const char *modes[] = {"", "envmiss black\n"};
+    for (int i = 0; i < 2; i++) {
+        char text[1024];
+        snprintf(text, sizeof text, "%s%s", base, modes[i]);
+        scene sc;
+        load(&sc, text);
+        set_env(&sc, GENENV_CONSTANT, 16, 1);
+        rig rg;
+        rig_init(&rg, &sc);
+        rng g;
+        rng_seed(&g, 1, 0);
+        ray sky = {sc.eye, vec3_make(0, 1, 0), 0, INFINITY};
+        ray ball = {sc.eye, vec3_make(0, 0, -1), 0, INFINITY};
+        rgb Ls = integrator_radiance(&rg.it, sky, &g), Lb = integrator_radiance(&rg.it, ball, &g);
+        ck_assert_msg(Ls.g > 0, "%s: the background is black", modes[i]);
+        if (i == 0) ck_assert_near(Lb.g, 0.8 * Ls.g, 1e-6 * Ls.g);
+        else ck_assert_msg(Lb.g == 0, "envmiss black: the mirror shows %g", Lb.g);
+        rig_free(&rg);
+        scene_free(&sc);
+    }
+}
+END_TEST
+
+/* lightstratify: n samples use an m x m grid, m = floor(sqrt n); sample j < m^2 goes to cell
+ * (j mod m, j / m); the n - m^2 samples left over stay unstratified (their numbers untouched,
+ * never pushed past 1). */
+START_TEST(test_integrators_strata_grid_and_the_samples_left_over)
+{
+    ck_assert_int_eq(integrator_strata(16, 1), 4);
+    ck_assert_int_eq(integrator_strata(15, 1), 3);
+    ck_assert_int_eq(integrator_strata(5, 1), 2);
+    ck_assert_int_eq(integrator_strata(1, 1), 1);
+    ck_assert_int_eq(integrator_strata(16, 0), 0);
+    double a = 0.5, b = 0.25;
+    ck_assert(integrator_stratum(3, 2, &a, &b)); /* cell (1, 1) */
+    ck_assert_near(a, 0.75, 1e-15);
+    ck_assert_near(b, 0.625, 1e-15);
+    a = 0.5, b = 0.25;
+    ck_assert(integrator_stratum(2, 2, &a, &b)); /* cell (0, 1) */
+    ck_assert_near(a, 0.25, 1e-15);
+    ck_assert_near(b, 0.625, 1e-15);
+    a = 0.999, b = 0.999;
+    ck_assert(!integrator_stratum(4, 2, &a, &b)); /* the fifth of 5: left over */
+    ck_assert(a == 0.999 && b == 0.999);
+    ck_assert(!integrator_stratum(0, 0, &a, &b));
+}
+END_TEST
+
 /* ---- stratification ---------------------------------------------------------------------------- */
 
 /* direct_lighting with 16 light samples: a 4 x 4 grid of strata has clearly lower variance than
@@ -747,6 +948,38 @@ START_TEST(test_integrators_russian_roulette_keeps_the_mean)
 }
 END_TEST
 
+/* maxdepth d: at most d bounces after the camera ray's hit.  Inside the emitting sphere with
+ * cosine sampling every bounce's weight is exactly rho, so L = E (1 + rho + ... + rho^d), with no
+ * noise at all: 0.5, 0.75, 0.875, 0.9375 for d = 0..3. */
+START_TEST(test_integrators_maxdepth_counts_bounces_exactly)
+{
+    double want = 0, term = 0.5;
+    for (int d = 0; d < 4; d++) {
+        want += term;
+        term *= 0.5;
+        char cfg[256];
+        snprintf(cfg, sizeof cfg, "maxdepth %d\nrussianroulette off\nnexteventestimation off\nimportancesampling cosine\n", d);
+        stats st = inside_a_sphere(cfg, "diffuse 0.5 0.5 0.5\nemission 0.5 0.5 0.5\n", 200, 97, NULL);
+        ck_assert_msg(fabs(st.mean - want) < 1e-12 && st.se < 1e-12, "maxdepth %d: %.15f, want %.15f", d, st.mean, want);
+    }
+}
+END_TEST
+
+/* Roulette's survival probability is the throughput's largest component (FORMAT.md), q =
+ * min(1, max(beta)).  Inside a sphere of albedo (0.9, 0.1, 0.1), beta after each bounce and
+ * division has largest component 0.9, so a path survives each bounce with probability 0.9: on
+ * average 9 BRDF rays after the camera ray (the mean of the channels would give q = 0.37 first). */
+START_TEST(test_integrators_roulette_survives_by_the_largest_component)
+{
+    enum { N = 4000 };
+    long long rays = 0;
+    inside_a_sphere("maxdepth -1\nrussianroulette on\nnexteventestimation off\nimportancesampling cosine\n",
+                    "diffuse 0.9 0.1 0.1\nemission 0.5 0.5 0.5\n", N, 98, &rays);
+    double per_path = (double)rays / N, se = sqrt(90.0 / N); /* geometric: variance 0.9 / 0.1^2 */
+    ck_assert_msg(fabs(per_path - 10) < Z_SE * se, "%.3f rays a path, want 10 (SE %.3f)", per_path, se);
+}
+END_TEST
+
 /* A black surface ends the path even without roulette: inside a closed black sphere that only
  * emits, L = E exactly, and a path is one camera ray and one BRDF ray, not the 1000 bounces of
  * maxdepth -1 (each of which added nothing). */
@@ -829,6 +1062,16 @@ Suite *integrators_suite(void)
     tcase_add_test(tc, test_integrators_russian_roulette_keeps_the_mean);
     tcase_add_test(tc, test_integrators_a_path_stops_at_zero_throughput_without_roulette);
     tcase_add_test(tc, test_integrators_every_integrator_filters_textures_by_the_camera_footprint);
+    tcase_add_test(tc, test_integrators_power_heuristic_values);
+    tcase_add_test(tc, test_integrators_nee_and_mis_agree_with_two_quad_lights_and_several_samples);
+    tcase_add_test(tc, test_integrators_a_delta_light_among_others_is_divided_by_its_pick_probability);
+    tcase_add_test(tc, test_integrators_lights_seen_directly_and_in_a_mirror_count_with_every_nee_mode);
+    tcase_add_test(tc, test_integrators_nee_uses_the_shading_normal_like_brdf_sampling);
+    tcase_add_test(tc, test_integrators_shading_frame_faces_the_ray);
+    tcase_add_test(tc, test_integrators_envmiss_black_keeps_the_envmap_out_of_reflections);
+    tcase_add_test(tc, test_integrators_strata_grid_and_the_samples_left_over);
+    tcase_add_test(tc, test_integrators_maxdepth_counts_bounces_exactly);
+    tcase_add_test(tc, test_integrators_roulette_survives_by_the_largest_component);
     suite_add_tcase(s, tc);
     return s;
 }
