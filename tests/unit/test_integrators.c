@@ -584,21 +584,28 @@ END_TEST
 
 /* A quad light is seen at its radiance by a camera ray and by a ray off a perfect mirror, whatever
  * the NEE mode: light sampling cannot reach a path through a delta bounce, so nothing else counts
- * it.  Mirror floor (ks = 0.8) under a light emitting down, maxdepth 2: exactly 5 and 0.8 x 5. */
+ * it.  Mirror floor (ks = 0.8) under a light emitting down, maxdepth 2: exactly 5 and 0.8 x 5,
+ * with the path tracer and with `integrator direct` (which follows mirrors to what it can light);
+ * with maxdepth 0 the mirror has no bounce to show it. */
 START_TEST(test_integrators_lights_seen_directly_and_in_a_mirror_count_with_every_nee_mode)
 {
-    const char *base = "size 4 4\ncamera 0 -4 2  0 0 0  0 0 1  40\nmaxdepth 2\nintegrator pathtracer\n"
+    const char *base = "size 4 4\ncamera 0 -4 2  0 0 0  0 0 1  40\nmaxdepth 2\n"
                        "brdf mirror\ndiffuse 0 0 0\nspecular 0.8 0.8 0.8\n"
                        "vertex -10 -10 0\nvertex 10 -10 0\nvertex 10 10 0\nvertex -10 10 0\ntri 0 1 2\ntri 0 2 3\n"
                        "quadLight -1 -1 3  2 0 0  0 2 0  5 5 5\n";
-    const char *modes[] = {"nexteventestimation off\n", "nexteventestimation on\n", "nexteventestimation mis\n"};
-    for (int i = 0; i < 3; i++) {
+    const char *modes[] = {"integrator pathtracer\nnexteventestimation off\n", "integrator pathtracer\nnexteventestimation on\n",
+                           "integrator pathtracer\nnexteventestimation mis\n", "integrator direct\n"};
+    for (int i = 0; i < 4; i++) {
         /* (0, -2.4, 0) reflects the eye's ray to the light's centre (0, 0, 3) */
         stats direct = stats_towards(base, modes[i], vec3_make(0, 0, 3), 64, 190);
         stats mirror = stats_towards(base, modes[i], vec3_make(0, -2.4, 0), 64, 191);
         ck_assert_msg(direct.mean == 5 && direct.se == 0, "%s: the light seen directly: %g", modes[i], direct.mean);
         ck_assert_msg(fabs(mirror.mean - 4) < 1e-12 && mirror.se == 0, "%s: the light in the mirror: %g", modes[i],
                       mirror.mean);
+        char mode0[256];
+        snprintf(mode0, sizeof mode0, "%smaxdepth 0\n", modes[i]);
+        stats none = stats_towards(base, mode0, vec3_make(0, -2.4, 0), 16, 192);
+        ck_assert_msg(none.mean == 0, "%s, maxdepth 0: the mirror shows %g", modes[i], none.mean);
     }
 }
 END_TEST
@@ -660,31 +667,53 @@ START_TEST(test_integrators_shading_frame_faces_the_ray)
 END_TEST
 
 /* `envmiss black`: the envmap is a background for camera rays only; a mirror shows black where it
- * would reflect the sky.  The default shows the sky. */
+ * would reflect the sky.  The default shows the sky.  Every integrator (analyticdirect follows
+ * no mirror: only its background is checked). */
 START_TEST(test_integrators_envmiss_black_keeps_the_envmap_out_of_reflections)
 {
-    const char *base = "size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\nintegrator pathtracer\n"
-                       "brdf mirror\ndiffuse 0 0 0\nspecular 0.8 0.8 0.8\nsphere 0 0 0 1\n";
+    const char *integ[] = {"pathtracer", "direct", "raytracer", "analyticdirect"};
     const char *modes[] = {"", "envmiss black\n"};
-    for (int i = 0; i < 2; i++) {
-        char text[1024];
-        snprintf(text, sizeof text, "%s%s", base, modes[i]);
-        scene sc;
-        load(&sc, text);
-        set_env(&sc, GENENV_CONSTANT, 16, 1);
-        rig rg;
-        rig_init(&rg, &sc);
-        rng g;
-        rng_seed(&g, 1, 0);
-        ray sky = {sc.eye, vec3_make(0, 1, 0), 0, INFINITY};
-        ray ball = {sc.eye, vec3_make(0, 0, -1), 0, INFINITY};
-        rgb Ls = integrator_radiance(&rg.it, sky, &g), Lb = integrator_radiance(&rg.it, ball, &g);
-        ck_assert_msg(Ls.g > 0, "%s: the background is black", modes[i]);
-        if (i == 0) ck_assert_near(Lb.g, 0.8 * Ls.g, 1e-6 * Ls.g);
-        else ck_assert_msg(Lb.g == 0, "envmiss black: the mirror shows %g", Lb.g);
-        rig_free(&rg);
-        scene_free(&sc);
-    }
+    for (int k = 0; k < 4; k++)
+        for (int i = 0; i < 2; i++) {
+            char text[1024];
+            snprintf(text, sizeof text,
+                     "size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\nintegrator %s\nambient 0 0 0\n"
+                     "brdf mirror\ndiffuse 0 0 0\nspecular 0.8 0.8 0.8\nsphere 0 0 0 1\n%s",
+                     integ[k], modes[i]);
+            scene sc;
+            load(&sc, text);
+            set_env(&sc, GENENV_CONSTANT, 16, 1);
+            rig rg;
+            rig_init(&rg, &sc);
+            rng g;
+            rng_seed(&g, 1, 0);
+            ray sky = {sc.eye, vec3_make(0, 1, 0), 0, INFINITY};
+            ray ball = {sc.eye, vec3_make(0, 0, -1), 0, INFINITY};
+            rgb Ls = integrator_radiance(&rg.it, sky, &g), Lb = integrator_radiance(&rg.it, ball, &g);
+            ck_assert_msg(Ls.g > 0, "%s %s: the background is black", integ[k], modes[i]);
+            if (k < 3) {
+                if (i == 0) ck_assert_msg(fabs(Lb.g - 0.8 * Ls.g) < 1e-6 * Ls.g, "%s: the mirror shows %g", integ[k], Lb.g);
+                else ck_assert_msg(Lb.g == 0, "%s, envmiss black: the mirror shows %g", integ[k], Lb.g);
+            }
+            rig_free(&rg);
+            scene_free(&sc);
+        }
+}
+END_TEST
+
+/* analyticdirect: the back of a quad light emits nothing, even to a surface that faces it (and
+ * sees all of it above its horizon); the same point mirrored to the emitting side is lit. */
+START_TEST(test_integrators_analytic_irradiance_from_the_back_of_a_light_is_zero)
+{
+    scene_light l = {0};
+    l.kind = LIGHT_QUAD;
+    l.pos = vec3_make(-1, -1, 3);
+    l.ab = vec3_make(2, 0, 0);
+    l.ac = vec3_make(0, 2, 0); /* ac x ab = -z: emits down */
+    double below = analyticdirect_irradiance(&l, vec3_make(0.2, 0.1, 2), vec3_make(0, 0, 1));
+    double above = analyticdirect_irradiance(&l, vec3_make(0.2, 0.1, 4), vec3_make(0, 0, -1));
+    ck_assert_msg(below > 0.5, "below the light, facing it: %g", below);
+    ck_assert_msg(above == 0, "above the light, facing its back: %g", above);
 }
 END_TEST
 
@@ -1069,6 +1098,7 @@ Suite *integrators_suite(void)
     tcase_add_test(tc, test_integrators_nee_uses_the_shading_normal_like_brdf_sampling);
     tcase_add_test(tc, test_integrators_shading_frame_faces_the_ray);
     tcase_add_test(tc, test_integrators_envmiss_black_keeps_the_envmap_out_of_reflections);
+    tcase_add_test(tc, test_integrators_analytic_irradiance_from_the_back_of_a_light_is_zero);
     tcase_add_test(tc, test_integrators_strata_grid_and_the_samples_left_over);
     tcase_add_test(tc, test_integrators_maxdepth_counts_bounces_exactly);
     tcase_add_test(tc, test_integrators_roulette_survives_by_the_largest_component);

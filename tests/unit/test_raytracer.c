@@ -327,6 +327,56 @@ START_TEST(test_raytracer_a_light_just_below_an_open_floor_still_gives_the_cours
 }
 END_TEST
 
+/* ... but each term is clamped on its own: where N.H < 0 too (the light far below the floor) the
+ * highlight is 0, not (N.H)^s of a negative N.H (positive for an even s). */
+START_TEST(test_raytracer_no_highlight_where_n_dot_h_is_negative)
+{
+    fixture f;
+    load(&f.sc, "size 9 9\ncamera 0 3 3  0 0 0  0 1 0  45\n"
+                "directional 1 -3 0  1 1 1\n"
+                "ambient 0 0 0\ndiffuse 0.5 0.5 0.5\nspecular 0.5 0.5 0.5\nshininess 2\n"
+                "vertex -2 0 -2\nvertex 2 0 -2\nvertex 2 0 2\nvertex -2 0 2\n"
+                "tri 0 2 1\ntri 0 3 2\n");
+    fixture_start(&f);
+    vec3 l = vec3_normalize(vec3_make(1, -3, 0)), v = vec3_normalize(vec3_make(0, 1, 1));
+    ck_assert(vec3_normalize(vec3_add(l, v)).y < -0.1);
+    assert_rgb_near(pixel(&f, 4, 4), rgb_gray(0), 0);
+    fixture_end(&f);
+}
+END_TEST
+
+/* A point light's shadow ray ends at the light: a ball above the light does not shadow the floor
+ * below it.  Floor point (0, 0, 0), light at (0, 1, 0) (N.L = 1, attenuation 1 0 0), kd 0.5. */
+START_TEST(test_raytracer_an_object_beyond_a_point_light_casts_no_shadow)
+{
+    fixture f;
+    load(&f.sc, "size 9 9\ncamera 0 3 3  0 0 0  0 1 0  45\n"
+                "point 0 1 0  1 1 1\n"
+                "ambient 0 0 0\ndiffuse 0.5 0.5 0.5\n"
+                "vertex -2 0 -2\nvertex 2 0 -2\nvertex 2 0 2\nvertex -2 0 2\n"
+                "tri 0 2 1\ntri 0 3 2\n"
+                "sphere 0 3 0 1\n");
+    fixture_start(&f);
+    assert_rgb_near(pixel(&f, 4, 4), rgb_gray(0.5), 1e-12);
+    fixture_end(&f);
+}
+END_TEST
+
+/* A reflection is traced whenever ks has any channel above 0 (`specular 0 0.5 0`: its largest
+ * channel), and it is ks times what the reflected ray sees: a ball in a constant environment of
+ * 1 shows (0, 0.5, 0). */
+START_TEST(test_raytracer_a_coloured_specular_reflects)
+{
+    fixture f;
+    load(&f.sc, "size 9 9\ncamera 0 0 5  0 0 0  0 1 0  30\n"
+                "ambient 0 0 0\ndiffuse 0 0 0\nspecular 0 0.5 0\nsphere 0 0 0 1\n");
+    set_env(&f.sc, GENENV_CONSTANT, 1.0);
+    fixture_start(&f);
+    assert_rgb_near(pixel(&f, 4, 4), rgb_make(0, 0.5, 0), 1e-6);
+    fixture_end(&f);
+}
+END_TEST
+
 /* Rays from a point light aimed (to within 1e-9 rad) at the centre of a ball with a huge
  * shininess (1e18): N, L and V agree to rounding there, N.H rounds to 1 + 2^-52 for some of
  * them, and the highlight ks (N.H)^s must still be at most ks, so each ray's radiance is at most
@@ -432,6 +482,9 @@ Suite *raytracer_suite(void)
     tcase_add_test(tc, test_raytracer_blinn_phong_highlight_with_huge_shininess_never_exceeds_ks);
     tcase_add_test(tc, test_raytracer_glass_ball_in_a_constant_environment_conserves_energy);
     tcase_add_test(tc, test_raytracer_glass_ball_refracts_the_view_upside_down);
+    tcase_add_test(tc, test_raytracer_no_highlight_where_n_dot_h_is_negative);
+    tcase_add_test(tc, test_raytracer_an_object_beyond_a_point_light_casts_no_shadow);
+    tcase_add_test(tc, test_raytracer_a_coloured_specular_reflects);
     suite_add_tcase(s, tc);
     return s;
 }
