@@ -109,8 +109,41 @@ START_TEST(test_checker_point_values_follow_the_parity_of_the_squares)
     ck_rgb_near(texture_eval(&tx, &q), rgb_gray(0), 0);
     q.st = (uv2){-0.1, 0.1}; /* (-1, 0): c1 (negative coordinates keep the pattern) */
     ck_rgb_near(texture_eval(&tx, &q), rgb_gray(1), 0);
+    /* on a square's edge: floor(f s) of the square it starts, f s = 1 is square 1 (c1), f s = 2
+     * square 2 (c0), f s = -1 square -1 (c1) */
+    q.st = (uv2){0.25, 0.1};
+    ck_rgb_near(texture_eval(&tx, &q), rgb_gray(1), 0);
+    q.st = (uv2){0.5, 0.1};
+    ck_rgb_near(texture_eval(&tx, &q), rgb_gray(0), 0);
+    q.st = (uv2){-0.25, 0.1};
+    ck_rgb_near(texture_eval(&tx, &q), rgb_gray(1), 0);
+    q.st = (uv2){0.1, 0.25};
+    ck_rgb_near(texture_eval(&tx, &q), rgb_gray(1), 0);
     ck_assert_int_eq(texture_init_checker(&tx, rgb_gray(0), rgb_gray(1), 0, &err), -1);
     ck_assert_int_eq(texture_init_checker(&tx, rgb_gray(0), rgb_gray(1), NAN, &err), -1);
+    ck_assert_int_eq(texture_init_checker(&tx, rgb_gray(0), rgb_gray(1), INFINITY, &err), -1);
+}
+END_TEST
+
+/* nearest and bilinear point-sample the checker whatever the footprint (texture.h): only
+ * trilinear and EWA box-filter it. */
+START_TEST(test_checker_is_point_sampled_by_nearest_and_bilinear)
+{
+    texture tx;
+    error err = {0};
+    ck_assert_int_eq(texture_init_checker(&tx, rgb_gray(0), rgb_gray(1), 4, &err), 0);
+    texture_query q;
+    memset(&q, 0, sizeof q);
+    q.st = (uv2){0.3, 0.1};
+    q.dst_dx = (uv2){10, 0};
+    q.dst_dy = (uv2){0, 10};
+    const texture_filter point[2] = {TEXFILTER_NEAREST, TEXFILTER_BILINEAR};
+    for (int k = 0; k < 2; k++) {
+        q.filter = point[k];
+        ck_rgb_near(texture_eval(&tx, &q), rgb_gray(1), 0);
+    }
+    q.filter = TEXFILTER_TRILINEAR;
+    ck_assert(fabs(texture_eval(&tx, &q).r - 0.5) < 0.05);
 }
 END_TEST
 
@@ -173,9 +206,37 @@ START_TEST(test_solid_parameters_are_checked)
     ck_assert_int_eq(texture_init_solid(&tx, TEXTURE_PERLIN, &sp, &err), 0); /* not used */
     sp.scale = 0;
     ck_assert_int_eq(texture_init_solid(&tx, TEXTURE_PERLIN, &sp, &err), -1);
+    sp.scale = INFINITY;
+    ck_assert_int_eq(texture_init_solid(&tx, TEXTURE_PERLIN, &sp, &err), -1);
     sp.scale = 1;
     sp.rings = -1;
     ck_assert_int_eq(texture_init_solid(&tx, TEXTURE_WOOD, &sp, &err), -1);
+    sp.rings = 0;
+    sp.octaves = PERLIN_MAX_OCTAVES;
+    ck_assert_int_eq(texture_init_solid(&tx, TEXTURE_TURBULENCE, &sp, &err), 0);
+    sp.octaves = PERLIN_MAX_OCTAVES + 1;
+    ck_assert_int_eq(texture_init_solid(&tx, TEXTURE_TURBULENCE, &sp, &err), -1);
+    ck_assert_ptr_nonnull(strstr(err.msg, "octaves"));
+}
+END_TEST
+
+/* Between no fading and the mean, wood's rings fade by the smoothstep of the documented band,
+ * a = smoothstep(1/2, 1, rings w): at rings w = 0.625, a = 3 (1/4)^2 - 2 (1/4)^3 = 0.15625 and
+ * v = (1 - a) v_point + a / 2. */
+START_TEST(test_wood_fades_by_a_smoothstep_of_the_footprint)
+{
+    texture_solid_params sp = {.scale = 1, .octaves = 1, .rings = 6, .amplitude = 0.7, .c0 = {0, 0, 0}, .c1 = {1, 1, 1}};
+    texture tx;
+    error err = {0};
+    ck_assert_int_eq(texture_init_solid(&tx, TEXTURE_WOOD, &sp, &err), 0);
+    texture_query q;
+    memset(&q, 0, sizeof q);
+    q.p = vec3_make(0.41, 0.2, -0.33);
+    q.filter = TEXFILTER_TRILINEAR;
+    double v0 = texture_eval(&tx, &q).r; /* no footprint: the point value */
+    q.dp_dx = vec3_make(0.625 / 6, 0, 0);
+    double a = 0.15625;
+    ck_assert_near(texture_eval(&tx, &q).r, (1 - a) * v0 + 0.5 * a, 1e-12);
 }
 END_TEST
 
@@ -222,9 +283,18 @@ START_TEST(test_solids_fade_to_their_mean_under_a_huge_footprint)
         double v = texture_eval(&tx, &q).r;
         double tol = 1e-12;
         ck_assert_msg(fabs(v - mean[k]) <= tol, "%s: %g", texture_kind_name(tx.kind), v);
-        /* nearest ignores the footprint: catches a filter applied to every mode */
-        q.filter = TEXFILTER_NEAREST;
-        (void)texture_eval(&tx, &q);
+        /* nearest and bilinear ignore the footprint: the point value, as without one (this
+         * once evaluated nearest and checked nothing) */
+        texture_query pq = q;
+        pq.dp_dx = vec3_make(0, 0, 0);
+        double point = texture_eval(&tx, &pq).r;
+        ck_assert_msg(fabs(point - mean[k]) > 1e-6, "%s: the test point is at the mean", texture_kind_name(tx.kind));
+        const texture_filter unfiltered[2] = {TEXFILTER_NEAREST, TEXFILTER_BILINEAR};
+        for (int f = 0; f < 2; f++) {
+            q.filter = unfiltered[f];
+            ck_assert_msg(texture_eval(&tx, &q).r == point, "%s, %s: %g, want the point value %g",
+                          texture_kind_name(tx.kind), texture_filter_name(q.filter), texture_eval(&tx, &q).r, point);
+        }
     }
 }
 END_TEST
@@ -393,6 +463,8 @@ Suite *texture_suite(void)
     tcase_add_test(tc, test_image_filters_are_the_lookups_they_name);
     tcase_add_test(tc, test_checker_point_values_follow_the_parity_of_the_squares);
     tcase_add_test(tc, test_checker_box_filter_matches_a_brute_force_average);
+    tcase_add_test(tc, test_checker_is_point_sampled_by_nearest_and_bilinear);
+    tcase_add_test(tc, test_wood_fades_by_a_smoothstep_of_the_footprint);
     tcase_add_test(tc, test_checker_filter_converges_to_the_mean_far_away);
     tcase_add_test(tc, test_solid_parameters_are_checked);
     tcase_add_test(tc, test_solids_without_footprint_are_the_perlin_functions);
