@@ -82,6 +82,30 @@ START_TEST(test_envmap_scale_multiplies_the_radiance)
 }
 END_TEST
 
+/* The scale applies to every representation, not only lat-long's fast path: the same image read
+ * as an equal-area, cylindrical or angular map with scale 2.5. */
+START_TEST(test_envmap_scale_multiplies_every_representation)
+{
+    const convert_kind kinds[] = {CONVERT_EQUALAREA, CONVERT_CYLINDRICAL, CONVERT_ANGULAR, CONVERT_MIRRORBALL};
+    for (int k = 0; k < 4; k++) {
+        scene a, b;
+        env_scene(&a, GENENV_SKY, mat4_identity(), 1);
+        env_scene(&b, GENENV_SKY, mat4_identity(), 2.5);
+        a.envmap.kind = b.envmap.kind = kinds[k];
+        a.envmap.max_height = b.envmap.max_height = 1;
+        envmap ea, eb;
+        envmap_init(&ea, &a);
+        envmap_init(&eb, &b);
+        vec3 d = vec3_normalize(vec3_make(0.2, 0.5, 0.3));
+        rgb la = envmap_radiance(&ea, d);
+        ck_assert_msg(la.g > 0, "kind %d: black", (int)kinds[k]);
+        assert_rgb_near(envmap_radiance(&eb, d), rgb_scale(la, 2.5), 1e-12);
+        image_free(&a.envmap.img);
+        image_free(&b.envmap.img);
+    }
+}
+END_TEST
+
 START_TEST(test_envmap_rotate_x_minus_90_puts_the_zenith_at_world_plus_y)
 {
     /* `rotate 1 0 0 -90` before `envmap` (FORMAT.md): a y-up world gets the sky overhead */
@@ -129,6 +153,7 @@ Suite *envmap_suite(void)
     tcase_add_test(tc, test_envmap_absent_is_black);
     tcase_add_test(tc, test_envmap_identity_transform_is_the_latlong_lookup);
     tcase_add_test(tc, test_envmap_scale_multiplies_the_radiance);
+    tcase_add_test(tc, test_envmap_scale_multiplies_every_representation);
     tcase_add_test(tc, test_envmap_rotate_x_minus_90_puts_the_zenith_at_world_plus_y);
     tcase_add_test(tc, test_envmap_rotation_about_z_turns_the_map);
     suite_add_tcase(s, tc);

@@ -7,6 +7,8 @@
 #include "envtex/bvh.h"
 #include "envtex/camera.h"
 #include "envtex/genenv.h"
+#include "envtex/integrator.h"
+#include "envtex/rng.h"
 #include "envtex/raytracer.h"
 #include "unit.h"
 
@@ -208,6 +210,90 @@ START_TEST(test_render_refuses_an_out_of_range_spp_naming_the_scene)
 }
 END_TEST
 
+/* The pixel loop against its own definition, replayed sample by sample: pixel (x, y) seeds its
+ * generator with stream y W + x; each of the spp samples draws its jitter (jx, jy) and traces
+ * the camera ray through (x + jx, y + jy) with differentials scaled by max(1 / sqrt(spp), 1/8);
+ * the pixel is the mean and the variance image the variance of that mean,
+ * sum (v - mean)^2 / ((spp - 1) spp).  A receding checker filtered by its footprint (emission
+ * map, raytracer) makes both the differentials' scale and the jitter change the values: spp 16
+ * (scale 1/4) and spp 256 (the floor 1/8, where 1/16 would be less). */
+START_TEST(test_render_replays_as_documented_mean_variance_and_differential_scale)
+{
+    scene sc;
+    load(&sc, "size 6 5\ncamera 0 1 3  0 0 -4  0 1 0  50\nambient 0 0 0\ndiffuse 0 0 0\n"
+              "texture c checker 2  0 0 0  1 0.5 0.25\nemissionmap c\ntexfilter trilinear\n"
+              "vertextex -8 0 4  0 0\nvertextex 8 0 4  8 0\nvertextex 8 0 -40  8 22\nvertextex -8 0 -40  0 22\n"
+              "tritex 0 1 2\ntritex 0 2 3\n");
+    const int spps[2] = {16, 256};
+    for (int k = 0; k < 2; k++) {
+        int spp = spps[k];
+        image img, var;
+        render_opts o = render_defaults();
+        o.spp = spp;
+        o.seed = 5;
+        o.variance = &var;
+        render_stats st;
+        error err = {0};
+        ck_assert_msg(render_scene(&sc, &o, &img, &st, &err) == 0, "%s", err.msg);
+        bvh accel;
+        integrator it;
+        ck_assert_int_eq(bvh_build(&accel, &sc, &err), 0);
+        ck_assert_int_eq(integrator_init(&it, &sc, &accel, &err), 0);
+        camera cam;
+        camera_init(&cam, sc.eye, sc.center, sc.up, sc.fovy, sc.width, sc.height);
+        double scale = fmax(1 / sqrt((double)spp), 0.125);
+        double spread = 0;
+        for (int y = 0; y < sc.height; y++)
+            for (int x = 0; x < sc.width; x++) {
+                rng g;
+                rng_seed(&g, 5, (uint64_t)y * (uint64_t)sc.width + (uint64_t)x);
+                double v[256], mean = 0;
+                for (int s = 0; s < spp; s++) {
+                    double jx = rng_uniform(&g), jy = rng_uniform(&g);
+                    ray_diff rd;
+                    ray r = camera_ray_differential(&cam, x + jx, y + jy, scale, &rd);
+                    v[s] = integrator_radiance_diff(&it, r, &rd, &g).g;
+                    mean += v[s];
+                }
+                mean /= spp;
+                double ss = 0;
+                for (int s = 0; s < spp; s++) ss += (v[s] - mean) * (v[s] - mean);
+                double want_var = ss / ((double)(spp - 1) * spp);
+                double got = image_get(&img, x, y).g, got_var = image_get(&var, x, y).g;
+                ck_assert_msg(fabs(got - mean) <= 1e-6 * fmax(mean, 1e-3), "spp %d, pixel (%d, %d): %.9g, replayed %.9g",
+                              spp, x, y, got, mean);
+                ck_assert_msg(fabs(got_var - want_var) <= 1e-5 * want_var + 1e-12, "spp %d, pixel (%d, %d): variance %.9g, replayed %.9g",
+                              spp, x, y, got_var, want_var);
+                spread = fmax(spread, want_var);
+            }
+        ck_assert_msg(spread > 1e-4, "spp %d: no pixel varies: the test sees no jitter", spp);
+        integrator_free(&it);
+        bvh_free(&accel);
+        image_free(&img);
+        image_free(&var);
+    }
+    scene_free(&sc);
+}
+END_TEST
+
+/* A size and an spp each in range whose product of camera samples is over 2^34 is refused
+ * before anything is allocated or traced. */
+START_TEST(test_render_refuses_too_many_camera_samples)
+{
+    scene sc;
+    load(&sc, "size 8192 4096\ncamera 0 0 5  0 0 0  0 1 0  45\nsphere 0 0 0 1\n");
+    render_opts o = render_defaults();
+    o.spp = 1024; /* 2^13 x 2^12 x 2^10 = 2^35 */
+    image img;
+    render_stats st;
+    error err = {0};
+    ck_assert_int_eq(render_scene(&sc, &o, &img, &st, &err), -1);
+    ck_assert_ptr_nonnull(strstr(err.msg, "camera samples"));
+    ck_assert_ptr_null(img.px);
+    scene_free(&sc);
+}
+END_TEST
+
 START_TEST(test_render_counts_nonfinite_pixels)
 {
     /* an envmap with a NaN texel: the pixels whose lookups touch it are NaN, and counted */
@@ -274,6 +360,8 @@ Suite *render_suite(void)
     tcase_add_test(tc, test_render_runs_every_integrator_and_a_black_map_stays_finite);
     tcase_add_test(tc, test_render_refuses_an_out_of_range_spp_naming_the_scene);
     tcase_add_test(tc, test_render_counts_nonfinite_pixels);
+    tcase_add_test(tc, test_render_replays_as_documented_mean_variance_and_differential_scale);
+    tcase_add_test(tc, test_render_refuses_too_many_camera_samples);
     tcase_add_test(tc, test_render_reports_progress_after_every_row);
     suite_add_tcase(s, tc);
     return s;
