@@ -178,6 +178,11 @@ START_TEST(test_genenv_rejects_bad_parameters)
     ck_assert_int_eq(genenv_make(GENENV_SUN, &p, &im, &err), -1);
     p.sun_radius_deg = NAN;
     ck_assert_int_eq(genenv_make(GENENV_SUN, &p, &im, &err), -1);
+    p.sun_radius_deg = 90; /* (0, 90): a sun of half the sky or more is not a sun */
+    ck_assert_int_eq(genenv_make(GENENV_SUN, &p, &im, &err), -1);
+    p.sun_radius_deg = 89.9;
+    ck_assert_int_eq(genenv_make(GENENV_SUN, &p, &im, &err), 0);
+    image_free(&im);
     p = genenv_defaults();
     p.sun_elevation_deg = INFINITY;
     ck_assert_int_eq(genenv_make(GENENV_SUN, &p, &im, &err), -1);

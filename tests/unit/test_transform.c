@@ -152,6 +152,11 @@ START_TEST(test_transform_singular_matrix_returns_minus_one_and_leaves_out_untou
     nan.m[0][0] = NAN;
     EXPECT_INT_EQ(mat4_inverse(nan, &out), -1);
     ck_assert_mem_eq(&out, &sentinel, sizeof out);
+    /* nor is an infinite entry (its pivot is not 0, but 1 / Inf = 0 would leave NaN behind) */
+    mat4 inf = mat4_identity();
+    inf.m[1][1] = INFINITY;
+    EXPECT_INT_EQ(mat4_inverse(inf, &out), -1);
+    ck_assert_mem_eq(&out, &sentinel, sizeof out);
 }
 END_TEST
 
