@@ -242,6 +242,29 @@ START_TEST(test_the_sphere_maps_s_and_t_as_documented_at_vertices_and_corners)
 }
 END_TEST
 
+/* Where the corner normals cancel (b0 n0 + b1 n1 = 0 halfway along the edge p0 p1 when
+ * n1 = -n0), the vertex moves along corner 0's normal (displace.h), not some fixed axis. */
+static double record_normal_at_edge_middle(void *ctx, vec3 p, vec3 n, uv2 st)
+{
+    (void)st;
+    if (p.x == 1 && p.y == 0) *(vec3 *)ctx = n;
+    return 0;
+}
+
+START_TEST(test_cancelling_corner_normals_fall_back_to_corner_0s)
+{
+    const vec3 n[3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}};
+    vec3 seen_n = {0, 0, 0};
+    displace_mesh m;
+    error err = {0};
+    ck_assert_int_eq(displace_triangle(tri_p, n, tri_st, 2, record_normal_at_edge_middle, &seen_n, 1,
+                                       0, &m, &err), 0);
+    ck_assert_msg(seen_n.x == 1 && seen_n.y == 0 && seen_n.z == 0, "(%g %g %g)", seen_n.x, seen_n.y,
+                  seen_n.z);
+    displace_mesh_free(&m);
+}
+END_TEST
+
 /* The limit is on "more than max_tris triangles" (displace.h): exactly max_tris is allowed. */
 START_TEST(test_exactly_max_tris_triangles_is_allowed)
 {
@@ -290,6 +313,7 @@ Suite *displace_suite(void)
     tcase_add_test(tc, test_a_triangles_height_sees_the_interpolated_st_and_normal);
     tcase_add_test(tc, test_the_sphere_maps_s_and_t_as_documented_at_vertices_and_corners);
     tcase_add_test(tc, test_exactly_max_tris_triangles_is_allowed);
+    tcase_add_test(tc, test_cancelling_corner_normals_fall_back_to_corner_0s);
     tcase_add_test(tc, test_limits_and_bad_input_are_errors_before_allocation);
     suite_add_tcase(s, tc);
     return s;
