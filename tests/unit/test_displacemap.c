@@ -434,11 +434,13 @@ END_TEST
 
 /* Solid textures on a displaced sphere see the object-space point centre + radius p
  * (displacemap.h): off the origin and with radius 1.5, every vertex lies at c + (R + SCALE h) u,
- * h the texture at c + R u.  Catches the unit sphere's p passed instead. */
+ * h the texture at c + R u.  The solid is marble without turbulence, 0.5 + 0.5 sin(2 x): smooth,
+ * and independent of the noise (the perlin step's starter returns 0).  Catches the unit sphere's
+ * p passed instead. */
 START_TEST(test_a_displaced_spheres_solid_texture_sees_the_object_point)
 {
     scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n"
-                    "texture h perlin 2  0 0 0  1 1 1\ntexfilter nearest\n"
+                    "texture h marble 1 2 0 1  0 0 0  1 1 1\ntexfilter nearest\n"
                     "displacementmap h 0.3\nsphere 1 -2 0.5 1.5\n");
     scene out;
     displacemap_stats st;
