@@ -17,18 +17,18 @@
  *     shared across the phi seam and at the poles (so the displaced mesh has no cracks), and
  *     4N (N-1) triangles, counter-clockwise seen from outside.
  * Heights: vertex k moves to p + scale * height(ctx, p, n, st) * n, with n the normal before
- * displacement (the interpolated vertex normals, or the geometric normal; the sphere's p).  The
- * callback sees object space and the vertex's (s, t); for the sphere s = phi / 2 pi (0 on the
- * seam, 0 at the poles), t = 1 - theta / pi.
+ * displacement (the interpolated vertex normals - corner 0's where they cancel - or the
+ * geometric normal; the sphere's p).  The callback sees object space and the vertex's (s, t);
+ * for the sphere s = phi / 2 pi (0 on the seam, 0 at the poles), t = 1 - theta / pi.
  * Corner texture coordinates: each triangle keeps its own st[3] (tris[i].st), so triangles
  * across the sphere's seam read s up to 1 (not back to 0) and pole corners take the middle s of
  * their segment: texturing the displaced mesh shows no seam.
  * Normals afterwards: area-weighted vertex normals, n_v = normalize(sum over the triangles at v
  * of (b - a) x (c - a)) (the cross product's length is twice the area); a vertex whose sum is
  * zero keeps its normal from before.
- * Limits: the triangle count is checked against max_tris (0: DISPLACE_MAX_TRIS) before
- * anything is allocated.  Errors are values; the height callback must not fail (return 0 for
- * "no displacement").
+ * Limits: the triangle count is checked against max_tris (0, or a value above
+ * DISPLACE_MAX_TRIS: DISPLACE_MAX_TRIS) before anything is allocated.  Errors are values; the
+ * height callback must not fail (return 0 for "no displacement").
  */
 #ifndef ENVTEX_DISPLACE_H
 #define ENVTEX_DISPLACE_H

@@ -55,7 +55,7 @@ void raydiff_reflect(const ray_diff *in, vec3 dpdx, vec3 dpdy, vec3 wo, vec3 n, 
 /* Differentials of the refracted direction wi = -eta wo + mu n (Snell), with eta = n_i / n_t
  * (the index on wo's side over the far side's: the INVERSE of fresnel.h's eta),
  * cos_i = wo . n, cos_t = |wi . n|, mu = eta cos_i - cos_t:
- *     dwi = -eta dwo + mu dn + dmu n,   dmu = (eta - eta^2 cos_i / cos_t) d(wo . n).
+ *     dwi = -eta dwo + mu dn + dmu n,   dmu = (eta - eta^2 cos_i / cos_t) d(wo . n),   do = dp
  * wi is the refracted unit direction (fresnel_refract).  Returns 1, or 0 with out->has = 0 at
  * grazing transmission (cos_t <= RAYDIFF_MIN_COS) or without incoming differentials. */
 int raydiff_refract(const ray_diff *in, vec3 dpdx, vec3 dpdy, vec3 wo, vec3 n, vec3 dndx,

@@ -79,6 +79,33 @@ START_TEST(test_a_huge_bump_stays_on_the_geometric_side)
 }
 END_TEST
 
+/* The guard's target is n'.ng = BUMP_MIN_COS exactly (bump.h), not merely at least it, and it
+ * acts on every n' below that cosine, including the ones still a hair above the surface
+ * (0 <= n'.ng < BUMP_MIN_COS).  n = z, tangents x and y: a slope K in s gives n' along (-K, 0, 1),
+ * whose cosine with ng = (0.5, 0, 1) / |.| is (1 - K / 2) / (|n'| |ng|), about 5e-4 at K = 1.9975
+ * and about -0.45 at K = 1e6.  Catches the guard tested as n'.ng < 0 and a tilt that forgets the
+ * tangential part's length |t| (it would land at n'.ng = 1.1e-3 for the steep slope). */
+START_TEST(test_a_bump_below_the_minimum_cosine_is_tilted_to_exactly_it)
+{
+    vec3 ng = vec3_normalize(vec3_make(0.5, 0, 1));
+    const double slopes[] = {1.9975, 1e6};
+    for (int i = 0; i < 2; i++) {
+        vec3 out, plain = vec3_normalize(vec3_make(-slopes[i], 0, 1));
+        double c0 = vec3_dot(plain, ng);
+        ck_assert(c0 < BUMP_MIN_COS); /* the guard must act */
+        ck_assert_int_eq(bump_normal(Z, ng, vec3_make(1, 0, 0), vec3_make(0, 1, 0), slopes[i], 0, 1,
+                                     &out), 0);
+        ck_assert_near(vec3_dot(out, ng), BUMP_MIN_COS, 1e-12);
+        ck_assert_near(vec3_length(out), 1, 1e-12);
+        /* tilted along ng only: the tangential part keeps its direction (y component stays 0,
+         * and it points the way the unguarded n' leans) */
+        vec3 t = vec3_madd(out, ng, -vec3_dot(out, ng)), t0 = vec3_madd(plain, ng, -c0);
+        ck_assert_near(vec3_dot(vec3_normalize(t), vec3_normalize(t0)), 1, 1e-12);
+    }
+    ck_assert(vec3_dot(vec3_normalize(vec3_make(-1.9975, 0, 1)), ng) > 0); /* still above: a hair */
+}
+END_TEST
+
 START_TEST(test_degenerate_tangents_and_nan_give_the_normal_back)
 {
     vec3 out;
@@ -99,6 +126,7 @@ Suite *bump_suite(void)
     tcase_add_test(tc, test_a_curved_height_matches_the_finite_difference_normal);
     tcase_add_test(tc, test_a_left_handed_frame_still_bumps_towards_the_shading_side);
     tcase_add_test(tc, test_a_huge_bump_stays_on_the_geometric_side);
+    tcase_add_test(tc, test_a_bump_below_the_minimum_cosine_is_tilted_to_exactly_it);
     tcase_add_test(tc, test_degenerate_tangents_and_nan_give_the_normal_back);
     suite_add_tcase(s, tc);
     return s;

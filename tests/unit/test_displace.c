@@ -148,6 +148,137 @@ START_TEST(test_sphere_corners_at_the_seam_read_s_one_not_zero)
 }
 END_TEST
 
+/* What the height callback of a triangle sees at each vertex (displace.h): the barycentric
+ * interpolation of the corners' st, both coordinates, and the normalized interpolation of the
+ * corner normals.  On tri_p, b1 = x / 2 and b2 = y / 2 at vertex (x, y, 0).  The callback
+ * records its largest error in the context. */
+typedef struct seen {
+    const uv2 *st;   /* the triangle's corner st (NULL: the sphere's mapping) */
+    const vec3 *n;   /* the corner normals */
+    double err;      /* largest error so far */
+    long calls;
+} seen;
+
+static double check_triangle_vertex(void *ctx, vec3 p, vec3 n, uv2 st)
+{
+    seen *c = ctx;
+    double b1 = p.x / 2, b2 = p.y / 2, b0 = 1 - b1 - b2;
+    double u = b0 * c->st[0].u + b1 * c->st[1].u + b2 * c->st[2].u;
+    double v = b0 * c->st[0].v + b1 * c->st[1].v + b2 * c->st[2].v;
+    vec3 want = vec3_normalize(vec3_add(vec3_add(vec3_scale(c->n[0], b0), vec3_scale(c->n[1], b1)),
+                                        vec3_scale(c->n[2], b2)));
+    c->err = fmax(c->err, fmax(fabs(st.u - u), fabs(st.v - v)));
+    c->err = fmax(c->err, vec3_length(vec3_sub(n, want)));
+    c->calls++;
+    return 0.1;
+}
+
+START_TEST(test_a_triangles_height_sees_the_interpolated_st_and_normal)
+{
+    const uv2 st[3] = {{0.1, 0.2}, {0.9, 0.3}, {0.4, 0.8}};
+    const vec3 n[3] = {{0, 0, 1}, {0.6, 0, 0.8}, {0, -0.28, 0.96}};
+    seen c = {st, n, 0, 0};
+    displace_mesh m;
+    error err = {0};
+    ck_assert_int_eq(displace_triangle(tri_p, n, st, 4, check_triangle_vertex, &c, 1, 0, &m, &err), 0);
+    ck_assert_int_eq(c.calls, m.n_verts);
+    ck_assert_msg(c.err < 1e-15, "the callback saw st or n off by %g", c.err);
+    displace_mesh_free(&m);
+}
+END_TEST
+
+/* The sphere's (s, t) as displace.h defines them: s = phi / 2 pi in [0, 1), t = 1 - theta / pi,
+ * (0, 1) at the north pole and (0, 0) at the south pole; p is the unit sphere's point. */
+static uv2 sphere_st(vec3 p)
+{
+    if (p.z >= 1) return (uv2){0, 1};
+    if (p.z <= -1) return (uv2){0, 0};
+    double phi = atan2(p.y, p.x);
+    if (phi < 0) phi += 2 * M_PI;
+    double s = phi / (2 * M_PI);
+    return (uv2){s >= 1 - 1e-12 ? 0 : s, 1 - acos(p.z) / M_PI};
+}
+
+static double check_sphere_vertex(void *ctx, vec3 p, vec3 n, uv2 st)
+{
+    seen *c = ctx;
+    uv2 want = sphere_st(p);
+    c->err = fmax(c->err, fmax(fabs(st.u - want.u), fabs(st.v - want.v)));
+    c->err = fmax(c->err, vec3_length(vec3_sub(n, p))); /* the unit sphere's normal is p */
+    c->calls++;
+    return 0;
+}
+
+/* The sphere's mapping, at the callback and at every triangle corner: the callback sees each
+ * vertex's own (s, t) (poles (0, 1) and (0, 0)); a corner carries the same t and the same s,
+ * except s = 1 instead of 0 on the seam's far side, and a pole corner takes the middle s of its
+ * segment (the mean of its two other corners').  Catches t flipped (theta / pi), s shifted by a
+ * segment, a pole's t, the pole rows' t swapped, and a pole corner at its segment's start. */
+START_TEST(test_the_sphere_maps_s_and_t_as_documented_at_vertices_and_corners)
+{
+    seen c = {NULL, NULL, 0, 0};
+    displace_mesh m;
+    error err = {0};
+    ck_assert_int_eq(displace_sphere(5, check_sphere_vertex, &c, 1, 0, &m, &err), 0);
+    ck_assert_int_eq(c.calls, m.n_verts);
+    ck_assert_msg(c.err < 1e-12, "the callback saw st or n off by %g", c.err);
+    for (long i = 0; i < m.n_tris; i++) {
+        const displace_tri *tr = &m.tris[i];
+        for (int k = 0; k < 3; k++) {
+            vec3 p = m.p[tr->v[k]];
+            uv2 want = sphere_st(p), got = tr->st[k];
+            ck_assert_msg(fabs(got.v - want.v) < 1e-12, "triangle %ld corner %d: t %g, want %g", i, k,
+                          got.v, want.v);
+            if (fabs(p.z) >= 1) { /* a pole: the middle of the other two corners' s */
+                double mid = 0.5 * (tr->st[(k + 1) % 3].u + tr->st[(k + 2) % 3].u);
+                ck_assert_msg(fabs(got.u - mid) < 1e-12, "pole corner s %g, want %g", got.u, mid);
+            } else if (!(fabs(got.u - want.u) < 1e-12)) {
+                ck_assert_msg(want.u == 0 && got.u == 1, "triangle %ld corner %d: s %g, want %g", i, k,
+                              got.u, want.u);
+            }
+        }
+    }
+    displace_mesh_free(&m);
+}
+END_TEST
+
+/* Where the corner normals cancel (b0 n0 + b1 n1 = 0 halfway along the edge p0 p1 when
+ * n1 = -n0), the vertex moves along corner 0's normal (displace.h), not some fixed axis. */
+static double record_normal_at_edge_middle(void *ctx, vec3 p, vec3 n, uv2 st)
+{
+    (void)st;
+    if (p.x == 1 && p.y == 0) *(vec3 *)ctx = n;
+    return 0;
+}
+
+START_TEST(test_cancelling_corner_normals_fall_back_to_corner_0s)
+{
+    const vec3 n[3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}};
+    vec3 seen_n = {0, 0, 0};
+    displace_mesh m;
+    error err = {0};
+    ck_assert_int_eq(displace_triangle(tri_p, n, tri_st, 2, record_normal_at_edge_middle, &seen_n, 1,
+                                       0, &m, &err), 0);
+    ck_assert_msg(seen_n.x == 1 && seen_n.y == 0 && seen_n.z == 0, "(%g %g %g)", seen_n.x, seen_n.y,
+                  seen_n.z);
+    displace_mesh_free(&m);
+}
+END_TEST
+
+/* The limit is on "more than max_tris triangles" (displace.h): exactly max_tris is allowed. */
+START_TEST(test_exactly_max_tris_triangles_is_allowed)
+{
+    displace_mesh m;
+    error err = {0};
+    ck_assert_int_eq(displace_triangle(tri_p, NULL, tri_st, 100, NULL, NULL, 1, 10000, &m, &err), 0);
+    ck_assert_int_eq(m.n_tris, 10000);
+    displace_mesh_free(&m);
+    ck_assert_int_eq(displace_sphere(10, NULL, NULL, 1, 4 * 10 * 9, &m, &err), 0);
+    displace_mesh_free(&m);
+    ck_assert_int_eq(displace_sphere(10, NULL, NULL, 1, 4 * 10 * 9 - 1, &m, &err), -1);
+}
+END_TEST
+
 START_TEST(test_limits_and_bad_input_are_errors_before_allocation)
 {
     displace_mesh m;
@@ -162,6 +293,9 @@ START_TEST(test_limits_and_bad_input_are_errors_before_allocation)
     ck_assert_int_eq(displace_triangle(line, NULL, tri_st, 2, NULL, NULL, 1, 0, &m, &err), -1);
     const vec3 nz[3] = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
     ck_assert_int_eq(displace_triangle(line, nz, tri_st, 2, NULL, NULL, 1, 0, &m, &err), 0);
+    /* every facet of a line has zero area: the vertices keep their normals (displace.h) */
+    for (long k = 0; k < m.n_verts; k++)
+        ck_assert_msg(m.n[k].x == 0 && m.n[k].y == 0 && m.n[k].z == 1, "vertex %ld", k);
     displace_mesh_free(&m);
 }
 END_TEST
@@ -176,6 +310,10 @@ Suite *displace_suite(void)
     tcase_add_test(tc, test_the_sphere_is_closed_outward_and_has_the_documented_counts);
     tcase_add_test(tc, test_a_constant_height_grows_the_sphere);
     tcase_add_test(tc, test_sphere_corners_at_the_seam_read_s_one_not_zero);
+    tcase_add_test(tc, test_a_triangles_height_sees_the_interpolated_st_and_normal);
+    tcase_add_test(tc, test_the_sphere_maps_s_and_t_as_documented_at_vertices_and_corners);
+    tcase_add_test(tc, test_exactly_max_tris_triangles_is_allowed);
+    tcase_add_test(tc, test_cancelling_corner_normals_fall_back_to_corner_0s);
     tcase_add_test(tc, test_limits_and_bad_input_are_errors_before_allocation);
     suite_add_tcase(s, tc);
     return s;

@@ -2,8 +2,12 @@
 #include "envtex/displacemap.h"
 
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
 
 #include "envtex/bvh.h"
+#include "envtex/pfm.h"
 #include "envtex/texshade.h"
 #include "unit.h"
 
@@ -70,6 +74,7 @@ START_TEST(test_displaced_triangle_moves_along_its_normal_and_keeps_object_corne
     scene out;
     displacemap_stats st;
     error err = {0};
+    ck_assert(displacemap_needed(&sc)); /* a displaced triangle alone needs it too */
     ck_assert(displacemap_apply(&sc, 0, &out, &st, &err) == 0);
     long n = DISPLACEMAP_TRIANGLE_RATE;
     ck_assert_int_eq(out.n_triangles, n * n);
@@ -277,6 +282,253 @@ START_TEST(test_a_displaced_sphere_keeps_its_texture_mapping)
 }
 END_TEST
 
+/* The budget is on the whole scene at the rates used (displacemap.h): a budget of exactly the
+ * count fits without halving; an undisplaced triangle counts one; the rates stop at 2 and 1
+ * (the triangle rate stays 1 while the sphere's is still being halved).  Catches the count of
+ * a sphere taken as 4 N^2, ">=" for ">", the undisplaced triangles left out of the count (the
+ * copy would overrun its array) and a triangle rate halved to 0. */
+START_TEST(test_the_budget_counts_the_whole_scene_exactly)
+{
+    scene out;
+    displacemap_stats st;
+    error err = {0};
+    scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX("1")
+                    "displacementmap h 0.1\nsphere 0 0 0 1\n");
+    ck_assert_msg(displacemap_apply(&sc, 4 * 48 * 47, &out, &st, &err) == 0, "%s", err.msg);
+    ck_assert_int_eq(st.sphere_rate, 48);
+    displacemap_free(&out);
+    scene_free(&sc);
+    /* a displaced sphere, a displaced triangle and a plain one: 8 + 1 + 1 at rates 2 and 1 */
+    sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX("1")
+              "displacementmap h 0.1\nsphere 0 0 0 1\n"
+              "vertex 0 0 3\nvertex 1 0 3\nvertex 0 1 3\ntri 0 1 2\nnomaps\ntri 0 1 2\n");
+    ck_assert_msg(displacemap_apply(&sc, 10, &out, &st, &err) == 0, "%s", err.msg);
+    ck_assert_int_eq(st.sphere_rate, 2);
+    ck_assert_int_eq(st.triangle_rate, 1);
+    ck_assert_int_eq(out.n_triangles, 10);
+    displacemap_free(&out);
+    ck_assert(displacemap_apply(&sc, 9, &out, &st, &err) == -1);
+    scene_free(&sc);
+}
+END_TEST
+
+/* A triangle with vertex normals (trinormal) moves along them, interpolated (displacemap.h,
+ * displace.h): the corners along their own normals, (0, 0, 1), (0.6, 0, 0.8), (0, 0.6, 0.8),
+ * each point along normalize(b0 n0 + b1 n1 + b2 n2).  Catches the welded normals of triangles
+ * without normals used for it too. */
+START_TEST(test_a_triangle_with_vertex_normals_moves_along_them)
+{
+    scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX("0.5")
+                    "displacementmap h 0.2\nvertexnormal 0 0 0  0 0 1\nvertexnormal 1 0 0  0.6 0 0.8\n"
+                    "vertexnormal 0 1 0  0 0.6 0.8\ntrinormal 0 1 2\n");
+    scene out;
+    displacemap_stats st;
+    error err = {0};
+    ck_assert_msg(displacemap_apply(&sc, 0, &out, &st, &err) == 0, "%s", err.msg);
+    const vec3 n0 = {0, 0, 1}, n1 = {0.6, 0, 0.8}, n2 = {0, 0.6, 0.8};
+    for (long i = 0; i < out.n_triangles; i++)
+        for (int k = 0; k < 3; k++) {
+            vec3 q = out.triangles[i].q[k]; /* the point before displacement: b1 = x, b2 = y */
+            vec3 n = vec3_normalize(vec3_add(vec3_add(vec3_scale(n0, 1 - q.x - q.y), vec3_scale(n1, q.x)),
+                                             vec3_scale(n2, q.y)));
+            vec3 want = vec3_madd(q, n, 0.1); /* 0.2 * 0.5 */
+            ck_assert_msg(vec3_length(vec3_sub(out.triangles[i].p[k], want)) < 1e-12,
+                          "(%g %g %g) went to (%g %g %g)", q.x, q.y, q.z, out.triangles[i].p[k].x,
+                          out.triangles[i].p[k].y, out.triangles[i].p[k].z);
+        }
+    displacemap_free(&out);
+    scene_free(&sc);
+}
+END_TEST
+
+/* A hard edge of a trinormal mesh stays hard (displacemap.h): a tent whose two faces carry
+ * their own face normals at the ridge, not displaced (height 0), keeps each face's normal on
+ * its side of the ridge; only an edge with the same normal before displacement on both sides
+ * is welded.  Catches the border corners grouped by position alone. */
+START_TEST(test_a_hard_edge_between_patches_stays_hard)
+{
+    scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX("0")
+                    "displacementmap h 0.2\n"
+                    "vertexnormal -1 0 0  -1 0 1\nvertexnormal 0 0 1  -1 0 1\nvertexnormal 0 1 1  -1 0 1\n"
+                    "vertexnormal 0 0 1  1 0 1\nvertexnormal 1 0 0  1 0 1\nvertexnormal 0 1 1  1 0 1\n"
+                    "trinormal 0 1 2\ntrinormal 3 4 5\n");
+    scene out;
+    displacemap_stats st;
+    error err = {0};
+    ck_assert_msg(displacemap_apply(&sc, 0, &out, &st, &err) == 0, "%s", err.msg);
+    long n = DISPLACEMAP_TRIANGLE_RATE;
+    ck_assert_int_eq(out.n_triangles, 2 * n * n);
+    vec3 left = vec3_normalize(vec3_make(-1, 0, 1)), right = vec3_normalize(vec3_make(1, 0, 1));
+    for (long i = 0; i < out.n_triangles; i++)
+        for (int k = 0; k < 3; k++)
+            ck_assert_msg(vec3_length(vec3_sub(out.triangles[i].n[k], i < n * n ? left : right)) < 1e-12,
+                          "triangle %ld corner %d: normal (%g %g %g)", i, k, out.triangles[i].n[k].x,
+                          out.triangles[i].n[k].y, out.triangles[i].n[k].z);
+    displacemap_free(&out);
+    scene_free(&sc);
+}
+END_TEST
+
+/* A corner without a normal moves along the ANGLE-weighted mean of the unit geometric normals of
+ * the DISPLACED triangles without normals at its position (displacemap.h).  Two displaced
+ * triangles meet at the origin with angles 90 and 48 degrees there; a third, undisplaced one
+ * (nomaps) shares their other corners and must not pull them.  Catches an unweighted mean and
+ * undisplaced neighbours counted in it. */
+START_TEST(test_a_corner_without_normals_moves_along_the_angle_weighted_mean_of_displaced_faces)
+{
+    scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX("0.5")
+                    "displacementmap h 0.2\n"
+                    "vertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nvertex 0 -1 0\nvertex 0.5 -1 1\n"
+                    "vertex 1 1 1\ntri 0 1 2\ntri 0 3 4\nnomaps\ntri 1 5 2\n");
+    scene out;
+    displacemap_stats st;
+    error err = {0};
+    ck_assert_msg(displacemap_apply(&sc, 0, &out, &st, &err) == 0, "%s", err.msg);
+    /* the faces and their angles at the origin, by the documented formula */
+    vec3 na = vec3_make(0, 0, 1), nb = vec3_normalize(vec3_make(-1, 0, 0.5));
+    double aa = M_PI / 2, ab = vec3_angle(vec3_make(0, -1, 0), vec3_make(0.5, -1, 1));
+    vec3 origin = vec3_normalize(vec3_madd(vec3_scale(na, aa), nb, ab));
+    /* (1, 0, 0) and (0, 1, 0): only the first displaced face has them */
+    long seen_origin = 0, seen_edge = 0, n = DISPLACEMAP_TRIANGLE_RATE;
+    ck_assert_int_eq(out.n_triangles, 2 * n * n + 1);
+    for (long i = 0; i < 2 * n * n; i++) /* the two displaced patches (the plain copy is last) */
+        for (int k = 0; k < 3; k++) {
+            vec3 q = out.triangles[i].q[k], p = out.triangles[i].p[k];
+            if (vec3_length(q) == 0) {
+                seen_origin++;
+                ck_assert_msg(vec3_length(vec3_sub(p, vec3_scale(origin, 0.1))) < 1e-12,
+                              "the shared corner went to (%g %g %g)", p.x, p.y, p.z);
+            } else if (q.z == 0 && q.x + q.y == 1 && (q.x == 1 || q.y == 1)) {
+                seen_edge++;
+                ck_assert_msg(vec3_length(vec3_sub(p, vec3_madd(q, na, 0.1))) < 1e-12,
+                              "(%g %g 0) went to (%g %g %g)", q.x, q.y, p.x, p.y, p.z);
+            }
+        }
+    ck_assert(seen_origin > 0 && seen_edge > 0);
+    displacemap_free(&out);
+    scene_free(&sc);
+}
+END_TEST
+
+/* A sphere's normals go to world space like the sphere's (by the inverse transpose): under
+ * `scale 1 0.5 1` the displaced ellipsoid's normal at object point q is along (q.x, 2 q.y, q.z),
+ * not q.  Catches the object-space normal copied as it is. */
+START_TEST(test_a_displaced_sphere_under_a_scale_has_the_ellipsoids_normals)
+{
+    scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX("0.5")
+                    "displacementmap h 0.2\nscale 1 0.5 1\nsphere 0 0 0 1\n");
+    scene out;
+    displacemap_stats st;
+    error err = {0};
+    ck_assert_msg(displacemap_apply(&sc, 0, &out, &st, &err) == 0, "%s", err.msg);
+    for (long i = 0; i < out.n_triangles; i++)
+        for (int k = 0; k < 3; k++) {
+            vec3 q = out.triangles[i].q[k];
+            vec3 want = vec3_normalize(vec3_make(q.x, 2 * q.y, q.z));
+            ck_assert_msg(vec3_dot(out.triangles[i].n[k], want) > 0.999, "at (%g %g %g)", q.x, q.y, q.z);
+        }
+    displacemap_free(&out);
+    scene_free(&sc);
+}
+END_TEST
+
+/* Solid textures on a displaced sphere see the object-space point centre + radius p
+ * (displacemap.h): off the origin and with radius 1.5, every vertex lies at c + (R + SCALE h) u,
+ * h the texture at c + R u.  The solid is marble without turbulence, 0.5 + 0.5 sin(2 x): smooth,
+ * and independent of the noise (the perlin step's starter returns 0).  Catches the unit sphere's
+ * p passed instead. */
+START_TEST(test_a_displaced_spheres_solid_texture_sees_the_object_point)
+{
+    scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n"
+                    "texture h marble 1 2 0 1  0 0 0  1 1 1\ntexfilter nearest\n"
+                    "displacementmap h 0.3\nsphere 1 -2 0.5 1.5\n");
+    scene out;
+    displacemap_stats st;
+    error err = {0};
+    ck_assert_msg(displacemap_apply(&sc, 2000, &out, &st, &err) == 0, "%s", err.msg);
+    const material *m = &sc.materials[sc.spheres[0].material];
+    const texture *tex = scene_map(&sc, m->displacementmap);
+    vec3 c = vec3_make(1, -2, 0.5);
+    double lo = 1e9, hi = -1e9;
+    for (long i = 0; i < out.n_triangles; i++)
+        for (int k = 0; k < 3; k++) {
+            vec3 d = vec3_sub(out.triangles[i].q[k], c), u = vec3_normalize(d);
+            texture_query tq = {0};
+            tq.p = vec3_madd(c, u, 1.5);
+            tq.filter = m->texfilter;
+            double h = texture_eval_scalar(tex, &tq);
+            lo = fmin(lo, h);
+            hi = fmax(hi, h);
+            ck_assert_msg(fabs(vec3_length(d) - (1.5 + 0.3 * h)) < 1e-9, "radius %g, want %g",
+                          vec3_length(d), 1.5 + 0.3 * h);
+        }
+    ck_assert(hi - lo > 0.1); /* the heights do vary */
+    displacemap_free(&out);
+    scene_free(&sc);
+}
+END_TEST
+
+/* Texture coordinates of the heights under a point mapping (displacemap.h): a sphere's is its
+ * texmapping of the UNIT direction u (not of the object point c + R u), a triangle's that of
+ * its object-space point q (not the interpolated uv).  A smooth 4 x 4 image, read bilinearly,
+ * planar mapping, off the origin.  Catches the sphere mapping its object point and the triangle
+ * keeping its uv. */
+START_TEST(test_heights_under_a_planar_mapping_read_the_documented_point)
+{
+    char dir[] = "/tmp/test_displacemap_XXXXXX";
+    ck_assert_ptr_nonnull(mkdtemp(dir));
+    char path[256], text[1024];
+    snprintf(path, sizeof path, "%s/h.pfm", dir);
+    image img;
+    error err = {0};
+    ck_assert_int_eq(image_alloc(&img, 4, 4, &err), 0);
+    for (int y = 0; y < 4; y++)
+        for (int x = 0; x < 4; x++)
+            for (int c = 0; c < 3; c++) img.px[3 * (4 * y + x) + c] = (float)(0.1 + 0.2 * x + 0.1 * y * (x % 3));
+    ck_assert_int_eq(pfm_write(path, &img, &err), 0);
+    image_free(&img);
+    snprintf(text, sizeof text, "size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\ntexture h %s\n"
+             "texfilter bilinear\ntexmapping planar\ndisplacementmap h 0.3\nsphere 1 -2 0.5 1.5\n"
+             "translate 0 0 4\nvertex 0.2 0.3 0\nvertex 1.7 0.1 0\nvertex 0.4 1.2 0\ntri 0 1 2\n", path);
+    scene sc = load(text), out;
+    displacemap_stats st;
+    ck_assert_msg(displacemap_apply(&sc, 3000, &out, &st, &err) == 0, "%s", err.msg);
+    const material *m = &sc.materials[sc.spheres[0].material];
+    const texture *tex = scene_map(&sc, m->displacementmap);
+    vec3 c = vec3_make(1, -2, 0.5);
+    long spheres = 0, tris = 0;
+    double lo = 1e9, hi = -1e9;
+    for (long i = 0; i < out.n_triangles; i++)
+        for (int k = 0; k < 3; k++) {
+            const scene_triangle *t = &out.triangles[i];
+            texture_query tq = {0};
+            tq.filter = m->texfilter;
+            if (t->st_mapped) { /* the sphere's: c + (R + SCALE h) u */
+                vec3 d = vec3_sub(t->q[k], c);
+                tq.st = texmapping_point(TEXMAPPING_PLANAR, vec3_normalize(d));
+                double h = texture_eval_scalar(tex, &tq);
+                ck_assert_msg(fabs(vec3_length(d) - (1.5 + 0.3 * h)) < 1e-9, "sphere: radius %g, want %g",
+                              vec3_length(d), 1.5 + 0.3 * h);
+                spheres++;
+            } else { /* the triangle's: up from z = 4 by SCALE h */
+                tq.st = texmapping_point(TEXMAPPING_PLANAR, t->q[k]);
+                tq.p = t->q[k];
+                double h = texture_eval_scalar(tex, &tq);
+                ck_assert_msg(fabs(t->p[k].z - (4 + 0.3 * h)) < 1e-9, "triangle: z %g, want %g", t->p[k].z,
+                              4 + 0.3 * h);
+                lo = fmin(lo, h);
+                hi = fmax(hi, h);
+                tris++;
+            }
+        }
+    ck_assert(spheres > 0 && tris > 0 && hi - lo > 0.05);
+    displacemap_free(&out);
+    scene_free(&sc);
+    remove(path);
+    rmdir(dir);
+}
+END_TEST
+
 Suite *displacemap_suite(void)
 {
     Suite *s = suite_create("displacemap");
@@ -289,6 +541,13 @@ Suite *displacemap_suite(void)
     tcase_add_test(tc, test_a_displaced_sphere_under_a_mirror_keeps_its_triangles_facing_out);
     tcase_add_test(tc, test_rates_are_halved_until_the_budget_fits_and_an_impossible_budget_fails);
     tcase_add_test(tc, test_a_displaced_sphere_keeps_its_texture_mapping);
+    tcase_add_test(tc, test_the_budget_counts_the_whole_scene_exactly);
+    tcase_add_test(tc, test_a_triangle_with_vertex_normals_moves_along_them);
+    tcase_add_test(tc, test_a_hard_edge_between_patches_stays_hard);
+    tcase_add_test(tc, test_a_corner_without_normals_moves_along_the_angle_weighted_mean_of_displaced_faces);
+    tcase_add_test(tc, test_a_displaced_sphere_under_a_scale_has_the_ellipsoids_normals);
+    tcase_add_test(tc, test_a_displaced_spheres_solid_texture_sees_the_object_point);
+    tcase_add_test(tc, test_heights_under_a_planar_mapping_read_the_documented_point);
     suite_add_tcase(s, tc);
     return s;
 }

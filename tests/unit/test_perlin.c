@@ -283,8 +283,11 @@ START_TEST(test_marble_and_wood_follow_their_formulas_and_stay_in_range)
     ck_assert_near(perlin_wood(vec3_make(0.3, 5, 0.4), 2, 0), 0.0, 1e-12); /* 2 * 0.5 = 1 */
     ck_assert_near(perlin_wood(vec3_make(0, -9, 0.3), 5, 0), 0.5, 1e-12);
     ck_assert_near(perlin_marble(vec3_make(M_PI / 8, 3, 3), 4, 0, 6), 1.0, 1e-12);
-    /* a ring fraction that rounds up to 1 is kept below 1 */
-    ck_assert(perlin_wood(vec3_make(0, 0, -1e-17), -1, 0) < 1.0);
+    /* a ring fraction that rounds up to 1 is kept below 1, and next to its true value
+     * v - floor(v) = 1 - 1e-17 (not wrapped round to 0, the far end of the ring) */
+    double f = perlin_wood(vec3_make(0, 0, -1e-17), -1, 0);
+    ck_assert(f < 1.0);
+    ck_assert_near(f, 1.0, 1e-15);
 }
 END_TEST
 

@@ -201,6 +201,99 @@ START_TEST(test_no_differentials_in_means_none_out)
 }
 END_TEST
 
+/* Offset rays are (o + do, unit(d) + dd) (ray.h: the differentials are of the UNIT direction,
+ * and a ray's d need not be unit), and the tangent plane's normal may have any length
+ * (raydiff.h): the footprint must not change when either is scaled.  The plane z = -7 seen at
+ * an angle, with offset origins too (as after a mirror), so that every term of
+ * t_x = n . (p - (o + dox)) / n . (d + ddx) counts.  Catches d taken as given (a ray of length
+ * 3 moved by a third of a pixel's step) and the grazing test made absolute in |ng|. */
+START_TEST(test_hit_differential_ignores_the_lengths_of_d_and_ng)
+{
+    vec3 d = vec3_normalize(vec3_make(0.3, -0.2, -1));
+    ray r = {vec3_make(0.5, 1, 0), d, 0, INFINITY};
+    ray_diff rd = {1, vec3_make(0.01, 0.002, 0), vec3_make(0.004, 0.001, 0.0005),
+                   vec3_make(-0.001, 0.02, 0.003), vec3_make(0.0005, -0.006, 0.001)};
+    vec3 p = vec3_madd(r.o, d, 7 / -d.z), ng = vec3_make(0, 0, 1);
+    vec3 dx, dy;
+    ck_assert(raydiff_at_hit(&r, &rd, p, ng, &dx, &dy));
+    /* the offset ray's own hit on z = -7, minus p */
+    vec3 ox = vec3_add(r.o, rd.dox), wx = vec3_add(d, rd.ddx);
+    vec3 oy = vec3_add(r.o, rd.doy), wy = vec3_add(d, rd.ddy);
+    assert_vec_near(dx, vec3_sub(vec3_madd(ox, wx, (-7 - ox.z) / wx.z), p), 1e-12, "dp/dx");
+    assert_vec_near(dy, vec3_sub(vec3_madd(oy, wy, (-7 - oy.z) / wy.z), p), 1e-12, "dp/dy");
+    const double scales[4] = {3, 0.01, 1e-20, 1e20};
+    for (int i = 0; i < 4; i++) {
+        ray rs = r;
+        rs.d = vec3_scale(d, scales[i]);
+        vec3 ex, ey;
+        ck_assert(raydiff_at_hit(&rs, &rd, p, ng, &ex, &ey));
+        assert_vec_near(ex, dx, 1e-12, "dp/dx with a scaled d");
+        assert_vec_near(ey, dy, 1e-12, "dp/dy with a scaled d");
+        ck_assert(raydiff_at_hit(&r, &rd, p, vec3_scale(ng, scales[i]), &ex, &ey));
+        assert_vec_near(ex, dx, 1e-12, "dp/dx with a scaled ng");
+        assert_vec_near(ey, dy, 1e-12, "dp/dy with a scaled ng");
+    }
+}
+END_TEST
+
+/* The grazing limit is relative, |n . (d + dd)| <= RAYDIFF_MIN_COS |n| |d + dd| (raydiff.h):
+ * an offset ray at a cosine of 1e-14 gives no differential though 1e-14 is no zero division;
+ * and when one axis grazes and the other does not, BOTH outputs are zero.  rd.has = 0 gives
+ * none even for a ray that would hit the plane squarely.  Catches the test written as
+ * n . d' != 0, the x result left behind when y fails, and has ignored. */
+START_TEST(test_hit_differential_is_none_when_either_offset_ray_nearly_grazes_or_has_is_zero)
+{
+    ray r = {vec3_make(0, 0, 1), vec3_make(0, 0, -1), 0, INFINITY};
+    vec3 p = vec3_make(0, 0, 0), ng = vec3_make(0, 0, 1), dx, dy;
+    /* d + ddy = (1, 0, -1e-14): nearly in the plane */
+    ray_diff rd = {1, vec3_make(0, 0, 0), vec3_make(0.01, 0, 0), vec3_make(0, 0, 0),
+                   vec3_make(1, 0, 1 - 1e-14)};
+    ck_assert(!raydiff_at_hit(&r, &rd, p, ng, &dx, &dy));
+    ck_assert(vec3_length(dx) == 0 && vec3_length(dy) == 0);
+    rd.ddy = vec3_make(0, 0.01, 0); /* both fine: a differential */
+    ck_assert(raydiff_at_hit(&r, &rd, p, ng, &dx, &dy));
+    ck_assert(vec3_length(dx) > 0 && vec3_length(dy) > 0);
+    rd.has = 0;
+    ck_assert(!raydiff_at_hit(&r, &rd, p, ng, &dx, &dy));
+    ck_assert(vec3_length(dx) == 0 && vec3_length(dy) == 0);
+}
+END_TEST
+
+/* Grazing transmission is cos_t <= RAYDIFF_MIN_COS (raydiff.h), not only cos_t = 0: at
+ * cos_t = 1e-13 dmu's eta^2 cos_i / cos_t is 1e13 times too big to be a footprint.  Catches the
+ * guard written as cos_t > 0. */
+START_TEST(test_refraction_differentials_stop_just_above_grazing_too)
+{
+    vec3 z = vec3_make(0, 0, 0), n = vec3_make(0, 0, 1);
+    ray_diff some = {1, z, vec3_make(1e-3, 0, 0), z, vec3_make(0, 1e-3, 0)}, out;
+    vec3 wi = vec3_normalize(vec3_make(1, 0, -1e-13));
+    ck_assert(fabs(vec3_dot(wi, n)) < RAYDIFF_MIN_COS);
+    ck_assert(!raydiff_refract(&some, z, z, n, n, z, z, 1.5, wi, &out));
+    ck_assert(!out.has);
+    wi = vec3_normalize(vec3_make(1, 0, -1e-6)); /* still shallow, but a differential */
+    ck_assert(raydiff_refract(&some, z, z, n, n, z, z, 1.5, wi, &out));
+    ck_assert(out.has);
+}
+END_TEST
+
+/* A reflected or refracted ray starts at the hit, so its origin moves with the hit point:
+ * do = dp (raydiff.h), each axis its own.  Catches dox and doy swapped in either function. */
+START_TEST(test_reflected_and_refracted_origins_move_with_the_hit_point)
+{
+    vec3 n = vec3_make(0, 0, 1), wo = vec3_normalize(vec3_make(0.3, 0.1, 1));
+    vec3 dpdx = vec3_make(0.01, 0.002, 0), dpdy = vec3_make(-0.003, 0.02, 0);
+    vec3 dn = vec3_make(0.001, 0, 0), wi;
+    ray_diff in = {1, vec3_make(0, 0, 0), vec3_make(0.002, 0, 0.001), vec3_make(0, 0, 0),
+                   vec3_make(0, 0.002, 0.0005)}, out;
+    raydiff_reflect(&in, dpdx, dpdy, wo, n, dn, dn, &out);
+    ck_assert(out.has);
+    ck_assert(vec3_length(vec3_sub(out.dox, dpdx)) == 0 && vec3_length(vec3_sub(out.doy, dpdy)) == 0);
+    ck_assert(fresnel_refract(vec3_neg(wo), n, 1.5, &wi));
+    ck_assert(raydiff_refract(&in, dpdx, dpdy, wo, n, dn, dn, 1 / 1.5, wi, &out));
+    ck_assert(vec3_length(vec3_sub(out.dox, dpdx)) == 0 && vec3_length(vec3_sub(out.doy, dpdy)) == 0);
+}
+END_TEST
+
 /* ---- footprints at scene hits (texshade.h) ---------------------------------------------- */
 
 /* A 1 x 1 quad facing the camera at distance D, (s, t) = (x, y) + 0.5: one world unit is one
@@ -464,6 +557,10 @@ Suite *raydiff_suite(void)
     tcase_add_test(tc, test_reflection_differentials_match_finite_differences_on_a_mirror_sphere);
     tcase_add_test(tc, test_refraction_differentials_match_finite_differences_at_a_curved_surface);
     tcase_add_test(tc, test_no_differentials_in_means_none_out);
+    tcase_add_test(tc, test_hit_differential_ignores_the_lengths_of_d_and_ng);
+    tcase_add_test(tc, test_hit_differential_is_none_when_either_offset_ray_nearly_grazes_or_has_is_zero);
+    tcase_add_test(tc, test_refraction_differentials_stop_just_above_grazing_too);
+    tcase_add_test(tc, test_reflected_and_refracted_origins_move_with_the_hit_point);
     tcase_add_test(tc, test_footprint_of_a_plane_at_known_distance_picks_the_mip_level);
     tcase_add_test(tc, test_barycentric_st_at_a_hit_interpolates_the_corners);
     tcase_add_test(tc, test_delta_diff_tells_reflection_from_refraction_by_the_shading_normal);
