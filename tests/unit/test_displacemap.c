@@ -533,6 +533,7 @@ Suite *displacemap_suite(void)
 {
     Suite *s = suite_create("displacemap");
     TCase *tc = tcase_create("core");
+    tcase_set_timeout(tc, 60); /* it renders displaced spheres: Check's default (4 s, times CK_TIMEOUT_MULTIPLIER) timed out twice on a loaded machine */
     tcase_add_test(tc, test_scenes_without_displacement_need_none);
     tcase_add_test(tc, test_displaced_sphere_vertices_lie_at_radius_plus_scale_times_height);
     tcase_add_test(tc, test_displaced_triangle_moves_along_its_normal_and_keeps_object_corners);
