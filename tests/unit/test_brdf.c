@@ -340,6 +340,24 @@ START_TEST(test_brdf_delta_surfaces_reflect_and_refract_exactly)
 }
 END_TEST
 
+/* Modified Phong's value at a known angle: f = kd / pi + ks (s + 2) / (2 pi) (r . wi)^s, with r
+ * the mirror direction of wo (brdf.h), for wi 20 degrees off r in the plane of incidence and
+ * for wi = r.  The albedo test bounds f only through its integral; this catches a wrong
+ * normalization ((s + 1) / (2 pi) still keeps the albedo within [kd, kd + ks]) or exponent. */
+START_TEST(test_brdf_phong_eval_is_the_modified_phong_formula)
+{
+    const double kd = 0.3, ks = 0.5, shin = 10;
+    brdf_case c = {"", BRDF_PHONG, SAMPLING_BRDF, kd, ks, shin, 0, 40};
+    surface s = make_surface(&c);
+    vec3 wo = vec3_make(sin(40 * M_PI / 180), 0, cos(40 * M_PI / 180));
+    vec3 wi = vec3_make(-sin(20 * M_PI / 180), 0, cos(20 * M_PI / 180)); /* r at -40: 20 deg off */
+    vec3 r = vec3_make(-wo.x, 0, wo.z);
+    double want = kd / M_PI + ks * (shin + 2) / (2 * M_PI) * pow(cos(20 * M_PI / 180), shin);
+    ck_assert_near(brdf_eval(&s, wo, wi).r, want, 1e-12);
+    ck_assert_near(brdf_eval(&s, wo, r).r, kd / M_PI + ks * (shin + 2) / (2 * M_PI), 1e-12);
+}
+END_TEST
+
 Suite *brdf_suite(void)
 {
     Suite *s = suite_create("brdf");
@@ -354,6 +372,7 @@ Suite *brdf_suite(void)
     tcase_add_test(tc, test_brdf_specular_probability_follows_the_course);
     tcase_add_test(tc, test_brdf_is_zero_below_the_surface);
     tcase_add_test(tc, test_brdf_delta_surfaces_reflect_and_refract_exactly);
+    tcase_add_test(tc, test_brdf_phong_eval_is_the_modified_phong_formula);
     tcase_add_test(tc, test_brdf_phong_with_huge_shininess_stays_finite_at_the_mirror_direction);
     tcase_add_test(tc, test_brdf_ggx_with_extreme_roughness_is_finite_and_reaches_its_limits);
     suite_add_tcase(s, tc);
