@@ -358,6 +358,27 @@ START_TEST(test_brdf_phong_eval_is_the_modified_phong_formula)
 }
 END_TEST
 
+/* Mirror and glass are deltas: f and every strategy's pdf are 0 even when the material also
+ * has a diffuse colour (brdf.h: "0 ... for delta BRDFs"), so nothing can add a kd / pi lobe
+ * to them; and a black mirror's sample carries nothing, so it ends the path (returns 0). */
+START_TEST(test_brdf_delta_surfaces_have_no_f_or_pdf_even_with_a_diffuse_colour)
+{
+    const brdf_kind kinds[] = {BRDF_MIRROR, BRDF_GLASS};
+    const sampling_kind strat[] = {SAMPLING_HEMISPHERE, SAMPLING_COSINE, SAMPLING_BRDF};
+    vec3 wo = wo_of(30), wi = wo_of(60);
+    for (int k = 0; k < 2; k++) {
+        brdf_case c = {"", kinds[k], SAMPLING_BRDF, 0.5, 0.4, 10, 0.3, 0};
+        surface s = make_surface(&c);
+        ck_assert(rgb_is_black(brdf_eval(&s, wo, wi)));
+        for (int j = 0; j < 3; j++) ck_assert(brdf_pdf(&s, wo, wi, strat[j]) == 0);
+    }
+    brdf_case m = {"", BRDF_MIRROR, SAMPLING_BRDF, 0.5, 0.0, 0, 0, 0};
+    surface s = make_surface(&m);
+    brdf_sample_result bs;
+    ck_assert_int_eq(brdf_sample(&s, wo, SAMPLING_BRDF, 0.3, 0.6, 0.9, &bs), 0);
+}
+END_TEST
+
 Suite *brdf_suite(void)
 {
     Suite *s = suite_create("brdf");
@@ -372,6 +393,7 @@ Suite *brdf_suite(void)
     tcase_add_test(tc, test_brdf_specular_probability_follows_the_course);
     tcase_add_test(tc, test_brdf_is_zero_below_the_surface);
     tcase_add_test(tc, test_brdf_delta_surfaces_reflect_and_refract_exactly);
+    tcase_add_test(tc, test_brdf_delta_surfaces_have_no_f_or_pdf_even_with_a_diffuse_colour);
     tcase_add_test(tc, test_brdf_phong_eval_is_the_modified_phong_formula);
     tcase_add_test(tc, test_brdf_phong_with_huge_shininess_stays_finite_at_the_mirror_direction);
     tcase_add_test(tc, test_brdf_ggx_with_extreme_roughness_is_finite_and_reaches_its_limits);
