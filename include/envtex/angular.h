@@ -44,7 +44,8 @@ int angular_dir_to_uv(vec3 d, uv2 *uv);
 
 /* Image point (u, v) -> unit direction.  Returns 0, or -1 (d untouched) for a point outside
  * the disc (rho > 1 + 1e-15, the slack absorbing rounding on the rim) or a NaN coordinate.
- * Every rim point gives -x. */
+ * Every rim point gives -x up to rounding: y and z of about 1e-15 at most (theta is at best
+ * the double nearest pi, whose sine is 1.2e-16, not 0). */
 int angular_uv_to_dir(uv2 uv, vec3 *d);
 
 /* Bilinear lookup of an angular map in direction d (envmap frame): texel centres at

@@ -209,7 +209,7 @@ START_TEST(test_angular_ignores_the_length_of_the_direction)
 END_TEST
 
 /* At texel centres the lookup returns the texel; +x reads the image centre.  Catches a
- * half-texel offset and a flipped axis. */
+ * half-texel offset, a flipped axis, and wrapping instead of clamping at the edges. */
 START_TEST(test_angular_lookup_reads_texel_centres)
 {
     const int n = 9;
@@ -226,6 +226,13 @@ START_TEST(test_angular_lookup_reads_texel_centres)
     ck_assert_near(angular_lookup_bilinear(&probe, vec3_make(1, 0, 0)).r, 4 + 400, 1e-12);
     ck_assert(angular_lookup_bilinear(&probe, vec3_make(1, 0, 1)).r < 400); /* +z: above */
     ck_assert(angular_lookup_bilinear(&probe, vec3_make(1, 1, 0)).r > 404); /* +y: right */
+    /* beyond the outermost texel centres (on row 4's centre, v = 1/2) the lookup clamps to the
+     * edge column (angular.h), not blended with the opposite edge as a wrapping lookup would */
+    vec3 d;
+    ck_assert_int_eq(angular_uv_to_dir((uv2){1 - 0.25 / n, 0.5}, &d), 0);
+    ck_assert_near(angular_lookup_bilinear(&probe, d).r, 8 + 400, 1e-6);
+    ck_assert_int_eq(angular_uv_to_dir((uv2){0.25 / n, 0.5}, &d), 0);
+    ck_assert_near(angular_lookup_bilinear(&probe, d).r, 0 + 400, 1e-6);
     image_free(&probe);
 }
 END_TEST

@@ -340,6 +340,45 @@ START_TEST(test_brdf_delta_surfaces_reflect_and_refract_exactly)
 }
 END_TEST
 
+/* Modified Phong's value at a known angle: f = kd / pi + ks (s + 2) / (2 pi) (r . wi)^s, with r
+ * the mirror direction of wo (brdf.h), for wi 20 degrees off r in the plane of incidence and
+ * for wi = r.  The albedo test bounds f only through its integral; this catches a wrong
+ * normalization ((s + 1) / (2 pi) still keeps the albedo within [kd, kd + ks]) or exponent. */
+START_TEST(test_brdf_phong_eval_is_the_modified_phong_formula)
+{
+    const double kd = 0.3, ks = 0.5, shin = 10;
+    brdf_case c = {"", BRDF_PHONG, SAMPLING_BRDF, kd, ks, shin, 0, 40};
+    surface s = make_surface(&c);
+    vec3 wo = vec3_make(sin(40 * M_PI / 180), 0, cos(40 * M_PI / 180));
+    vec3 wi = vec3_make(-sin(20 * M_PI / 180), 0, cos(20 * M_PI / 180)); /* r at -40: 20 deg off */
+    vec3 r = vec3_make(-wo.x, 0, wo.z);
+    double want = kd / M_PI + ks * (shin + 2) / (2 * M_PI) * pow(cos(20 * M_PI / 180), shin);
+    ck_assert_near(brdf_eval(&s, wo, wi).r, want, 1e-12);
+    ck_assert_near(brdf_eval(&s, wo, r).r, kd / M_PI + ks * (shin + 2) / (2 * M_PI), 1e-12);
+}
+END_TEST
+
+/* Mirror and glass are deltas: f and every strategy's pdf are 0 even when the material also
+ * has a diffuse colour (brdf.h: "0 ... for delta BRDFs"), so nothing can add a kd / pi lobe
+ * to them; and a black mirror's sample carries nothing, so it ends the path (returns 0). */
+START_TEST(test_brdf_delta_surfaces_have_no_f_or_pdf_even_with_a_diffuse_colour)
+{
+    const brdf_kind kinds[] = {BRDF_MIRROR, BRDF_GLASS};
+    const sampling_kind strat[] = {SAMPLING_HEMISPHERE, SAMPLING_COSINE, SAMPLING_BRDF};
+    vec3 wo = wo_of(30), wi = wo_of(60);
+    for (int k = 0; k < 2; k++) {
+        brdf_case c = {"", kinds[k], SAMPLING_BRDF, 0.5, 0.4, 10, 0.3, 0};
+        surface s = make_surface(&c);
+        ck_assert(rgb_is_black(brdf_eval(&s, wo, wi)));
+        for (int j = 0; j < 3; j++) ck_assert(brdf_pdf(&s, wo, wi, strat[j]) == 0);
+    }
+    brdf_case m = {"", BRDF_MIRROR, SAMPLING_BRDF, 0.5, 0.0, 0, 0, 0};
+    surface s = make_surface(&m);
+    brdf_sample_result bs;
+    ck_assert_int_eq(brdf_sample(&s, wo, SAMPLING_BRDF, 0.3, 0.6, 0.9, &bs), 0);
+}
+END_TEST
+
 Suite *brdf_suite(void)
 {
     Suite *s = suite_create("brdf");
@@ -354,6 +393,8 @@ Suite *brdf_suite(void)
     tcase_add_test(tc, test_brdf_specular_probability_follows_the_course);
     tcase_add_test(tc, test_brdf_is_zero_below_the_surface);
     tcase_add_test(tc, test_brdf_delta_surfaces_reflect_and_refract_exactly);
+    tcase_add_test(tc, test_brdf_delta_surfaces_have_no_f_or_pdf_even_with_a_diffuse_colour);
+    tcase_add_test(tc, test_brdf_phong_eval_is_the_modified_phong_formula);
     tcase_add_test(tc, test_brdf_phong_with_huge_shininess_stays_finite_at_the_mirror_direction);
     tcase_add_test(tc, test_brdf_ggx_with_extreme_roughness_is_finite_and_reaches_its_limits);
     suite_add_tcase(s, tc);

@@ -222,6 +222,56 @@ START_TEST(test_threshold_verdicts_follow_the_percent_hard_and_nan_rules)
 }
 END_TEST
 
+/* compare.h: a pixel's difference is its LARGEST channel |a - ref|, and a pixel fails only if
+ * that EXCEEDS fail_thresh (or hard_thresh): a difference of exactly the threshold passes.
+ * Differences of 0.25 and 0.125 are exact in float.  Catches the last channel taken for the
+ * pixel's difference and >= in place of > for either threshold. */
+START_TEST(test_threshold_uses_the_largest_channel_and_exactly_the_threshold_passes)
+{
+    image a = {0}, ref = {0};
+    grey(&a, 10, 10, 0.5f);
+    grey(&ref, 10, 10, 0.5f);
+    image_px(&a, 2, 3)[0] = 0.75f;  /* 0.25 in the first channel */
+    image_px(&a, 2, 3)[1] = 0.625f; /* 0.125 in the second, 0 in the last */
+    compare_thresholds_params p = compare_thresholds_defaults();
+    p.fail_thresh = 0.25;
+    p.fail_percent = 0.0;
+    p.hard_thresh = 0.25;
+    compare_verdict v;
+    ck_assert_int_eq(compare_thresholds(&a, &ref, &p, &v), 0);
+    ck_assert_int_eq(v.failed, 0);
+    ck_assert_int_eq(v.hard_failed, 0);
+    ck_assert_double_eq(v.max_diff, 0.25);
+    ck_assert_int_eq(v.max_x, 2);
+    ck_assert_int_eq(v.max_y, 3);
+    p.fail_thresh = 0.2; /* now 0.25 is more than either limit */
+    p.hard_thresh = 0.2;
+    ck_assert_int_eq(compare_thresholds(&a, &ref, &p, &v), -1);
+    ck_assert_int_eq(v.failed, 1);
+    ck_assert_int_eq(v.hard_failed, 1);
+    image_free(&a);
+    image_free(&ref);
+}
+END_TEST
+
+/* A NaN or Inf in the reference fails the comparison as one in the image under test does
+ * (compare.h: "any pixel of either image").  Catches only `a` being checked. */
+START_TEST(test_threshold_fails_on_a_nonfinite_reference_pixel)
+{
+    image a = {0}, ref = {0};
+    grey(&a, 4, 4, 0.5f);
+    grey(&ref, 4, 4, 0.5f);
+    image_px(&ref, 1, 2)[2] = INFINITY;
+    compare_thresholds_params p = compare_thresholds_defaults();
+    compare_verdict v;
+    ck_assert_int_eq(compare_thresholds(&a, &ref, &p, &v), -1);
+    ck_assert_int_eq(v.nonfinite, 1);
+    ck_assert_int_eq(v.pass, 0);
+    image_free(&a);
+    image_free(&ref);
+}
+END_TEST
+
 START_TEST(test_relative_mode_forgives_bright_pixels_only)
 {
     image a = {0}, ref = {0};
@@ -233,6 +283,11 @@ START_TEST(test_relative_mode_forgives_bright_pixels_only)
     p.fail_relative = 0.01;
     compare_verdict v;
     ck_assert_int_eq(compare_thresholds(&a, &ref, &p, &v), 0);
+    /* the relative limit is fail_relative times the MEAN of |a| and |ref|: 0.15 on 10 is over
+     * 0.01 * 10.075 (and would pass against their sum, 0.01 * 20.15) */
+    image_px(&a, 0, 0)[0] = 10.15f;
+    ck_assert_int_eq(compare_thresholds(&a, &ref, &p, &v), -1);
+    image_px(&a, 0, 0)[0] = 10.05f;
     image_px(&ref, 1, 0)[1] = 0.1f;
     image_px(&a, 1, 0)[1] = 0.15f; /* 0.05 on a dim value: 40% relative */
     ck_assert_int_eq(compare_thresholds(&a, &ref, &p, &v), -1);
@@ -278,6 +333,8 @@ Suite *compare_suite(void)
     tcase_add_test(tc, test_nonfinite_pixels_are_counted_and_left_out);
     tcase_add_test(tc, test_different_sizes_are_an_error_and_a_failed_verdict);
     tcase_add_test(tc, test_threshold_verdicts_follow_the_percent_hard_and_nan_rules);
+    tcase_add_test(tc, test_threshold_uses_the_largest_channel_and_exactly_the_threshold_passes);
+    tcase_add_test(tc, test_threshold_fails_on_a_nonfinite_reference_pixel);
     tcase_add_test(tc, test_relative_mode_forgives_bright_pixels_only);
     tcase_add_test(tc, test_difference_image_uses_one_colour_per_decade);
     suite_add_tcase(s, tc);

@@ -235,6 +235,13 @@ START_TEST(test_mirrorball_lookup_reads_texel_centres)
     /* +z is above the centre (smaller row), +y to its right (larger column) */
     ck_assert(mirrorball_lookup_bilinear(&probe, vec3_make(1, 0, 1)).r < 400);
     ck_assert(mirrorball_lookup_bilinear(&probe, vec3_make(1, 1, 0)).r > 404);
+    /* beyond the outermost texel centres (on row 4's centre, v = 1/2) the lookup clamps to the
+     * edge column (mirrorball.h), not blended with the opposite edge as a wrapping lookup would */
+    vec3 d;
+    ck_assert_int_eq(mirrorball_uv_to_dir((uv2){1 - 0.25 / n, 0.5}, &d), 0);
+    ck_assert_near(mirrorball_lookup_bilinear(&probe, d).r, 8 + 400, 1e-6);
+    ck_assert_int_eq(mirrorball_uv_to_dir((uv2){0.25 / n, 0.5}, &d), 0);
+    ck_assert_near(mirrorball_lookup_bilinear(&probe, d).r, 0 + 400, 1e-6);
     image_free(&probe);
 }
 END_TEST

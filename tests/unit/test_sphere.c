@@ -209,6 +209,17 @@ START_TEST(test_sphere_hit_respects_tmin_and_tmax)
     EXPECT_NEAR(t, 6, 1e-15);
     r.tmin = 6.5;
     EXPECT_INT_EQ(sphere_intersect(&s, &r, &t), 0);
+    /* open at both ends for both roots: t = tmin is not a hit either (a ray starting exactly on
+     * the sphere, tmin 0, must not hit it at t = 0), nor is the far root at t = tmax */
+    r.tmin = 4.0;
+    EXPECT_INT_EQ(sphere_intersect(&s, &r, &t), 1);
+    EXPECT_NEAR(t, 6, 1e-15);
+    r.tmin = 4.5;
+    r.tmax = 6.0;
+    EXPECT_INT_EQ(sphere_intersect(&s, &r, &t), 0);
+    ray on = make_ray(vec3_make(0, 0, 1), vec3_make(0, 0, -1)); /* on the sphere, inwards */
+    EXPECT_INT_EQ(sphere_intersect(&s, &on, &t), 1);
+    EXPECT_NEAR(t, 2, 1e-15);
 }
 END_TEST
 

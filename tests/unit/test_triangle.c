@@ -62,6 +62,27 @@ START_TEST(test_triangle_edges_and_vertices_are_inside)
 }
 END_TEST
 
+/* The tolerance is TRIANGLE_EDGE_EPS in barycentric units at every edge and every vertex alike
+ * (triangle.h): points half of it outside each edge, and half of it beyond each vertex along
+ * its edges, still hit.  On this triangle a ray straight down at (x, y) has b1 = x and b2 = y
+ * exactly.  Catches one barycentric's bound losing its tolerance (b1 > 1 instead of
+ * b1 > 1 + eps rejected a point just beyond p1 but not the same point beyond p2). */
+START_TEST(test_triangle_edge_tolerance_is_the_same_at_every_edge_and_vertex)
+{
+    double t, b1, b2;
+    const double e = 0.5 * TRIANGLE_EDGE_EPS;
+    const double pts[][2] = {{0.5, -e}, {-e, 0.5}, {0.5 + e / 2, 0.5 + e / 2}, /* edges */
+                             {-e, -e}, {-e, 0}, {0, -e},                       /* beyond p0 */
+                             {1 + e, 0}, {1 + e / 2, -e / 2}, {1, -e},         /* beyond p1 */
+                             {0, 1 + e}, {-e / 2, 1 + e / 2}, {-e, 1}};        /* beyond p2 */
+    for (unsigned i = 0; i < sizeof pts / sizeof pts[0]; i++) {
+        ray r = down_at(pts[i][0], pts[i][1]);
+        EXPECT_MSG(triangle_intersect(P0, P1, P2, &r, &t, &b1, &b2) == 1, "missed (%.17g, %.17g)",
+                   pts[i][0], pts[i][1]);
+    }
+}
+END_TEST
+
 START_TEST(test_triangle_rays_across_a_shared_edge_find_no_crack)
 {
     /* Two triangles sharing the diagonal edge a-c of a quad, with awkward coordinates. */
@@ -313,6 +334,7 @@ Suite *triangle_suite(void)
     TCase *tc = tcase_create("core");
     tcase_add_test(tc, test_triangle_hit_at_the_centroid_has_barycentrics_one_third);
     tcase_add_test(tc, test_triangle_edges_and_vertices_are_inside);
+    tcase_add_test(tc, test_triangle_edge_tolerance_is_the_same_at_every_edge_and_vertex);
     tcase_add_test(tc, test_triangle_rays_across_a_shared_edge_find_no_crack);
     tcase_add_test(tc, test_triangle_parallel_ray_misses);
     tcase_add_test(tc, test_triangle_degenerate_triangles_are_never_hit);
