@@ -23,7 +23,7 @@
  * evenly on angle, so the back hemisphere is far better resolved.
  *
  * Singular point: the whole rim rho = 1 is the single direction -x.  uv -> direction gives -x
- * for every rim point; direction -x (exactly: y = z = 0, x < 0) -> the top rim point
+ * for every rim point (to about 1e-15: angular_uv_to_dir); direction -x (exactly: y = z = 0, x < 0) -> the top rim point
  * (u, v) = (1/2, 0), the limit approached from +z.  Direction +x -> the centre (1/2, 1/2).
  * Away from the rim point the map is well conditioned, right up to the rim.
  *
