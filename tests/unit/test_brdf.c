@@ -358,6 +358,30 @@ START_TEST(test_brdf_phong_eval_is_the_modified_phong_formula)
 }
 END_TEST
 
+/* GGX at a known off-specular pair against FORMAT.md's formulas written out here:
+ * f = kd/pi + F G D / (4 cos_i cos_o), D = a^2 / (pi cos^4 th_h (a^2 + tan^2 th_h)^2),
+ * G = G1(wi) G1(wo) with G1 = 2 / (1 + sqrt(1 + a^2 tan^2 th)), F = ks + (1 - ks) (1 - wi.h)^5.
+ * (Only golden images saw a wrong G1, tan^2 or Schlick term before.) */
+START_TEST(test_brdf_ggx_eval_is_the_courses_microfacet_formula)
+{
+    const double kd = 0.2, ks = 0.3, a = 0.4;
+    brdf_case c = {"", BRDF_GGX, SAMPLING_BRDF, kd, ks, 0, a, 50};
+    surface s = make_surface(&c);
+    vec3 wo = vec3_make(sin(50 * M_PI / 180), 0, cos(50 * M_PI / 180));
+    vec3 wi = vec3_normalize(vec3_make(-0.5, 0.3, 0.8));
+    vec3 h = vec3_normalize(vec3_add(wi, wo));
+    double ci = wi.z, co = wo.z, ch = h.z;
+    double tan2h = (1 - ch * ch) / (ch * ch);
+    double D = a * a / (M_PI * pow(ch, 4) * pow(a * a + tan2h, 2));
+    double ti = (1 - ci * ci) / (ci * ci), to = (1 - co * co) / (co * co);
+    double G = 2 / (1 + sqrt(1 + a * a * ti)) * 2 / (1 + sqrt(1 + a * a * to));
+    double F = ks + (1 - ks) * pow(1 - vec3_dot(wi, h), 5);
+    double want = kd / M_PI + F * G * D / (4 * ci * co);
+    ck_assert_near(brdf_eval(&s, wo, wi).g, want, 1e-12 * want);
+    ck_assert_near(brdf_eval(&s, wi, wo).g, want, 1e-12 * want); /* reciprocal */
+}
+END_TEST
+
 /* Mirror and glass are deltas: f and every strategy's pdf are 0 even when the material also
  * has a diffuse colour (brdf.h: "0 ... for delta BRDFs"), so nothing can add a kd / pi lobe
  * to them; and a black mirror's sample carries nothing, so it ends the path (returns 0). */
@@ -395,6 +419,7 @@ Suite *brdf_suite(void)
     tcase_add_test(tc, test_brdf_delta_surfaces_reflect_and_refract_exactly);
     tcase_add_test(tc, test_brdf_delta_surfaces_have_no_f_or_pdf_even_with_a_diffuse_colour);
     tcase_add_test(tc, test_brdf_phong_eval_is_the_modified_phong_formula);
+    tcase_add_test(tc, test_brdf_ggx_eval_is_the_courses_microfacet_formula);
     tcase_add_test(tc, test_brdf_phong_with_huge_shininess_stays_finite_at_the_mirror_direction);
     tcase_add_test(tc, test_brdf_ggx_with_extreme_roughness_is_finite_and_reaches_its_limits);
     suite_add_tcase(s, tc);
