@@ -375,6 +375,16 @@ static stats nee_run(const char *extra, int with_env, uint64_t seed, long n)
     return st;
 }
 
+/* The estimates st[1 .. n-1] (modes[i]) each agree with st[0], NEE off on a pixel bright
+ * enough to compare, within Z_SE standard errors of their difference. */
+static void assert_agree_with_the_first(const stats *st, const char *const *modes, int n)
+{
+    ck_assert_msg(st[0].mean > 0.05, "the pixel is dark: %g", st[0].mean);
+    for (int i = 1; i < n; i++)
+        ck_assert_msg(fabs(st[i].mean - st[0].mean) < Z_SE * sqrt(st[i].se * st[i].se + st[0].se * st[0].se),
+                      "%s: %.5f vs nee off %.5f (SE %.5f, %.5f)", modes[i], st[i].mean, st[0].mean, st[i].se, st[0].se);
+}
+
 START_TEST(test_integrators_nee_off_on_and_mis_agree_under_a_quad_light)
 {
     const char *light = "quadLight -1 -1 3  2 0 0  0 2 0  5 5 5\n"; /* ac x ab = -z: emits down */
@@ -389,10 +399,7 @@ START_TEST(test_integrators_nee_off_on_and_mis_agree_under_a_quad_light)
         snprintf(extra, sizeof extra, "%s%s", light, modes[i]);
         st[i] = nee_run(extra, 0, 50 + (uint64_t)i, ns[i]);
     }
-    ck_assert_msg(st[0].mean > 0.05, "the pixel is dark: %g", st[0].mean);
-    for (int i = 1; i < 4; i++)
-        ck_assert_msg(fabs(st[i].mean - st[0].mean) < Z_SE * sqrt(st[i].se * st[i].se + st[0].se * st[0].se),
-                      "%s: %.5f vs nee off %.5f (SE %.5f, %.5f)", modes[i], st[i].mean, st[0].mean, st[i].se, st[0].se);
+    assert_agree_with_the_first(st, modes, 4);
 }
 END_TEST
 
@@ -407,10 +414,7 @@ START_TEST(test_integrators_nee_off_on_and_mis_agree_under_a_sun_map)
     long ns[] = {400000, 60000, 60000, 60000, 60000};
     stats st[5];
     for (int i = 0; i < 5; i++) st[i] = nee_run(modes[i], 1, 60 + (uint64_t)i, ns[i]);
-    ck_assert_msg(st[0].mean > 0.05, "the pixel is dark: %g", st[0].mean);
-    for (int i = 1; i < 5; i++)
-        ck_assert_msg(fabs(st[i].mean - st[0].mean) < Z_SE * sqrt(st[i].se * st[i].se + st[0].se * st[0].se),
-                      "%s: %.5f vs nee off %.5f (SE %.5f, %.5f)", modes[i], st[i].mean, st[0].mean, st[i].se, st[0].se);
+    assert_agree_with_the_first(st, modes, 5);
 }
 END_TEST
 
@@ -544,10 +548,7 @@ START_TEST(test_integrators_nee_and_mis_agree_with_two_quad_lights_and_several_s
         snprintf(extra, sizeof extra, "maxdepth 1\n%s%s", lights, modes[i]);
         st[i] = nee_run(extra, 0, 170 + (uint64_t)i, ns[i]);
     }
-    ck_assert_msg(st[0].mean > 0.05, "the pixel is dark: %g", st[0].mean);
-    for (int i = 1; i < 3; i++)
-        ck_assert_msg(fabs(st[i].mean - st[0].mean) < Z_SE * sqrt(st[i].se * st[i].se + st[0].se * st[0].se),
-                      "%s: %.5f vs nee off %.5f (SE %.5f, %.5f)", modes[i], st[i].mean, st[0].mean, st[i].se, st[0].se);
+    assert_agree_with_the_first(st, modes, 3);
 }
 END_TEST
 
@@ -626,10 +627,7 @@ START_TEST(test_integrators_nee_uses_the_shading_normal_like_brdf_sampling)
     long ns[] = {400000, 40000, 40000};
     stats st[3];
     for (int i = 0; i < 3; i++) st[i] = stats_towards(base, modes[i], vec3_make(0.9, -0.6, 0), ns[i], 200 + (uint64_t)i);
-    ck_assert(st[0].mean > 0.05);
-    for (int i = 1; i < 3; i++)
-        ck_assert_msg(fabs(st[i].mean - st[0].mean) < Z_SE * sqrt(st[i].se * st[i].se + st[0].se * st[0].se),
-                      "%s: %.5f vs nee off %.5f (SE %.5f, %.5f)", modes[i], st[i].mean, st[0].mean, st[i].se, st[0].se);
+    assert_agree_with_the_first(st, modes, 3);
 }
 END_TEST
 
