@@ -35,6 +35,18 @@ static void load(scene *sc)
     ck_assert_int_eq(sc->n_lights, 4);
 }
 
+/* im as a lat-long environment (world frame) of radiance scale x its texels */
+static envmap latlong_env(const image *im, double scale)
+{
+    envmap env;
+    memset(&env, 0, sizeof env); /* a zeroed envmap is a lat-long one */
+    env.present = 1;
+    env.img = im;
+    env.scale = scale;
+    env.to_env = mat4_identity();
+    return env;
+}
+
 /* pick probability = power / total power with quad pi A L_avg, point 4 pi I_avg, directional
  * pi R^2 E_avg, envmap pi R^2 |L|; and lights_pick returns each k at that rate */
 START_TEST(test_lights_pick_probability_is_proportional_to_power)
@@ -47,12 +59,7 @@ START_TEST(test_lights_pick_probability_is_proportional_to_power)
     gp.value = 0.25;
     error err = {0};
     ck_assert_int_eq(genenv_make(GENENV_CONSTANT, &gp, &im, &err), 0);
-    envmap env;
-    memset(&env, 0, sizeof env); /* a zeroed envmap is a lat-long one */
-    env.present = 1;
-    env.img = &im;
-    env.scale = 2.0;
-    env.to_env = mat4_identity();
+    envmap env = latlong_env(&im, 2.0);
     envlight el;
     ck_assert_int_eq(envlight_build(&el, &env, ENVSAMPLING_CDF, ENVSAMPLER_BINARY, 0, &err), 0);
     double R = 3.0;
@@ -239,12 +246,7 @@ START_TEST(test_lights_median_cut_shadow_ray_is_jittered_in_the_stratum)
     gp.width = 64;
     error err = {0};
     ck_assert_int_eq(genenv_make(GENENV_SKY, &gp, &im, &err), 0);
-    envmap env;
-    memset(&env, 0, sizeof env);
-    env.present = 1;
-    env.img = &im;
-    env.scale = 1.0;
-    env.to_env = mat4_identity();
+    envmap env = latlong_env(&im, 1.0);
     envlight el;
     ck_assert_int_eq(envlight_build(&el, &env, ENVSAMPLING_MEDIANCUT, ENVSAMPLER_BINARY, 4, &err), 0);
     lights ls;
