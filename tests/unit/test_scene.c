@@ -165,6 +165,8 @@ static const bad_case bad_cases[] = {
     {"attenuation 1 -1 0\n", 3, "'-1'"},
     {"quadLight 0 0 0 1 0 0 2 0 0 1 1 1\n", 3, "'quadLight' has zero area"},
     {"quadLight 0 0 0 0 0 0 0 1 0 1 1 1\n", 3, "'quadLight' has zero area"},
+    /* parallel to within 1e-14 relative: the area test is relative to |ab| |ac| */
+    {"quadLight 0 0 0 1 0 0 1 1e-14 0 1 1 1\n", 3, "'quadLight' has zero area"},
     {"quadLight 0 0 0 1 0 0 0 1 0 1 -1 1\n", 3, "'-1'"},
     /* camera */
     {"camera 0 0 5 0 0 0 0 1 0 0\n", 3, "'camera' fovy must be in (0, 180) degrees, got '0'"},
