@@ -91,6 +91,10 @@ START_TEST(test_rgbe_pixel_conversion_known_values)
     ck_assert_int_eq(b[3], 129);
     rgbe_to_float(b, c);
     ck_assert(c[0] == 128.5f / 128.0f); /* (128 + 0.5) / 256 * 2 */
+    rgbe_from_float((float[3]){-0.3f, 0.5f, 0.25f}, b);
+    ck_assert_int_eq(b[0], 0); /* a negative channel beside positive ones stores as 0 */
+    ck_assert_int_eq(b[1], 128);
+    ck_assert_int_eq(b[2], 64);
     rgbe_from_float((float[3]){NAN, -1.0f, 0.0f}, b);
     ck_assert_int_eq(b[3], 0); /* NaN and negatives store as black */
     rgbe_to_float(b, c);
@@ -184,6 +188,53 @@ START_TEST(test_hostile_rle_runs_that_overflow_the_scanline_are_errors)
 }
 END_TEST
 
+/* A literal of exactly 128 bytes (the count byte 128: a literal, not a run; runs are 129..255):
+ * 300 pixels whose red mantissas count 128, 129, ..., 255 over and over are written as literals
+ * of 128 and their red read back exactly (each decodes to the middle of its bin, which it was). */
+START_TEST(test_rle_literals_of_128_bytes_roundtrip_exactly)
+{
+    make_dir();
+    image im = {0}, back = {0};
+    error err = {0};
+    ck_assert_int_eq(image_alloc(&im, 300, 2, &err), 0);
+    for (int y = 0; y < 2; y++)
+        for (int x = 0; x < 300; x++) image_px(&im, x, y)[0] = (float)((128 + x % 128 + 0.5) / 256.0);
+    ck_assert_int_eq(rgbe_write(in_dir("lit.hdr"), &im, &err), 0);
+    ck_assert_msg(rgbe_read(in_dir("lit.hdr"), &back, &err) == 0, "%s", err.msg);
+    for (int i = 0; i < 600; i++) /* red exactly; green and blue are 0, read as half a bin */
+        ck_assert_msg(back.px[3 * i] == im.px[3 * i], "pixel %d: %.9g, want %.9g", i, back.px[3 * i], im.px[3 * i]);
+    image_free(&im);
+    image_free(&back);
+    remove_dir();
+}
+END_TEST
+
+/* A new-style scanline whose RLE length is not the image width is an error, even when the runs
+ * that follow would fill the width. */
+START_TEST(test_rle_length_other_than_the_width_is_an_error)
+{
+    make_dir();
+    unsigned char d[128];
+    size_t o = 0;
+    const char h[] = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1 +X 8\n";
+    memcpy(d, h, sizeof h - 1);
+    o += sizeof h - 1;
+    memcpy(d + o, "\x02\x02\x00\x09", 4); /* says 9 */
+    o += 4;
+    for (int c = 0; c < 4; c++) {
+        d[o++] = 128 + 8; /* runs of 8: the width */
+        d[o++] = c == 3 ? 129 : 10;
+    }
+    write_bytes(in_dir("len.hdr"), d, o);
+    image im = {0};
+    error err = {0};
+    ck_assert_int_eq(rgbe_read(in_dir("len.hdr"), &im, &err), -1);
+    ck_assert_ptr_nonnull(strstr(err.msg, "RLE length 9"));
+    ck_assert_ptr_null(im.px);
+    remove_dir();
+}
+END_TEST
+
 START_TEST(test_unsupported_headers_are_refused_with_a_reason)
 {
     make_dir();
@@ -260,6 +311,8 @@ Suite *rgbe_suite(void)
     tcase_add_test(tc, test_handmade_flat_file_with_comments_and_exposure_reads);
     tcase_add_test(tc, test_old_style_runs_repeat_the_previous_pixel);
     tcase_add_test(tc, test_hostile_rle_runs_that_overflow_the_scanline_are_errors);
+    tcase_add_test(tc, test_rle_literals_of_128_bytes_roundtrip_exactly);
+    tcase_add_test(tc, test_rle_length_other_than_the_width_is_an_error);
     tcase_add_test(tc, test_unsupported_headers_are_refused_with_a_reason);
     tcase_add_test(tc, test_truncated_hdr_is_an_error_at_every_offset);
     tcase_add_test(tc, test_failed_hdr_write_leaves_the_old_file_byte_identical);
