@@ -342,6 +342,17 @@ START_TEST(test_data_window_is_placed_in_the_display_window_and_the_rest_is_zero
             ck_assert_msg(image_px(&im, x, y)[1] == want, "(%d, %d)", x, y);
         }
     image_free(&im);
+    /* the same data window overhanging the left and the bottom: x -3..3, y 4..9 */
+    ck_assert_int_eq(write_test_exr(in_dir("d2.exr"), 0, EXR_COMPRESSION_ZIP, box(0, 0, 9, 7), box(-3, 4, 3, 9), ch, 3), 0);
+    ck_assert_msg(exrfile_read(in_dir("d2.exr"), &im, &err) == 0, "%s", err.msg);
+    for (int y = 0; y < 8; y++)
+        for (int x = 0; x < 10; x++) {
+            int dx = x + 3, dy = y - 4;
+            int inside = dx >= 0 && dx < dww && dy >= 0 && dy < dwh;
+            float want = inside ? g[dy * dww + dx] : 0.0f;
+            ck_assert_msg(image_px(&im, x, y)[1] == want, "(%d, %d)", x, y);
+        }
+    image_free(&im);
     free(r);
     free(g);
     free(b);
@@ -370,6 +381,114 @@ START_TEST(test_one_layer_of_prefixed_channels_is_read_and_two_are_refused)
     ck_assert_int_eq(exrfile_read(in_dir("lc.exr"), &im, &err), -1); /* names are case-sensitive */
     ck_assert_ptr_nonnull(strstr(err.msg, "no R, G, B or Y channels"));
     free(v);
+    remove_dir();
+}
+END_TEST
+
+/* Files envtex does not read are refused by name: deep pixels, luminance-chroma (Y, RY, BY). */
+START_TEST(test_deep_and_luminance_chroma_exr_are_refused)
+{
+    make_dir();
+    exr_context_t ctx = NULL;
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    int part = 0;
+    exr_result_t r = exr_start_write(&ctx, in_dir("deep.exr"), EXR_WRITE_FILE_DIRECTLY, &init);
+    if (!r) r = exr_add_part(ctx, "deep", EXR_STORAGE_DEEP_SCANLINE, &part);
+    if (!r) r = exr_initialize_required_attr_simple(ctx, part, 4, 4, EXR_COMPRESSION_NONE);
+    if (!r) r = exr_add_channel(ctx, part, "R", EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
+    if (!r) r = exr_write_header(ctx);
+    for (int y = 0; y < 4 && !r; y++) { /* no samples in any pixel */
+        exr_chunk_info_t ci;
+        int32_t counts[4] = {0, 0, 0, 0};
+        r = exr_write_scanline_chunk_info(ctx, part, y, &ci);
+        if (!r) r = exr_write_deep_scanline_chunk(ctx, part, y, NULL, 0, 0, counts, sizeof counts);
+    }
+    exr_result_t f = exr_finish(&ctx);
+    ck_assert_int_eq(r ? r : f, EXR_ERR_SUCCESS);
+    image im = {0};
+    error err = {0};
+    ck_assert_int_eq(exrfile_read(in_dir("deep.exr"), &im, &err), -1);
+    ck_assert_str_eq(err.msg, "deep OpenEXR images are not supported");
+    ck_assert_ptr_null(im.px);
+
+    float *v = planar(4, 4, 0);
+    tchan yc[3] = {{"BY", EXR_PIXEL_HALF, v}, {"RY", EXR_PIXEL_HALF, v}, {"Y", EXR_PIXEL_HALF, v}};
+    ck_assert_int_eq(write_test_exr(in_dir("yc.exr"), 0, EXR_COMPRESSION_ZIP, box(0, 0, 3, 3), box(0, 0, 3, 3), yc, 3), 0);
+    ck_assert_int_eq(exrfile_read(in_dir("yc.exr"), &im, &err), -1);
+    ck_assert_ptr_nonnull(strstr(err.msg, "luminance-chroma images (Y, RY, BY) are not supported"));
+    ck_assert_ptr_null(im.px);
+    free(v);
+    remove_dir();
+}
+END_TEST
+
+/* First index of the n bytes `pat` in d[0..len), or -1. */
+static long find_bytes(const unsigned char *d, size_t len, const void *pat, size_t n)
+{
+    for (size_t i = 0; i + n <= len; i++)
+        if (memcmp(d + i, pat, n) == 0) return (long)i;
+    return -1;
+}
+
+/* Header claims the file cannot back, made by patching an uncompressed 8 x 8 file (one
+ * scanline per chunk, 96 bytes each): each is refused with its own message before any pixel
+ * is decoded. */
+START_TEST(test_exr_header_claims_are_checked_before_decoding)
+{
+    make_dir();
+    float *r = planar(8, 8, 0), *g = planar(8, 8, 1), *b = planar(8, 8, 2);
+    tchan ch[3] = {{"B", EXR_PIXEL_FLOAT, b}, {"G", EXR_PIXEL_FLOAT, g}, {"R", EXR_PIXEL_FLOAT, r}};
+    ck_assert_int_eq(write_test_exr(in_dir("n.exr"), 0, EXR_COMPRESSION_NONE, box(0, 0, 7, 7), box(0, 0, 7, 7), ch, 3), 0);
+    size_t n;
+    unsigned char *d = slurp(in_dir("n.exr"), &n);
+    unsigned char *e = malloc(n);
+    ck_assert_ptr_nonnull(e);
+    image im = {0};
+    error err = {0};
+    ck_assert_msg(exrfile_read(in_dir("n.exr"), &im, &err) == 0, "%s", err.msg);
+    image_free(&im);
+
+    /* the channel list: "G\0", pixel type (4 bytes), pLinear and 3 reserved, xSampling, ySampling */
+    long at = find_bytes(d, n, "chlist", 7);
+    ck_assert_int_gt(at, 0);
+    long gch = find_bytes(d + at, n - (size_t)at, "G\0", 2) + at;
+    const int32_t two = 2;
+    for (int k = 0; k < 2; k++) { /* x, then y sub-sampled */
+        memcpy(e, d, n);
+        memcpy(e + gch + 2 + 4 + 4 + 4 * k, &two, 4);
+        write_bytes(in_dir("sub.exr"), e, n);
+        ck_assert_int_eq(exrfile_read(in_dir("sub.exr"), &im, &err), -1);
+        ck_assert_str_eq(err.msg, k == 0 ? "channel G is sub-sampled (2 x 1); not supported"
+                                         : "channel G is sub-sampled (1 x 2); not supported");
+    }
+
+    /* a data window of 32768 x 16384 (2^29 pixels, each side allowed): over IMAGE_MAX_PIXELS */
+    at = find_bytes(d, n, "dataWindow\0box2i\0", 17);
+    ck_assert_int_gt(at, 0);
+    const int32_t most[2] = {32767, 16383};
+    memcpy(e, d, n);
+    memcpy(e + at + 17 + 4 + 8, most, sizeof most); /* after the size field and min.x, min.y */
+    write_bytes(in_dir("dw.exr"), e, n);
+    ck_assert_int_eq(exrfile_read(in_dir("dw.exr"), &im, &err), -1);
+    ck_assert_msg(strstr(err.msg, "data window: image size 32768 x 16384 is over the limit"), "%s", err.msg);
+
+    /* an uncompressed chunk whose leader says 48 bytes where its 8 pixels take 96: the chunks
+     * hold 720 bytes, the pixels need 768 (compressed, up to 4096 times as many could be fine) */
+    const int32_t leader[2] = {0, 96}, shorter[2] = {0, 48};
+    long c0 = find_bytes(d, n, leader, sizeof leader);
+    ck_assert_int_gt(c0, 0);
+    memcpy(e, d, n);
+    memcpy(e + c0, shorter, sizeof shorter);
+    write_bytes(in_dir("short.exr"), e, n);
+    ck_assert_int_eq(exrfile_read(in_dir("short.exr"), &im, &err), -1);
+    ck_assert_msg(strstr(err.msg, "corrupt or truncated OpenEXR file: 8 x 8 pixels need 768 bytes, more than "
+                                  "its 720 bytes of chunks can hold"), "%s", err.msg);
+    ck_assert_ptr_null(im.px);
+    free(d);
+    free(e);
+    free(r);
+    free(g);
+    free(b);
     remove_dir();
 }
 END_TEST
@@ -519,6 +638,8 @@ Suite *exrfile_suite(void)
     tcase_add_test(tc, test_data_window_is_placed_in_the_display_window_and_the_rest_is_zero);
     tcase_add_test(tc, test_one_layer_of_prefixed_channels_is_read_and_two_are_refused);
     tcase_add_test(tc, test_dwa_files_are_refused_with_a_resave_hint);
+    tcase_add_test(tc, test_deep_and_luminance_chroma_exr_are_refused);
+    tcase_add_test(tc, test_exr_header_claims_are_checked_before_decoding);
     tcase_add_test(tc, test_truncated_exr_is_an_error_at_every_offset);
     tcase_add_test(tc, test_corrupted_exr_bytes_never_crash);
     tcase_add_test(tc, test_missing_files_and_folders_are_clear_errors);

@@ -154,6 +154,39 @@ START_TEST(test_unknown_extension_and_invalid_images_write_nothing)
 }
 END_TEST
 
+/* A write that fails part-way (the disk fills up: here a file size limit of 2 KB, for an image
+ * of 49 KB of noise that no format compresses below it) is an error naming the file, leaves the
+ * old file byte-identical and removes its temporary file, in every format. */
+START_TEST(test_a_write_that_fails_part_way_leaves_the_old_file_and_no_temporary)
+{
+    make_dir();
+    image im = {0}, noise = {0};
+    error err = {0};
+    fill(&im);
+    ck_assert_int_eq(image_alloc(&noise, 64, 64, &err), 0);
+    unsigned int x = 12345;
+    for (int i = 0; i < 64 * 64 * 3; i++) {
+        x = x * 1103515245u + 12345u;
+        noise.px[i] = (float)(x >> 8) / 16777216.0f * 4.0f;
+    }
+    const char *names[] = {"a.exr", "b.pfm", "c.hdr", "d.png"};
+    for (int f = 0; f < 4; f++) {
+        ck_assert_int_eq(imageio_write(in_dir(names[f]), &im, NULL, &err), 0);
+        size_t n;
+        unsigned char *before = slurp(in_dir(names[f]), &n);
+        file_size_limit(2048);
+        int rc = imageio_write(in_dir(names[f]), &noise, NULL, &err);
+        file_size_unlimited();
+        ck_assert_msg(rc == -1, "%s: a write over the size limit succeeded", names[f]);
+        ck_assert_msg(strstr(err.file, names[f]) != NULL, "%s: error names '%s'", names[f], err.file);
+        assert_unchanged(in_dir(names[f]), before, n);
+    }
+    image_free(&im);
+    image_free(&noise);
+    remove_dir();
+}
+END_TEST
+
 START_TEST(test_temporary_files_live_beside_the_target_and_commit_by_rename)
 {
     make_dir();
@@ -198,6 +231,7 @@ Suite *imageio_suite(void)
     tcase_add_test(tc, test_reading_goes_by_magic_bytes_not_the_name);
     tcase_add_test(tc, test_detect_names_the_format_by_magic_bytes_as_read_does);
     tcase_add_test(tc, test_unknown_missing_empty_and_folder_inputs_are_clear_errors);
+    tcase_add_test(tc, test_a_write_that_fails_part_way_leaves_the_old_file_and_no_temporary);
     tcase_add_test(tc, test_truncated_files_of_every_format_are_errors);
     tcase_add_test(tc, test_unknown_extension_and_invalid_images_write_nothing);
     tcase_add_test(tc, test_temporary_files_live_beside_the_target_and_commit_by_rename);

@@ -100,8 +100,8 @@ START_TEST(test_big_endian_grey_pfm_is_replicated)
     make_dir();
     unsigned char d[11 + 8];
     memcpy(d, "Pf\n2 1\n1.0\n", 11);
-    float v[2] = {0.5f, -2.0f};
-    for (int i = 0; i < 2; i++) { /* big endian: most significant byte first */
+    float v[2] = {1.2345678f, -2.0f}; /* 0x3F9E0651: four different bytes, so any byte order */
+    for (int i = 0; i < 2; i++) {     /* but big endian's (most significant first) reads wrong */
         uint32_t u;
         memcpy(&u, &v[i], 4);
         for (int k = 0; k < 4; k++) d[11 + 4 * i + k] = (unsigned char)(u >> (24 - 8 * k));
@@ -110,7 +110,7 @@ START_TEST(test_big_endian_grey_pfm_is_replicated)
     image im = {0};
     error err = {0};
     ck_assert_msg(imageio_read(in_dir("g.pfm"), &im, &err) == 0, "%s", err.msg);
-    ck_assert(im.px[0] == 0.5f && im.px[1] == 0.5f && im.px[2] == 0.5f);
+    ck_assert(im.px[0] == 1.2345678f && im.px[1] == 1.2345678f && im.px[2] == 1.2345678f);
     ck_assert(im.px[3] == -2.0f && im.px[5] == -2.0f);
     image_free(&im);
     remove_dir();
@@ -138,6 +138,37 @@ START_TEST(test_absurd_pfm_size_is_refused_before_allocation)
 }
 END_TEST
 
+/* Header tokens that are not what they claim: each refused with its message, before any
+ * pixel is read. */
+START_TEST(test_malformed_pfm_header_tokens_are_refused)
+{
+    make_dir();
+    char longscale[128];
+    snprintf(longscale, sizeof longscale, "PF\n1 1\n-1.%0*d\n", 70, 0); /* a 73-byte scale token */
+    static const struct { const char *head, *msg; } cases[] = {
+        {"PF\n1 1\n-1.0x\n", "bad PFM scale \"-1.0x\""},
+        {"PF\n4 -1\n-1.0\n", "bad PFM size \"4 -1\""},
+        {"PF\n4 1x\n-1.0\n", "bad PFM size \"4 1x\""},
+        /* far past a long: refused as a size, not wrapped around into a small one */
+        {"PF\n18446744073709551617 1\n-1.0\n", "bad PFM size \"18446744073709551617 1\""},
+        {NULL, "truncated PFM header"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        const char *h = cases[i].head ? cases[i].head : longscale;
+        unsigned char d[256] = {0};
+        size_t n = strlen(h);
+        memcpy(d, h, n);
+        write_bytes(in_dir("h.pfm"), d, n + 12); /* room for one pixel */
+        image im = {0};
+        error err = {0};
+        ck_assert_msg(pfm_read(in_dir("h.pfm"), &im, &err) == -1, "no error for %s", h);
+        ck_assert_msg(strstr(err.msg, cases[i].msg) != NULL, "'%s' for %s", err.msg, h);
+        ck_assert_ptr_null(im.px);
+    }
+    remove_dir();
+}
+END_TEST
+
 START_TEST(test_truncated_pfm_is_an_error_at_every_offset)
 {
     make_dir();
@@ -147,7 +178,8 @@ START_TEST(test_truncated_pfm_is_an_error_at_every_offset)
     ck_assert_int_eq(pfm_write(in_dir("full.pfm"), &im, &err), 0);
     size_t n;
     unsigned char *d = slurp(in_dir("full.pfm"), &n);
-    size_t cuts[] = {0, 1, 2, 5, 9, 12, n / 2, n - 1};
+    /* 11: the file ends right after the scale token, with no white space to end the header */
+    size_t cuts[] = {0, 1, 2, 5, 9, 10, 11, 12, n / 2, n - 1};
     for (size_t i = 0; i < sizeof cuts / sizeof cuts[0]; i++) {
         write_bytes(in_dir("cut.pfm"), d, cuts[i]);
         image back = {0};
@@ -187,6 +219,7 @@ Suite *pfm_suite(void)
     tcase_add_test(tc, test_pfm_header_with_crlf_line_ends);
     tcase_add_test(tc, test_big_endian_grey_pfm_is_replicated);
     tcase_add_test(tc, test_absurd_pfm_size_is_refused_before_allocation);
+    tcase_add_test(tc, test_malformed_pfm_header_tokens_are_refused);
     tcase_add_test(tc, test_truncated_pfm_is_an_error_at_every_offset);
     tcase_add_test(tc, test_failed_pfm_write_leaves_the_old_file_byte_identical);
     suite_add_tcase(s, tc);

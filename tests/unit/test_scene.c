@@ -188,6 +188,10 @@ static const bad_case bad_cases[] = {
     {"envmap cube a b c d e f 0\n", 3, "'envmap' argument 8 must be > 0, got '0'"},
     {"envmap cube a b c d e f 1 2\n", 3, "got 8 arguments"},
     {"scale 1 0 1\nenvmap cube a b c d e f\n", 4, "'envmap' needs the inverse"},
+    {"envsampling cdf 4\n", 3, "'envsampling cdf' takes no count (only 'mediancut N' does)"},
+    /* a corner that overflows where the transform itself does not */
+    {"scale 1e300 1 1\nvertex 0 0 0\nvertex 1e10 0 0\nvertex 0 1 0\ntri 0 1 2\n", 7,
+     "'tri' corner 1 overflows under the current transform"},
 };
 
 /* a loop test: Check passes the case index as _i */
@@ -290,6 +294,61 @@ START_TEST(test_more_primitives_than_the_limit_is_an_error)
     ck_assert_int_eq(err.line, 12);
     ck_assert_str_eq(err.msg, "more than 3 spheres");
     ck_assert_ptr_null(sc.spheres);
+}
+END_TEST
+
+/* Each limit at its exact bound: the largest value is taken, one more is refused (an off-by-one
+ * in the name lengths would write the terminating NUL past the array). */
+START_TEST(test_limits_hold_at_their_exact_bounds)
+{
+    scene sc;
+    char text[2600], name[1100];
+    /* output: 1023 bytes fit sc.output[1024], 1024 do not */
+    memset(name, 'o', 1024);
+    name[1023] = '\0';
+    snprintf(text, sizeof text, HEAD "output %s\n", name);
+    load_ok(text, &sc);
+    ck_assert_uint_eq(strlen(sc.output), 1023);
+    scene_free(&sc);
+    name[1023] = 'o';
+    name[1024] = '\0';
+    snprintf(text, sizeof text, HEAD "output %s\n", name);
+    load_fails(text, 3, "'output' file name is longer than 1023 bytes");
+    /* texture names: 63 bytes fit SCENE_MAX_TEXTURE_NAME (64), 64 do not */
+    memset(name, 't', SCENE_MAX_TEXTURE_NAME);
+    name[SCENE_MAX_TEXTURE_NAME - 1] = '\0';
+    snprintf(text, sizeof text, HEAD "texture %s checker 8 0 0 0 1 1 1\ndiffusemap %s\n", name, name);
+    load_ok(text, &sc);
+    ck_assert_str_eq(sc.textures[0].name, name);
+    scene_free(&sc);
+    name[SCENE_MAX_TEXTURE_NAME - 1] = 't';
+    name[SCENE_MAX_TEXTURE_NAME] = '\0';
+    snprintf(text, sizeof text, HEAD "texture %s checker 8 0 0 0 1 1 1\n", name);
+    load_fails(text, 3, "is longer than 63 bytes");
+    /* gamma: both ends of [0.01, 100] are taken */
+    load_ok(HEAD "gamma 100\n", &sc);
+    ck_assert_double_eq(sc.gamma, 100);
+    scene_free(&sc);
+    load_ok(HEAD "gamma 0.01\n", &sc);
+    ck_assert_double_eq(sc.gamma, 0.01);
+    scene_free(&sc);
+    /* camera samples: 8192 x 8192 x 256 is exactly 2^34, one more spp is over */
+    load_ok("size 8192 8192\nspp 256\ncamera 0 0 5 0 0 0 0 1 0 45\n", &sc);
+    scene_free(&sc);
+    load_fails("size 8192 8192\nspp 257\ncamera 0 0 5 0 0 0 0 1 0 45\n", 0,
+               "size 8192 x 8192 at spp 257 asks for 17246978048 camera samples, over the limit of 2^34");
+    /* the primitive limit counts textured vertices too */
+    scene_load_opts o = scene_load_defaults();
+    o.load_images = 0;
+    o.max_prims = 3;
+    error err = {0};
+    const char *three = HEAD "vertextex 0 0 0 0 0\nvertextex 1 0 0 1 0\nvertextex 0 1 0 0 1\n";
+    ck_assert_msg(scene_load_string(three, "t.test", &o, &sc, &err) == 0, "%s", err.msg);
+    scene_free(&sc);
+    snprintf(text, sizeof text, "%svertextex 0 0 1 1 1\n", three);
+    ck_assert_int_eq(scene_load_string(text, "t.test", &o, &sc, &err), -1);
+    ck_assert_int_eq(err.line, 6);
+    ck_assert_str_eq(err.msg, "more than 3 textured vertices");
 }
 END_TEST
 
@@ -434,10 +493,10 @@ END_TEST
 START_TEST(test_comments_blank_lines_crlf_and_tabs_are_tolerated)
 {
     scene sc;
-    load_ok("\xEF\xBB\xBF# a comment\r\n"
+    load_ok("\xEF\xBB\xBFsize\t64 32\r\n" /* a BOM kept would make "\xEF\xBB\xBFsize" unknown */
+            "# a comment\r\n"
             "\r\n"
             "   \t# an indented comment\r\n"
-            "size\t64 32\r\n"
             "  \t \r\n"
             "camera 0 0 5  0 0 0\t0 1 0 45   # trailing comment\r\n"
             "sphere 1 2 3 0.5\r\n"
@@ -450,6 +509,9 @@ START_TEST(test_comments_blank_lines_crlf_and_tabs_are_tolerated)
     ck_assert_str_eq(sc.output, "out.png");
     scene_free(&sc);
     /* line numbers count comments and blank lines, and CRLF is one line end */
+    load_ok("\xEF\xBB\xBF# a comment after a BOM\nsize 8 8\ncamera 0 0 5 0 0 0 0 1 0 45\n", &sc);
+    ck_assert_int_eq(sc.width, 8);
+    scene_free(&sc);
     load_fails("# c\r\n\r\nsize 10 10\r\ncamera 0 0 5 0 0 0 0 1 0 45\r\n\r\nsphere 0 0 0 q\r\n", 6,
                "'q'");
 }
@@ -1252,6 +1314,11 @@ START_TEST(test_six_cube_faces_load_and_a_bad_face_is_named)
     ck_assert_int_eq(img_scene_load(&d, "envmap cube px.pfm nx.pfm py.pfm ny.pfm pz.pfm gone.pfm\n",
                                     &sc, &err), -1);
     ck_assert_msg(strstr(err.msg, "'gone.pfm'") && strstr(err.msg, "No such file"), "%s", err.msg);
+    /* a scale that takes the brightest face's texel (6) past the largest float */
+    ck_assert_int_eq(img_scene_load(&d, "envmap cube px.pfm nx.pfm py.pfm ny.pfm pz.pfm nz.pfm 1e38\n",
+                                    &sc, &err), -1);
+    ck_assert_msg(strstr(err.msg, "scale 1e+38 times its brightest texel 6"), "%s", err.msg);
+    ck_assert_ptr_null(sc.envmap.cube.face[0].px);
     img_dir_remove(&d);
 }
 END_TEST
@@ -1456,6 +1523,7 @@ START_TEST(test_texture_errors_name_their_line_and_token)
     load_fails(HEAD "texture a checker 8 0 0 0 1 1 1\ntexture a perlin 1 0 0 0 1 1 1\n", 4,
                "texture 'a' defined twice (first at line 3)");
     load_fails(HEAD "texture a checker 8 0 0 0 1 1\n", 3, "takes FREQUENCY R0 G0 B0 R1 G1 B1");
+    load_fails(HEAD "texture a checker 8 0 0 0 1 1 1 9\n", 3, "(7 arguments after the kind), got 8");
     load_fails(HEAD "texture a checker 0 0 0 0 1 1 1\n", 3, "must be > 0, got '0'");
     load_fails(HEAD "texture a fbm 1 0 0 0 0 1 1 1\n", 3, "must be in [1, 30], got '0'");
     load_fails(HEAD "texture a fbm 1 2.5 0 0 0 1 1 1\n", 3, "expected an integer");
@@ -1535,6 +1603,14 @@ START_TEST(test_obj_meshes_load_under_the_transform_and_material)
     o.max_prims = 2;
     ck_assert_int_eq(scene_load(path, &o, &sc, &err), -1);
     ck_assert_int_eq(err.line, 5);
+    /* counting the triangles already in the scene: 2 + 3 > 4 is refused before any is added */
+    write_file(dir, "x.test", HEAD "vertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\ntri 0 1 2\ntri 0 1 2\n"
+                                   "obj quad.obj\n");
+    o.max_prims = 4;
+    ck_assert_int_eq(scene_load(path, &o, &sc, &err), -1);
+    ck_assert_int_eq(err.line, 8);
+    ck_assert_msg(strstr(err.msg, "obj 'quad.obj' has 3 triangles: more than 4 triangles in the scene"),
+                  "%s", err.msg);
     write_file(dir, "x.test", HEAD "obj missing.obj\n");
     ck_assert_int_eq(scene_load(path, NULL, &sc, &err), -1);
     ck_assert_int_eq(err.line, 3);
@@ -1602,6 +1678,7 @@ Suite *scene_suite(void)
     tcase_add_test(errors, test_a_line_longer_than_the_limit_is_an_error_not_an_overflow);
     tcase_add_test(errors, test_push_deeper_than_the_stack_limit_is_an_error);
     tcase_add_test(errors, test_more_primitives_than_the_limit_is_an_error);
+    tcase_add_test(errors, test_limits_hold_at_their_exact_bounds);
     tcase_add_test(errors, test_a_huge_maxverts_hint_allocates_nothing_huge);
     tcase_add_test(errors, test_a_nul_byte_makes_the_file_an_error);
     tcase_add_test(errors, test_a_missing_file_is_an_error_naming_it);

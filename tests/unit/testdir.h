@@ -5,9 +5,11 @@
 #define ENVTEX_TESTDIR_H
 
 #include <dirent.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include "envtex/imageio.h"
@@ -85,6 +87,26 @@ static inline void assert_unchanged(const char *path, unsigned char *before, siz
     ck_assert_int_eq(count_files(".tmp."), 0);
     free(before);
     free(after);
+}
+
+/* A disk that fills up part-way through a file: until file_size_unlimited(), a write past
+ * `bytes` fails with EFBIG (RLIMIT_FSIZE, with SIGXFSZ ignored so it is an error, not a kill).
+ * For the writers' failure paths; Check runs each test in its own process, and the test
+ * restores the limit anyway. */
+static struct rlimit saved_fsize;
+static inline void file_size_limit(rlim_t bytes)
+{
+    ck_assert_int_eq(getrlimit(RLIMIT_FSIZE, &saved_fsize), 0);
+    signal(SIGXFSZ, SIG_IGN);
+    struct rlimit r = saved_fsize;
+    r.rlim_cur = bytes;
+    ck_assert_int_eq(setrlimit(RLIMIT_FSIZE, &r), 0);
+}
+
+static inline void file_size_unlimited(void)
+{
+    ck_assert_int_eq(setrlimit(RLIMIT_FSIZE, &saved_fsize), 0);
+    signal(SIGXFSZ, SIG_DFL);
 }
 
 #endif
