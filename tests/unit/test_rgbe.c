@@ -181,8 +181,13 @@ START_TEST(test_hostile_rle_runs_that_overflow_the_scanline_are_errors)
     ck_assert_ptr_nonnull(strstr(err.msg, "overflows"));
     write_rle8(in_dir("lit.hdr"), (const unsigned char *)"\x04\x01\x02\x03\x04\x80", 6); /* 4 + 128 */
     ck_assert_int_eq(rgbe_read(in_dir("lit.hdr"), &im, &err), -1);
+    ck_assert_ptr_nonnull(strstr(err.msg, "overflows"));
+    write_rle8(in_dir("lit9.hdr"), (const unsigned char *)"\x09\x01\x02\x03\x04\x05\x06\x07\x08\x09", 10);
+    ck_assert_int_eq(rgbe_read(in_dir("lit9.hdr"), &im, &err), -1); /* one byte more than 8 */
+    ck_assert_ptr_nonnull(strstr(err.msg, "overflows"));
     write_rle8(in_dir("zero.hdr"), (const unsigned char *)"\x00", 1);
     ck_assert_int_eq(rgbe_read(in_dir("zero.hdr"), &im, &err), -1);
+    ck_assert_ptr_nonnull(strstr(err.msg, "zero-length RLE literal"));
     ck_assert_ptr_null(im.px);
     remove_dir();
 }
@@ -260,6 +265,107 @@ START_TEST(test_unsupported_headers_are_refused_with_a_reason)
 }
 END_TEST
 
+/* Read the n bytes d (after a "#?RADIANCE" header ending in the resolution line `res`) as an
+ * .hdr file: 0 and *im, or -1 and err. */
+static int read_bytes_hdr(const char *res, const void *px, size_t n, image *im, error *err)
+{
+    unsigned char d[2048];
+    int h = snprintf((char *)d, sizeof d, "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n%s\n", res);
+    ck_assert(h > 0 && (size_t)h + n <= sizeof d);
+    memcpy(d + h, px, n);
+    write_bytes(in_dir("b.hdr"), d, (size_t)h + n);
+    return rgbe_read(in_dir("b.hdr"), im, err);
+}
+
+/* What marks a scanline as new-style RLE: width 8 to 32767 and 2, 2, then a length whose high
+ * bit is clear.  A flat pixel may begin with 2, 2 all the same (a dark red-green), and must be
+ * read as a pixel. */
+START_TEST(test_flat_pixels_that_begin_like_an_rle_marker_are_pixels)
+{
+    make_dir();
+    image im = {0};
+    error err = {0};
+    unsigned char px[8 * 4];
+    for (int i = 0; i < 8; i++) memcpy(px + 4 * i, "\x80\x40\x20\x81", 4);
+    memcpy(px, "\x02\x02\x00\x88", 4); /* width 4: too narrow for RLE */
+    ck_assert_msg(read_bytes_hdr("-Y 1 +X 4", px, 16, &im, &err) == 0, "%s", err.msg);
+    ck_assert(im.px[0] == 2.5f && im.px[2] == 0.5f); /* (m + 1/2) / 256 * 2^(136 - 128) */
+    ck_assert(im.px[3] == 128.5f / 128.0f);
+    image_free(&im);
+    memcpy(px, "\x02\x02\x80\x88", 4); /* width 8, but the length's high bit is set */
+    ck_assert_msg(read_bytes_hdr("-Y 1 +X 8", px, 32, &im, &err) == 0, "%s", err.msg);
+    ck_assert(im.px[0] == 2.5f && im.px[2] == 128.5f);
+    ck_assert(im.px[21] == 128.5f / 128.0f);
+    image_free(&im);
+    remove_dir();
+}
+END_TEST
+
+/* Old-style runs (1, 1, 1, n): each repeats the previous pixel n << shift times, the shift
+ * growing by 8 for each consecutive marker and starting again after a pixel. */
+START_TEST(test_old_style_run_counts_shift_by_8_and_restart)
+{
+    make_dir();
+    image im = {0};
+    error err = {0};
+    /* 260 pixels: A, then 3 and 1 << 8 = 256 copies of it from two consecutive markers */
+    ck_assert_msg(read_bytes_hdr("-Y 1 +X 260", "\x80\x80\x80\x81" "\x01\x01\x01\x03" "\x01\x01\x01\x01", 12,
+                                 &im, &err) == 0, "%s", err.msg);
+    for (int x = 0; x < 260; x++) ck_assert(image_px(&im, x, 0)[1] == 128.5f / 128.0f);
+    image_free(&im);
+    /* A, 2 copies, B, 2 copies: the second marker's shift is 0 again (a kept shift made 512) */
+    ck_assert_msg(read_bytes_hdr("-Y 1 +X 6", "\x80\x80\x80\x81" "\x01\x01\x01\x02" "\x40\x40\x40\x81" "\x01\x01\x01\x02",
+                                 16, &im, &err) == 0, "%s", err.msg);
+    ck_assert(image_px(&im, 2, 0)[1] == 128.5f / 128.0f && image_px(&im, 5, 0)[1] == 64.5f / 128.0f);
+    image_free(&im);
+    /* a marker before any pixel, and a run one pixel too long */
+    ck_assert_int_eq(read_bytes_hdr("-Y 1 +X 6", "\x01\x01\x01\x02" "\x80\x80\x80\x81", 8, &im, &err), -1);
+    ck_assert_ptr_nonnull(strstr(err.msg, "old-style run with no pixel before it"));
+    ck_assert_int_eq(read_bytes_hdr("-Y 1 +X 6", "\x80\x80\x80\x81" "\x01\x01\x01\x06", 8, &im, &err), -1);
+    ck_assert_ptr_nonnull(strstr(err.msg, "overflows"));
+    ck_assert_ptr_null(im.px);
+    remove_dir();
+}
+END_TEST
+
+/* A literal that runs past the end of the file is "truncated", not read from past the buffer. */
+START_TEST(test_rle_literal_past_the_end_of_the_file_is_truncated)
+{
+    make_dir();
+    image im = {0};
+    error err = {0};
+    ck_assert_int_eq(read_bytes_hdr("-Y 1 +X 8", "\x02\x02\x00\x08" "\x08\x01\x02\x03", 8, &im, &err), -1);
+    ck_assert_ptr_nonnull(strstr(err.msg, "truncated Radiance file: scanline 0"));
+    ck_assert_ptr_null(im.px);
+    remove_dir();
+}
+END_TEST
+
+/* Header lines: trailing white space (and \r) is not part of a value; the magic, the resolution
+ * line's tokens and its orientation are checked. */
+START_TEST(test_header_lines_magic_and_resolution)
+{
+    make_dir();
+    image im = {0};
+    error err = {0};
+    const char *ws = "#?RADIANCE \r\nFORMAT=32-bit_rle_rgbe \t\r\n\r\n-Y 1 +X 1 \r\n\x80\x80\x80\x81";
+    write_bytes(in_dir("ws.hdr"), ws, strlen(ws));
+    ck_assert_msg(rgbe_read(in_dir("ws.hdr"), &im, &err) == 0, "%s", err.msg);
+    ck_assert(im.px[0] == 128.5f / 128.0f);
+    image_free(&im);
+    const char *magic = "#!RADIANCE\n\n-Y 1 +X 1\n\x80\x80\x80\x81";
+    write_bytes(in_dir("magic.hdr"), magic, strlen(magic));
+    ck_assert_int_eq(rgbe_read(in_dir("magic.hdr"), &im, &err), -1);
+    ck_assert_ptr_nonnull(strstr(err.msg, "not a Radiance file"));
+    ck_assert_int_eq(read_bytes_hdr("-Y 1 +X 1 junk", "\x80\x80\x80\x81", 4, &im, &err), -1);
+    ck_assert_ptr_nonnull(strstr(err.msg, "bad Radiance resolution line \"-Y 1 +X 1 junk\""));
+    ck_assert_int_eq(read_bytes_hdr("-Y 1 -X 1", "\x80\x80\x80\x81", 4, &im, &err), -1);
+    ck_assert_ptr_nonnull(strstr(err.msg, "only -Y H +X W"));
+    ck_assert_ptr_null(im.px);
+    remove_dir();
+}
+END_TEST
+
 START_TEST(test_truncated_hdr_is_an_error_at_every_offset)
 {
     make_dir();
@@ -314,6 +420,10 @@ Suite *rgbe_suite(void)
     tcase_add_test(tc, test_rle_literals_of_128_bytes_roundtrip_exactly);
     tcase_add_test(tc, test_rle_length_other_than_the_width_is_an_error);
     tcase_add_test(tc, test_unsupported_headers_are_refused_with_a_reason);
+    tcase_add_test(tc, test_flat_pixels_that_begin_like_an_rle_marker_are_pixels);
+    tcase_add_test(tc, test_old_style_run_counts_shift_by_8_and_restart);
+    tcase_add_test(tc, test_rle_literal_past_the_end_of_the_file_is_truncated);
+    tcase_add_test(tc, test_header_lines_magic_and_resolution);
     tcase_add_test(tc, test_truncated_hdr_is_an_error_at_every_offset);
     tcase_add_test(tc, test_failed_hdr_write_leaves_the_old_file_byte_identical);
     suite_add_tcase(s, tc);
