@@ -27,6 +27,7 @@ typedef struct exr_stream {
     char msg[512]; /* first message from OpenEXRCore, "" if none */
 } exr_stream;
 
+/* Reading (a read context takes no lock to report an error); writing uses stream_on_write_error. */
 static void stream_on_error(exr_const_context_t ctxt, exr_result_t code, const char *msg)
 {
     void *ud = NULL;
@@ -34,6 +35,19 @@ static void stream_on_error(exr_const_context_t ctxt, exr_result_t code, const c
     exr_stream *s = ud;
     if (s->msg[0]) return; /* keep the first: later ones are usually consequences */
     snprintf(s->msg, sizeof s->msg, "%s", msg ? msg : exr_get_default_error_message(code));
+}
+
+/* Writing needs another handler: OpenEXRCore 3.1 holds a write context's lock while it reports
+ * an error, and exr_get_user_data takes that same lock, so stream_on_error deadlocked (a disk
+ * that filled up during exr_write_header hung envtex for good).  exrfile_write points this
+ * file-scope slot at its stream for the duration of the write (envtex is single-threaded). */
+static exr_stream *writing;
+
+static void stream_on_write_error(exr_const_context_t ctxt, exr_result_t code, const char *msg)
+{
+    (void)ctxt;
+    if (!writing || writing->msg[0]) return; /* keep the first */
+    snprintf(writing->msg, sizeof writing->msg, "%s", msg ? msg : exr_get_default_error_message(code));
 }
 
 static int64_t stream_read(exr_const_context_t ctxt, void *ud, void *buffer, uint64_t sz,
@@ -458,9 +472,10 @@ int exrfile_write(const char *path, const image *im, int half, error *err)
     if (s.fd < 0) return -1;
 
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
-    init.error_handler_fn = stream_on_error;
+    init.error_handler_fn = stream_on_write_error; /* not stream_on_error: see `writing` */
     init.user_data = &s;
     init.write_fn = stream_write;
+    writing = &s;
     r = exr_start_write(&ctx, path, EXR_WRITE_FILE_DIRECTLY, &init);
     int part = 0;
     if (r == EXR_ERR_SUCCESS) r = exr_add_part(ctx, "rgb", EXR_STORAGE_SCANLINE, &part);
@@ -533,5 +548,6 @@ done:
     if (s.fd >= 0) close(s.fd);
     if (rc != 0 && tmp[0]) imageio_tmp_abandon(tmp);
     free(guard.copy);
+    writing = NULL;
     return rc;
 }

@@ -32,6 +32,7 @@ typedef struct png_job {
     png_fixed_point gama; /* writing: gAMA's file gamma x 100000, or 0 for an sRGB chunk */
     image im;
     char msg[256];        /* libpng's message */
+    int errnum;           /* writing: errno of a failed fwrite or fflush, else 0 */
 } png_job;
 
 static void job_error(png_structp png, png_const_charp msg)
@@ -162,11 +163,34 @@ done:
 
 /* ---- writing ------------------------------------------------------------------------------- */
 
+/* libpng's own write function reports a failed fwrite as "Write Error" and nothing more; these
+ * keep errno (a full disk: "No space left on device") for the message. */
+static void job_write(png_structp png, png_bytep data, size_t n)
+{
+    png_job *job = png_get_io_ptr(png);
+    if (fwrite(data, 1, n, job->f) != n) {
+        job->errnum = errno ? errno : EIO;
+        png_error(png, "write error");
+    }
+}
+
+static void job_flush(png_structp png)
+{
+    png_job *job = png_get_io_ptr(png);
+    if (fflush(job->f) != 0) {
+        job->errnum = errno ? errno : EIO;
+        png_error(png, "write error");
+    }
+}
+
 static int write_body(png_job *job, int w, int h, const uint8_t *rgb8, error *err)
 {
-    if (setjmp(png_jmpbuf(job->png)))
+    if (setjmp(png_jmpbuf(job->png))) {
+        if (job->errnum) /* say why, as the other writers do */
+            return error_set(err, job->path, 0, "cannot write: %s", strerror(job->errnum));
         return error_set(err, job->path, 0, "cannot write PNG: %s", job->msg);
-    png_init_io(job->png, job->f);
+    }
+    png_set_write_fn(job->png, job, job_write, job_flush);
     png_set_IHDR(job->png, job->info, (png_uint_32)w, (png_uint_32)h, 8, PNG_COLOR_TYPE_RGB,
                  PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     if (job->gama > 0) png_set_gAMA_fixed(job->png, job->info, job->gama); /* power law alone */

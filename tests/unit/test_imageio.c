@@ -156,7 +156,10 @@ END_TEST
 
 /* A write that fails part-way (the disk fills up: here a file size limit of 2 KB, for an image
  * of 49 KB of noise that no format compresses below it) is an error naming the file, leaves the
- * old file byte-identical and removes its temporary file, in every format. */
+ * old file byte-identical and removes its temporary file, in every format.  And again with an
+ * 8 x 8 image and a limit of 100 bytes: the whole file fits in stdio's buffer, so for the
+ * writers that use stdio (PFM, HDR, PNG) it is fclose's flush that fails, and a writer that
+ * ignored fclose's result would commit a truncated file. */
 START_TEST(test_a_write_that_fails_part_way_leaves_the_old_file_and_no_temporary)
 {
     make_dir();
@@ -169,20 +172,26 @@ START_TEST(test_a_write_that_fails_part_way_leaves_the_old_file_and_no_temporary
         x = x * 1103515245u + 12345u;
         noise.px[i] = (float)(x >> 8) / 16777216.0f * 4.0f;
     }
+    image small = {0};
+    ck_assert_int_eq(image_alloc(&small, 8, 8, &err), 0);
+    memcpy(small.px, noise.px, sizeof(float) * 8 * 8 * 3);
     const char *names[] = {"a.exr", "b.pfm", "c.hdr", "d.png"};
-    for (int f = 0; f < 4; f++) {
-        ck_assert_int_eq(imageio_write(in_dir(names[f]), &im, NULL, &err), 0);
-        size_t n;
-        unsigned char *before = slurp(in_dir(names[f]), &n);
-        file_size_limit(2048);
-        int rc = imageio_write(in_dir(names[f]), &noise, NULL, &err);
-        file_size_unlimited();
-        ck_assert_msg(rc == -1, "%s: a write over the size limit succeeded", names[f]);
-        ck_assert_msg(strstr(err.file, names[f]) != NULL, "%s: error names '%s'", names[f], err.file);
-        assert_unchanged(in_dir(names[f]), before, n);
-    }
+    for (int round = 0; round < 2; round++)
+        for (int f = 0; f < 4; f++) {
+            ck_assert_int_eq(imageio_write(in_dir(names[f]), &im, NULL, &err), 0);
+            size_t n;
+            unsigned char *before = slurp(in_dir(names[f]), &n);
+            file_size_limit(round == 0 ? 2048 : 100);
+            int rc = imageio_write(in_dir(names[f]), round == 0 ? &noise : &small, NULL, &err);
+            file_size_unlimited();
+            ck_assert_msg(rc == -1, "%s, round %d: a write over the size limit succeeded", names[f], round);
+            ck_assert_msg(strstr(err.file, names[f]) != NULL, "%s: error names '%s'", names[f], err.file);
+            ck_assert_msg(strstr(err.msg, "File too large") != NULL, "%s, round %d: %s", names[f], round, err.msg);
+            assert_unchanged(in_dir(names[f]), before, n);
+        }
     image_free(&im);
     image_free(&noise);
+    image_free(&small);
     remove_dir();
 }
 END_TEST

@@ -394,6 +394,23 @@ START_TEST(test_truncated_and_corrupt_png_are_errors)
 }
 END_TEST
 
+/* pngfile_read called directly (imageio reads by magic and never sends it these): a file that
+ * is only the start of a signature is not a PNG, and a folder is named as one. */
+START_TEST(test_a_partial_signature_and_a_folder_are_refused_by_name)
+{
+    make_dir();
+    write_bytes(in_dir("p4.png"), "\x89PNG", 4);
+    image im = {0};
+    error err = {0};
+    ck_assert_int_eq(pngfile_read(in_dir("p4.png"), &im, &err), -1);
+    ck_assert_str_eq(err.msg, "not a PNG file");
+    ck_assert_int_eq(pngfile_read(dir, &im, &err), -1);
+    ck_assert_msg(strstr(err.msg, "cannot open: Is a directory") != NULL, "%s", err.msg);
+    ck_assert_ptr_null(im.px);
+    remove_dir();
+}
+END_TEST
+
 START_TEST(test_failed_png_write_leaves_the_old_file_byte_identical)
 {
     make_dir();
@@ -445,6 +462,7 @@ Suite *pngfile_suite(void)
     tcase_add_test(tc, test_png_claiming_40000_by_40000_is_refused_before_allocation);
     tcase_add_test(tc, test_a_gama_outside_what_libpng_accepts_is_read_as_srgb);
     tcase_add_test(tc, test_truncated_and_corrupt_png_are_errors);
+    tcase_add_test(tc, test_a_partial_signature_and_a_folder_are_refused_by_name);
     tcase_add_test(tc, test_failed_png_write_leaves_the_old_file_byte_identical);
     tcase_add_test(tc, test_png_write_applies_the_tone_mapping_it_is_given);
     suite_add_tcase(s, tc);
