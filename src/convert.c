@@ -655,36 +655,16 @@ done:
 int convert_write(const char *path, const convert_map *m, error *err)
 {
     if (m->kind != CONVERT_CUBE) return imageio_write(path, &m->img, NULL, err);
-    /* six faces as a set: temporaries NAME_px.partial-PID.EXT first, then six renames */
-    char final[CUBEMAP_FACES][ERROR_FILE_MAX], tmp[CUBEMAP_FACES][ERROR_FILE_MAX];
-    char tag[64];
-    snprintf(tag, sizeof tag, ".partial-%ld", (long)getpid());
-    for (int f = 0; f < CUBEMAP_FACES; f++)
-        if (convert_face_path(path, f, final[f], sizeof final[f], err) ||
-            insert_before_extension(final[f], tag, tmp[f], sizeof tmp[f], err))
-            return -1;
-    /* a target that exists and is not a regular file (a folder) would fail its rename at the end */
+    /* six faces as a set (imageio_write_set): no face replaced unless all six are written */
+    char name[CUBEMAP_FACES][ERROR_FILE_MAX];
+    const char *paths[CUBEMAP_FACES];
+    const image *faces[CUBEMAP_FACES];
     for (int f = 0; f < CUBEMAP_FACES; f++) {
-        struct stat st;
-        if (stat(final[f], &st) == 0 && !S_ISREG(st.st_mode))
-            return error_set(err, final[f], 0, "exists and is not a regular file");
+        if (convert_face_path(path, f, name[f], sizeof name[f], err)) return -1;
+        paths[f] = name[f];
+        faces[f] = &m->cube.face[f];
     }
-    int written = 0;
-    for (; written < CUBEMAP_FACES; written++)
-        if (imageio_write(tmp[written], &m->cube.face[written], NULL, err)) break;
-    if (written < CUBEMAP_FACES) {
-        for (int f = 0; f < written; f++) unlink(tmp[f]);
-        return refile(err, final[written]);
-    }
-    for (int f = 0; f < CUBEMAP_FACES; f++)
-        if (rename(tmp[f], final[f]) != 0) {
-            int e = errno;
-            for (int g = f; g < CUBEMAP_FACES; g++) unlink(tmp[g]);
-            return error_set(err, final[f], 0,
-                             "cannot rename the finished face into place: %s (%d of 6 faces "
-                             "were already replaced, the rest left as they were)", strerror(e), f);
-        }
-    return 0;
+    return imageio_write_set(CUBEMAP_FACES, paths, faces, NULL, err);
 }
 
 int convert_write_cross(const char *path, const convert_map *m, error *err)

@@ -1,6 +1,7 @@
 /* imageio.c - read and write images by file name (see include/envtex/imageio.h). */
 #include "envtex/imageio.h"
 
+#include <assert.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <stdint.h>
@@ -199,4 +200,45 @@ int imageio_write(const char *path, const image *im, const tonemap_params *tm, e
     if (!strcasecmp(x, ".hdr")) return rgbe_write(path, im, err);
     return error_set(err, path, 0, "cannot tell the image format from the name; use .exr, .png, "
                                    ".pfm or .hdr");
+}
+
+/* ---- several files as one output ----------------------------------------------------------- */
+
+int imageio_write_set(int n, const char *const *paths, const image *const *images,
+                      const tonemap_params *const *tms, error *err)
+{
+    assert(n >= 1 && n <= IMAGEIO_SET_MAX);
+    char part[IMAGEIO_SET_MAX][ERROR_FILE_MAX], tag[32];
+    snprintf(tag, sizeof tag, ".partial-%ld", (long)getpid());
+    for (int k = 0; k < n; k++) { /* "sky_px.exr" -> "sky_px.partial-PID.exr": same format */
+        const char *x = extension(paths[k]);
+        size_t stem = strlen(paths[k]) - strlen(x);
+        int len = snprintf(part[k], sizeof part[k], "%.*s%s%s", (int)stem, paths[k], tag, x);
+        if (len < 0 || (size_t)len >= sizeof part[k]) return error_set(err, paths[k], 0, "path is too long");
+        /* a folder in a target's place would fail its rename at the end: refuse it first */
+        struct stat st;
+        if (stat(paths[k], &st) == 0 && !S_ISREG(st.st_mode))
+            return error_set(err, paths[k], 0, "cannot write an image here: %s",
+                             S_ISDIR(st.st_mode) ? "it is a folder" : "it is not a regular file");
+    }
+    int done = 0;
+    for (; done < n; done++)
+        if (imageio_write(part[done], images[done], tms ? tms[done] : NULL, err)) break;
+    if (done < n) {
+        for (int k = 0; k < done; k++) unlink(part[k]);
+        if (err) { /* name the target, not its temporary */
+            char msg[ERROR_MSG_MAX];
+            memcpy(msg, err->msg, sizeof msg);
+            error_set(err, paths[done], 0, "%s", msg);
+        }
+        return -1;
+    }
+    for (int k = 0; k < n; k++)
+        if (rename(part[k], paths[k]) != 0) {
+            int e = errno;
+            for (int j = k; j < n; j++) unlink(part[j]);
+            return error_set(err, paths[k], 0, "cannot rename the finished file into place: %s (%d of %d "
+                             "files were already replaced, the rest left as they were)", strerror(e), k, n);
+        }
+    return 0;
 }

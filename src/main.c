@@ -334,8 +334,12 @@ static int cmd_render(int argc, char **argv)
                 st.nonfinite_variance);
     tonemap_params tm = tonemap_defaults();
     tm.gamma = sc.gamma;
-    if (imageio_write(out_path, &img, &tm, &err)) goto done;
-    if (var_path && imageio_write(var_path, &var, NULL, &err)) goto done;
+    /* the image and its variance are one output: a failure writing either leaves both targets
+     * untouched (the image was once committed before a full disk refused the variance) */
+    const char *paths[2] = {out_path, var_path};
+    const image *images[2] = {&img, &var};
+    const tonemap_params *tms[2] = {&tm, NULL};
+    if (imageio_write_set(var_path ? 2 : 1, paths, images, tms, &err)) goto done;
 
     printf("time_s=%.3f spp=%d rays=%lld mrays_per_s=%.3f nonfinite=%ld build_s=%.3f", st.seconds, st.spp,
            st.rays, st.seconds > 0 ? st.rays / st.seconds / 1e6 : 0.0, st.nonfinite_pixels, st.build_seconds);

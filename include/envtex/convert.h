@@ -182,10 +182,10 @@ int convert_face_path(const char *path, int face, char *out, size_t size, error 
 int convert_read(const char *path, const char *from, convert_map *out, error *err);
 
 /* Write *m to `path` (format by extension, imageio.h).  A cube map becomes six files named by
- * convert_face_path, written as a set: each face first goes to a temporary file beside its
- * target, and only when all six are complete are they renamed over the targets; a failure before
- * that removes the temporaries and leaves every target untouched.  (Should a rename itself fail
- * half way, the message says which faces were already replaced.) */
+ * convert_face_path, written as one set by imageio_write_set: each face first goes to a
+ * temporary file beside its target, and only when all six are complete are they renamed over
+ * the targets; a failure before that removes the temporaries and leaves every target untouched.
+ * (Should a rename itself fail half way, the message says how many were already replaced.) */
 int convert_write(const char *path, const convert_map *m, error *err);
 
 /* Write a cube map as one horizontal cross image (4N x 3N, cubemap.h), atomically. */

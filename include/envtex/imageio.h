@@ -45,6 +45,17 @@ imageio_format imageio_detect(const char *path);
  * written.  Atomic (temporary file + rename). */
 int imageio_write(const char *path, const image *im, const tonemap_params *tm, error *err);
 
+/* Write n images (1 <= n <= IMAGEIO_SET_MAX) as one output, all or none: each goes first to
+ * PATH with ".partial-PID" before its extension (a sibling, so the rename never crosses file
+ * systems), and only when every one is complete are they renamed over their targets.  A failed
+ * write removes the finished ones and leaves every target untouched; its error names the
+ * target, not the temporary.  (Should a rename itself fail half way, the message says how many
+ * targets were already replaced.)  tms[k] as imageio_write's tm; tms may be NULL.  Used for a
+ * render with its --variance image and for the six faces of a cube map. */
+#define IMAGEIO_SET_MAX 6
+int imageio_write_set(int n, const char *const *paths, const image *const *images,
+                      const tonemap_params *const *tms, error *err);
+
 /* 1 if `path` ends in an extension imageio_write knows, else 0. */
 int imageio_can_write(const char *path);
 

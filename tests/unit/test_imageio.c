@@ -196,6 +196,60 @@ START_TEST(test_a_write_that_fails_part_way_leaves_the_old_file_and_no_temporary
 }
 END_TEST
 
+/* A set of images is one output: all written, or no target touched. */
+START_TEST(test_a_set_of_images_is_written_all_or_none)
+{
+    make_dir();
+    image small = {0}, big = {0};
+    error err = {0};
+    fill(&small);
+    ck_assert_int_eq(image_alloc(&big, 64, 64, &err), 0);
+    unsigned int x = 777;
+    for (int i = 0; i < 64 * 64 * 3; i++) {
+        x = x * 1103515245u + 12345u;
+        big.px[i] = (float)(x >> 8) / 16777216.0f;
+    }
+    /* the old targets, to be kept byte for byte */
+    ck_assert_int_eq(imageio_write(in_dir("a.pfm"), &small, NULL, &err), 0);
+    ck_assert_int_eq(imageio_write(in_dir("b.exr"), &small, NULL, &err), 0);
+    size_t na, nb;
+    unsigned char *a0 = slurp(in_dir("a.pfm"), &na), *b0 = slurp(in_dir("b.exr"), &nb);
+    /* the first (1.5 KB) fits under 4 KB, the second (49 KB of noise) does not */
+    char pa[256], pb[256], pc[256]; /* in_dir's buffers rotate: keep the names */
+    snprintf(pa, sizeof pa, "%s", in_dir("a.pfm"));
+    snprintf(pb, sizeof pb, "%s", in_dir("b.exr"));
+    snprintf(pc, sizeof pc, "%s", in_dir("c.png"));
+    const char *paths[2] = {pa, pb};
+    const image *images[2] = {&small, &big};
+    file_size_limit(4096);
+    int rc = imageio_write_set(2, paths, images, NULL, &err);
+    file_size_unlimited();
+    ck_assert_int_eq(rc, -1);
+    ck_assert_str_eq(err.file, pb); /* the target, not its temporary */
+    ck_assert_ptr_nonnull(strstr(err.msg, "File too large"));
+    ck_assert_int_eq(count_files("partial"), 0);
+    assert_unchanged(pa, a0, na);
+    assert_unchanged(pb, b0, nb);
+    /* a folder in a target's place: refused before anything is written */
+    ck_assert_int_eq(mkdir(pc, 0700), 0);
+    const char *paths2[2] = {pa, pc};
+    ck_assert_int_eq(imageio_write_set(2, paths2, images, NULL, &err), -1);
+    ck_assert_ptr_nonnull(strstr(err.msg, "it is a folder"));
+    ck_assert_int_eq(count_files("partial"), 0);
+    ck_assert_int_eq(rmdir(pc), 0);
+    /* the good case: both replaced, read back */
+    ck_assert_msg(imageio_write_set(2, paths, images, NULL, &err) == 0, "%s", err.msg);
+    image back = {0};
+    ck_assert_msg(imageio_read(pb, &back, &err) == 0, "%s", err.msg);
+    ck_assert_int_eq(memcmp(back.px, big.px, sizeof(float) * 64 * 64 * 3), 0);
+    ck_assert_int_eq(count_files("partial"), 0);
+    image_free(&back);
+    image_free(&small);
+    image_free(&big);
+    remove_dir();
+}
+END_TEST
+
 START_TEST(test_temporary_files_live_beside_the_target_and_commit_by_rename)
 {
     make_dir();
@@ -241,6 +295,7 @@ Suite *imageio_suite(void)
     tcase_add_test(tc, test_detect_names_the_format_by_magic_bytes_as_read_does);
     tcase_add_test(tc, test_unknown_missing_empty_and_folder_inputs_are_clear_errors);
     tcase_add_test(tc, test_a_write_that_fails_part_way_leaves_the_old_file_and_no_temporary);
+    tcase_add_test(tc, test_a_set_of_images_is_written_all_or_none);
     tcase_add_test(tc, test_truncated_files_of_every_format_are_errors);
     tcase_add_test(tc, test_unknown_extension_and_invalid_images_write_nothing);
     tcase_add_test(tc, test_temporary_files_live_beside_the_target_and_commit_by_rename);
