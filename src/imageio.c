@@ -208,6 +208,7 @@ int imageio_write_set(int n, const char *const *paths, const image *const *image
                       const tonemap_params *const *tms, error *err)
 {
     assert(n >= 1 && n <= IMAGEIO_SET_MAX);
+    if (n == 1) return imageio_write(paths[0], images[0], tms ? tms[0] : NULL, err); /* atomic already */
     char part[IMAGEIO_SET_MAX][ERROR_FILE_MAX], tag[32];
     snprintf(tag, sizeof tag, ".partial-%ld", (long)getpid());
     for (int k = 0; k < n; k++) { /* "sky_px.exr" -> "sky_px.partial-PID.exr": same format */

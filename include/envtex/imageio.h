@@ -50,8 +50,9 @@ int imageio_write(const char *path, const image *im, const tonemap_params *tm, e
  * systems), and only when every one is complete are they renamed over their targets.  A failed
  * write removes the finished ones and leaves every target untouched; its error names the
  * target, not the temporary.  (Should a rename itself fail half way, the message says how many
- * targets were already replaced.)  tms[k] as imageio_write's tm; tms may be NULL.  Used for a
- * render with its --variance image and for the six faces of a cube map. */
+ * targets were already replaced.)  One image is imageio_write itself.  tms[k] as imageio_write's
+ * tm; tms may be NULL.  Used for a render with its --variance image and for the six faces of a
+ * cube map. */
 #define IMAGEIO_SET_MAX 6
 int imageio_write_set(int n, const char *const *paths, const image *const *images,
                       const tonemap_params *const *tms, error *err);

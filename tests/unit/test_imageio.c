@@ -19,6 +19,18 @@ static void fill(image *im)
     for (int i = 0; i < 12 * 10 * 3; i++) im->px[i] = (float)(i % 17) / 16.0f;
 }
 
+/* A w x h image of noise in [0, scale) (a linear congruential generator from `seed`): no
+ * format compresses it much, so its files are about as large as its pixels. */
+static void fill_noise(image *im, int w, int h, unsigned int seed, float scale)
+{
+    error err = {0};
+    ck_assert_int_eq(image_alloc(im, w, h, &err), 0);
+    for (int i = 0; i < w * h * 3; i++) {
+        seed = seed * 1103515245u + 12345u;
+        im->px[i] = (float)(seed >> 8) / 16777216.0f * scale;
+    }
+}
+
 START_TEST(test_every_extension_writes_and_reads_back)
 {
     make_dir();
@@ -166,12 +178,7 @@ START_TEST(test_a_write_that_fails_part_way_leaves_the_old_file_and_no_temporary
     image im = {0}, noise = {0};
     error err = {0};
     fill(&im);
-    ck_assert_int_eq(image_alloc(&noise, 64, 64, &err), 0);
-    unsigned int x = 12345;
-    for (int i = 0; i < 64 * 64 * 3; i++) {
-        x = x * 1103515245u + 12345u;
-        noise.px[i] = (float)(x >> 8) / 16777216.0f * 4.0f;
-    }
+    fill_noise(&noise, 64, 64, 12345, 4.0f);
     image small = {0};
     ck_assert_int_eq(image_alloc(&small, 8, 8, &err), 0);
     memcpy(small.px, noise.px, sizeof(float) * 8 * 8 * 3);
@@ -203,12 +210,7 @@ START_TEST(test_a_set_of_images_is_written_all_or_none)
     image small = {0}, big = {0};
     error err = {0};
     fill(&small);
-    ck_assert_int_eq(image_alloc(&big, 64, 64, &err), 0);
-    unsigned int x = 777;
-    for (int i = 0; i < 64 * 64 * 3; i++) {
-        x = x * 1103515245u + 12345u;
-        big.px[i] = (float)(x >> 8) / 16777216.0f;
-    }
+    fill_noise(&big, 64, 64, 777, 1.0f);
     /* the old targets, to be kept byte for byte */
     ck_assert_int_eq(imageio_write(in_dir("a.pfm"), &small, NULL, &err), 0);
     ck_assert_int_eq(imageio_write(in_dir("b.exr"), &small, NULL, &err), 0);
