@@ -3,6 +3,7 @@
 
 #include <assert.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -101,12 +102,13 @@ cleanup:
  * product or sum below works on the three channels at once. */
 typedef float mip_rgba __attribute__((vector_size(16)));
 
-/* Copy every level into m->packed (16-byte aligned, level after level). */
+/* Copy every level into m->packed (16-byte aligned, level after level, each level's rows from
+ * the bottom) and describe each in m->packed_level. */
 static int pack_levels(mipmap *m, error *err)
 {
-    size_t n = 0;
+    size_t n = 0, at[MIPMAP_MAX_LEVELS];
     for (int l = 0; l < m->nlevels; l++) {
-        m->packed_at[l] = n;
+        at[l] = n;
         n += (size_t)m->level[l].w * (size_t)m->level[l].h;
     }
     mip_rgba *px = aligned_alloc(sizeof(mip_rgba), n * sizeof(mip_rgba));
@@ -114,9 +116,16 @@ static int pack_levels(mipmap *m, error *err)
                               m->level[0].w, m->level[0].h);
     for (int l = 0; l < m->nlevels; l++) {
         const image *im = &m->level[l];
-        mip_rgba *dst = px + m->packed_at[l];
-        for (size_t i = 0; i < (size_t)im->w * (size_t)im->h; i++)
-            dst[i] = (mip_rgba){im->px[3 * i], im->px[3 * i + 1], im->px[3 * i + 2], 0.0f};
+        mip_rgba *dst = px + at[l];
+        for (int j = 0; j < im->h; j++) { /* row j from the bottom is image row h - 1 - j */
+            const float *src = image_px(im, 0, im->h - 1 - j);
+            mip_rgba *row = dst + (size_t)j * (size_t)im->w;
+            for (int i = 0; i < im->w; i++)
+                row[i] = (mip_rgba){src[3 * i], src[3 * i + 1], src[3 * i + 2], 0.0f};
+        }
+        int tiled = m->wrap == WRAP_REPEAT && (im->w & (im->w - 1)) == 0 && (im->h & (im->h - 1)) == 0;
+        m->packed_level[l] = (struct mipmap_packed_level){(const float *)dst, im->w, im->h, im->w, im->h,
+                                                          tiled ? im->w - 1 : -1, tiled ? im->h - 1 : -1};
     }
     m->packed = (float *)px;
     return 0;
@@ -184,28 +193,35 @@ double mipmap_level_for_footprint(const mipmap *m, double width_in_texels)
 
 /* texlookup_bilinear on packed level l: the same texels, indices and weights,
  *     c = (1-fy) [(1-fx) c00 + fx c10] + fy [(1-fx) c01 + fx c11],
- * in float on the three channels at once. */
+ * in float on the three channels at once.  A tiled power-of-two level (the usual texture)
+ * wraps by masks: k mod W = k & (W - 1) in two's complement; any other goes through
+ * texlookup_bilinear_axis. */
 static inline __attribute__((always_inline)) mip_rgba bilinear_packed(const mipmap *m, int l, uv2 st)
 {
-    int w = m->level[l].w, h = m->level[l].h;
-    texlookup_axis x = texlookup_bilinear_axis(st.u * w - 0.5, w, m->wrap); /* x = s W - 1/2 */
-    texlookup_axis y = texlookup_bilinear_axis(st.v * h - 0.5, h, m->wrap); /* y = t H - 1/2 */
-    const mip_rgba *px = (const mip_rgba *)m->packed + m->packed_at[l];
-    const mip_rgba *r0 = px + (size_t)(h - 1 - y.i0) * (size_t)w; /* rows counted from the top */
-    const mip_rgba *r1 = px + (size_t)(h - 1 - y.i1) * (size_t)w;
-    float gx = (float)x.f, gy = (float)y.f;
-    mip_rgba bottom = r0[x.i0] * (1.0f - gx) + r0[x.i1] * gx, top = r1[x.i0] * (1.0f - gx) + r1[x.i1] * gx;
+    const struct mipmap_packed_level *pl = &m->packed_level[l];
+    double x = st.u * pl->w - 0.5, y = st.v * pl->h - 0.5; /* x = s W - 1/2, y = t H - 1/2 */
+    texlookup_axis ax, ay;
+    if (pl->wmask >= 0 && fabs(x) < TEXLOOKUP_INT_SAFE && fabs(y) < TEXLOOKUP_INT_SAFE) {
+        int i = texlookup_fast_floor(x), j = texlookup_fast_floor(y); /* false for NaN, Inf */
+        ax = (texlookup_axis){i & pl->wmask, (i + 1) & pl->wmask, x - i};
+        ay = (texlookup_axis){j & pl->hmask, (j + 1) & pl->hmask, y - j};
+    } else {
+        ax = texlookup_bilinear_axis(x, pl->iw, m->wrap);
+        ay = texlookup_bilinear_axis(y, pl->ih, m->wrap);
+    }
+    const mip_rgba *px = (const mip_rgba *)pl->texels;
+    const mip_rgba *r0 = px + (size_t)ay.i0 * (size_t)pl->iw, *r1 = px + (size_t)ay.i1 * (size_t)pl->iw;
+    float gx = (float)ax.f, gy = (float)ay.f;
+    mip_rgba bottom = r0[ax.i0] * (1.0f - gx) + r0[ax.i1] * gx, top = r1[ax.i0] * (1.0f - gx) + r1[ax.i1] * gx;
     return bottom * (1.0f - gy) + top * gy;
 }
 
-/* Trilinear at continuous level lod in [0, levels - 1]:
- *     c = (1 - f) bilinear(level l, st) + f bilinear(level l + 1, st),  l = floor(lod), f = lod - l */
-static inline __attribute__((always_inline)) rgb trilinear_at(const mipmap *m, uv2 st, double lod)
+/* Trilinear at level l + f (0 <= l <= levels - 1, 0 <= f <= 1, f = 0 at the top level):
+ *     c = (1 - f) bilinear(level l, st) + f bilinear(level l + 1, st) */
+static inline __attribute__((always_inline)) rgb trilinear_at(const mipmap *m, uv2 st, int l, double f)
 {
-    /* STEP(mipmap): trilinear filtering at the level lod = log2(footprint in texels) (given): bilinear in levels l = floor(lod) and l + 1 (bilinear_packed), blended by f = lod - l; lod = levels - 1 has no level above (slides 36-39) */
-    /* STUB: (void)lod; (void)bilinear_packed; return texlookup_bilinear(&m->level[0], st, m->wrap); */
-    int l = (int)lod;
-    double f = lod - l; /* 0 at the top level, so l + 1 is never read past it */
+    /* STEP(mipmap): trilinear filtering at the level l + f of the footprint (given: l = floor(log2 footprint in texels), f its fraction): bilinear in levels l and l + 1 (bilinear_packed), blended by f; f = 0 at the top level, which has no level above (slides 36-39) */
+    /* STUB: (void)l; (void)f; (void)bilinear_packed; return texlookup_bilinear(&m->level[0], st, m->wrap); */
     mip_rgba c = bilinear_packed(m, l, st); /* texlookup_bilinear(&m->level[l], st, m->wrap) */
     if (f > 0.0) {
         float g = (float)f;
@@ -218,18 +234,51 @@ static inline __attribute__((always_inline)) rgb trilinear_at(const mipmap *m, u
 rgb mipmap_lookup_trilinear(const mipmap *m, uv2 st, double footprint_width)
 {
     assert(m->packed && "mipmap_pack(m) first");
-    return trilinear_at(m, st, mipmap_level_for_footprint(m, footprint_width * max_side(&m->level[0])));
+    double lod = mipmap_level_for_footprint(m, footprint_width * max_side(&m->level[0]));
+    int l = (int)lod; /* lod in [0, levels - 1]: l = floor(lod), and f = 0 at the top */
+    return trilinear_at(m, st, l, lod - l);
+}
+
+/* log2 x for a finite x > 1 whose bits are `bits` and exponent e (x = 2^e m, m in [1, 2)):
+ * e + log2 m, with m halved (and e raised) when m >= sqrt 2, and
+ *     log2 m = (2 / ln 2) atanh t = (2 / ln 2) (t + t^3/3 + t^5/5 + t^7/7 + t^9/9 + ...),
+ *     t = (m - 1) / (m + 1),  |t| <= 3 - 2 sqrt 2 = 0.172,
+ * the terms left out adding less than 1.1e-9.  Inline, not libm's log2: a call makes the
+ * packed lookup's registers spill around it. */
+static inline double log2_above_one(uint64_t bits, int e)
+{
+    uint64_t mb = (bits & 0x000FFFFFFFFFFFFFull) | 0x3FF0000000000000ull; /* 2^0 m */
+    double m;
+    memcpy(&m, &mb, sizeof m);
+    double ee = e;
+    if (m >= 1.4142135623730951) {
+        m *= 0.5;
+        ee += 1.0;
+    }
+    double t = (m - 1.0) / (m + 1.0), t2 = t * t;
+    return ee + 2.8853900817779268 * t * (1.0 + t2 * (1.0 / 3 + t2 * (1.0 / 5 + t2 * (1.0 / 7 + t2 * (1.0 / 9)))));
 }
 
 rgb mipmap_lookup_trilinear_axes(const mipmap *m, uv2 st, double len2_a, double len2_b)
 {
     assert(m->packed && "mipmap_pack(m) first");
-    /* width^4 in texels = |a|^2 |b|^2 side^4, so lod = log2(width) = log2(width^4) / 4: one log2
-     * and no square root on the way to the texels */
+    /* width^4 in texels: w4 = |a|^2 |b|^2 side^4, and the level is lod = log2(width) =
+     * log2(w4) / 4, with no square root on the way to the texels */
     double side2 = (double)max_side(&m->level[0]) * max_side(&m->level[0]);
-    double w4 = len2_a * len2_b * side2 * side2, top = m->nlevels - 1;
-    double lod = w4 > 1.0 ? 0.25 * log2(w4) : 0.0; /* magnification, or NaN: the base */
-    return trilinear_at(m, st, lod < top ? lod : top);
+    double w4 = len2_a * len2_b * side2 * side2;
+    int top = m->nlevels - 1;
+    if (!(w4 > 1.0)) return trilinear_at(m, st, 0, 0.0); /* magnification, or NaN: the base */
+    /* w4 = 2^e m with m in [1, 2), so log2 w4 = e + log2 m with 0 <= log2 m < 1, and
+     * l = floor(log2(w4) / 4) = floor(e / 4): the level, hence its texels' addresses, comes
+     * from the exponent's bits, and only the blend weight waits for the logarithm */
+    uint64_t bits;
+    memcpy(&bits, &w4, sizeof bits);
+    int e = (int)(bits >> 52) - 1023; /* w4 > 1: the sign bit is 0; +Inf gives 1024 */
+    int l = e >> 2;
+    if (l >= top) return trilinear_at(m, st, top, 0.0); /* the 1 x 1 level, or past it */
+    double f = 0.25 * log2_above_one(bits, e) - l; /* in [0, 1]: 1 only by rounding, just below
+                                                        level l + 1, which it then reads */
+    return trilinear_at(m, st, l, f < 0.0 ? 0.0 : f > 1.0 ? 1.0 : f);
 }
 
 /* ---- EWA ----------------------------------------------------------------------------------- */

@@ -56,10 +56,18 @@ typedef struct mipmap {
     float *packed;                   /* trilinear's copy of every level (mipmap_pack; NULL
                                         until then): texels as 4 floats (R, G, B, 0), 16 bytes,
                                         so a texel is one aligned load and the filter blends
-                                        three channels at once.  Owned; 16 bytes a texel over
-                                        all levels (level 0 included): about 1.8 times the base
-                                        image's bytes, which EWA alone never pays */
-    size_t packed_at[MIPMAP_MAX_LEVELS]; /* level l's first texel in `packed` (texels) */
+                                        three channels at once; each level's rows from the
+                                        BOTTOM, so row j is texel row j of the lookup (t up).
+                                        Owned; 16 bytes a texel over all levels (level 0
+                                        included): about 1.8 times the base image's bytes,
+                                        which EWA alone never pays */
+    struct mipmap_packed_level {     /* what a trilinear lookup reads of level l, in one place */
+        const float *texels;         /* its first texel in `packed` (bottom-left) */
+        double w, h;                 /* its size, as doubles for s W and t H */
+        int iw, ih;                  /* the same as ints */
+        int wmask, hmask;            /* W - 1 and H - 1 when the wrap is repeat and both sides
+                                        are powers of two (k mod W = k & (W - 1)), else -1 */
+    } packed_level[MIPMAP_MAX_LEVELS];
 } mipmap;
 
 /* Build the pyramid of `base` (non-empty) for lookups with `wrap`.  The mipmap REFERENCES the

@@ -292,6 +292,82 @@ START_TEST(test_trilinear_axes_is_trilinear_of_the_area_side)
 }
 END_TEST
 
+/* mipmap_lookup_trilinear_axes takes the level from w4's exponent and its fraction from its own
+ * log2 series, and reads tiled power-of-two levels by masks: on a 32 x 16 texture (masks under
+ * repeat) and a 37 x 20 one (never), in every wrap mode, at footprints every 1/64 of a level
+ * from a quarter texel to past the top, at exact powers of two and next to them, and at
+ * coordinates from -3 to 4 and far out (past 2^30 texels the general axis code takes over), it
+ * agrees with mipmap_lookup_trilinear (libm's log2, the level split by a floor); and at each
+ * whole level it is that level's bilinear lookup. */
+START_TEST(test_trilinear_axes_agrees_with_the_width_lookup_at_every_level)
+{
+    const int sizes[2][2] = {{32, 16}, {37, 20}};
+    for (int z = 0; z < 2; z++) {
+        image im = random_image(sizes[z][0], sizes[z][1]);
+        double side = sizes[z][0];
+        for (int md = 0; md < 3; md++) {
+            mipmap m = build(&im, all_modes[md]);
+            int levels = mipmap_levels(&m);
+            if (z == 0) ck_assert_int_eq(m.packed_level[0].wmask, md == 0 ? 31 : -1);
+            for (int q = 0; q < 12; q++) {
+                uv2 st = q < 10 ? (uv2){rng_uniform(-3, 4), rng_uniform(-3, 4)}
+                                : (uv2){rng_uniform(-1, 1) * 1e8, rng_uniform(-1, 1) * 1e8};
+                for (int k = -128; k <= 64 * (levels + 1); k++) {
+                    double texels = exp2(k / 64.0);
+                    for (int nb = -1; nb <= 1; nb++) { /* just below, at and just above 2^(k/64) */
+                        double w = texels * (1 + nb * 1e-12) / side, len2 = w * w;
+                        rgb want = mipmap_lookup_trilinear(&m, st, w);
+                        rgb got = mipmap_lookup_trilinear_axes(&m, st, len2, len2);
+                        if (!(fabs(got.r - want.r) <= 2e-6 && fabs(got.g - want.g) <= 2e-6))
+                            ck_abort_msg("%dx%d mode %d st (%g, %g) footprint 2^(%d/64)(1%+g): %.9g, want %.9g",
+                                         sizes[z][0], sizes[z][1], md, st.u, st.v, k, nb * 1e-12, got.g, want.g);
+                    }
+                    if (k % 64 == 0 && k >= 0 && k / 64 < levels) { /* a whole level: its bilinear */
+                        double w = texels / side;
+                        rgb got = mipmap_lookup_trilinear_axes(&m, st, w * w, w * w);
+                        rgb want = texlookup_bilinear(mipmap_level(&m, k / 64), st, all_modes[md]);
+                        if (!(fabs(got.g - want.g) <= 2e-5 * (1 + fabs(want.g))))
+                            ck_abort_msg("level %d, mode %d, st (%g, %g): %.9g, want %.9g", k / 64, md, st.u,
+                                         st.v, got.g, want.g);
+                    }
+                }
+            }
+            mipmap_free(&m);
+        }
+        image_free(&im);
+    }
+}
+END_TEST
+
+/* The blend weight itself: on a 2 x 2 texture whose texel (0, 0) is 0 and whose 1 x 1 level is
+ * 0.5, a lookup at that texel's centre is f / 2 exactly, f the footprint's fraction of a level;
+ * mipmap_lookup_trilinear_axes's own log2 must give f = log2(width in texels) to float
+ * precision, mantissas near 2 (the series' worst case) included. */
+START_TEST(test_trilinear_axes_blend_weight_is_the_level_fraction)
+{
+    image im = new_image(2, 2);
+    image_set(&im, 0, 1, rgb_gray(0)); /* (0, 0) from the bottom */
+    image_set(&im, 1, 1, rgb_gray(1));
+    image_set(&im, 0, 0, rgb_gray(1));
+    image_set(&im, 1, 0, rgb_gray(0));
+    mipmap m = build(&im, WRAP_CLAMP);
+    ck_assert_int_eq(mipmap_levels(&m), 2);
+    ck_assert(image_get(mipmap_level(&m, 1), 0, 0).g == 0.5f);
+    uv2 centre = {0.25, 0.25};
+    for (int k = 1; k < 4000; k++) {
+        /* texels in (1, 2): w4 = texels^4 in (1, 16), every mantissa and exponents 0 to 3 */
+        double texels = k < 3000 ? 1 + k / 3000.0 : exp2(0.25 * (4 - (k - 2999) * 1e-4)); /* up to 2^-1e-4 below 2 */
+        double w = texels / 2, len2 = w * w;
+        double f = 2 * mipmap_lookup_trilinear_axes(&m, centre, len2, len2).g;
+        double want = log2(texels);
+        if (!(fabs(f - want) <= 1.5e-7))
+            ck_abort_msg("footprint %.12g texels: f = %.9g, log2 = %.9g", texels, f, want);
+    }
+    mipmap_free(&m);
+    image_free(&im);
+}
+END_TEST
+
 START_TEST(test_trilinear_is_continuous_in_the_footprint)
 {
     /* Steps of 1e-3 in log2(footprint) move the level by 1e-3, so the colour by at most 1e-3
@@ -549,13 +625,16 @@ START_TEST(test_only_pack_makes_trilinears_copy_and_only_once)
     float *first = m.packed;
     ck_assert_int_eq(mipmap_pack(&m, &err), 0);
     ck_assert_ptr_eq(m.packed, first);
-    for (int l = 0; l < mipmap_levels(&m); l++) { /* every level, texel for texel, as (R, G, B, 0) */
-        const image *lv = mipmap_level(&m, l);
-        const float *p = m.packed + 4 * m.packed_at[l];
-        for (int i = 0; i < lv->w * lv->h; i++) {
-            ck_assert(p[4 * i] == lv->px[3 * i] && p[4 * i + 1] == lv->px[3 * i + 1]);
-            ck_assert(p[4 * i + 2] == lv->px[3 * i + 2] && p[4 * i + 3] == 0.0f);
-        }
+    for (int l = 0; l < mipmap_levels(&m); l++) { /* every level, texel for texel, as (R, G, B, 0), */
+        const image *lv = mipmap_level(&m, l);   /* its rows from the bottom */
+        const struct mipmap_packed_level *pl = &m.packed_level[l];
+        ck_assert(pl->iw == lv->w && pl->ih == lv->h && pl->w == lv->w && pl->h == lv->h);
+        ck_assert(pl->wmask == -1 && pl->hmask == -1); /* clamp: never the masks */
+        for (int j = 0; j < lv->h; j++)
+            for (int i = 0; i < lv->w; i++) {
+                const float *p = pl->texels + 4 * ((size_t)j * lv->w + i), *q = image_px(lv, i, lv->h - 1 - j);
+                ck_assert(p[0] == q[0] && p[1] == q[1] && p[2] == q[2] && p[3] == 0.0f);
+            }
     }
     rgb tri = mipmap_lookup_trilinear(&m, st, 0); /* below a texel: bilinear on the base */
     ck_assert_near(tri.b, ewa.b, 1e-5);
@@ -633,6 +712,8 @@ Suite *mipmap_suite(void)
     tcase_add_test(tc, test_trilinear_measures_a_tall_images_footprint_by_its_longer_side);
     tcase_add_test(tc, test_trilinear_blends_the_two_nearest_levels_by_the_fraction);
     tcase_add_test(tc, test_trilinear_axes_is_trilinear_of_the_area_side);
+    tcase_add_test(tc, test_trilinear_axes_agrees_with_the_width_lookup_at_every_level);
+    tcase_add_test(tc, test_trilinear_axes_blend_weight_is_the_level_fraction);
     tcase_add_test(tc, test_trilinear_is_continuous_in_the_footprint);
     tcase_add_test(tc, test_ewa_of_a_constant_texture_is_the_constant);
     tcase_add_test(tc, test_ewa_with_zero_footprint_is_bilinear_on_the_base);
