@@ -114,8 +114,9 @@ rgb mipmap_lookup_trilinear(const mipmap *m, uv2 st, double footprint_width);
 /* mipmap_lookup_trilinear with the footprint given by the SQUARED lengths of its two axes (texture
  * units; e.g. |dst/dx|^2 and |dst/dy|^2): footprint_width = (len2_a len2_b)^(1/4), the geometric
  * mean of the axes' lengths (the side of a square of the footprint's area only when the axes are
- * perpendicular: the area is |a x b|), found by a single log2 with no square root (the level is
- * within rounding of mipmap_lookup_trilinear's). */
+ * perpendicular: the area is |a x b|), with no square root: the level's whole part comes from
+ * the exponent of w4 = len2_a len2_b side^4 and its fraction from an inline log2 within 1e-9 of
+ * libm's (so the result is within float rounding of mipmap_lookup_trilinear's). */
 rgb mipmap_lookup_trilinear_axes(const mipmap *m, uv2 st, double len2_a, double len2_b);
 
 /* EWA lookup (pbrt-v3 MIPMap::EWA).  dst_dx, dst_dy: the change of (s, t) per pixel step in x
