@@ -19,6 +19,18 @@ static void little_float(unsigned char *p, float v)
     for (int i = 0; i < 4; i++) p[i] = (unsigned char)(u >> (8 * i));
 }
 
+/* Write `header` then the n floats v little endian (the pixels as a PFM with scale -1 stores
+ * them) to path. */
+static void write_pfm_bytes(const char *path, const char *header, const float *v, int n)
+{
+    size_t h = strlen(header);
+    unsigned char d[256];
+    ck_assert_uint_le(h + 4 * (size_t)n, sizeof d);
+    memcpy(d, header, h);
+    for (int i = 0; i < n; i++) little_float(d + h + 4 * i, v[i]);
+    write_bytes(path, d, h + 4 * (size_t)n);
+}
+
 START_TEST(test_pfm_roundtrip_is_bit_exact_including_nan_and_inf)
 {
     make_dir();
@@ -45,11 +57,8 @@ START_TEST(test_pfm_rows_are_stored_bottom_to_top)
 {
     make_dir();
     /* 1 x 2 colour, little endian: the first stored row is the BOTTOM one */
-    unsigned char d[12 + 24];
-    memcpy(d, "PF\n1 2\n-1.0\n", 12);
     float v[6] = {1, 2, 3, 4, 5, 6};
-    for (int i = 0; i < 6; i++) little_float(d + 12 + 4 * i, v[i]);
-    write_bytes(in_dir("rows.pfm"), d, sizeof d);
+    write_pfm_bytes(in_dir("rows.pfm"), "PF\n1 2\n-1.0\n", v, 6);
     image im = {0};
     error err = {0};
     ck_assert_msg(pfm_read(in_dir("rows.pfm"), &im, &err) == 0, "%s", err.msg);
@@ -66,11 +75,8 @@ END_TEST
 START_TEST(test_pfm_header_with_crlf_line_ends)
 {
     make_dir();
-    unsigned char d[15 + 24];
-    memcpy(d, "PF\r\n2 1\r\n-1.0\r\n", 15);
     float v[6] = {1, 2, 3, 4, 5, 6};
-    for (int i = 0; i < 6; i++) little_float(d + 15 + 4 * i, v[i]);
-    write_bytes(in_dir("crlf.pfm"), d, sizeof d);
+    write_pfm_bytes(in_dir("crlf.pfm"), "PF\r\n2 1\r\n-1.0\r\n", v, 6);
     image im = {0};
     error err = {0};
     ck_assert_msg(pfm_read(in_dir("crlf.pfm"), &im, &err) == 0, "%s", err.msg);
@@ -79,15 +85,15 @@ START_TEST(test_pfm_header_with_crlf_line_ends)
     image_free(&im);
 
     /* lone "\r", grey, first float 0x3F80000A little endian: its first byte is the 0x0A */
-    unsigned char e[12 + 8];
-    memcpy(e, "Pf\r2 1\r-1.0\r", 12);
     uint32_t bits = 0x3F80000Au;
-    float first;
-    memcpy(&first, &bits, 4);
-    little_float(e + 12, first);
-    little_float(e + 16, 2.0f);
+    float g[2] = {0, 2.0f};
+    memcpy(&g[0], &bits, 4);
+    write_pfm_bytes(in_dir("cr.pfm"), "Pf\r2 1\r-1.0\r", g, 2);
+    size_t n;
+    unsigned char *e = slurp(in_dir("cr.pfm"), &n);
     ck_assert_int_eq(e[12], 0x0A);
-    write_bytes(in_dir("cr.pfm"), e, sizeof e);
+    free(e);
+    float first = g[0];
     ck_assert_msg(pfm_read(in_dir("cr.pfm"), &im, &err) == 0, "%s", err.msg);
     ck_assert(im.px[0] == first && im.px[3] == 2.0f);
     image_free(&im);
