@@ -1394,9 +1394,65 @@ static void scene_init(scene *sc)
     sc->fovy = 0;
 }
 
-/* Parse `len` bytes of text (NULs already rejected) into *out. */
-static int parse(const char *text, size_t len, const char *name, const scene_load_opts *opts,
-                 scene *out, error *err)
+/* Where the lines come from: a string (text, len), or a file read a chunk at a time, so that a
+ * scene is checked as it arrives: /dev/zero or a binary file fails at its first NUL byte or
+ * over-long line, not when memory runs out. */
+#define SCENE_READ_CHUNK (1 << 16)
+typedef struct line_source {
+    FILE *f;           /* NULL for a string */
+    const char *chunk; /* the string, or `buf` below for a file */
+    size_t len, pos;   /* bytes in chunk, and the next one to read */
+    int eof;           /* nothing more to come after chunk */
+    char *buf;         /* a file's chunk buffer (SCENE_READ_CHUNK bytes) */
+} line_source;
+
+/* The next line (without its '\n') into line[0..n-1], NUL-terminated; line has room for
+ * SCENE_MAX_LINE + 4 bytes (a first line may carry a 3-byte byte-order mark).  Returns 1 for a
+ * line, 0 at the end, -1 on error: a NUL byte or a line over SCENE_MAX_LINE bytes (reported at
+ * the parser's current line), or a read error (reported for the file, line 0). */
+static int next_line(parser *p, line_source *src, char *line, size_t *n_out)
+{
+    size_t n = 0, limit = SCENE_MAX_LINE + (p->line == 1 ? 3 : 0);
+    int any = 0; /* a byte of this line (or its '\n') was read */
+    for (;;) {
+        if (src->pos == src->len) {
+            if (src->eof || !src->f) break;
+            src->len = fread(src->buf, 1, SCENE_READ_CHUNK, src->f);
+            src->pos = 0;
+            if (src->len == 0) {
+                if (ferror(src->f)) /* the file's fault, not a line's: no line number */
+                    return error_set(p->err, p->name, 0, "cannot read: %s", strerror(errno));
+                src->eof = 1;
+            }
+            continue;
+        }
+        const char *start = src->chunk + src->pos;
+        size_t avail = src->len - src->pos;
+        const char *nl = memchr(start, '\n', avail);
+        size_t take = nl ? (size_t)(nl - start) : avail;
+        any = 1;
+        if (take > limit - n) return fail(p, "line is longer than %d bytes", SCENE_MAX_LINE);
+        if (memchr(start, '\0', take)) return fail(p, "NUL byte in the file (binary file?)");
+        memcpy(line + n, start, take);
+        n += take;
+        src->pos += take + (nl != NULL);
+        if (nl) break;
+    }
+    if (!any) return 0;
+    line[n] = '\0';
+    /* a UTF-8 byte-order mark some editors write is not part of the first keyword */
+    if (p->line == 1 && n >= 3 && memcmp(line, "\xEF\xBB\xBF", 3) == 0) {
+        memmove(line, line + 3, n - 2);
+        n -= 3;
+    }
+    if (n > SCENE_MAX_LINE) return fail(p, "line is longer than %d bytes", SCENE_MAX_LINE);
+    *n_out = n;
+    return 1;
+}
+
+/* Parse the lines of `src` into *out. */
+static int parse(line_source *src, const char *name, const scene_load_opts *opts, scene *out,
+                 error *err)
 {
     scene_load_opts defaults = scene_load_defaults();
     parser p;
@@ -1436,25 +1492,17 @@ static int parse(const char *text, size_t len, const char *name, const scene_loa
         memcpy(out->path, "-", 2);
     }
 
-    buf = malloc(SCENE_MAX_LINE + 1);
+    buf = malloc(SCENE_MAX_LINE + 4);
     if (!buf) {
         error_set(err, p.name, 0, "out of memory");
         goto done;
     }
-    size_t pos = 0;
-    /* a UTF-8 byte-order mark some editors write is not part of the first keyword */
-    if (len >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0) pos = 3;
-    while (pos < len) {
+    for (;;) {
         p.line++;
-        const char *nl = memchr(text + pos, '\n', len - pos);
-        size_t n = (nl ? (size_t)(nl - text) : len) - pos;
-        if (n > SCENE_MAX_LINE) {
-            fail(&p, "line is longer than %d bytes", SCENE_MAX_LINE);
-            goto done;
-        }
-        memcpy(buf, text + pos, n);
-        buf[n] = '\0';
-        pos += n + 1;
+        size_t n;
+        int got = next_line(&p, src, buf, &n);
+        if (got < 0) goto done;
+        if (got == 0) break; /* the end (finish() sets the line to 0) */
         tokenize(&p, buf);
         if (run_line(&p)) goto done;
     }
@@ -1495,7 +1543,8 @@ int scene_load_string(const char *text, const char *name, const scene_load_opts 
                       error *err)
 {
     assert(text && out);
-    return parse(text, strlen(text), name, opts, out, err);
+    line_source src = {NULL, text, strlen(text), 0, 1, NULL};
+    return parse(&src, name, opts, out, err);
 }
 
 int scene_load(const char *path, const scene_load_opts *opts, scene *out, error *err)
@@ -1505,40 +1554,14 @@ int scene_load(const char *path, const scene_load_opts *opts, scene *out, error 
     FILE *f = fopen(path, "rb");
     if (!f) return error_set(err, path, 0, "cannot open: %s", strerror(errno));
     int rc = -1;
-    size_t len = 0, cap = 1 << 16;
-    char *text = malloc(cap);
-    if (!text) {
+    char *chunk = malloc(SCENE_READ_CHUNK);
+    if (!chunk) {
         error_set(err, path, 0, "out of memory");
-        goto done;
+    } else {
+        line_source src = {f, chunk, 0, 0, 0, chunk};
+        rc = parse(&src, path, opts, out, err);
     }
-    for (;;) {
-        if (len == cap) {
-            char *t = cap <= ((size_t)-1) / 2 ? realloc(text, cap * 2) : NULL;
-            if (!t) {
-                error_set(err, path, 0, "out of memory reading the file");
-                goto done;
-            }
-            text = t;
-            cap *= 2;
-        }
-        size_t got = fread(text + len, 1, cap - len, f);
-        len += got;
-        if (got == 0) break;
-    }
-    if (ferror(f)) {
-        error_set(err, path, 0, "cannot read: %s", strerror(errno));
-        goto done;
-    }
-    const char *nul = memchr(text, '\0', len);
-    if (nul) {
-        int line = 1;
-        for (const char *c = text; c < nul; c++) line += *c == '\n';
-        error_set(err, path, line, "NUL byte in the file (binary file?)");
-        goto done;
-    }
-    rc = parse(text, len, path, opts, out, err);
-done:
-    free(text);
+    free(chunk);
     fclose(f);
     return rc;
 }

@@ -215,7 +215,10 @@ scene_load_opts scene_load_defaults(void);
  *     err->file "dir/x.test", err->line 7, err->msg "expected a number for 'sphere' argument 4,
  *     got 'abc'"
  * Errors found only at the end ("no 'size' command", "no 'camera' command") have line 0; an
- * envmap image that cannot be read is reported at the `envmap` line with the reader's reason. */
+ * envmap image that cannot be read is reported at the `envmap` line with the reader's reason.
+ * The file is read a chunk at a time and each line is checked as it arrives (a NUL byte or a
+ * line over SCENE_MAX_LINE bytes stops the reading there), so `path` may be a pipe, and an
+ * endless stream such as /dev/zero fails at once instead of filling memory. */
 int scene_load(const char *path, const scene_load_opts *opts, scene *out, error *err);
 
 /* The same from a string in memory; `name` is used in messages and as the base folder for
