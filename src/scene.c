@@ -52,6 +52,7 @@ typedef struct parser {
     mat4 *stack;               /* saved transforms (pushTransform) */
     int depth, stack_cap;
     int first_quad_line;       /* the first `quadLight`, for the raytracer's warning (finish) */
+    int first_delta_line;      /* the first `point` or `directional`, for analyticdirect's */
     /* material and light state */
     material mat;
     double atten[3];
@@ -551,6 +552,7 @@ static int add_light(parser *p, const scene_light *l)
     if (grow(p, (void **)&sc->lights, &p->cap_lights, (long)sc->n_lights + 1, sizeof *sc->lights))
         return -1;
     sc->lights[sc->n_lights++] = *l;
+    if (l->kind != LIGHT_QUAD && !p->first_delta_line) p->first_delta_line = p->line;
     return 0;
 }
 
@@ -1366,6 +1368,12 @@ static int finish(parser *p)
         p->line = p->first_quad_line;
         warn(p, "the 'raytracer' integrator ignores quad lights (they neither light, show nor block): "
                 "use 'integrator analyticdirect', 'direct' or 'pathtracer'");
+        p->line = 0;
+    }
+    if (p->first_delta_line && sc->integrator == INTEGRATOR_ANALYTICDIRECT) { /* hw2's renderer with hw1's lights */
+        p->line = p->first_delta_line;
+        warn(p, "the 'analyticdirect' integrator lights with quad lights only: point and directional "
+                "lights are ignored (use 'integrator direct' or 'pathtracer', which sample them)");
         p->line = 0;
     }
     if (p->opts->load_images && load_textures(p)) return -1;

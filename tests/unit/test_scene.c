@@ -488,6 +488,40 @@ START_TEST(test_quad_lights_under_the_raytracer_warn_at_the_first_one)
 }
 END_TEST
 
+/* Point and directional lights under analyticdirect (hw2's renderer, hw1's lights): one warning
+ * at the first of them, since analyticdirect integrates quad lights only; none under the
+ * integrators that sample them, or when the scene has only quad lights.  Catches a scene that
+ * renders black with no word of why (an audit found it silent). */
+START_TEST(test_point_lights_under_analyticdirect_warn_at_the_first_one)
+{
+    warnings ws;
+    scene_load_opts o = opts_counting(&ws);
+    scene sc;
+    error err = {0};
+    const char *lights = "quadLight -1 -1 2  2 0 0  0 2 0  3 3 3\ndirectional 0 0 1 1 1 1\npoint 0 0 2 1 1 1\n";
+    char text[512];
+    snprintf(text, sizeof text, HEAD "integrator analyticdirect\nsphere 0 0 0 1\n%s", lights);
+    ck_assert_int_eq(scene_load_string(text, "t.test", &o, &sc, &err), 0);
+    ck_assert_int_eq(ws.n, 1);
+    ck_assert_int_eq(ws.last.line, 6);
+    ck_assert_ptr_nonnull(strstr(ws.last.msg, "point and directional lights are ignored"));
+    scene_free(&sc);
+    static const char *const others[] = {"integrator direct\n", "integrator pathtracer\n", "integrator raytracer\n"};
+    for (int i = 0; i < 3; i++) {
+        snprintf(text, sizeof text, HEAD "integrator analyticdirect\npoint 0 0 2 1 1 1\n%s", others[i]);
+        o = opts_counting(&ws);
+        ck_assert_int_eq(scene_load_string(text, "t.test", &o, &sc, &err), 0);
+        ck_assert_int_eq(ws.n, 0);
+        scene_free(&sc);
+    }
+    snprintf(text, sizeof text, HEAD "integrator analyticdirect\nquadLight -1 -1 2  2 0 0  0 2 0  3 3 3\n");
+    o = opts_counting(&ws);
+    ck_assert_int_eq(scene_load_string(text, "t.test", &o, &sc, &err), 0);
+    ck_assert_int_eq(ws.n, 0);
+    scene_free(&sc);
+}
+END_TEST
+
 /* ---- lexical rules ---------------------------------------------------------------------- */
 
 START_TEST(test_comments_blank_lines_crlf_and_tabs_are_tolerated)
@@ -1812,6 +1846,7 @@ Suite *scene_suite(void)
     tcase_add_test(cmds, test_a_mirroring_transform_keeps_triangles_counter_clockwise_from_outside);
     tcase_add_test(cmds, test_rotate_takes_tiny_and_huge_axes_by_their_direction);
     tcase_add_test(cmds, test_quad_lights_under_the_raytracer_warn_at_the_first_one);
+    tcase_add_test(cmds, test_point_lights_under_analyticdirect_warn_at_the_first_one);
     tcase_add_test(cmds, test_directional_takes_tiny_and_huge_directions_by_their_direction);
     tcase_add_test(cmds, test_lights_are_in_world_space_and_point_takes_the_current_attenuation);
     tcase_add_test(cmds, test_envmap_takes_file_scale_and_the_current_transform);
