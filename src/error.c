@@ -14,6 +14,7 @@ int error_set(error *err, const char *file, int line, const char *fmt, ...)
 {
     if (!err) return -1;
     snprintf(err->file, sizeof err->file, "%s", file ? file : "");
+    one_line(err->file); /* a file name may hold a newline too */
     err->line = line;
     va_list ap;
     va_start(ap, fmt);

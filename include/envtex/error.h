@@ -22,8 +22,9 @@ typedef struct error {
 } error;
 
 /* Fill `err` (if not NULL) with file, line and a printf-style message; always returns -1 so a
- * caller can write `return error_set(err, path, 0, "truncated");`.  Newlines in the message are
- * replaced by spaces so the report stays one line. */
+ * caller can write `return error_set(err, path, 0, "truncated");`.  Newlines (and carriage
+ * returns) in the message and in the file name are replaced by spaces so the report stays one
+ * line. */
 int error_set(error *err, const char *file, int line, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)));
 

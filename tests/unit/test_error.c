@@ -104,6 +104,18 @@ START_TEST(test_error_print_writes_file_line_and_message)
 }
 END_TEST
 
+/* A file name may hold a newline (a scene named $'a\nb.test'): the report stays one line.
+ * Catches a file name copied as it is (an audit's two-line error). */
+START_TEST(test_error_print_keeps_a_file_name_with_a_newline_on_one_line)
+{
+    error err = {0};
+    char out[4096];
+    error_set(&err, "dir/a\nb\r.test", 2, "expected a number");
+    print_to(&err, out, sizeof out);
+    ck_assert_str_eq(out, "envtex: dir/a b .test:2: expected a number\n");
+}
+END_TEST
+
 START_TEST(test_error_print_without_a_line_leaves_the_line_out)
 {
     error err = {0};
@@ -146,6 +158,7 @@ Suite *error_suite(void)
     tcase_add_test(tc, test_error_prefix_of_a_full_message_stays_terminated);
     tcase_add_test(tc, test_error_print_writes_file_line_and_message);
     tcase_add_test(tc, test_error_print_without_a_line_leaves_the_line_out);
+    tcase_add_test(tc, test_error_print_keeps_a_file_name_with_a_newline_on_one_line);
     tcase_add_test(tc, test_error_print_without_a_file_prints_the_message_only);
     tcase_add_test(tc, test_error_print_of_an_empty_error_says_unknown);
     suite_add_tcase(s, tc);
