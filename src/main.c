@@ -377,6 +377,12 @@ static int cmd_compare_test(int argc, char **argv)
         if (target) {
             if (!(v = opt_value(argc, argv, &i))) return 1;
             if (parse_double(v, target) || !(*target > 0)) return usage_error("option needs a number > 0, got '%s'", v);
+            /* significance and share of pixels are fractions: --max-fail 0.5 means half the pixels
+             * (not 0.5%), and 5 would let every pixel fail */
+            if (target == &p.alpha && !(*target < 1))
+                return usage_error("--alpha is a significance level in (0, 1), got '%s'", v);
+            if (target == &p.max_fail_fraction && !(*target <= 1))
+                return usage_error("--max-fail is a fraction of the pixels in (0, 1] (0.005 is 0.5%%), got '%s'", v);
         } else if (a[0] == '-' && a[1]) return usage_error("unknown option '%s'", a);
         else if (np < 3) paths[np++] = a;
         else return usage_error("unexpected argument '%s'", a);
