@@ -64,7 +64,18 @@ $(BUILD)/libenvtex.a: $(LIB_OBJ)
 	@rm -f $@
 	ar rcs $@ $^
 
-$(BUILD)/obj/%.o: src/%.c
+# The compiler and flags of the last build in $(BUILD): when `make CC=clang` or `make CFLAGS=-O3`
+# changes them, every object is compiled again (without this, make said "Nothing to be done" and
+# kept the old binary).  The file is rewritten only when its text changes, so an unchanged build
+# rebuilds nothing.
+BUILD_FLAGS = $(CC) $(ALL_CFLAGS) | $(LDFLAGS)
+$(BUILD)/flags: FORCE
+	@mkdir -p $(dir $@)
+	@printf '%s\n' '$(BUILD_FLAGS)' | cmp -s - $@ || printf '%s\n' '$(BUILD_FLAGS)' > $@
+.PHONY: FORCE
+FORCE:
+
+$(BUILD)/obj/%.o: src/%.c $(BUILD)/flags
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) -c -o $@ $<
 
