@@ -132,6 +132,10 @@ deps:
 	echo "deps: installing$$missing"; \
 	$$SUDO env DEBIAN_FRONTEND=noninteractive apt-get update -qq && \
 	$$SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $$missing
+	@pkg-config --atleast-version=3.1 OpenEXR || { \
+		echo "envtex: needs OpenEXR 3.1 or later (its C API, OpenEXRCore); this system has" \
+			"$$(pkg-config --modversion OpenEXR 2>/dev/null || echo none): use Debian 12 or Ubuntu 24.04 or later" >&2; \
+		exit 1; }
 
 run: deps
 	@$(MAKE) --no-print-directory all
