@@ -56,12 +56,14 @@ vec3 sampling_ggx_half(double alpha, double xi1, double xi2)
 
 double sampling_ggx_d(double alpha, double cos_theta)
 {
-    if (cos_theta <= 0) return 0;
+    if (!(cos_theta > 0)) return 0;
     alpha = sampling_ggx_alpha(alpha); /* the peak 1 / (pi alpha^2) and den^2 stay finite */
-    double c2 = cos_theta * cos_theta, a2 = alpha * alpha;
+    /* n . h rounds up to 1 + 2^-52 at the axis: there 1 - c^2 < 0 would outweigh alpha^2 c^2
+     * for alpha below ~2e-8, and a mirror-like lobe lose the samples that hit its peak */
+    double c = fmin(cos_theta, 1.0);
+    double c2 = c * c, a2 = alpha * alpha;
     /* alpha^2 / (pi cos^4 (alpha^2 + tan^2)^2) = alpha^2 / (pi (alpha^2 cos^2 + sin^2)^2) */
-    double den = a2 * c2 + (1 - c2);
-    if (!(den > 0)) return 0; /* alpha = 0 at the exact normal: a delta, not a density */
+    double den = a2 * c2 + (1 - c2); /* >= alpha^2 c^2 > 0 */
     return a2 / (M_PI * den * den);
 }
 

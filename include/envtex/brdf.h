@@ -4,8 +4,8 @@
  *   Phong:  f = kd / pi + ks (s + 2) / (2 pi) max(r . wi, 0)^s,   r = mirror direction of wo
  *   GGX:    f = kd / pi + F G D / (4 |n.wi| |n.wo|),  Smith G = G1(wi) G1(wo),
  *           G1 = 2 / (1 + sqrt(1 + alpha^2 tan^2 theta)),  Schlick F = ks + (1 - ks)(1 - wi.h)^5
- *           alpha = roughness clamped by sampling_ggx_alpha (0 stays 0, and lies outside f: a
- *           delta), so any finite roughness >= 0 gives finite f, pdfs and weights
+ *           alpha = roughness clamped by sampling_ggx_alpha (roughness 0 is the mirror limit,
+ *           alpha = 2^-27), so any finite roughness >= 0 gives finite f, pdfs and weights
  *   BRDF sampling picks the specular lobe with probability t = avg(ks) / (avg(ks) + avg(kd))
  *   (GGX with ks > 0: t at least 0.25, as the course's scenes do), else the cosine-weighted
  *   diffuse lobe.

@@ -29,10 +29,13 @@ double sampling_cosine_hemisphere_pdf(double cos_theta);
 vec3 sampling_phong_lobe(double s, double xi1, double xi2);
 double sampling_phong_lobe_pdf(double s, double cos_alpha);
 
-/* The GGX roughness alpha the GGX functions use (these two and brdf.c's G1): any alpha > 0 is
- * clamped to [SAMPLING_GGX_ALPHA_MIN, SAMPLING_GGX_ALPHA_MAX], where the lobe has already
- * reached its limit in double precision; alpha = 0 stays 0 (a delta: D = 0, no density).  So
- * every finite alpha >= 0 gives finite D, G and half vectors.
+/* The GGX roughness alpha the GGX functions use (these two and brdf.c's G1): alpha is clamped
+ * to [SAMPLING_GGX_ALPHA_MIN, SAMPLING_GGX_ALPHA_MAX], where the lobe has already reached its
+ * limit in double precision.  alpha = 0 (the scene's default roughness, or a black roughness
+ * map) is MIN too: the limit of GGX as alpha -> 0, a mirror with Schlick's Fresnel, which BRDF
+ * sampling finds exactly.  (Before 2026-11-23 alpha = 0 stayed 0, a delta outside f and the
+ * pdf, and a smooth GGX ball rendered black.)  So every alpha >= 0 gives finite D, G and half
+ * vectors.
  *   MIN = 2^-27: at or below it alpha^2 - 1 rounds to -1, so sampling_ggx_half returns exactly
  *     +z for every xi: the lobe is already a mirror.  Smaller alphas only push D's peak
  *     1 / (pi alpha^2) (2^54 / pi here) towards overflow: computed as alpha^2 / (pi (alpha^2)^2)
@@ -46,14 +49,15 @@ double sampling_phong_lobe_pdf(double s, double cos_alpha);
 #define SAMPLING_GGX_ALPHA_MAX 0x1p64
 static inline double sampling_ggx_alpha(double alpha)
 {
-    return alpha > 0 ? fmin(fmax(alpha, SAMPLING_GGX_ALPHA_MIN), SAMPLING_GGX_ALPHA_MAX) : 0;
+    return alpha > SAMPLING_GGX_ALPHA_MIN ? fmin(alpha, SAMPLING_GGX_ALPHA_MAX) : SAMPLING_GGX_ALPHA_MIN;
 }
 
 /* GGX (Trowbridge-Reitz) half vector around +z: theta_h = atan(alpha sqrt(xi1 / (1 - xi1)));
  * pdf_h = D(h) cos(theta_h) with D from sampling_ggx_d.  alpha: sampling_ggx_alpha. */
 vec3 sampling_ggx_half(double alpha, double xi1, double xi2);
-/* D = alpha^2 / (pi cos^4(theta) (alpha^2 + tan^2(theta))^2) ; 0 for cos_theta <= 0 and for
- * alpha = 0; alpha: sampling_ggx_alpha. */
+/* D = alpha^2 / (pi cos^4(theta) (alpha^2 + tan^2(theta))^2) ; 0 for cos_theta <= 0;
+ * alpha: sampling_ggx_alpha.  A cos_theta above 1 (n . h of two unit vectors can round to
+ * 1 + 2^-52) is the axis, where D peaks at 1 / (pi alpha^2). */
 double sampling_ggx_d(double alpha, double cos_theta);
 
 /* Local direction (z along n) -> world, n unit. */

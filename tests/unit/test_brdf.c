@@ -233,12 +233,49 @@ START_TEST(test_brdf_phong_with_huge_shininess_stays_finite_at_the_mirror_direct
 }
 END_TEST
 
+/* A mirror-like GGX (roughness 0, the scene's default, or any alpha at or below 2^-27) under a
+ * normal that is not an axis: every specular sample is the mirror direction with weight F / t.
+ * Catches roughness 0 kept as a delta outside f (every weight 0: a smooth GGX ball renders black)
+ * and n . h rounding to 1 + 2^-52 at the peak unclamped in D (an audit found 11% of the samples
+ * lost at alpha 1e-9; the test above has n = +z, where that rounding does not happen). */
+START_TEST(test_brdf_mirror_like_ggx_finds_every_specular_sample_under_any_normal)
+{
+    const double alphas[] = {0, 1e-300, 1e-9, SAMPLING_GGX_ALPHA_MIN};
+    brdf_case c = {"", BRDF_GGX, SAMPLING_BRDF, 0.5, 0.5, 0, 0, 0};
+    rng r;
+    rng_seed(&r, 17, 0);
+    int lost = 0, wrong = 0;
+    for (int i = 0; i < 4; i++) {
+        c.roughness = alphas[i];
+        surface s = make_surface(&c);
+        for (int k = 0; k < 4000; k++) {
+            s.n = s.ng = sampling_uniform_sphere(rng_uniform(&r), rng_uniform(&r));
+            vec3 wo = sampling_to_world(sampling_cosine_hemisphere(rng_uniform(&r), rng_uniform(&r)), s.n);
+            double cos_o = vec3_dot(wo, s.n);
+            if (!(cos_o > 1e-3)) continue;
+            vec3 mirror = vec3_reflect(vec3_neg(wo), s.n);
+            double t = brdf_specular_probability(&s), F = 0.5 + 0.5 * pow(1 - cos_o, 5);
+            brdf_sample_result bs;
+            /* xi3 = 0 < t: the specular lobe */
+            if (!brdf_sample(&s, wo, SAMPLING_BRDF, rng_uniform(&r), rng_uniform(&r), 0.0, &bs)) {
+                lost++;
+                continue;
+            }
+            wrong += !(vec3_length(vec3_sub(bs.wi, mirror)) < 1e-12);
+            wrong += !(fabs(bs.weight.r - F / t) < 1e-6 * (F / t));
+        }
+    }
+    ck_assert_int_eq(lost, 0);
+    ck_assert_int_eq(wrong, 0);
+}
+END_TEST
+
 /* GGX at roughnesses far beyond the lecture's range reaches its two limits with finite numbers.
  * Huge alpha (1e155 .. DBL_MAX): the specular lobe has vanished, f = kd / pi to 1e-20 away from
  * grazing, and pdf and sample weights are finite.  Tiny alpha (1e-300 .. 1e-20): a mirror, the
  * specular sample is the mirror direction with weight f cos / pdf = F / t (D dominates f and
  * the pdf alike; Schlick's F at 80 degrees is far from ks, so the diffuse weight kd / (1 - t) = 1
- * cannot pass for it).  alpha = 0 (a delta that f and the pdf leave out) stays finite.
+ * cannot pass for it).  alpha = 0 (the mirror limit, as 2^-27) stays finite.
  * Catches alpha^2 overflowing in D or in G1 (f = pdf = NaN once alpha > 1e154; G1 alone: NaN
  * at wi = n, Inf * tan^2 = Inf * 0), D's peak overflowing for alpha below ~1e-81 (weight
  * Inf / Inf = NaN), and a tiny alpha flushed to 0 instead of clamped up (as alpha^2 underflowing
@@ -422,6 +459,7 @@ Suite *brdf_suite(void)
     tcase_add_test(tc, test_brdf_ggx_eval_is_the_courses_microfacet_formula);
     tcase_add_test(tc, test_brdf_phong_with_huge_shininess_stays_finite_at_the_mirror_direction);
     tcase_add_test(tc, test_brdf_ggx_with_extreme_roughness_is_finite_and_reaches_its_limits);
+    tcase_add_test(tc, test_brdf_mirror_like_ggx_finds_every_specular_sample_under_any_normal);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -169,11 +169,20 @@ START_TEST(test_sampling_pdfs_vanish_below_their_hemisphere)
 }
 END_TEST
 
-/* GGX with alpha = 0 is a delta at the normal: the guard returns 0 (no 0 / 0) */
-START_TEST(test_sampling_ggx_d_with_zero_roughness_is_zero_not_nan)
+/* GGX with alpha = 0 is the mirror limit, alpha = SAMPLING_GGX_ALPHA_MIN: at the axis D is the
+ * finite peak 1 / (pi alpha^2), also for a cosine that rounded to 1 + 2^-52, and off the axis
+ * next to nothing.  Catches alpha = 0 kept as 0 (D = 0 everywhere: a smooth GGX ball renders
+ * black) and a cosine above 1 not clamped (1 - c^2 < 0 outweighs alpha^2 c^2: D = 0 or
+ * negative at the peak, the lost samples of a mirror-like lobe). */
+START_TEST(test_sampling_ggx_d_with_zero_roughness_is_the_mirror_limit)
 {
-    ck_assert(sampling_ggx_d(0, 1) == 0);
-    ck_assert(sampling_ggx_d(0, 0.5) == 0);
+    double a = SAMPLING_GGX_ALPHA_MIN, peak = 1 / (M_PI * a * a);
+    ck_assert_double_eq_tol(sampling_ggx_d(0, 1), peak, 1e-12 * peak);
+    ck_assert_double_eq_tol(sampling_ggx_d(0, 1 + 0x1p-52), peak, 1e-12 * peak);
+    ck_assert_double_eq_tol(sampling_ggx_d(1e-300, 1 + 0x1p-52), peak, 1e-12 * peak);
+    ck_assert_double_eq_tol(sampling_ggx_d(1e-9, 1 + 0x1p-52), peak, 1e-12 * peak);
+    ck_assert(sampling_ggx_d(0, 0.5) >= 0 && sampling_ggx_d(0, 0.5) < 1e-15);
+    ck_assert(sampling_ggx_d(0, NAN) == 0);
     /* D integrates to 1 over projected area: D(alpha, 1) = 1 / (pi alpha^2) at the peak */
     ck_assert_near(sampling_ggx_d(0.5, 1) * M_PI * 0.25, 1, 1e-12);
 }
@@ -275,7 +284,7 @@ Suite *sampling_suite(void)
     tc = tcase_create("edges");
     tcase_add_test(tc, test_sampling_edge_random_numbers_give_unit_directions_in_the_right_hemisphere);
     tcase_add_test(tc, test_sampling_pdfs_vanish_below_their_hemisphere);
-    tcase_add_test(tc, test_sampling_ggx_d_with_zero_roughness_is_zero_not_nan);
+    tcase_add_test(tc, test_sampling_ggx_d_with_zero_roughness_is_the_mirror_limit);
     tcase_add_test(tc, test_sampling_phong_pdf_treats_a_cosine_rounded_above_one_as_the_axis);
     tcase_add_test(tc, test_sampling_ggx_is_finite_for_every_roughness_the_parser_accepts);
     tcase_add_test(tc, test_sampling_ggx_half_draws_from_the_lobe_d_describes_at_huge_roughness);
