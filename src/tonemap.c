@@ -34,8 +34,8 @@ double tonemap_srgb_decode(double e)
 static double tonemap_channel(const tonemap_params *tm, double scale, double c)
 {
     if (isnan(c)) return 0.0;
-    double x = c * scale; /* c * 2^exposure */
-    if (isnan(x)) return 0.0; /* Inf * 0 when the exposure underflows the scale */
+    if (isinf(c)) return c > 0 ? 1.0 : 0.0; /* before the scale: Inf * 0 when 2^exposure underflows */
+    double x = c * scale; /* c * 2^exposure: finite * finite, never NaN */
     if (x <= 0.0) return 0.0; /* display values are never negative; also guards 1 + x = 0 below */
     if (isinf(x)) return 1.0;
     switch (tm->op) {
@@ -43,7 +43,10 @@ static double tonemap_channel(const tonemap_params *tm, double scale, double c)
     case TONEMAP_REINHARD: x = x / (1.0 + x); break; /* x / (1 + x), x >= 0 so no zero division */
     case TONEMAP_ACES:
         /* Narkowicz 2015: (x (a x + b)) / (x (c x + d) + e), a=2.51 b=0.03 c=2.43 d=0.59 e=0.14;
-         * the denominator is >= 0.14 for x >= 0.  The raw fit: no 0.6 pre-exposure. */
+         * the denominator is >= 0.14 for x >= 0.  The raw fit: no 0.6 pre-exposure.  It reaches
+         * 1 at x = 7.24 (0.08 x^2 - 0.56 x - 0.14 = 0) and stays above (-> 2.51 / 2.43): white
+         * from x = 8 on, before x^2 can overflow (x > 1e154 gave Inf / Inf = NaN) */
+        if (x >= 8.0) return 1.0;
         x = (x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14);
         break;
     }

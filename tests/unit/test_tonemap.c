@@ -119,6 +119,38 @@ START_TEST(test_nan_is_black_and_inf_is_white_and_both_are_counted_per_pixel)
 }
 END_TEST
 
+/* Extreme exposures and values keep the contract for every operator: anything over white is
+ * white, +Inf is white and -Inf black at any exposure.  Catches ACES's x^2 overflowing (x above
+ * 1e154: Inf / Inf = NaN, cast to a byte: undefined behaviour, 0 on x86) and +Inf scaled by an
+ * exposure that underflowed 2^EV to 0 (Inf * 0 = NaN: black); both found by an audit. */
+START_TEST(test_extreme_exposures_and_values_keep_white_white)
+{
+    tonemap_params tm = tonemap_defaults();
+    for (int op = TONEMAP_CLAMP; op <= TONEMAP_ACES; op++) {
+        tm.op = (tonemap_op)op;
+        uint8_t o[3];
+        tm.exposure = 0;
+        px(&tm, 1e200, 1e300, 8.0, o);
+        ck_assert_msg(o[0] == 255 && o[1] == 255, "op %d: %d %d", op, o[0], o[1]);
+        tm.exposure = 1000; /* 2^1000 = 1e301: 1 x that is finite, 1e10 x that is Inf */
+        px(&tm, 1.0, 1e10, 1e-300, o);
+        ck_assert_msg(o[0] == 255 && o[1] == 255 && o[2] > 0, "op %d: %d %d %d", op, o[0], o[1], o[2]);
+        tm.exposure = -2000; /* 2^-2000 = 0 */
+        px(&tm, INFINITY, 1e38, -INFINITY, o);
+        ck_assert_msg(o[0] == 255 && o[1] == 0 && o[2] == 0, "op %d: %d %d %d", op, o[0], o[1], o[2]);
+    }
+    tm.op = TONEMAP_ACES; /* the curve at the guard's edge: 7.24 -> 1.0000, 8 -> 1.003 */
+    tm.exposure = 0;
+    tm.gamma = 1.0;
+    uint8_t o[3];
+    px(&tm, 7.0, 7.999, 8.0, o);
+    ck_assert(o[0] == 255 && o[1] == 255 && o[2] == 255);
+    px(&tm, 5.0, 6.0, 0.5, o); /* 0.98528, 0.99320 -> 251, 253 (the guard is not earlier) */
+    ck_assert_int_eq(o[0], 251);
+    ck_assert_int_eq(o[1], 253);
+}
+END_TEST
+
 START_TEST(test_operator_names_parse_and_unknown_ones_fail)
 {
     tonemap_op op = TONEMAP_CLAMP;
@@ -142,6 +174,7 @@ Suite *tonemap_suite(void)
     tcase_add_test(tc, test_reinhard_and_aces_curves_give_their_formula_values);
     tcase_add_test(tc, test_exposure_multiplies_by_two_to_the_ev);
     tcase_add_test(tc, test_nan_is_black_and_inf_is_white_and_both_are_counted_per_pixel);
+    tcase_add_test(tc, test_extreme_exposures_and_values_keep_white_white);
     tcase_add_test(tc, test_operator_names_parse_and_unknown_ones_fail);
     suite_add_tcase(s, tc);
     return s;
