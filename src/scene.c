@@ -683,7 +683,18 @@ static int cmd_brdf(parser *p)
 }
 
 static int cmd_roughness(parser *p) { return arg_nonneg(p, 1, 0, &p->mat.roughness); }
-static int cmd_ior(parser *p) { return arg_nonneg(p, 1, 1, &p->mat.ior); }
+/* Indices of refraction outside [SCENE_IOR_MIN, SCENE_IOR_MAX] are typing mistakes (water 1.33,
+ * glass 1.5, diamond 2.42; an air bubble in water 0.75); far enough out, eta^2 under- or
+ * overflows in Fresnel's equations and refraction returns NaN directions */
+#define SCENE_IOR_MIN 0.01
+#define SCENE_IOR_MAX 100.0
+static int cmd_ior(parser *p)
+{
+    if (arg_nonneg(p, 1, 1, &p->mat.ior)) return -1;
+    if (!(p->mat.ior >= SCENE_IOR_MIN && p->mat.ior <= SCENE_IOR_MAX))
+        return fail(p, "'ior' must be from %g to %g, got '%s'", SCENE_IOR_MIN, SCENE_IOR_MAX, p->tok[1]);
+    return 0;
+}
 /* output encoding c^(1/g): gammas outside [SCENE_GAMMA_MIN, SCENE_GAMMA_MAX] are typing
  * mistakes (the course uses 2.2), refused here rather than after the render by the PNG writer */
 #define SCENE_GAMMA_MIN 0.01

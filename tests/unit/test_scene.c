@@ -132,6 +132,9 @@ static const bad_case bad_cases[] = {
     {"roughness -0.1\n", 3, "'roughness' argument 1 must be >= 0, got '-0.1'"},
     {"ior 0\n", 3, "'ior' argument 1 must be > 0, got '0'"},
     {"ior -1.5\n", 3, "'-1.5'"},
+    {"ior 1e-200\n", 3, "'ior' must be from 0.01 to 100, got '1e-200'"},
+    {"ior 0.0099\n", 3, "'ior' must be from 0.01 to 100, got '0.0099'"},
+    {"ior 100.01\n", 3, "'ior' must be from 0.01 to 100, got '100.01'"},
     {"shininess -1\n", 3, "'shininess' argument 1 must be >= 0, got '-1'"},
     {"diffuse 1 -1 0\n", 3, "'diffuse' argument 2 must be >= 0, got '-1'"},
     {"emission 1 1 x\n", 3, "'x'"},
@@ -331,6 +334,11 @@ START_TEST(test_limits_hold_at_their_exact_bounds)
     scene_free(&sc);
     load_ok(HEAD "gamma 0.01\n", &sc);
     ck_assert_double_eq(sc.gamma, 0.01);
+    scene_free(&sc);
+    /* ior: both ends of [0.01, 100] are taken */
+    load_ok(HEAD "ior 100\nsphere 0 0 0 1\nior 0.01\nsphere 0 0 0 1\n", &sc);
+    ck_assert_double_eq(sc.materials[sc.spheres[0].material].ior, 100);
+    ck_assert_double_eq(sc.materials[sc.spheres[1].material].ior, 0.01);
     scene_free(&sc);
     /* camera samples: 8192 x 8192 x 256 is exactly 2^34, one more spp is over */
     load_ok("size 8192 8192\nspp 256\ncamera 0 0 5 0 0 0 0 1 0 45\n", &sc);
