@@ -300,8 +300,10 @@ static double reduce_coordinate(double x, int n, double rad, wrap_mode wrap)
         if (x < 0) return x - floor(x) - margin;       /* frac(x) - margin < -rad - 1 */
         return x - floor(x) + n + margin;               /* > n + rad + 1 */
     }
+    /* fmod is exact (x - period floor(x / period) is not once x passes 2^53 texels: x / period
+     * rounds, and a 3-texel texture read the wrong texel there) */
     double period = wrap == WRAP_MIRROR ? 2.0 * n : (double)n;
-    return x - period * floor(x / period);
+    return fmod(x, period); /* in (-period, period), x's fraction kept: small enough */
 }
 
 /* The EWA filter on one level; d0, d1 in texture units. */

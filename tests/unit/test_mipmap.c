@@ -538,6 +538,26 @@ START_TEST(test_ewa_far_coordinates_read_like_near_ones)
                 mipmap_lookup_ewa(&cla, (uv2){-3.0, 0.6}, dx, dy), 1e-9);
     ck_rgb_near(mipmap_lookup_ewa(&cla, (uv2){0.4, 1e12}, dx, dy),
                 mipmap_lookup_ewa(&cla, (uv2){0.4, 4.0}, dx, dy), 1e-9);
+    /* past 2^53 texels, on a 3-texel (NPOT) texture: the far lookup reads what the lookup at the
+     * exactly reduced coordinate reads (fmod; x - n floor(x / n) is not exact there and read a
+     * neighbouring texel, 0 where 10 was right: an audit's probe, s = 32600230925411192) */
+    image strip = new_image(3, 1);
+    for (int i = 0; i < 3; i++) image_set(&strip, i, 0, rgb_gray(10.0 * i));
+    uv2 small = {0.2 / 3, 0}, none = {0, 0}; /* 0.2 texel: a round ellipse of about a texel */
+    for (wrap_mode w = WRAP_REPEAT; w <= WRAP_MIRROR; w++) {
+        if (w == WRAP_CLAMP) continue;
+        mipmap m3 = build(&strip, w);
+        double period = w == WRAP_MIRROR ? 6 : 3;
+        const double far[] = {32600230925411192.0, 1e17 + 8, -3.3e16 - 4, 7.7e18};
+        for (int k = 0; k < 4; k++) {
+            double x = far[k] * 3 - 0.5, r = fmod(x, period); /* the texel coordinate, reduced */
+            if (r < 0) r += period;
+            uv2 st = {far[k], 0.5}, near = {(r + 0.5) / 3, 0.5};
+            ck_rgb_near(mipmap_lookup_ewa(&m3, st, small, none), mipmap_lookup_ewa(&m3, near, small, none), 1e-3);
+        }
+        mipmap_free(&m3);
+    }
+    image_free(&strip);
     ck_assert(rgb_is_finite(mipmap_lookup_ewa(&rep, (uv2){NAN, 0.5}, dx, dy)));
     ck_assert(rgb_is_finite(mipmap_lookup_ewa(&cla, (uv2){INFINITY, 0.5}, dx, dy)));
     ck_assert(rgb_is_finite(mipmap_lookup_trilinear(&cla, (uv2){INFINITY, NAN}, 0.1)));
