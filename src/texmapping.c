@@ -40,7 +40,7 @@ uv2 texmapping_spherical(vec3 q)
 {
     /* theta = atan2(sqrt(x^2 + y^2), z): the angle from +z, exact near the poles (acos is not),
      * and atan2(0, 0) = 0 for q = 0 */
-    double theta = atan2(sqrt(q.x * q.x + q.y * q.y), q.z);
+    double theta = atan2(hypot(q.x, q.y), q.z); /* hypot: no overflow at 1e200, no underflow at 1e-200 */
     if (q.x == 0 && q.y == 0 && q.z == 0) theta = 0.5 * M_PI;
     return (uv2){phi_s(q), 1.0 - theta / M_PI}; /* t = 1 - theta / pi */
 }
@@ -102,6 +102,9 @@ uv2 texmapping_uv_interpolate(const uv2 st[3], double b1, double b2)
 double texmapping_wrap_delta(double d)
 {
     if (!isfinite(d)) return 0.0;
+    /* from 2^52 on every double is an integer, a whole number of turns; and there d - 0.5
+     * would round (to even), leaving 1 */
+    if (fabs(d) >= 0x1p52) return 0.0;
     d -= ceil(d - 0.5); /* d - round-half-down: lands in (-0.5, 0.5] */
     return d;
 }

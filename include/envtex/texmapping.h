@@ -36,7 +36,7 @@
  * is -0.0, as atan2(0, -0.0) = pi), and the wrapped differential stays bounded by 0.5.  The
  * cube's edges are seams of the mapping itself (the image changes there); its differentials use
  * the face of the point, analytically, so they never jump.  The zero point q = 0 maps to
- * (0, 0.5) (spherical) or face 0's centre (cube).
+ * (0, 0.5) (spherical; (0.5, 0.5) if x is -0.0, as at the poles) or face 0's centre (cube).
  *
  * Everything here is pure and allocation free.
  */

@@ -41,6 +41,11 @@ START_TEST(test_spherical_known_values_follow_the_envmap_frame)
     ck_uv_near(texmapping_spherical(vec3_make(0, 0, -1)), 0, 0, 0);
     double c = cos(M_PI / 4);
     ck_uv_near(texmapping_spherical(vec3_make(c, 0, c)), 0, 0.75, 1e-15);   /* theta 45 deg */
+    /* any radius, however large or small: sqrt(x^2 + y^2) overflowed at 1e200 (t = 0.5) and
+     * underflowed at 1e-200 (t = 1) where (1, 1, 1) / sqrt 3 gives t = 1 - acos(1/sqrt 3) / pi */
+    double t3 = 1 - acos(1 / sqrt(3.0)) / M_PI;
+    ck_uv_near(texmapping_spherical(vec3_make(1e200, 1e200, 1e200)), 0.125, t3, 1e-15);
+    ck_uv_near(texmapping_spherical(vec3_make(1e-200, 1e-200, 1e-200)), 0.125, t3, 1e-15);
 }
 END_TEST
 
@@ -125,6 +130,12 @@ START_TEST(test_wrap_delta_lands_in_the_half_open_interval)
     ck_assert_double_eq(texmapping_wrap_delta(3.25), 0.25);
     ck_assert_double_eq(texmapping_wrap_delta(NAN), 0);
     ck_assert_double_eq(texmapping_wrap_delta(INFINITY), 0);
+    /* at and past 2^52 every double is a whole number of turns: 0, never 1 (d - 0.5 rounded to
+     * even there: an audit found 2^52 + 1 giving 1); just below, halves still land on +0.5 */
+    const double whole[] = {0x1p52 + 1, 0x1p53 - 1, -(0x1p52 + 1), 0x1p52 + 3, 1e300};
+    for (int k = 0; k < 5; k++) ck_assert_double_eq(texmapping_wrap_delta(whole[k]), 0);
+    ck_assert_double_eq(texmapping_wrap_delta(0x1p51 + 0.5), 0.5);
+    ck_assert_double_eq(texmapping_wrap_delta(-0x1p51 - 0.5), 0.5);
 }
 END_TEST
 
