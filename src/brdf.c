@@ -44,7 +44,9 @@ rgb brdf_eval(const surface *s, vec3 wo, vec3 wi)
     double G = ggx_g1(a, cos_i) * ggx_g1(a, cos_o);
     double m = pow(1 - fmax(0.0, vec3_dot(wi, h)), 5); /* Schlick: F = ks + (1 - ks) (1 - wi.h)^5 */
     rgb F = rgb_make(s->ks.r + (1 - s->ks.r) * m, s->ks.g + (1 - s->ks.g) * m, s->ks.b + (1 - s->ks.b) * m);
-    return rgb_madd(f, F, G * D / (4 * cos_i * cos_o));
+    double den = 4 * cos_i * cos_o; /* underflows to 0 only at grazing (cosines ~1e-162), where */
+    if (!(den > 0)) return f;       /* G is 0 too: the specular term's limit there is 0, not 0/0 */
+    return rgb_madd(f, F, G * D / den);
 }
 
 double brdf_specular_probability(const surface *s)
