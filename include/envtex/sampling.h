@@ -25,7 +25,9 @@ vec3 sampling_cosine_hemisphere(double xi1, double xi2);
 double sampling_cosine_hemisphere_pdf(double cos_theta);
 
 /* Phong lobe around +z: cos(alpha) = (1 - xi1)^(1/(s+1)), xi1 = 0 on the axis;
- * pdf = (s + 1) / (2 pi) cos(alpha)^s (may point below a surface: the caller rejects those). */
+ * pdf = (s + 1) / (2 pi) cos(alpha)^s (may point below a surface: the caller rejects those).
+ * s >= 0, as the scene's `shininess` is (below -1 the lobe is no density and the direction not
+ * a unit vector).  Every sampler here takes xi1, xi2 in [0, 1]; a NaN gives a NaN direction. */
 vec3 sampling_phong_lobe(double s, double xi1, double xi2);
 double sampling_phong_lobe_pdf(double s, double cos_alpha);
 
