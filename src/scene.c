@@ -1387,6 +1387,12 @@ static int finish(parser *p)
                 "lights are ignored (use 'integrator direct' or 'pathtracer', which sample them)");
         p->line = 0;
     }
+    if (p->first_delta_line && sc->integrator == INTEGRATOR_PATHTRACER && sc->nee == NEE_OFF) {
+        p->line = p->first_delta_line; /* a path never hits a point: only NEE reaches one */
+        warn(p, "with 'nexteventestimation off' the path tracer never reaches point or directional "
+                "lights (no path can hit one): they light nothing; use 'nexteventestimation on' or 'mis'");
+        p->line = 0;
+    }
     if (p->opts->load_images && load_textures(p)) return -1;
     if (sc->envmap.present && p->opts->load_images && load_envmap(p)) return -1;
     return 0;

@@ -514,7 +514,8 @@ START_TEST(test_point_lights_under_analyticdirect_warn_at_the_first_one)
     ck_assert_int_eq(ws.last.line, 6);
     ck_assert_ptr_nonnull(strstr(ws.last.msg, "point and directional lights are ignored"));
     scene_free(&sc);
-    static const char *const others[] = {"integrator direct\n", "integrator pathtracer\n", "integrator raytracer\n"};
+    static const char *const others[] = {"integrator direct\n", "integrator pathtracer\nnexteventestimation on\n",
+                                         "integrator raytracer\n"};
     for (int i = 0; i < 3; i++) {
         snprintf(text, sizeof text, HEAD "integrator analyticdirect\npoint 0 0 2 1 1 1\n%s", others[i]);
         o = opts_counting(&ws);
@@ -527,6 +528,38 @@ START_TEST(test_point_lights_under_analyticdirect_warn_at_the_first_one)
     ck_assert_int_eq(scene_load_string(text, "t.test", &o, &sc, &err), 0);
     ck_assert_int_eq(ws.n, 0);
     scene_free(&sc);
+}
+END_TEST
+
+/* Point and directional lights in the path tracer with NEE off (its default): no path can hit
+ * one, so they light nothing; one warning at the first of them, none with NEE on or mis or with
+ * quad lights only.  Catches a scene that renders black with no word of why (an audit of the
+ * integrators noted it). */
+START_TEST(test_point_lights_in_the_path_tracer_without_nee_warn)
+{
+    warnings ws;
+    scene_load_opts o = opts_counting(&ws);
+    scene sc;
+    error err = {0};
+    char text[512];
+    snprintf(text, sizeof text, HEAD "integrator pathtracer\nquadLight -1 -1 2  2 0 0  0 2 0  3 3 3\n"
+                                     "point 0 0 2 1 1 1\ndirectional 0 0 1 1 1 1\n");
+    ck_assert_int_eq(scene_load_string(text, "t.test", &o, &sc, &err), 0);
+    ck_assert_int_eq(ws.n, 1);
+    ck_assert_int_eq(ws.last.line, 5);
+    ck_assert_ptr_nonnull(strstr(ws.last.msg, "never reaches point or directional lights"));
+    scene_free(&sc);
+    static const char *const fine[] = {
+        HEAD "integrator pathtracer\nnexteventestimation on\npoint 0 0 2 1 1 1\n",
+        HEAD "integrator pathtracer\nnexteventestimation mis\ndirectional 0 0 1 1 1 1\n",
+        HEAD "integrator pathtracer\nquadLight -1 -1 2  2 0 0  0 2 0  3 3 3\n",
+        HEAD "integrator direct\npoint 0 0 2 1 1 1\n"};
+    for (int i = 0; i < 4; i++) {
+        o = opts_counting(&ws);
+        ck_assert_int_eq(scene_load_string(fine[i], "t.test", &o, &sc, &err), 0);
+        ck_assert_msg(ws.n == 0, "case %d: %s", i, ws.last.msg);
+        scene_free(&sc);
+    }
 }
 END_TEST
 
@@ -1855,6 +1888,7 @@ Suite *scene_suite(void)
     tcase_add_test(cmds, test_rotate_takes_tiny_and_huge_axes_by_their_direction);
     tcase_add_test(cmds, test_quad_lights_under_the_raytracer_warn_at_the_first_one);
     tcase_add_test(cmds, test_point_lights_under_analyticdirect_warn_at_the_first_one);
+    tcase_add_test(cmds, test_point_lights_in_the_path_tracer_without_nee_warn);
     tcase_add_test(cmds, test_directional_takes_tiny_and_huge_directions_by_their_direction);
     tcase_add_test(cmds, test_lights_are_in_world_space_and_point_takes_the_current_attenuation);
     tcase_add_test(cmds, test_envmap_takes_file_scale_and_the_current_transform);
