@@ -468,30 +468,36 @@ START_TEST(test_commands_before_size_warn_once_even_when_strict)
 }
 END_TEST
 
-/* A quad light in a scene rendered by the Whitted raytracer (hw1's renderer, hw2's light): one
- * warning at the first quadLight's line, since the raytracer ignores quad lights; none when an
- * integrator that uses them is chosen, before or after the light */
-START_TEST(test_quad_lights_under_the_raytracer_warn_at_the_first_one)
+/* Load `text` (which must load) and check its warnings: exactly `n` of them, the last at `line`
+ * and containing `what` (n = 0: none, line and what unused). */
+static void expect_warnings(const char *text, int n, int line, const char *what)
 {
     warnings ws;
     scene_load_opts o = opts_counting(&ws);
     scene sc;
     error err = {0};
+    ck_assert_msg(scene_load_string(text, "t.test", &o, &sc, &err) == 0, "%s", err.msg);
+    ck_assert_msg(ws.n == n, "%d warnings, expected %d (last: %s) for:\n%s", ws.n, n, ws.last.msg, text);
+    if (n > 0) {
+        ck_assert_int_eq(ws.last.line, line);
+        ck_assert_ptr_nonnull(strstr(ws.last.msg, what));
+    }
+    scene_free(&sc);
+}
+
+/* A quad light in a scene rendered by the Whitted raytracer (hw1's renderer, hw2's light): one
+ * warning at the first quadLight's line, since the raytracer ignores quad lights; none when an
+ * integrator that uses them is chosen, before or after the light */
+START_TEST(test_quad_lights_under_the_raytracer_warn_at_the_first_one)
+{
     const char *quads = "quadLight -1 -1 2  2 0 0  0 2 0  3 3 3\nquadLight 1 1 2  2 0 0  0 2 0  3 3 3\n";
     char text[512];
     snprintf(text, sizeof text, HEAD "sphere 0 0 0 1\n%s", quads);
-    ck_assert_int_eq(scene_load_string(text, "t.test", &o, &sc, &err), 0);
-    ck_assert_int_eq(ws.n, 1);
-    ck_assert_int_eq(ws.last.line, 4);
-    ck_assert_ptr_nonnull(strstr(ws.last.msg, "ignores quad lights"));
-    scene_free(&sc);
+    expect_warnings(text, 1, 4, "ignores quad lights");
     static const char *const others[] = {"integrator analyticdirect\n", "integrator direct\n", "integrator pathtracer\n"};
     for (int i = 0; i < 3; i++) {
         snprintf(text, sizeof text, HEAD "%s%sintegrator raytracer\n%s", quads, others[i], others[i]);
-        o = opts_counting(&ws);
-        ck_assert_int_eq(scene_load_string(text, "t.test", &o, &sc, &err), 0);
-        ck_assert_int_eq(ws.n, 0);
-        scene_free(&sc);
+        expect_warnings(text, 0, 0, NULL);
     }
 }
 END_TEST
@@ -502,32 +508,17 @@ END_TEST
  * renders black with no word of why (an audit found it silent). */
 START_TEST(test_point_lights_under_analyticdirect_warn_at_the_first_one)
 {
-    warnings ws;
-    scene_load_opts o = opts_counting(&ws);
-    scene sc;
-    error err = {0};
     const char *lights = "quadLight -1 -1 2  2 0 0  0 2 0  3 3 3\ndirectional 0 0 1 1 1 1\npoint 0 0 2 1 1 1\n";
     char text[512];
     snprintf(text, sizeof text, HEAD "integrator analyticdirect\nsphere 0 0 0 1\n%s", lights);
-    ck_assert_int_eq(scene_load_string(text, "t.test", &o, &sc, &err), 0);
-    ck_assert_int_eq(ws.n, 1);
-    ck_assert_int_eq(ws.last.line, 6);
-    ck_assert_ptr_nonnull(strstr(ws.last.msg, "point and directional lights are ignored"));
-    scene_free(&sc);
+    expect_warnings(text, 1, 6, "point and directional lights are ignored");
     static const char *const others[] = {"integrator direct\n", "integrator pathtracer\nnexteventestimation on\n",
                                          "integrator raytracer\n"};
     for (int i = 0; i < 3; i++) {
         snprintf(text, sizeof text, HEAD "integrator analyticdirect\npoint 0 0 2 1 1 1\n%s", others[i]);
-        o = opts_counting(&ws);
-        ck_assert_int_eq(scene_load_string(text, "t.test", &o, &sc, &err), 0);
-        ck_assert_int_eq(ws.n, 0);
-        scene_free(&sc);
+        expect_warnings(text, 0, 0, NULL);
     }
-    snprintf(text, sizeof text, HEAD "integrator analyticdirect\nquadLight -1 -1 2  2 0 0  0 2 0  3 3 3\n");
-    o = opts_counting(&ws);
-    ck_assert_int_eq(scene_load_string(text, "t.test", &o, &sc, &err), 0);
-    ck_assert_int_eq(ws.n, 0);
-    scene_free(&sc);
+    expect_warnings(HEAD "integrator analyticdirect\nquadLight -1 -1 2  2 0 0  0 2 0  3 3 3\n", 0, 0, NULL);
 }
 END_TEST
 
@@ -537,29 +528,13 @@ END_TEST
  * integrators noted it). */
 START_TEST(test_point_lights_in_the_path_tracer_without_nee_warn)
 {
-    warnings ws;
-    scene_load_opts o = opts_counting(&ws);
-    scene sc;
-    error err = {0};
-    char text[512];
-    snprintf(text, sizeof text, HEAD "integrator pathtracer\nquadLight -1 -1 2  2 0 0  0 2 0  3 3 3\n"
-                                     "point 0 0 2 1 1 1\ndirectional 0 0 1 1 1 1\n");
-    ck_assert_int_eq(scene_load_string(text, "t.test", &o, &sc, &err), 0);
-    ck_assert_int_eq(ws.n, 1);
-    ck_assert_int_eq(ws.last.line, 5);
-    ck_assert_ptr_nonnull(strstr(ws.last.msg, "never reaches point or directional lights"));
-    scene_free(&sc);
-    static const char *const fine[] = {
-        HEAD "integrator pathtracer\nnexteventestimation on\npoint 0 0 2 1 1 1\n",
-        HEAD "integrator pathtracer\nnexteventestimation mis\ndirectional 0 0 1 1 1 1\n",
-        HEAD "integrator pathtracer\nquadLight -1 -1 2  2 0 0  0 2 0  3 3 3\n",
-        HEAD "integrator direct\npoint 0 0 2 1 1 1\n"};
-    for (int i = 0; i < 4; i++) {
-        o = opts_counting(&ws);
-        ck_assert_int_eq(scene_load_string(fine[i], "t.test", &o, &sc, &err), 0);
-        ck_assert_msg(ws.n == 0, "case %d: %s", i, ws.last.msg);
-        scene_free(&sc);
-    }
+    expect_warnings(HEAD "integrator pathtracer\nquadLight -1 -1 2  2 0 0  0 2 0  3 3 3\n"
+                         "point 0 0 2 1 1 1\ndirectional 0 0 1 1 1 1\n",
+                    1, 5, "never reaches point or directional lights");
+    expect_warnings(HEAD "integrator pathtracer\nnexteventestimation on\npoint 0 0 2 1 1 1\n", 0, 0, NULL);
+    expect_warnings(HEAD "integrator pathtracer\nnexteventestimation mis\ndirectional 0 0 1 1 1 1\n", 0, 0, NULL);
+    expect_warnings(HEAD "integrator pathtracer\nquadLight -1 -1 2  2 0 0  0 2 0  3 3 3\n", 0, 0, NULL);
+    expect_warnings(HEAD "integrator direct\npoint 0 0 2 1 1 1\n", 0, 0, NULL);
 }
 END_TEST
 
