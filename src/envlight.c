@@ -283,7 +283,12 @@ int envlight_build(envlight *el, const envmap *env, envsampling_mode mode, envsa
     }
     /* row r spans theta in [pi r / h, pi (r + 1) / h]: u = cos theta from 1 down to -1 */
     for (int r = 0; r <= h; r++) el->cos_edge[r] = r == 0 ? 1.0 : r == h ? -1.0 : cos(M_PI * r / h);
-    for (int r = 0; r < h; r++) el->row_omega[r] = (el->cos_edge[r] - el->cos_edge[r + 1]) * 2 * M_PI / w;
+    for (int r = 0; r < h; r++) {
+        /* STEP(cdf): the exact solid angle of a texel of row r, in the lecture's u = cos theta, v = phi where d(omega) = du dv: (cos theta_top - cos theta_bottom) (2 pi / w), with cos_edge[r] = cos theta_top (slide 22); it weights each texel's probability and the map's power |L| */
+        /* STUB: el->row_omega[r] = 4 * M_PI / ((double)w * h); */
+        el->row_omega[r] = (el->cos_edge[r] - el->cos_edge[r + 1]) * 2 * M_PI / w;
+        /* END STEP(cdf) */
+    }
     if (mode == ENVSAMPLING_CDF || mode == ENVSAMPLING_CDF_SINTHETA) {
         /* cos and sin of phi at w phi_sub equal steps (at least 256), for sample_cos_sin_phi */
         el->phi_sub = (ENVLIGHT_PHI_STEPS + w - 1) / w;
