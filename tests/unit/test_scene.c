@@ -1651,27 +1651,22 @@ START_TEST(test_a_scene_file_is_read_across_its_chunks_as_one_text)
     }
     scene_free(&from_file);
     scene_free(&from_string);
-    /* without its BOM the first line may not use the BOM's 3 bytes: 65537 bytes is too long */
-    f = fopen(path, "wb");
-    ck_assert_ptr_nonnull(f);
-    fputc('#', f);
-    for (int k = 0; k < SCENE_MAX_LINE; k++) fputc(' ', f);
-    fputs("\n" HEAD, f);
-    fclose(f);
-    ck_assert_int_eq(scene_load(path, &o, &from_file, &err), -1);
-    ck_assert_int_eq(err.line, 1);
-    ck_assert_ptr_nonnull(strstr(err.msg, "line is longer than 65536 bytes"));
-    /* one byte more in the first line: over the limit even with its BOM left out, at line 1
-     * (a reader that lets it through writes past its line buffer: make asan sees that) */
-    f = fopen(path, "wb");
-    ck_assert_ptr_nonnull(f);
-    fputs("\xEF\xBB\xBF#", f);
-    for (int k = 0; k < SCENE_MAX_LINE; k++) fputc(' ', f);
-    fputs("\n" HEAD, f);
-    fclose(f);
-    ck_assert_int_eq(scene_load(path, &o, &from_file, &err), -1);
-    ck_assert_int_eq(err.line, 1);
-    ck_assert_ptr_nonnull(strstr(err.msg, "line is longer than 65536 bytes"));
+    /* a first line of 65537 bytes is too long, at line 1: without a BOM it may not use the
+     * BOM's 3 bytes, and after one (left out) a reader that lets it through writes past its
+     * line buffer (make asan sees that) */
+    static const char *const bom[] = {"", "\xEF\xBB\xBF"};
+    for (int b = 0; b < 2; b++) {
+        f = fopen(path, "wb");
+        ck_assert_ptr_nonnull(f);
+        fputs(bom[b], f);
+        fputc('#', f);
+        for (int k = 0; k < SCENE_MAX_LINE; k++) fputc(' ', f);
+        fputs("\n" HEAD, f);
+        fclose(f);
+        ck_assert_int_eq(scene_load(path, &o, &from_file, &err), -1);
+        ck_assert_int_eq(err.line, 1);
+        ck_assert_ptr_nonnull(strstr(err.msg, "line is longer than 65536 bytes"));
+    }
     unlink(path);
     rmdir(dir);
     free(text);
