@@ -66,6 +66,18 @@ static void load_fails(const char *text, int line, const char *what)
     ck_assert_ptr_null(sc.envmap.img.px);
 }
 
+/* Load the file `path` (default options), which must fail at `line` of that file with a message
+ * containing `what`. */
+static void load_file_fails(const char *path, int line, const char *what)
+{
+    scene sc;
+    error err = {0};
+    ck_assert_int_eq(scene_load(path, NULL, &sc, &err), -1);
+    ck_assert_str_eq(err.file, path);
+    ck_assert_msg(err.line == line, "error at line %d, expected %d: %s", err.line, line, err.msg);
+    ck_assert_msg(strstr(err.msg, what) != NULL, "message '%s' does not contain \"%s\"", err.msg, what);
+}
+
 static void assert_vec_near(vec3 a, double x, double y, double z)
 {
     ck_assert_near(a.x, x, 1e-12);
@@ -383,12 +395,7 @@ START_TEST(test_a_nul_byte_makes_the_file_an_error)
     static const char bytes[] = "size 10 10\n# comment\ncam\0era\n";
     fwrite(bytes, 1, sizeof bytes - 1, f);
     fclose(f);
-    scene sc;
-    error err = {0};
-    ck_assert_int_eq(scene_load(path, NULL, &sc, &err), -1);
-    ck_assert_str_eq(err.file, path);
-    ck_assert_int_eq(err.line, 3);
-    ck_assert_ptr_nonnull(strstr(err.msg, "binary file?"));
+    load_file_fails(path, 3, "binary file?");
     unlink(path);
     rmdir(dir);
 }
@@ -396,12 +403,7 @@ END_TEST
 
 START_TEST(test_a_missing_file_is_an_error_naming_it)
 {
-    scene sc;
-    error err = {0};
-    ck_assert_int_eq(scene_load("/nonexistent/dir/x.test", NULL, &sc, &err), -1);
-    ck_assert_str_eq(err.file, "/nonexistent/dir/x.test");
-    ck_assert_int_eq(err.line, 0);
-    ck_assert_ptr_nonnull(strstr(err.msg, "cannot open"));
+    load_file_fails("/nonexistent/dir/x.test", 0, "cannot open");
 }
 END_TEST
 
@@ -1663,9 +1665,7 @@ START_TEST(test_a_scene_file_is_read_across_its_chunks_as_one_text)
         for (int k = 0; k < SCENE_MAX_LINE; k++) fputc(' ', f);
         fputs("\n" HEAD, f);
         fclose(f);
-        ck_assert_int_eq(scene_load(path, &o, &from_file, &err), -1);
-        ck_assert_int_eq(err.line, 1);
-        ck_assert_ptr_nonnull(strstr(err.msg, "line is longer than 65536 bytes"));
+        load_file_fails(path, 1, "line is longer than 65536 bytes");
     }
     unlink(path);
     rmdir(dir);
@@ -1679,12 +1679,7 @@ END_TEST
 START_TEST(test_an_endless_binary_file_is_refused_at_its_first_nul)
 {
     if (access("/dev/zero", R_OK) != 0) return; /* not on this system */
-    scene sc;
-    error err = {0};
-    ck_assert_int_eq(scene_load("/dev/zero", NULL, &sc, &err), -1);
-    ck_assert_str_eq(err.file, "/dev/zero");
-    ck_assert_int_eq(err.line, 1);
-    ck_assert_ptr_nonnull(strstr(err.msg, "NUL byte"));
+    load_file_fails("/dev/zero", 1, "NUL byte");
 }
 END_TEST
 
