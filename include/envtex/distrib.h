@@ -24,8 +24,10 @@
  *
  * Conventions shared by every function:
  *   - xi in [0, 1).  Values outside are clamped, not rejected: xi < 0 or NaN acts as 0 and
- *     xi >= 1 (exactly 1 included) acts as the largest double below 1, which always lands in the
- *     LAST bin of non-zero probability.
+ *     xi >= 1 (exactly 1 included) acts as the largest double below 1.  For the inversion
+ *     samplers (`*_sample`) that always lands in the LAST bin of non-zero probability; an alias
+ *     sampler reads the last cell, which may hand the pick to that cell's alias (still a bin of
+ *     non-zero probability).
  *   - A bin of probability 0 is never returned, whatever xi: the search takes the first bin whose
  *     CDF value is > xi, so zero-width bins are skipped.
  *   - "pmf" is the discrete probability of the returned bin (it sums to 1 over the bins), not a
@@ -38,8 +40,10 @@
  *     weight is 0 the distribution falls back to uniform and sets `fell_back_to_uniform`.
  *   - pmf is a difference of two CDF entries, each known to about an ulp of 1, so a bin of
  *     probability p has a pmf within ~1e-16 / p relative of w / total (2e-8 for the dim cells
- *     beside a sun 10^8 times brighter).  A positive weight below ~1e-16 of the total gets a
- *     CDF step that rounds away: pmf 0, never chosen, like a zero weight.
+ *     beside a sun 10^8 times brighter).  A positive weight below ~1e-16 of the running sum
+ *     before it gets a CDF step that rounds away: pmf 0, never chosen, like a zero weight
+ *     (near the start of the CDF doubles are finer: weights {1e-30, 1} keep pmf 1e-30 for the
+ *     first bin, {1, 1e-30} give the second pmf 0).
  *   - Sampling and pmf functions allocate nothing and do not modify the tables.
  *
  * Precision and memory.  CDFs are accumulated AND stored in double.  Storing the conditional
@@ -50,8 +54,11 @@
  * In double the CDF of an 8192 x 4096 grid (33.5M cells) is 268 MB, its last entries are
  * exactly 1 and the pmf sums to 1 within rounding (tested: < 1e-6); guide tables add 1 byte a
  * cell.  Alias tables take 8 bytes a cell: a float threshold and an int32 alias.  The float
- * threshold changes the probability an alias table actually samples by at most ~6e-8 relative
- * to the pmf it reports; that is far below Monte Carlo noise.
+ * threshold rounds a cell's split by up to ~3e-8 of a cell.  The build hands the alias what the
+ * stored threshold gives it (1 - prob, not 1 - q), so each rounding stays in the cell it
+ * happened in and the roundings of many donors do not add up on one bin: a bin's sampled
+ * probability is its pmf within ~3e-8 / (n pmf) relative (6e-8 for a bin of average
+ * probability), far below Monte Carlo noise.
  *
  * Speed (one core, -O2): building 4096 x 2048 takes ~0.06 s (+0.1 s for the alias tables),
  * 8192 x 4096 ~0.35 s.  A 2D sample costs ~20-50 ns while the tables sit in cache; on a table

@@ -19,9 +19,10 @@
  *
  * L_avg is the average of the colour channels, so a sample's estimate L_c / pdf =
  * |L| L_c / L_avg: exact for grey light, and coloured light still converges (the ratio
- * L_c / L_avg is bounded wherever L_avg > 0).  Texels that are NaN, Inf or negative are
- * counted (n_bad) and treated as 0 everywhere, for lighting and sampling alike.  An all-black
- * map falls back to uniform sampling (fell_back).
+ * L_c / L_avg is bounded wherever L_avg > 0).  Texel channels that are NaN, Inf or
+ * negative are counted (n_bad; a texel with three such channels counts 3) and treated as 0
+ * everywhere, for lighting and sampling alike.  An all-black map falls back to uniform
+ * sampling (fell_back).
  *
  * A map in another representation (cube map, mirror ball, ...) is first resampled to a lat-long
  * map (envmap_to_latlong, solid-angle averaged, at the default resolution), which is then both
@@ -30,7 +31,7 @@
  *     envlight el;
  *     if (envlight_build(&el, &env, ENVSAMPLING_CDF, ENVSAMPLER_BINARY, 0, &err)) ...
  *     envlight_sample_result s;
- *     if (envlight_sample(&el, xi1, xi2, &s)) ... s.wi, s.L, s.pdf ...
+ *     if (envlight_sample(&el, xi1, xi2, 0, &s)) ... s.wi, s.L, s.pdf ...
  *     double pdf = envlight_pdf(&el, wi);   // for MIS, of a direction found another way
  *     envlight_free(&el);
  */

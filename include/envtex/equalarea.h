@@ -1,7 +1,8 @@
 /* equalarea.h - the equal-area (cylindrical equal-area) environment map: rows uniform in
  * cos theta, columns uniform in phi, so every texel covers the same solid angle.  Lecture
- * "Environment, Texture Maps", slides 13-14: the lat-long map wastes texels near the poles;
- * parameterize by (u = cos theta, phi) instead, since d(omega) = d(cos theta) d(phi).
+ * "Environment, Texture Maps": the lat-long map of slides 11-12 wastes texels near the poles;
+ * slide 22's parameterization, (u = cos theta, phi) with d(omega) = d(cos theta) d(phi), makes
+ * every texel the same solid angle.
  *
  * Frame (the envmap frame, +z up, as latlong.h):  theta = acos(z) from the zenith,
  * phi = atan2(y, x) wrapped to [0, 2 pi).  Image coordinates (u to the right, v DOWN):

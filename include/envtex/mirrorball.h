@@ -1,7 +1,8 @@
 /* mirrorball.h - the mirror-ball (light probe) environment map: the image of a perfectly
  * mirrored sphere seen from far away (orthographically), as photographed light probes are.
  * Lecture "Environment, Texture Maps", slides 6-9 ("sphere map": the environment as reflected
- * in a mirror ball); the direction is the reflection of the viewing ray about the ball's normal.
+ * in a mirror ball) and 15 (light probes); the direction is the reflection of the viewing ray
+ * about the ball's normal.
  *
  * Frame (the envmap frame, +z up).  The camera sits far out on +x and looks along -x at a ball
  * at the origin; its image has up = +z and right = +y.  The view vector (from the ball towards

@@ -377,6 +377,39 @@ START_TEST(test_distrib1d_remapped_values_are_uniform_on_0_1)
 }
 END_TEST
 
+/* The probability an alias table actually samples, read off the table (cell c gives prob_c of
+ * a cell to c and 1 - prob_c to its alias), against the pmf it reports.  A million bins of
+ * weight 1 give their spare ~1e-7 each to one heavier bin; their float thresholds all round the
+ * same way.  Catches a build that charges the alias 1 - q (the double) while storing the
+ * rounded float: the roundings add up on the heavy bin (1.7% off). */
+START_TEST(test_distrib1d_alias_table_samples_its_pmf_with_a_million_donors)
+{
+    const int n = 1000000;
+    double *w = malloc((size_t)n * sizeof *w), *got = calloc((size_t)n, sizeof *got);
+    ck_assert(w && got);
+    w[0] = 1.0 + (n - 1) * 1e-7;
+    for (int k = 1; k < n; k++) w[k] = 1.0;
+    distrib1d d = {0};
+    error err = {0};
+    ck_assert_int_eq(distrib1d_init(&d, w, n, &err), 0);
+    ck_assert_int_eq(distrib1d_alias_build(&d, &err), 0);
+    for (int c = 0; c < n; c++) {
+        got[c] += d.alias[c].prob;
+        got[d.alias[c].alias] += 1.0 - d.alias[c].prob;
+    }
+    double worst = 0.0;
+    int at = -1;
+    for (int i = 0; i < n; i++) {
+        double pmf = distrib1d_pmf(&d, i), rel = fabs(got[i] / n - pmf) / pmf;
+        if (rel > worst) worst = rel, at = i;
+    }
+    ck_assert_msg(worst < 1e-6, "bin %d is sampled with probability %.3g relative off its pmf", at, worst);
+    distrib1d_free(&d);
+    free(w);
+    free(got);
+}
+END_TEST
+
 /* xi values at and beyond the ends of [0, 1) */
 static const double xi_low[] = {0.0, -0.0, 0x1p-53, -1e-300, -1.0, -INFINITY, NAN};
 static const double xi_high[] = {1.0 - 0x1p-24, 1.0 - 0x1p-53, 1.0, 1.0 + 1e-9, 2.0, INFINITY};
@@ -1195,6 +1228,7 @@ Suite *distrib_suite(void)
     tcase_add_loop_test(tc, test_distrib1d_binary_search_samples_fit_the_pmf, 0, T1_COUNT);
     tcase_add_loop_test(tc, test_distrib1d_alias_samples_fit_the_binary_search_pmf, 0, T1_COUNT);
     tcase_add_test(tc, test_distrib1d_remapped_values_are_uniform_on_0_1);
+    tcase_add_test(tc, test_distrib1d_alias_table_samples_its_pmf_with_a_million_donors);
     tcase_add_test(tc, test_distrib_remapped_stays_below_one_just_below_a_step);
     tcase_add_test(tc, test_distrib1d_edge_xi_give_the_first_and_last_nonzero_bins);
     tcase_add_test(tc, test_distrib1d_xi_of_one_reaches_a_tiny_last_bin);

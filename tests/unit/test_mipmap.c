@@ -452,6 +452,31 @@ START_TEST(test_ewa_with_a_tiny_footprint_is_bilinear_on_a_ramp_at_texel_centres
 }
 END_TEST
 
+START_TEST(test_ewa_weights_are_the_documented_gaussian)
+{
+    /* value = i: with a tiny footprint the ellipse is the unit disc around st (in texels);
+     * 0.3 texel right of the centre of column 3, the texels of columns 3 and 4 in its row lie
+     * at r^2 = 0.09 and 0.49 (the rows above and below at r^2 > 1), so the lookup is their
+     * average with weights exp(-2 r^2) - exp(-2).  Reading the table at floor(128 r^2)
+     * (pbrt's index) misses by 3.6e-4. */
+    image im = new_image(8, 8);
+    for (int j = 0; j < 8; j++)
+        for (int i = 0; i < 8; i++) image_set(&im, i, j, rgb_make(i, 1, 0));
+    mipmap m = build(&im, WRAP_CLAMP);
+    double e2 = exp(-MIPMAP_EWA_ALPHA);
+    double w3 = exp(-MIPMAP_EWA_ALPHA * 0.09) - e2, w4 = exp(-MIPMAP_EWA_ALPHA * 0.49) - e2;
+    double want = (3 * w3 + 4 * w4) / (w3 + w4);
+    for (int j = 1; j < 7; j++) {
+        uv2 st = {3.8 / 8, (j + 0.5) / 8}; /* x = 3.8 * 8 / 8 - 0.5 = 3.3 texels */
+        rgb e = mipmap_lookup_ewa(&m, st, (uv2){1e-9, 0}, (uv2){0, 1e-9});
+        ck_assert_near(e.r, want, 2e-5);
+        ck_assert_near(e.g, 1.0, 1e-12);
+    }
+    mipmap_free(&m);
+    image_free(&im);
+}
+END_TEST
+
 START_TEST(test_ewa_of_a_checkerboard_with_a_large_footprint_is_its_average)
 {
     image fine = checker_image(64, 64, 1), coarse = checker_image(64, 64, 8);
@@ -738,6 +763,7 @@ Suite *mipmap_suite(void)
     tcase_add_test(tc, test_ewa_of_a_constant_texture_is_the_constant);
     tcase_add_test(tc, test_ewa_with_zero_footprint_is_bilinear_on_the_base);
     tcase_add_test(tc, test_ewa_with_a_tiny_footprint_is_bilinear_on_a_ramp_at_texel_centres);
+    tcase_add_test(tc, test_ewa_weights_are_the_documented_gaussian);
     tcase_add_test(tc, test_ewa_of_a_checkerboard_with_a_large_footprint_is_its_average);
     tcase_add_test(tc, test_ewa_filters_along_the_major_axis_only);
     tcase_add_test(tc, test_ewa_clamps_the_anisotropy);
