@@ -49,7 +49,9 @@ int genenv_make(genenv_kind kind, const genenv_params *p, image *out, error *err
     if (!(p->value >= 0) || !isfinite(p->value)) return error_set(err, NULL, 0, "value must be finite and >= 0");
     if (!(p->sun_ratio > 0) || !isfinite(p->sun_ratio)) return error_set(err, NULL, 0, "sun ratio must be finite and > 0");
     if (!(p->sun_radius_deg > 0 && p->sun_radius_deg < 90)) return error_set(err, NULL, 0, "sun radius must be in (0, 90) degrees");
-    if (!isfinite(p->sun_elevation_deg) || !isfinite(p->sun_azimuth_deg)) return error_set(err, NULL, 0, "sun position must be finite");
+    if (!(p->sun_elevation_deg >= -90 && p->sun_elevation_deg <= 90)) /* NaN fails too */
+        return error_set(err, NULL, 0, "sun elevation must be in [-90, 90] degrees");
+    if (!isfinite(p->sun_azimuth_deg)) return error_set(err, NULL, 0, "sun azimuth must be finite");
     int w = p->width, h = p->width / 2 > 0 ? p->width / 2 : 1;
     if (image_alloc(out, w, h, err)) return -1;
 

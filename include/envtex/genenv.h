@@ -24,8 +24,8 @@ typedef struct genenv_params {
     double value;            /* constant: the radiance */
     double sun_ratio;        /* sun: disc radiance / mean sky radiance, default 1e5 */
     double sun_radius_deg;   /* sun: angular radius in degrees, default 0.5 (the real sun: 0.27) */
-    double sun_elevation_deg;/* sun: height above the horizon, default 35 */
-    double sun_azimuth_deg;  /* sun: phi of the sun, default 60 */
+    double sun_elevation_deg;/* sun: height above the horizon in [-90, 90], default 35 */
+    double sun_azimuth_deg;  /* sun: phi of the sun (any finite angle), default 60 */
 } genenv_params;
 
 genenv_params genenv_defaults(void);

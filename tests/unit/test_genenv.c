@@ -187,6 +187,26 @@ START_TEST(test_genenv_rejects_bad_parameters)
     p.sun_elevation_deg = INFINITY;
     ck_assert_int_eq(genenv_make(GENENV_SUN, &p, &im, &err), -1);
     ck_assert_ptr_null(im.px);
+    /* an elevation past the zenith or nadir is a sun on the other side: refused, not folded */
+    const double bad_el[] = {90.000001, -90.000001, 100, -180, 1e300, NAN};
+    for (int k = 0; k < (int)(sizeof bad_el / sizeof bad_el[0]); k++) {
+        p.sun_elevation_deg = bad_el[k];
+        ck_assert_msg(genenv_make(GENENV_SUN, &p, &im, &err) == -1, "elevation %g accepted", bad_el[k]);
+        ck_assert_ptr_null(im.px);
+    }
+    ck_assert_str_eq(err.msg, "sun elevation must be in [-90, 90] degrees");
+    const double ok_el[] = {90, -90, 0};
+    for (int k = 0; k < 3; k++) {
+        p.sun_elevation_deg = ok_el[k];
+        ck_assert_msg(genenv_make(GENENV_SUN, &p, &im, &err) == 0, "elevation %g: %s", ok_el[k], err.msg);
+        image_free(&im);
+    }
+    p = genenv_defaults();
+    p.sun_azimuth_deg = -INFINITY;
+    ck_assert_int_eq(genenv_make(GENENV_SUN, &p, &im, &err), -1);
+    p.sun_azimuth_deg = -725; /* any finite azimuth: it goes round */
+    ck_assert_int_eq(genenv_make(GENENV_SUN, &p, &im, &err), 0);
+    image_free(&im);
 }
 END_TEST
 
