@@ -1,8 +1,11 @@
 /* analyticdirect.c - exact unshadowed quad-light irradiance (see include/envtex/analyticdirect.h). */
 #include "envtex/analyticdirect.h"
 
-/* A quad clipped by one plane has at most 5 corners. */
-#define CLIPPED_MAX 5
+/* Clipping keeps a corner of height >= 0 and adds a crossing on an edge whose ends differ in
+ * sign: at most 2 corners an edge, 8 for the quad.  Exactly, a convex quad cut by a plane has at
+ * most 5; but where p lies in (or very near) the light's plane every height rounds to about 0,
+ * the signs can alternate +, -, +, - round the quad, and the clipped polygon has 6 corners. */
+#define CLIPPED_MAX 8
 
 /* Phi = 1/2 sum_i theta_i Gamma_i over the n-gon v, seen from p */
 static vec3 polygon_irradiance_vector(const vec3 *v, int n, vec3 p)
@@ -46,13 +49,14 @@ double analyticdirect_irradiance(const scene_light *l, vec3 p, vec3 n)
     if (!(vec3_dot(vec3_sub(p, l->pos), vec3_cross(l->ac, l->ab)) > 0)) return 0;
     /* clip to the upper half-space of p (Sutherland-Hodgman against one plane): height
      * h = (v - p) . n, and an edge crossing h = 0 is cut at v_i + (v_j - v_i) h_i / (h_i - h_j) */
+    double h[4];
+    for (int i = 0; i < 4; i++) h[i] = vec3_dot(vec3_sub(v[i], p), n);
     vec3 c[CLIPPED_MAX];
     int m = 0;
     for (int i = 0; i < 4; i++) {
-        vec3 a = v[i], b = v[(i + 1) % 4];
-        double ha = vec3_dot(vec3_sub(a, p), n), hb = vec3_dot(vec3_sub(b, p), n);
-        if (ha >= 0) c[m++] = a;
-        if ((ha >= 0) != (hb >= 0)) c[m++] = vec3_add(a, vec3_scale(vec3_sub(b, a), ha / (ha - hb)));
+        int j = (i + 1) % 4;
+        if (h[i] >= 0) c[m++] = v[i];
+        if ((h[i] >= 0) != (h[j] >= 0)) c[m++] = vec3_add(v[i], vec3_scale(vec3_sub(v[j], v[i]), h[i] / (h[i] - h[j])));
     }
     if (m < 3) return 0; /* the whole light is below the horizon */
     /* The corners turn clockwise seen from the emitting side (ac x ab), so Phi points from p
