@@ -6,20 +6,29 @@
 
 #include "envtex/triangle.h"
 
-static double light_power(const lights *ls, int k)
+/* log2 of light k's power (-inf for none), from factors that each fit a double: the power
+ * itself may not (4 pi I with I = 1e308, or pi R^2 E for a huge scene), and only the ratios of
+ * the powers matter for the choice */
+static double light_log2_power(const lights *ls, int k)
 {
+    double r2 = 2 * log2(ls->radius); /* log2 R^2 */
     if (k == lights_env_index(ls)) {
         const envlight *el = ls->env;
-        double p = el->power;
-        if (el->fell_back) p = 0;
-        return M_PI * ls->radius * ls->radius * p; /* pi R^2 |L| */
+        if (el->fell_back) return -INFINITY;
+        return log2(M_PI) + r2 + log2(el->power); /* pi R^2 |L| */
     }
     const scene_light *l = &ls->sc->lights[k];
-    double c = rgb_avg(l->color);
+    double c = log2(l->color.r / 3 + l->color.g / 3 + l->color.b / 3); /* the mean, which rgb_avg
+                                                                            overflows past 6e307 */
     switch (l->kind) {
-    case LIGHT_QUAD: return M_PI * vec3_length(vec3_cross(l->ab, l->ac)) * c; /* pi A L */
-    case LIGHT_POINT: return 4 * M_PI * c;                                     /* 4 pi I */
-    default: return M_PI * ls->radius * ls->radius * c;                        /* pi R^2 E */
+    case LIGHT_QUAD: { /* pi A L, with |ab x ac| = |ab| |ac| sin(angle) computed without overflow */
+        double la = vec3_length(l->ab), lc = vec3_length(l->ac);
+        if (!(la > 0 && lc > 0)) return -INFINITY;
+        double sin_a = vec3_length(vec3_cross(vec3_scale(l->ab, 1 / la), vec3_scale(l->ac, 1 / lc)));
+        return log2(M_PI) + log2(la) + log2(lc) + log2(sin_a) + c;
+    }
+    case LIGHT_POINT: return log2(4 * M_PI) + c;     /* 4 pi I */
+    default: return log2(M_PI) + r2 + c;             /* pi R^2 E */
     }
 }
 
@@ -66,10 +75,18 @@ int lights_build(lights *ls, const scene *sc, const envlight *env, double scene_
     if (ls->n == 0) return 0;
     double *w = malloc((size_t)ls->n * sizeof *w);
     if (!w) return error_set(err, sc->path, 0, "out of memory for %d lights", ls->n);
-    for (int k = 0; k < ls->n; k++) w[k] = light_power(ls, k);
+    /* w_k = P_k / max P = 2^(log2 P_k - max log2 P): at most 1, so their sum cannot overflow
+     * (two point lights of intensity 1e307 did) */
+    double top = -INFINITY;
+    for (int k = 0; k < ls->n; k++) {
+        w[k] = light_log2_power(ls, k);
+        if (w[k] > top) top = w[k];
+    }
+    for (int k = 0; k < ls->n; k++) w[k] = top > -INFINITY ? exp2(w[k] - top) : 0.0;
     /* all zero (e.g. black lights): distrib1d falls back to uniform, which is still correct */
-    int st = distrib1d_init(&ls->choose, w, ls->n, err);
+    int st = distrib1d_init(&ls->choose, w, ls->n, err); /* fails only when memory runs out */
     free(w);
+    if (st) error_set(err, sc->path, 0, "out of memory for the choice among %d lights", ls->n);
     if (st == 0 && (st = build_quads(ls, sc, err)) != 0) lights_free(ls);
     return st;
 }

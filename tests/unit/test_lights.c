@@ -124,6 +124,39 @@ START_TEST(test_lights_pick_probability_is_proportional_to_power)
 }
 END_TEST
 
+/* Powers that do not fit a double, though every number in the scene does: two point lights of
+ * intensity 1e307 and 2e307 (4 pi I overflows their sum, and at 1.7e308 each power is +Inf),
+ * and a quad light of area 1e308 (pi A L overflows).  Only the ratios matter: 1/3 and 2/3, and the huge quad wins
+ * over a point light of intensity 1.  Catches weights taken as the raw powers (the build
+ * failed with "the sum of the 2 weights overflows a double", or chose uniformly). */
+START_TEST(test_lights_pick_probabilities_of_powers_past_the_largest_double)
+{
+    const char *texts[3] = {
+        "size 8 8\ncamera 0 1 5  0 0 0  0 1 0  45\npoint 0 3 0  1e307 1e307 1e307\npoint 0 3 1  2e307 2e307 2e307\n",
+        "size 8 8\ncamera 0 1 5  0 0 0  0 1 0  45\npoint 0 3 0  0.85e308 0.85e308 0.85e308\n"
+        "point 0 3 1  1.7e308 1.7e308 1.7e308\n",
+        "size 8 8\ncamera 0 1 5  0 0 0  0 1 0  45\nquadLight 0 3 0  1e154 0 0  0 0 1e154  1 1 1\n"
+        "point 0 3 1  1 1 1\n"};
+    for (int i = 0; i < 3; i++) {
+        scene sc;
+        scene_load_opts o = scene_load_defaults();
+        o.load_images = 0;
+        error err = {0};
+        if (scene_load_string(texts[i], "huge.test", &o, &sc, &err)) ck_abort_msg("scene %d: %s", i, err.msg);
+        lights ls;
+        ck_assert_msg(lights_build(&ls, &sc, NULL, 3, &err) == 0, "scene %d: %s", i, err.msg);
+        double p0 = lights_pick_prob(&ls, 0), p1 = lights_pick_prob(&ls, 1);
+        if (i < 2) {
+            ck_assert_msg(fabs(p0 - 1.0 / 3) < 1e-12 && fabs(p1 - 2.0 / 3) < 1e-12, "scene %d: %g %g", i, p0, p1);
+        } else {
+            ck_assert_msg(p0 == 1.0 && p1 == 0.0, "scene %d: %g %g", i, p0, p1);
+        }
+        lights_free(&ls);
+        scene_free(&sc);
+    }
+}
+END_TEST
+
 /* quad sampling: the sample's pdf is lights_quad_pdf(wi, t) at the sampled point, the point is
  * on the quad, Li is its radiance, and the estimate of the solid angle (mean of 1 / pdf) is the
  * quad's solid angle from a point straight below its centre (4 asin(a b / sqrt((a^2+d^2)(b^2+d^2)))
@@ -410,6 +443,7 @@ Suite *lights_suite(void)
     TCase *tc = tcase_create("lights");
     tcase_set_timeout(tc, 60); /* generous for sanitizer builds */
     tcase_add_test(tc, test_lights_pick_probability_is_proportional_to_power);
+    tcase_add_test(tc, test_lights_pick_probabilities_of_powers_past_the_largest_double);
     tcase_add_test(tc, test_lights_quad_sample_pdf_matches_lights_quad_pdf);
     tcase_add_test(tc, test_lights_quad_emits_on_the_side_of_ac_cross_ab);
     tcase_add_test(tc, test_lights_delta_lights_give_intensity_over_attenuation);
