@@ -28,12 +28,13 @@ void displace_mesh_free(displace_mesh *m)
     memset(m, 0, sizeof *m);
 }
 
-/* p += scale h n at every vertex (heights from the callback with the vertex's st). */
-static void displace_vertices(displace_mesh *m, const uv2 *vst, displace_height_fn height,
-                              void *ctx, double scale)
+/* p += scale h n at every vertex (heights from the callback with the vertex's point: vq[k], or
+ * p when vq is NULL, and its st). */
+static void displace_vertices(displace_mesh *m, const uv2 *vst, const vec3 *vq,
+                              displace_height_fn height, void *ctx, double scale)
 {
     for (long k = 0; k < m->n_verts; k++) {
-        double h = height ? height(ctx, m->p[k], m->n[k], vst[k]) : 0.0;
+        double h = height ? height(ctx, vq ? vq[k] : m->p[k], m->n[k], vst[k]) : 0.0;
         m->p[k] = vec3_madd(m->p[k], m->n[k], scale * h); /* p' = p + scale h n */
     }
 }
@@ -58,12 +59,14 @@ static int recompute_normals(displace_mesh *m, error *err)
 }
 
 /* The common end of a tessellation: move the vertices (displace_vertices), free their st
- * (vst), then recompute the normals.  On failure *out is freed. */
-static int displace_and_renormalize(displace_mesh *out, uv2 *vst, displace_height_fn height, void *ctx,
-                                    double scale, error *err)
+ * (vst) and callback points (vq, may be NULL), then recompute the normals.  On failure *out is
+ * freed. */
+static int displace_and_renormalize(displace_mesh *out, uv2 *vst, vec3 *vq, displace_height_fn height,
+                                    void *ctx, double scale, error *err)
 {
-    displace_vertices(out, vst, height, ctx, scale);
+    displace_vertices(out, vst, vq, height, ctx, scale);
     free(vst);
+    free(vq);
     if (recompute_normals(out, err)) {
         displace_mesh_free(out);
         return -1;
@@ -80,7 +83,13 @@ static int check_count(long nt, long max_tris, error *err)
     return 0;
 }
 
-int displace_triangle(const vec3 p[3], const vec3 n[3], const uv2 st[3], int rate,
+/* b0 v0 + b1 v1 + b2 v2, in this order: every interpolated quantity of a grid vertex uses it */
+static vec3 bary3(const vec3 v[3], double b0, double b1, double b2)
+{
+    return vec3_add(vec3_add(vec3_scale(v[0], b0), vec3_scale(v[1], b1)), vec3_scale(v[2], b2));
+}
+
+int displace_triangle(const vec3 p[3], const vec3 q[3], const vec3 n[3], const uv2 st[3], int rate,
                       displace_height_fn height, void *ctx, double scale, long max_tris,
                       displace_mesh *out, error *err)
 {
@@ -95,9 +104,15 @@ int displace_triangle(const vec3 p[3], const vec3 n[3], const uv2 st[3], int rat
         return error_set(err, NULL, 0, "cannot displace a zero-area triangle without normals");
     long nv = (N + 1) * (N + 2) / 2;
     uv2 *vst = malloc((size_t)nv * sizeof *vst);
-    if (!vst) return error_set(err, NULL, 0, "out of memory for a displaced mesh");
+    vec3 *vq = q ? malloc((size_t)nv * sizeof *vq) : NULL;
+    if (!vst || (q && !vq)) {
+        free(vst);
+        free(vq);
+        return error_set(err, NULL, 0, "out of memory for a displaced mesh");
+    }
     if (mesh_alloc(out, nv, N * N, err)) {
         free(vst);
+        free(vq);
         return -1;
     }
     /* vertex (i, j): b1 = i / N, b2 = j / N; index = j (N + 1) - j (j - 1) / 2 + i */
@@ -106,15 +121,13 @@ int displace_triangle(const vec3 p[3], const vec3 n[3], const uv2 st[3], int rat
         for (long i = 0; i + j <= N; i++) {
             double b1 = (double)i / N, b2 = (double)j / N, b0 = 1.0 - b1 - b2;
             long k = IDX(i, j);
-            /* p = b0 p0 + b1 p1 + b2 p2, likewise st and n */
-            out->p[k] = vec3_add(vec3_add(vec3_scale(p[0], b0), vec3_scale(p[1], b1)),
-                                 vec3_scale(p[2], b2));
+            /* p = b0 p0 + b1 p1 + b2 p2, likewise q, st and n */
+            out->p[k] = bary3(p, b0, b1, b2);
+            if (vq) vq[k] = bary3(q, b0, b1, b2);
             vst[k] = (uv2){b0 * st[0].u + b1 * st[1].u + b2 * st[2].u,
                            b0 * st[0].v + b1 * st[1].v + b2 * st[2].v};
             vec3 nk = ng;
-            if (n && vec3_unit_direction(vec3_add(vec3_add(vec3_scale(n[0], b0),
-                                                           vec3_scale(n[1], b1)),
-                                                  vec3_scale(n[2], b2)), &nk))
+            if (n && vec3_unit_direction(bary3(n, b0, b1, b2), &nk))
                 nk = vec3_normalize(n[0]); /* opposite normals cancelled: take a corner's */
             out->n[k] = nk;
         }
@@ -129,7 +142,7 @@ int displace_triangle(const vec3 p[3], const vec3 n[3], const uv2 st[3], int rat
             }
         }
 #undef IDX
-    return displace_and_renormalize(out, vst, height, ctx, scale, err);
+    return displace_and_renormalize(out, vst, vq, height, ctx, scale, err);
 }
 
 int displace_sphere(int rate, displace_height_fn height, void *ctx, double scale, long max_tris,
@@ -182,5 +195,5 @@ int displace_sphere(int rate, displace_height_fn height, void *ctx, double scale
                                         {{sm, 0}, {s1, tb}, {s0, tb}}};
     }
 #undef RING
-    return displace_and_renormalize(out, vst, height, ctx, scale, err);
+    return displace_and_renormalize(out, vst, NULL, height, ctx, scale, err);
 }

@@ -29,9 +29,7 @@ typedef struct height_ctx {
     /* sphere: object space = center + radius p */
     vec3 center;
     double radius;
-    /* triangle: world corners, object corners; q and the normal before displacement of each
-     * vertex, in the callback's order */
-    const scene_triangle *tr;
+    /* triangle: q and the normal before displacement of each vertex, in the callback's order */
     vec3 *qv, *nv;
     long n_q, cap_q;
 } height_ctx;
@@ -84,28 +82,13 @@ static void sphere_corner_st(texmapping_kind mapping, const uv2 sph[3], uv2 out[
     }
 }
 
-/* Barycentrics of world point p on triangle tr (least squares in its plane). */
-static void tri_bary(const scene_triangle *tr, vec3 p, double *b1, double *b2)
-{
-    vec3 e1 = vec3_sub(tr->p[1], tr->p[0]), e2 = vec3_sub(tr->p[2], tr->p[0]), v = vec3_sub(p, tr->p[0]);
-    double a11 = vec3_dot(e1, e1), a12 = vec3_dot(e1, e2), a22 = vec3_dot(e2, e2);
-    double det = a11 * a22 - a12 * a12;
-    *b1 = *b2 = 0;
-    if (!(det > 0)) return; /* zero area: displace_triangle needs normals then; q = q0 */
-    double r1 = vec3_dot(e1, v), r2 = vec3_dot(e2, v);
-    *b1 = (a22 * r1 - a12 * r2) / det;
-    *b2 = (a11 * r2 - a12 * r1) / det;
-}
-
-static double triangle_height(void *ctx, vec3 p, vec3 n, uv2 st)
+/* The height at a triangle's grid vertex: q is its object-space point, interpolated from the
+ * corners q like the world point (displace_triangle), so neighbours that share an edge see the
+ * same q there, read the same height and move their shared vertices alike (the weld below needs
+ * bit-equal positions). */
+static double triangle_height(void *ctx, vec3 q, vec3 n, uv2 st)
 {
     height_ctx *c = ctx;
-    double b1, b2;
-    tri_bary(c->tr, p, &b1, &b2);
-    double b0 = 1 - b1 - b2;
-    /* P_object = b0 q0 + b1 q1 + b2 q2 */
-    vec3 q = vec3_add(vec3_add(vec3_scale(c->tr->q[0], b0), vec3_scale(c->tr->q[1], b1)),
-                      vec3_scale(c->tr->q[2], b2));
     if (c->n_q < c->cap_q) {
         c->qv[c->n_q] = q;
         c->nv[c->n_q] = n;
@@ -318,7 +301,7 @@ int displacemap_apply(const scene *in, long max_tris, scene *out, displacemap_st
             continue;
         }
         const material *mt = &in->materials[sp->material];
-        height_ctx c = {tex, mt, scene_material_texmapping(mt, 1), sp->center, sp->radius, NULL, NULL, NULL, 0, 0};
+        height_ctx c = {tex, mt, scene_material_texmapping(mt, 1), sp->center, sp->radius, NULL, NULL, 0, 0};
         if (c.mapping == TEXMAPPING_UV) c.mapping = TEXMAPPING_SPHERICAL;
         /* SCALE object units along the unit sphere's normal: SCALE / R in its units */
         double scale = sp->radius > 0 ? mt->displacement_scale / sp->radius : 0.0;
@@ -355,12 +338,12 @@ int displacemap_apply(const scene *in, long max_tris, scene *out, displacemap_st
         }
         const material *mt = &in->materials[tr->material];
         long cap = (long)(trate + 1) * (trate + 2) / 2;
-        height_ctx c = {tex, mt, scene_material_texmapping(mt, 0), {0, 0, 0}, 0, tr, qv, nv, 0, cap};
+        height_ctx c = {tex, mt, scene_material_texmapping(mt, 0), {0, 0, 0}, 0, qv, nv, 0, cap};
         /* along its vertex normals, or the welded corner normals (no cracks); NULL for a
          * zero-area triangle without normals, which displace_triangle refuses */
         vec3 fn;
         const vec3 *normals = tr->has_normals ? tr->n : face_normal(tr, &fn) ? NULL : &cn[3 * i];
-        if (displace_triangle(tr->p, normals, tr->st, trate,
+        if (displace_triangle(tr->p, tr->q, normals, tr->st, trate,
                               triangle_height, &c, mt->displacement_scale, 0, &m, err))
             goto fail;
         int q_known = c.n_q == m.n_verts; /* the callback saw every vertex, in index order */

@@ -16,7 +16,8 @@
  *     2N segments in phi (+z up, the spherical mapping of texmapping.h): 2 + (N-1) 2N vertices,
  *     shared across the phi seam and at the poles (so the displaced mesh has no cracks), and
  *     4N (N-1) triangles, counter-clockwise seen from outside.
- * Heights: vertex k moves to p + scale * height(ctx, p, n, st) * n, with n the normal before
+ * Heights: vertex k moves to p + scale * height(ctx, p, n, st) * n (a triangle's callback may
+ * see its own interpolated point instead of p: displace_triangle's q), with n the normal before
  * displacement (the interpolated vertex normals - corner 0's where they cancel - or the
  * geometric normal; the sphere's p).  The callback sees object space and the vertex's (s, t);
  * for the sphere s = phi / 2 pi (0 on the seam, 0 at the poles), t = 1 - theta / pi.
@@ -56,10 +57,13 @@ typedef struct displace_mesh {
 } displace_mesh;
 
 /* Tessellate triangle (p[3], normals n[3] or NULL for the geometric normal, st[3]) at `rate`
- * (1 .. DISPLACE_MAX_RATE) and displace it.  Returns 0, or -1 with *err set (rate out of range,
+ * (1 .. DISPLACE_MAX_RATE) and displace it.  The height callback's point is q0, q1, q2 (say the
+ * object-space corners) interpolated with the weights of p and in the same arithmetic, so two
+ * triangles with the same corners along an edge see bit-equal points there, hence equal
+ * heights; q NULL: the callback sees p.  Returns 0, or -1 with *err set (rate out of range,
  * more than max_tris triangles, a zero-area triangle with no normals, out of memory); on
  * failure *out owns nothing. */
-int displace_triangle(const vec3 p[3], const vec3 n[3], const uv2 st[3], int rate,
+int displace_triangle(const vec3 p[3], const vec3 q[3], const vec3 n[3], const uv2 st[3], int rate,
                       displace_height_fn height, void *ctx, double scale, long max_tris,
                       displace_mesh *out, error *err);
 

@@ -31,8 +31,11 @@
  *             corner at exactly the same position, and interpolates those across its face:
  *             neighbours then move their shared edge alike, where their own geometric normals
  *             would tear it open by up to twice the displacement (a crack).  A lone or flat
- *             triangle keeps its geometric normal.  (s, t) is the corners' interpolated st (uv) or the material's
- *             point mapping of the object-space point, which solid textures also see.
+ *             triangle keeps its geometric normal.  (s, t) is the corners' interpolated st
+ *             (uv) or the material's point mapping of the object-space point, which solid
+ *             textures also see; that point is the object corners interpolated with the world
+ *             point's own weights (displace_triangle's q), so two triangles that share an
+ *             edge read the same heights along it and their vertices there stay bit-equal.
  * If the whole scene would exceed max_tris (0: DISPLACEMAP_MAX_TRIS, never more than
  * SCENE_MAX_PRIMS) at those rates, both rates are halved together until it fits (down to 2 and
  * 1); if it still does not fit, an error.  The texture is read with the material's filter and

@@ -26,7 +26,7 @@ START_TEST(test_a_triangle_at_rate_n_has_n_squared_triangles_wound_like_the_orig
     displace_mesh m;
     error err = {0};
     double h = 0;
-    ck_assert_int_eq(displace_triangle(tri_p, NULL, tri_st, 5, constant, &h, 1, 0, &m, &err), 0);
+    ck_assert_int_eq(displace_triangle(tri_p, NULL, NULL, tri_st, 5, constant, &h, 1, 0, &m, &err), 0);
     ck_assert_int_eq(m.n_tris, 25);
     ck_assert_int_eq(m.n_verts, 21);
     double area = 0;
@@ -42,12 +42,40 @@ START_TEST(test_a_triangle_at_rate_n_has_n_squared_triangles_wound_like_the_orig
 }
 END_TEST
 
+/* height = the x of the point the callback sees */
+static double height_x(void *ctx, vec3 p, vec3 n, uv2 st)
+{
+    (void)ctx, (void)n, (void)st;
+    return p.x;
+}
+
+/* With q, the callback sees b0 q0 + b1 q1 + b2 q2 at each vertex (here q = p + (10, 0, 0) with
+ * its corners swapped round, so neither p nor an un-swapped q would do); without, p itself. */
+START_TEST(test_the_height_callback_sees_the_corners_q_interpolated_like_p)
+{
+    const vec3 q[3] = {{20, 0, 0}, {10, 0, 0}, {10, 2, 0}};
+    displace_mesh m;
+    error err = {0};
+    for (int with_q = 0; with_q < 2; with_q++) {
+        ck_assert_int_eq(displace_triangle(tri_p, with_q ? q : NULL, NULL, tri_st, 4, height_x, NULL, 1, 0, &m, &err), 0);
+        for (long k = 0; k < m.n_verts; k++) {
+            /* the grid's barycentrics from the undisplaced point (tri_p is a right triangle) */
+            double b1 = m.p[k].x / 2, b2 = m.p[k].y / 2;
+            ck_assert(m.p[k].z >= 0);
+            double want = with_q ? 20 * (1 - b1 - b2) + 10 * b1 + 10 * b2 : m.p[k].x;
+            ck_assert_msg(fabs(m.p[k].z - want) < 1e-12, "q %d, vertex %ld: height %g, want %g", with_q, k, m.p[k].z, want);
+        }
+        displace_mesh_free(&m);
+    }
+}
+END_TEST
+
 START_TEST(test_a_constant_height_lifts_a_flat_triangle_along_its_normal)
 {
     displace_mesh m;
     error err = {0};
     double h = 0.5;
-    ck_assert_int_eq(displace_triangle(tri_p, NULL, tri_st, 3, constant, &h, 0.2, 0, &m, &err), 0);
+    ck_assert_int_eq(displace_triangle(tri_p, NULL, NULL, tri_st, 3, constant, &h, 0.2, 0, &m, &err), 0);
     for (long k = 0; k < m.n_verts; k++) {
         ck_assert_near(m.p[k].z, 0.1, 1e-15); /* scale * h */
         ck_assert_near(m.n[k].z, 1, 1e-15);
@@ -61,7 +89,7 @@ START_TEST(test_a_ramp_height_tilts_the_recomputed_normals)
     /* z = scale * s = 0.5 * x / 2 on the plane: normal (-0.25, 0, 1) normalized */
     displace_mesh m;
     error err = {0};
-    ck_assert_int_eq(displace_triangle(tri_p, NULL, tri_st, 4, height_s, NULL, 0.5, 0, &m, &err), 0);
+    ck_assert_int_eq(displace_triangle(tri_p, NULL, NULL, tri_st, 4, height_s, NULL, 0.5, 0, &m, &err), 0);
     vec3 want = vec3_normalize(vec3_make(-0.25, 0, 1));
     for (long k = 0; k < m.n_verts; k++)
         ck_assert_msg(vec3_length(vec3_sub(m.n[k], want)) < 1e-12, "vertex %ld", k);
@@ -180,7 +208,7 @@ START_TEST(test_a_triangles_height_sees_the_interpolated_st_and_normal)
     seen c = {st, n, 0, 0};
     displace_mesh m;
     error err = {0};
-    ck_assert_int_eq(displace_triangle(tri_p, n, st, 4, check_triangle_vertex, &c, 1, 0, &m, &err), 0);
+    ck_assert_int_eq(displace_triangle(tri_p, NULL, n, st, 4, check_triangle_vertex, &c, 1, 0, &m, &err), 0);
     ck_assert_int_eq(c.calls, m.n_verts);
     ck_assert_msg(c.err < 1e-15, "the callback saw st or n off by %g", c.err);
     displace_mesh_free(&m);
@@ -257,7 +285,7 @@ START_TEST(test_cancelling_corner_normals_fall_back_to_corner_0s)
     vec3 seen_n = {0, 0, 0};
     displace_mesh m;
     error err = {0};
-    ck_assert_int_eq(displace_triangle(tri_p, n, tri_st, 2, record_normal_at_edge_middle, &seen_n, 1,
+    ck_assert_int_eq(displace_triangle(tri_p, NULL, n, tri_st, 2, record_normal_at_edge_middle, &seen_n, 1,
                                        0, &m, &err), 0);
     ck_assert_msg(seen_n.x == 1 && seen_n.y == 0 && seen_n.z == 0, "(%g %g %g)", seen_n.x, seen_n.y,
                   seen_n.z);
@@ -270,7 +298,7 @@ START_TEST(test_exactly_max_tris_triangles_is_allowed)
 {
     displace_mesh m;
     error err = {0};
-    ck_assert_int_eq(displace_triangle(tri_p, NULL, tri_st, 100, NULL, NULL, 1, 10000, &m, &err), 0);
+    ck_assert_int_eq(displace_triangle(tri_p, NULL, NULL, tri_st, 100, NULL, NULL, 1, 10000, &m, &err), 0);
     ck_assert_int_eq(m.n_tris, 10000);
     displace_mesh_free(&m);
     ck_assert_int_eq(displace_sphere(10, NULL, NULL, 1, 4 * 10 * 9, &m, &err), 0);
@@ -283,16 +311,16 @@ START_TEST(test_limits_and_bad_input_are_errors_before_allocation)
 {
     displace_mesh m;
     error err = {0};
-    ck_assert_int_eq(displace_triangle(tri_p, NULL, tri_st, 100, NULL, NULL, 1, 9999, &m, &err), -1);
+    ck_assert_int_eq(displace_triangle(tri_p, NULL, NULL, tri_st, 100, NULL, NULL, 1, 9999, &m, &err), -1);
     ck_assert_ptr_null(m.p);
-    ck_assert_int_eq(displace_triangle(tri_p, NULL, tri_st, 0, NULL, NULL, 1, 0, &m, &err), -1);
+    ck_assert_int_eq(displace_triangle(tri_p, NULL, NULL, tri_st, 0, NULL, NULL, 1, 0, &m, &err), -1);
     ck_assert_int_eq(displace_sphere(1, NULL, NULL, 1, 0, &m, &err), -1);
     ck_assert_int_eq(displace_sphere(DISPLACE_MAX_RATE, NULL, NULL, 1, 1000, &m, &err), -1);
     ck_assert_ptr_null(m.tris);
     const vec3 line[3] = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};
-    ck_assert_int_eq(displace_triangle(line, NULL, tri_st, 2, NULL, NULL, 1, 0, &m, &err), -1);
+    ck_assert_int_eq(displace_triangle(line, NULL, NULL, tri_st, 2, NULL, NULL, 1, 0, &m, &err), -1);
     const vec3 nz[3] = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
-    ck_assert_int_eq(displace_triangle(line, nz, tri_st, 2, NULL, NULL, 1, 0, &m, &err), 0);
+    ck_assert_int_eq(displace_triangle(line, NULL, nz, tri_st, 2, NULL, NULL, 1, 0, &m, &err), 0);
     /* every facet of a line has zero area: the vertices keep their normals (displace.h) */
     for (long k = 0; k < m.n_verts; k++)
         ck_assert_msg(m.n[k].x == 0 && m.n[k].y == 0 && m.n[k].z == 1, "vertex %ld", k);
@@ -305,6 +333,7 @@ Suite *displace_suite(void)
     Suite *s = suite_create("displace");
     TCase *tc = tcase_create("core");
     tcase_add_test(tc, test_a_triangle_at_rate_n_has_n_squared_triangles_wound_like_the_original);
+    tcase_add_test(tc, test_the_height_callback_sees_the_corners_q_interpolated_like_p);
     tcase_add_test(tc, test_a_constant_height_lifts_a_flat_triangle_along_its_normal);
     tcase_add_test(tc, test_a_ramp_height_tilts_the_recomputed_normals);
     tcase_add_test(tc, test_the_sphere_is_closed_outward_and_has_the_documented_counts);
