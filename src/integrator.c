@@ -44,6 +44,7 @@ static double scene_radius(const scene *sc)
 int integrator_init(integrator *it, const scene *sc, const bvh *accel, error *err)
 {
     memset(it, 0, sizeof *it);
+    it->env_fraction = 1; /* MIS sets its own below */
     it->sc = sc;
     it->accel = accel;
     envmap_init(&it->env, sc);
@@ -74,7 +75,6 @@ int integrator_init(integrator *it, const scene *sc, const bvh *accel, error *er
         return -1;
     }
     it->has_lights = 1;
-    it->env_fraction = 1;
     if (sc->integrator == INTEGRATOR_PATHTRACER && sc->nee == NEE_MIS && lights_env_index(&it->ls) >= 0 &&
         it->el.mode != ENVSAMPLING_MEDIANCUT) {
         /* MIS: sample the envmap at a fraction of its picks (lights.h); auto: the fraction that

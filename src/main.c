@@ -286,14 +286,21 @@ static int cmd_render(int argc, char **argv)
             if (st.envlight_built && sc.envmap.kind != CONVERT_LATLONG)
                 fprintf(stderr, "envtex: envmap resampled to a %dx%d lat-long map for lighting\n", st.envlight_w,
                         st.envlight_h);
-            if (st.envlight_built && st.envlight_mode != ENVSAMPLING_UNIFORM)
-                fprintf(stderr, "envtex: envmap sampling: '%s' tables (%s) built in %.3f s%s\n",
-                        modes[st.envlight_mode], sc.envsampler == ENVSAMPLER_ALIAS ? "alias" : "binary search",
-                        st.envlight_seconds, st.envlight_fell_back ? " (black map: uniform fallback)" : "");
-            else
-                fprintf(stderr, "envtex: envmap sampling: no tables (the '%s' integrator%s does not sample the envmap)\n",
+            int samples_env = sc.integrator == INTEGRATOR_DIRECT ||
+                              (sc.integrator == INTEGRATOR_PATHTRACER && sc.nee != NEE_OFF); /* integrator.c */
+            if (sc.envmiss != ENVMISS_ENVMAP)
+                fprintf(stderr, "envtex: envmap sampling: none ('envmiss black': the envmap is a background only)\n");
+            else if (!samples_env || !st.envlight_built)
+                fprintf(stderr, "envtex: envmap sampling: none (the '%s' integrator%s does not sample the envmap)\n",
                         scene_integrator_name(sc.integrator),
                         sc.integrator == INTEGRATOR_PATHTRACER ? " without next-event estimation" : "");
+            else if (st.envlight_mode != ENVSAMPLING_UNIFORM)
+                fprintf(stderr, "envtex: envmap sampling: '%s' tables (%s) built in %.3f s%s\n",
+                        modes[st.envlight_mode], sc.envsampler == ENVSAMPLER_ALIAS ? "alias" : "binary search",
+                        st.envlight_seconds, st.envlight_fell_back ? " (black map: equal strata)" : "");
+            else
+                fprintf(stderr, "envtex: envmap sampling: uniform directions, no tables%s\n",
+                        st.envlight_fell_back && sc.envsampling != ENVSAMPLING_UNIFORM ? " (black map: uniform fallback)" : "");
             if (st.envlight_points) fprintf(stderr, "envtex: median cut: %d point lights\n", st.envlight_points);
             if (st.envlight_built && sc.integrator == INTEGRATOR_PATHTRACER && sc.nee == NEE_MIS)
                 fprintf(stderr, "envtex: MIS: the envmap is sampled at a fraction %.3g of its picks (%s; kappa = E[L^2]/E[L]^2 = %.4g)%s\n",

@@ -50,8 +50,8 @@ static inline vec3 envmap_to_frame(const envmap *env, vec3 d) { return mat4_dir(
 
 /* The environment as a new lat-long map in *out (width x width/2; free with image_free), in the
  * envmap frame and WITHOUT the scale, i.e. what env->img would hold for a lat-long envmap: each
- * texel the solid-angle average of the map over the texel (convert_resample, power kept within
- * 0.5%).  width <= 0 and samples <= 0 pick convert_default_width / convert_default_samples.
+ * texel the solid-angle average of the map over the texel (convert_resample: power kept within
+ * 0.5% for real maps, the exceptions - a sun at a pole, on a disc map's rim - in convert.h).  width <= 0 and samples <= 0 pick convert_default_width / convert_default_samples.
  * A lat-long envmap of the requested width is copied exactly.  Fails (out left empty) on an
  * envmap that is not present, or a size image_check_size refuses. */
 int envmap_to_latlong(const envmap *env, int width, int samples, image *out, error *err);

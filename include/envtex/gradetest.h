@@ -13,7 +13,8 @@
  * few samples is 0 wherever they happened to agree, e.g. at an object's edge).  Two-sided
  * p-values are compared with alpha / N (Bonferroni over the N pixels); the render passes if at
  * most `max_fail_fraction` of the pixels fail (variance estimates are themselves noisy, and
- * fireflies exist) AND the image total passes its own z-test,
+ * fireflies exist) AND the image total passes its own z-test AND no pixel of img is NaN or
+ * infinite (one is enough to fail the whole render: a student's NaN is a bug, not noise),
  *   Z = sum (img - ref) / sqrt(sum (var_img + var_ref + floor^2)),   |Z| <= global_z,
  * with each pixel's own VAR here, not the neighbourhood's largest V: a bias spread thinly over
  * the whole image (a missing 1/pi, a pdf off by sin theta) adds up there even when no single
@@ -21,7 +22,7 @@
  *
  *     gradetest_params p = gradetest_defaults();
  *     gradetest_result r;
- *     if (gradetest_run(&img, &ref, &var, &p, &r, &err)) ...   // sizes differ, NaN variance...
+ *     if (gradetest_run(&img, &ref, &var, &p, &r, NULL, &err)) ...   // sizes differ, NaN variance...
  *     puts(r.pass ? "PASS" : "FAIL");
  */
 #ifndef ENVTEX_GRADETEST_H
@@ -50,7 +51,7 @@ typedef struct gradetest_result {
     double mean_z;            /* Z of the image total (signed) */
     double global_stat;       /* |Z| */
     double z_threshold;       /* |z| above which a pixel fails */
-    long nonfinite;           /* pixels of img that are NaN or Inf: they fail */
+    long nonfinite;           /* pixels of img that are NaN or Inf: any fails the render */
     char why[256];            /* one line */
 } gradetest_result;
 

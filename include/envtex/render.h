@@ -53,7 +53,8 @@ typedef struct render_stats {
     long bvh_nodes;
     int bvh_depth;
     int envlight_built;        /* environment sampling tables were built */
-    int envlight_mode;         /* envsampling_mode used (uniform after a black-map fallback) */
+    int envlight_mode;         /* envsampling_mode used (cdf and cdf-sintheta become uniform on a
+                                  black map; median cut keeps its mode, with equal strata) */
     double envlight_seconds;   /* time to build them */
     long envlight_bad_texels;  /* NaN / Inf / negative texel channels, treated as 0 */
     int envlight_fell_back;    /* the map was black: sampling fell back to uniform */

@@ -32,8 +32,9 @@
  * inv dp and the mapping's seam-aware differentials (texmapping_differentials).  Without ray
  * differentials every footprint is zero: the texture filters' documented fallback (texture.h).
  *
- * Cost: a material without maps returns after one test; a ray without differentials computes
- * none.  Nothing here allocates.
+ * Cost: a material without maps does nothing beyond the hit's differentials (which a ray that
+ * carries them needs at every hit, for the footprint of a map seen in a mirror later); a ray
+ * without differentials computes none.  Nothing here allocates.
  */
 #ifndef ENVTEX_TEXSHADE_H
 #define ENVTEX_TEXSHADE_H

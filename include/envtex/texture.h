@@ -72,7 +72,8 @@ typedef enum texture_filter {
     TEXFILTER_EWA
 } texture_filter;
 
-/* Parameters of the solid textures (unused fields are ignored). */
+/* Parameters of the solid textures.  Fields a kind does not use are still checked
+ * (texture_init_solid's ranges), so zero them; they are otherwise ignored. */
 typedef struct texture_solid_params {
     double scale;     /* > 0: P is multiplied by it, so features are 1 / scale object units wide */
     int octaves;      /* fbm, turbulence, marble: 1 .. PERLIN_MAX_OCTAVES */

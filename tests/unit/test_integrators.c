@@ -513,6 +513,17 @@ START_TEST(test_integrators_mis_with_env_fraction_zero_is_brdf_sampling)
     ck_assert_int_eq(rg.it.nee, NEE_MIS);
     rig_free(&rg);
     scene_free(&sc);
+    /* without MIS the fraction is 1 (integrator.h), for every integrator */
+    const char *others[] = {"raytracer", "analyticdirect", "direct", "pathtracer"};
+    for (int k = 0; k < 4; k++) {
+        snprintf(text, sizeof text, "%sintegrator %s\n", nee_scene, others[k]);
+        load(&sc, text);
+        set_env(&sc, GENENV_SUN, 64, 300);
+        rig_init(&rg, &sc);
+        ck_assert_msg(rg.it.env_fraction == 1, "%s: env_fraction %g", others[k], rg.it.env_fraction);
+        rig_free(&rg);
+        scene_free(&sc);
+    }
 }
 END_TEST
 
