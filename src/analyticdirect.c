@@ -56,7 +56,8 @@ double analyticdirect_irradiance(const scene_light *l, vec3 p, vec3 n)
     for (int i = 0; i < 4; i++) {
         int j = (i + 1) % 4;
         if (h[i] >= 0) c[m++] = v[i];
-        if ((h[i] >= 0) != (h[j] >= 0)) c[m++] = vec3_add(v[i], vec3_scale(vec3_sub(v[j], v[i]), h[i] / (h[i] - h[j])));
+        if ((h[i] >= 0) != (h[j] >= 0)) /* v_i + (v_j - v_i) h_i / (h_i - h_j) */
+            c[m++] = vec3_add(v[i], vec3_scale(vec3_sub(v[j], v[i]), h[i] / (h[i] - h[j])));
     }
     if (m < 3) return 0; /* the whole light is below the horizon */
     /* The corners turn clockwise seen from the emitting side (ac x ab), so Phi points from p
