@@ -17,6 +17,10 @@
 CC ?= cc
 CFLAGS ?= -O2 -g
 BUILD ?= build
+# The scripts under tests/ read and write numbers with awk, sort and printf, and match names with
+# [a-z]: under a decimal-comma locale (de_DE) awk read "0.010" as 0 and wrote "0,0010" into the
+# bench's CSV files, and under tr_TR [a-z] missed the i of "int".  envtex never calls setlocale.
+export LC_ALL := C
 # Build on every core: `make test` must finish in under a minute on two.
 NPROC := $(shell nproc 2>/dev/null || echo 1)
 # parallel builds; a sub-make (make run's, make asan's) shares the top make's job slots instead

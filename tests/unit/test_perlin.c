@@ -57,8 +57,11 @@ static double ref_noise(double xd, double yd, double zd)
                           ref_grad(ref_p(BB + 1), x - 1, y - 1, z - 1))));
 }
 
-/* xorshift64: a fixed-seed stream of points, so the tests are deterministic */
-static uint64_t rng_state = 88172645463325252ULL;
+/* xorshift64: a fixed-seed stream of points, so the tests are deterministic (each test starts
+ * the stream afresh, forked or not: see rng_restart) */
+#define RNG_SEED 88172645463325252ULL
+static uint64_t rng_state = RNG_SEED;
+static void rng_restart(void) { rng_state = RNG_SEED; }
 static double rng_uniform(double lo, double hi)
 {
     rng_state ^= rng_state << 13;
@@ -326,6 +329,7 @@ Suite *perlin_suite(void)
 {
     Suite *s = suite_create("perlin");
     TCase *tc = tcase_create("core");
+    tcase_add_checked_fixture(tc, rng_restart, NULL);
     tcase_set_timeout(tc, 30);
     tcase_add_test(tc, test_noise_reproduces_perlins_published_value);
     tcase_add_test(tc, test_noise_is_zero_at_every_integer_lattice_point);

@@ -1,12 +1,15 @@
 /* unit.h - the few lines every Check unit-test program shares.
  *
  * Each tests/unit/test_NAME.c builds into its own program: it defines `Suite *NAME_suite(void)`
- * and ends with UNIT_MAIN(NAME_suite).  Exit status 0 when every test passes.
+ * and ends with UNIT_MAIN(NAME_suite).  Exit status 0 when every test passes, and 1 when one
+ * fails or when none ran at all (CK_RUN_SUITE, CK_RUN_CASE or CK_INCLUDE_TAGS in the
+ * environment can select nothing: a program that checked nothing has not passed).
  */
 #ifndef ENVTEX_UNIT_H
 #define ENVTEX_UNIT_H
 
 #include <check.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 #define UNIT_MAIN(suite_fn)                                                       \
@@ -14,9 +17,10 @@
     {                                                                             \
         SRunner *sr = srunner_create(suite_fn());                                 \
         srunner_run_all(sr, CK_NORMAL);                                           \
-        int failed = srunner_ntests_failed(sr);                                   \
+        int failed = srunner_ntests_failed(sr), ran = srunner_ntests_run(sr);     \
         srunner_free(sr);                                                         \
-        return failed ? EXIT_FAILURE : EXIT_SUCCESS;                              \
+        if (ran == 0) fprintf(stderr, "no test ran (CK_RUN_SUITE, CK_RUN_CASE?)\n"); \
+        return failed || ran == 0 ? EXIT_FAILURE : EXIT_SUCCESS;                  \
     }
 
 /* |a - b| <= tol, with the values in the failure message */
