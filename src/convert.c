@@ -666,7 +666,7 @@ int convert_write(const char *path, const convert_map *m, error *err)
         paths[f] = name[f];
         faces[f] = &m->cube.face[f];
     }
-    return imageio_write_set(CUBEMAP_FACES, paths, faces, NULL, err);
+    return imageio_write_set(CUBEMAP_FACES, paths, faces, NULL, NULL, err);
 }
 
 int convert_write_cross(const char *path, const convert_map *m, error *err)

@@ -184,31 +184,48 @@ static const char *extension(const char *path)
     return dot && (!slash || dot > slash) ? dot : "";
 }
 
-int imageio_can_write(const char *path)
+/* the format imageio_write picks for path's extension; IMAGEIO_UNKNOWN for none it knows */
+static imageio_format format_of_extension(const char *path)
 {
     const char *x = extension(path);
-    return !strcasecmp(x, ".exr") || !strcasecmp(x, ".png") || !strcasecmp(x, ".pfm") ||
-           !strcasecmp(x, ".hdr");
+    if (!strcasecmp(x, ".exr")) return IMAGEIO_EXR;
+    if (!strcasecmp(x, ".png")) return IMAGEIO_PNG;
+    if (!strcasecmp(x, ".pfm")) return IMAGEIO_PFM;
+    if (!strcasecmp(x, ".hdr")) return IMAGEIO_RGBE;
+    return IMAGEIO_UNKNOWN;
+}
+
+int imageio_can_write(const char *path) { return format_of_extension(path) != IMAGEIO_UNKNOWN; }
+
+int imageio_write_as(const char *path, imageio_format format, const image *im, const tonemap_params *tm,
+                     error *err)
+{
+    switch (format != IMAGEIO_UNKNOWN ? format : format_of_extension(path)) {
+    case IMAGEIO_EXR: return exrfile_write(path, im, 0, err);
+    case IMAGEIO_PNG: return pngfile_write(path, im, tm, err);
+    case IMAGEIO_PFM: return pfm_write(path, im, err);
+    case IMAGEIO_RGBE: return rgbe_write(path, im, err);
+    default:
+        return error_set(err, path, 0, "cannot tell the image format from the name; use .exr, .png, "
+                                       ".pfm or .hdr");
+    }
 }
 
 int imageio_write(const char *path, const image *im, const tonemap_params *tm, error *err)
 {
-    const char *x = extension(path);
-    if (!strcasecmp(x, ".exr")) return exrfile_write(path, im, 0, err);
-    if (!strcasecmp(x, ".png")) return pngfile_write(path, im, tm, err);
-    if (!strcasecmp(x, ".pfm")) return pfm_write(path, im, err);
-    if (!strcasecmp(x, ".hdr")) return rgbe_write(path, im, err);
-    return error_set(err, path, 0, "cannot tell the image format from the name; use .exr, .png, "
-                                   ".pfm or .hdr");
+    return imageio_write_as(path, IMAGEIO_UNKNOWN, im, tm, err);
 }
 
 /* ---- several files as one output ----------------------------------------------------------- */
 
 int imageio_write_set(int n, const char *const *paths, const image *const *images,
-                      const tonemap_params *const *tms, error *err)
+                      const tonemap_params *const *tms, const imageio_format *formats, error *err)
 {
     assert(n >= 1 && n <= IMAGEIO_SET_MAX);
-    if (n == 1) return imageio_write(paths[0], images[0], tms ? tms[0] : NULL, err); /* atomic already */
+    imageio_format fmt[IMAGEIO_SET_MAX]; /* decided by the targets' names, not the temporaries' */
+    for (int k = 0; k < n; k++)
+        fmt[k] = formats && formats[k] != IMAGEIO_UNKNOWN ? formats[k] : format_of_extension(paths[k]);
+    if (n == 1) return imageio_write_as(paths[0], fmt[0], images[0], tms ? tms[0] : NULL, err); /* atomic already */
     char part[IMAGEIO_SET_MAX][ERROR_FILE_MAX], tag[32];
     snprintf(tag, sizeof tag, ".partial-%ld", (long)getpid());
     for (int k = 0; k < n; k++) { /* "sky_px.exr" -> "sky_px.partial-PID.exr": same format */
@@ -224,7 +241,7 @@ int imageio_write_set(int n, const char *const *paths, const image *const *image
     }
     int done = 0;
     for (; done < n; done++)
-        if (imageio_write(part[done], images[done], tms ? tms[done] : NULL, err)) break;
+        if (imageio_write_as(part[done], fmt[done], images[done], tms ? tms[done] : NULL, err)) break;
     if (done < n) {
         for (int k = 0; k < done; k++) unlink(part[k]);
         if (err) { /* name the target, not its temporary */

@@ -173,11 +173,12 @@ static int check_not_replacing(const char *out, const char *const *inputs, int n
     return 0;
 }
 
-/* Output path must be writable before the render starts: try the temporary file now. */
-static int check_output(const char *path, error *err)
+/* Output path must be writable before the render starts: try the temporary file now.  any_name:
+ * the format is decided elsewhere (a scene's `output` without a known extension is a PNG). */
+static int check_output_as(const char *path, int any_name, error *err)
 {
     if (!path[0]) return error_set(err, NULL, 0, "the output file name is empty");
-    if (!imageio_can_write(path))
+    if (!any_name && !imageio_can_write(path))
         return error_set(err, path, 0, "cannot write this format: use .exr, .png, .pfm or .hdr");
     char tmp[ERROR_FILE_MAX];
     int fd = imageio_tmp_open(path, tmp, err);
@@ -186,6 +187,8 @@ static int check_output(const char *path, error *err)
     imageio_tmp_abandon(tmp);
     return 0;
 }
+
+static int check_output(const char *path, error *err) { return check_output_as(path, 0, err); }
 
 static int cmd_render(int argc, char **argv)
 {
@@ -234,7 +237,17 @@ static int cmd_render(int argc, char **argv)
      * they have passed): a refused run prints one line and writes nothing. */
     int status = 1;
     image img = {0}, ref = {0}, var = {0};
-    if (check_output(out_path, &err) || check_not_an_input(out_path, &sc, &err)) {
+    /* The course skeleton writes a PNG under whatever name `output` gives (`output scene2`,
+     * `output scene6.bmp`); -o names a format by its extension, as every other command does. */
+    imageio_format out_format = IMAGEIO_UNKNOWN;
+    if (out_from_scene && out_path[0] && !imageio_can_write(out_path)) {
+        out_format = IMAGEIO_PNG;
+        error w;
+        error_set(&w, scene_path, sc.output_line, "'output' %s has no .exr, .png, .pfm or .hdr extension: written "
+                  "as a PNG under this exact name, as the course skeleton does", out_path);
+        warn_keep(&ws, &w);
+    }
+    if (check_output_as(out_path, out_format != IMAGEIO_UNKNOWN, &err) || check_not_an_input(out_path, &sc, &err)) {
         if (out_from_scene && sc.output_line > 0) { /* the name came from this line of the scene */
             char msg[ERROR_MSG_MAX]; /* err.msg cannot be an argument of error_set on err: they overlap */
             snprintf(msg, sizeof msg, "%s", err.msg);
@@ -346,7 +359,8 @@ static int cmd_render(int argc, char **argv)
     const char *paths[2] = {out_path, var_path};
     const image *images[2] = {&img, &var};
     const tonemap_params *tms[2] = {&tm, NULL};
-    if (imageio_write_set(var_path ? 2 : 1, paths, images, tms, &err)) goto done;
+    const imageio_format formats[2] = {out_format, IMAGEIO_UNKNOWN};
+    if (imageio_write_set(var_path ? 2 : 1, paths, images, tms, formats, &err)) goto done;
 
     printf("time_s=%.3f spp=%d rays=%lld mrays_per_s=%.3f nonfinite=%ld build_s=%.3f", st.seconds, st.spp,
            st.rays, st.seconds > 0 ? st.rays / st.seconds / 1e6 : 0.0, st.nonfinite_pixels, st.build_seconds);

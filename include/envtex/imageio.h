@@ -45,17 +45,24 @@ imageio_format imageio_detect(const char *path);
  * written.  Atomic (temporary file + rename). */
 int imageio_write(const char *path, const image *im, const tonemap_params *tm, error *err);
 
+/* imageio_write in the given format whatever the name says (IMAGEIO_UNKNOWN: by the
+ * extension, as imageio_write).  For a scene's `output` without a known extension, which the
+ * course skeleton writes as a PNG under that exact name. */
+int imageio_write_as(const char *path, imageio_format format, const image *im, const tonemap_params *tm,
+                     error *err);
+
 /* Write n images (1 <= n <= IMAGEIO_SET_MAX) as one output, all or none: each goes first to
  * PATH with ".partial-PID" before its extension (a sibling, so the rename never crosses file
  * systems), and only when every one is complete are they renamed over their targets.  A failed
  * write removes the finished ones and leaves every target untouched; its error names the
  * target, not the temporary.  (Should a rename itself fail half way, the message says how many
  * targets were already replaced.)  One image is imageio_write itself.  tms[k] as imageio_write's
- * tm; tms may be NULL.  Used for a render with its --variance image and for the six faces of a
+ * tm; tms may be NULL.  formats[k] as imageio_write_as's format; formats may be NULL (every
+ * format by its extension).  Used for a render with its --variance image and for the six faces of a
  * cube map. */
 #define IMAGEIO_SET_MAX 6
 int imageio_write_set(int n, const char *const *paths, const image *const *images,
-                      const tonemap_params *const *tms, error *err);
+                      const tonemap_params *const *tms, const imageio_format *formats, error *err);
 
 /* 1 if `path` ends in an extension imageio_write knows, else 0. */
 int imageio_can_write(const char *path);

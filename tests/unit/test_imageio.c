@@ -166,6 +166,36 @@ START_TEST(test_unknown_extension_and_invalid_images_write_nothing)
 }
 END_TEST
 
+/* imageio_write_as: the format given wins over the name (a scene's `output scene2` is a PNG,
+ * read back by its magic bytes), alone and in a set, with no temporary left; IMAGEIO_UNKNOWN
+ * goes by the extension as imageio_write does. */
+START_TEST(test_write_as_a_named_format_whatever_the_name)
+{
+    make_dir();
+    image im = {0}, back = {0};
+    error err = {0};
+    fill(&im);
+    char p1[256], p2[256];
+    snprintf(p1, sizeof p1, "%s", in_dir("scene2"));
+    snprintf(p2, sizeof p2, "%s", in_dir("scene6.bmp"));
+    ck_assert_msg(imageio_write_as(p1, IMAGEIO_PNG, &im, NULL, &err) == 0, "%s", err.msg);
+    ck_assert_int_eq(imageio_detect(p1), IMAGEIO_PNG);
+    ck_assert_msg(imageio_read(p1, &back, &err) == 0, "%s", err.msg);
+    ck_assert_int_eq(back.w, im.w);
+    image_free(&back);
+    const char *paths[1] = {p2};
+    const image *images[1] = {&im};
+    const imageio_format fmt[1] = {IMAGEIO_PNG};
+    ck_assert_msg(imageio_write_set(1, paths, images, NULL, fmt, &err) == 0, "%s", err.msg);
+    ck_assert_int_eq(imageio_detect(p2), IMAGEIO_PNG);
+    ck_assert_int_eq(imageio_write_as(in_dir("x.jpg"), IMAGEIO_UNKNOWN, &im, NULL, &err), -1);
+    ck_assert_int_eq(count_files("partial"), 0);
+    ck_assert_int_eq(count_files(".tmp."), 0);
+    image_free(&im);
+    remove_dir();
+}
+END_TEST
+
 /* A write that fails part-way (the disk fills up: here a file size limit of 2 KB, for an image
  * of 49 KB of noise that no format compresses below it) is an error naming the file, leaves the
  * old file byte-identical and removes its temporary file, in every format.  And again with an
@@ -224,7 +254,7 @@ START_TEST(test_a_set_of_images_is_written_all_or_none)
     const char *paths[2] = {pa, pb};
     const image *images[2] = {&small, &big};
     file_size_limit(4096);
-    int rc = imageio_write_set(2, paths, images, NULL, &err);
+    int rc = imageio_write_set(2, paths, images, NULL, NULL, &err);
     file_size_unlimited();
     ck_assert_int_eq(rc, -1);
     ck_assert_str_eq(err.file, pb); /* the target, not its temporary */
@@ -235,12 +265,12 @@ START_TEST(test_a_set_of_images_is_written_all_or_none)
     /* a folder in a target's place: refused before anything is written */
     ck_assert_int_eq(mkdir(pc, 0700), 0);
     const char *paths2[2] = {pa, pc};
-    ck_assert_int_eq(imageio_write_set(2, paths2, images, NULL, &err), -1);
+    ck_assert_int_eq(imageio_write_set(2, paths2, images, NULL, NULL, &err), -1);
     ck_assert_ptr_nonnull(strstr(err.msg, "it is a folder"));
     ck_assert_int_eq(count_files("partial"), 0);
     ck_assert_int_eq(rmdir(pc), 0);
     /* the good case: both replaced, read back */
-    ck_assert_msg(imageio_write_set(2, paths, images, NULL, &err) == 0, "%s", err.msg);
+    ck_assert_msg(imageio_write_set(2, paths, images, NULL, NULL, &err) == 0, "%s", err.msg);
     image back = {0};
     ck_assert_msg(imageio_read(pb, &back, &err) == 0, "%s", err.msg);
     ck_assert_int_eq(memcmp(back.px, big.px, sizeof(float) * 64 * 64 * 3), 0);
@@ -300,6 +330,7 @@ Suite *imageio_suite(void)
     tcase_add_test(tc, test_a_set_of_images_is_written_all_or_none);
     tcase_add_test(tc, test_truncated_files_of_every_format_are_errors);
     tcase_add_test(tc, test_unknown_extension_and_invalid_images_write_nothing);
+    tcase_add_test(tc, test_write_as_a_named_format_whatever_the_name);
     tcase_add_test(tc, test_temporary_files_live_beside_the_target_and_commit_by_rename);
     suite_add_tcase(s, tc);
     return s;
