@@ -54,7 +54,7 @@ TOOL_BIN = $(TOOL_SRC:tests/tools/%.c=$(BUILD)/tools/%)
 # machine, and much more under the sanitizers.
 CK_TIMEOUT_MULTIPLIER ?= 3
 
-.PHONY: all test check run asan bench update-golden clean deps unit golden cli docs-images starter starter-check
+.PHONY: all test check run asan bench update-golden clean deps docs-images starter starter-check
 
 all: envtex
 

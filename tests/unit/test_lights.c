@@ -85,7 +85,7 @@ START_TEST(test_lights_pick_probability_is_proportional_to_power)
         ck_assert(prob == lights_pick_prob(&ls, k));
     }
     for (int k = 0; k < 5; k++) {
-        ck_assert_msg(fabs(lights_pick_prob(&ls, k) - pw[k] / total) < 1e-12, "light %d: %g, want %g", k,
+        ck_assert_msg(fabs(lights_pick_prob(&ls, k) - pw[k] / total) < 1e-12, "light %d: %.17g, want %.17g", k,
                       lights_pick_prob(&ls, k), pw[k] / total);
         ck_assert_msg(fabs((double)count[k] / N - pw[k] / total) < 2.0 / N, "light %d picked %ld times", k, count[k]);
     }
