@@ -69,6 +69,7 @@ int integrator_init(integrator *it, const scene *sc, const bvh *accel, error *er
             return error_set(err, sc->path, sc->envmap.line, "envmap %s: %s", sc->envmap.path, why);
         }
         it->has_envlight = 1;
+        it->samples_env = samples_lights;
     }
     if (lights_build(&it->ls, sc, it->has_envlight && samples_lights ? &it->el : NULL, scene_radius(sc), err)) {
         integrator_free(it);

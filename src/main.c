@@ -299,11 +299,9 @@ static int cmd_render(int argc, char **argv)
             if (st.envlight_built && sc.envmap.kind != CONVERT_LATLONG)
                 fprintf(stderr, "envtex: envmap resampled to a %dx%d lat-long map for lighting\n", st.envlight_w,
                         st.envlight_h);
-            int samples_env = sc.integrator == INTEGRATOR_DIRECT ||
-                              (sc.integrator == INTEGRATOR_PATHTRACER && sc.nee != NEE_OFF); /* integrator.c */
             if (sc.envmiss != ENVMISS_ENVMAP)
                 fprintf(stderr, "envtex: envmap sampling: none ('envmiss black': the envmap is a background only)\n");
-            else if (!samples_env || !st.envlight_built)
+            else if (!st.envlight_sampled)
                 fprintf(stderr, "envtex: envmap sampling: none (the '%s' integrator%s does not sample the envmap)\n",
                         scene_integrator_name(sc.integrator),
                         sc.integrator == INTEGRATOR_PATHTRACER ? " without next-event estimation" : "");

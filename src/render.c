@@ -130,6 +130,7 @@ int render_scene(const scene *sc, const render_opts *opts, image *out, render_st
     stats->seconds = now_seconds() - t1;
     stats->rays = it.rays + it.rt.rays;
     stats->envlight_built = it.has_envlight;
+    stats->envlight_sampled = it.samples_env;
     if (it.has_envlight) {
         stats->envlight_mode = it.el.mode;
         stats->envlight_seconds = it.el.build_seconds;

@@ -53,6 +53,7 @@ typedef struct render_stats {
     long bvh_nodes;
     int bvh_depth;
     int envlight_built;        /* environment sampling tables were built */
+    int envlight_sampled;      /* the integrator samples the envmap as a light */
     int envlight_mode;         /* envsampling_mode used (cdf and cdf-sintheta become uniform on a
                                   black map; median cut keeps its mode, with equal strata) */
     double envlight_seconds;   /* time to build them */
