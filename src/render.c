@@ -87,8 +87,8 @@ int render_scene(const scene *sc, const render_opts *opts, image *out, render_st
 
     camera cam;
     camera_init(&cam, sc->eye, sc->center, sc->up, sc->fovy, sc->width, sc->height);
-    /* ray differentials only where a texture map can use them: other scenes pay nothing */
-    int with_diff = texshade_scene_has_maps(sc);
+    /* ray differentials only where a texture map uses a footprint: other scenes pay nothing */
+    int with_diff = texshade_scene_needs_differentials(sc);
     double diff_scale = fmax(1.0 / sqrt((double)spp), RENDER_MIN_DIFF_SCALE);
 
     double t1 = now_seconds();

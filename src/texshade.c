@@ -12,10 +12,17 @@ int texshade_material_has_maps(const material *m)
            m->emissionmap > 0 || m->bumpmap > 0;
 }
 
-int texshade_scene_has_maps(const scene *sc)
+int texshade_material_needs_footprint(const material *m)
+{
+    if (!texshade_material_has_maps(m)) return 0;
+    /* nearest and bilinear read one point; bump's finite-difference step is the footprint */
+    return m->texfilter == TEXFILTER_TRILINEAR || m->texfilter == TEXFILTER_EWA || m->bumpmap > 0;
+}
+
+int texshade_scene_needs_differentials(const scene *sc)
 {
     for (int i = 0; i < sc->n_materials; i++)
-        if (texshade_material_has_maps(&sc->materials[i])) return 1;
+        if (texshade_material_needs_footprint(&sc->materials[i])) return 1;
     return 0;
 }
 

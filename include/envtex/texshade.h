@@ -61,8 +61,14 @@ typedef struct texshade_point {
  * not displacement, which is applied to the geometry before rendering). */
 int texshade_material_has_maps(const material *m);
 
-/* 1 if some material of sc has such a map: only then are camera rays given differentials. */
-int texshade_scene_has_maps(const scene *sc);
+/* 1 if material m has a map whose value depends on the footprint: one filtered by `trilinear`
+ * or `ewa` (image, checker and solid textures alike), or a bump map (its finite-difference
+ * step is the footprint, whatever the filter).  `nearest` and `bilinear` maps read one point. */
+int texshade_material_needs_footprint(const material *m);
+
+/* 1 if some material of sc needs a footprint: only then are camera rays given differentials
+ * (a scene of nearest or bilinear maps alone traces none; its images are the same bit for bit). */
+int texshade_scene_needs_differentials(const scene *sc);
 
 /* The hit's differentials into s: s->has_diff, dpdx, dpdy (raydiff_at_hit with the geometric
  * normal) and dndx, dndy (the change of the unbumped shading normal, oriented like s->n: the

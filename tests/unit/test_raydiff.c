@@ -494,7 +494,7 @@ START_TEST(test_diffusemap_replaces_kd_and_untextured_materials_are_untouched)
     ck_assert_msg(scene_load_string(text, NULL, NULL, &sc, &err) == 0, "%s", err.msg);
     ck_assert(!texshade_material_has_maps(&sc.materials[sc.triangles[0].material]));
     ck_assert(texshade_material_has_maps(&sc.materials[sc.triangles[1].material]));
-    ck_assert(texshade_scene_has_maps(&sc));
+    ck_assert(texshade_scene_needs_differentials(&sc)); /* checker, trilinear by default */
     ray r = {vec3_make(0, 0, 0), vec3_make(0, 0, -1), 0, INFINITY};
     hit h;
     ck_assert(find_hit(&sc, &r, &h) && h.prim == 0); /* brute force returns the first: tri 0 */
@@ -509,6 +509,54 @@ START_TEST(test_diffusemap_replaces_kd_and_untextured_materials_are_untouched)
     ck_assert(fabs(s.kd.r - 0.2) < 1e-12 && fabs(s.kd.g - 0.4) < 1e-12 && fabs(s.kd.b - 0.6) < 1e-12);
     ck_assert(fabs(s.ks.b - 0.6) < 1e-12 && fabs(s.emission.g - 0.4) < 1e-12);
     scene_free(&sc);
+}
+END_TEST
+
+/* Camera rays carry differentials only when a map uses a footprint: trilinear or EWA filtering,
+ * or a bump map (its step); nearest and bilinear maps read one point, so a scene of those alone
+ * traces none, and its maps read the same with or without them (the image bit for bit). */
+START_TEST(test_differentials_only_for_maps_that_use_a_footprint)
+{
+    const char *head =
+        "size 8 8\ncamera 0 0 0  0 0 -1  0 1 0  60\n"
+        "texture c checker 4  0.1 0.2 0.3  0.7 0.8 0.9\ntexture n fbm 3 4  0 0 0  1 1 1\n";
+    const char *mats[] = {"texfilter nearest\ndiffusemap c\nroughnessmap n\n",
+                          "texfilter bilinear\ndiffusemap n\n", "texfilter nearest\nbumpmap c 1\n",
+                          "texfilter ewa\ndiffusemap c\n", "texfilter trilinear\nemissionmap n\n",
+                          "texfilter ewa\n"};
+    const int needs[] = {0, 0, 1, 1, 1, 0};
+    for (int k = 0; k < 6; k++) {
+        char text[1024];
+        snprintf(text, sizeof text, "%s%svertex -4 -4 -3\nvertex 4 -4 -3\nvertex 0 4 -3\ntri 0 1 2\n",
+                 head, mats[k]);
+        scene sc;
+        error err = {0};
+        ck_assert_msg(scene_load_string(text, NULL, NULL, &sc, &err) == 0, "%s", err.msg);
+        const material *m = &sc.materials[sc.triangles[0].material];
+        ck_assert_msg(texshade_material_needs_footprint(m) == needs[k], "material %d", k);
+        ck_assert_msg(texshade_scene_needs_differentials(&sc) == needs[k], "scene %d", k);
+        if (!needs[k] && texshade_material_has_maps(m)) {
+            /* the footprint is not read: the same colours with differentials and without */
+            camera c;
+            camera_init(&c, sc.eye, sc.center, sc.up, sc.fovy, 8, 8);
+            for (int y = 0; y < 8; y++)
+                for (int x = 0; x < 8; x++) {
+                    ray_diff rd;
+                    ray r = camera_ray_differential(&c, x + 0.3, y + 0.6, 1.0, &rd);
+                    hit h;
+                    if (!find_hit(&sc, &r, &h)) continue;
+                    surface a = front_frame(&h), b = front_frame(&h);
+                    brdf_surface_from_material(&a, m);
+                    brdf_surface_from_material(&b, m);
+                    texshade_surface(&sc, &h, &r, &rd, &a);
+                    texshade_surface(&sc, &h, &r, NULL, &b);
+                    ck_assert(a.has_diff && !b.has_diff);
+                    ck_assert(a.kd.r == b.kd.r && a.kd.g == b.kd.g && a.kd.b == b.kd.b);
+                    ck_assert(a.roughness == b.roughness);
+                }
+        }
+        scene_free(&sc);
+    }
 }
 END_TEST
 
@@ -566,6 +614,7 @@ Suite *raydiff_suite(void)
     tcase_add_test(tc, test_delta_diff_tells_reflection_from_refraction_by_the_shading_normal);
     tcase_add_test(tc, test_a_mirror_falling_back_to_the_geometric_normal_reflects_the_footprint_flat);
     tcase_add_test(tc, test_diffusemap_replaces_kd_and_untextured_materials_are_untouched);
+    tcase_add_test(tc, test_differentials_only_for_maps_that_use_a_footprint);
     tcase_add_test(tc, test_colour_maps_from_negative_texels_read_as_zero);
     suite_add_tcase(s, tc);
     return s;
