@@ -235,11 +235,41 @@ static inline int box_hit(const bvh_node *nd, vec3 o, vec3 inv, double tmin, dou
     return tmin <= tmax;
 }
 
+/* The primitives prims[first .. first + count) against ray *r: each hit shrinks r->tmax (the
+ * closest so far) and records it; any = 1 stops at the first hit (shadow rays). */
+static inline int leaf_hits(const bvh *b, const scene *sc, ray *r, int first, int count, int any,
+                            long *best_i, double *best_t, double *bb1, double *bb2)
+{
+    int found = 0;
+    for (int i = first; i < first + count; i++) {
+        unsigned id = b->prims[i];
+        double t, b1 = 0, b2 = 0;
+        int h;
+        if (id < (unsigned)b->n_spheres) h = sphere_intersect(&sc->spheres[id], r, &t);
+        else {
+            const bvh_tri *tr = &b->tris[i];
+            h = triangle_intersect(tr->p0, tr->p1, tr->p2, r, &t, &b1, &b2);
+        }
+        if (h) {
+            if (any) return 1;
+            found = 1;
+            r->tmax = t; /* closest so far: shrink the ray */
+            *best_i = id;
+            *best_t = t;
+            *bb1 = b1;
+            *bb2 = b2;
+        }
+    }
+    return found;
+}
+
 /* Shared traversal.  any = 1: stop at the first hit (shadow rays). */
 static int traverse(const bvh *b, const scene *sc, const ray *r0, int any, long *best_i,
                     double *best_t, double *bb1, double *bb2)
 {
     ray r = *r0;
+    /* no tree (a few primitives): the one leaf's box is all space, so no slab test */
+    if (!b->is_tree) return leaf_hits(b, sc, &r, 0, (int)b->n_prims, any, best_i, best_t, bb1, bb2);
     vec3 inv = vec3_make(1.0 / r.d.x, 1.0 / r.d.y, 1.0 / r.d.z);
     int stack[BVH_MAX_DEPTH];
     int sp = 0, node = 0, found = 0;
@@ -253,24 +283,9 @@ static int traverse(const bvh *b, const scene *sc, const ray *r0, int any, long 
                 else { node = left; stack[sp++] = right; }
                 continue;
             }
-            for (int i = nd->first; i < nd->first + nd->count; i++) {
-                unsigned id = b->prims[i];
-                double t, b1 = 0, b2 = 0;
-                int h;
-                if (id < (unsigned)b->n_spheres) h = sphere_intersect(&sc->spheres[id], &r, &t);
-                else {
-                    const bvh_tri *tr = &b->tris[i];
-                    h = triangle_intersect(tr->p0, tr->p1, tr->p2, &r, &t, &b1, &b2);
-                }
-                if (h) {
-                    if (any) return 1;
-                    found = 1;
-                    r.tmax = t; /* closest so far: shrink the ray */
-                    *best_i = id;
-                    *best_t = t;
-                    *bb1 = b1;
-                    *bb2 = b2;
-                }
+            if (leaf_hits(b, sc, &r, nd->first, nd->count, any, best_i, best_t, bb1, bb2)) {
+                if (any) return 1;
+                found = 1;
             }
         }
         if (sp == 0) break;

@@ -1,6 +1,7 @@
 /* bvh.h - bounding volume hierarchy over a scene's spheres and triangles, built with the binned
  * surface area heuristic (Wald 2007).  A scene with at most BVH_MIN_PRIMS primitives gets no
- * tree (one leaf, tested linearly): it pays nothing for a structure it cannot gain from.
+ * tree (one leaf, tested linearly, without a slab test): it pays nothing for a structure it
+ * cannot gain from (the slab test of an all-space box was 7-11% of such renders' instructions).
  *
  *     bvh b;
  *     if (bvh_build(&b, sc, &err)) ...
