@@ -243,8 +243,10 @@ static int transform_is_conformal(const mat4 *m)
     return 1;
 }
 
-int envlight_build(envlight *el, const envmap *env, envsampling_mode mode, envsampler_kind sampler,
-                   int mediancut_n, error *err)
+/* envlight_build, and with measure = 0 (mode uniform) envlight_build_lookup: no pass over the
+ * texels at all. */
+static int build(envlight *el, const envmap *env, envsampling_mode mode, envsampler_kind sampler,
+                 int mediancut_n, int measure, error *err)
 {
     memset(el, 0, sizeof *el);
     el->env = env;
@@ -304,12 +306,20 @@ int envlight_build(envlight *el, const envmap *env, envsampling_mode mode, envsa
             el->phi_cs[2 * j + 1] = sin(2 * M_PI * j / n);
         }
     }
+    if (!measure) {
+        el->build_seconds = (double)(clock() - t0) / CLOCKS_PER_SEC;
+        return 0;
+    }
     /* energy of each texel, column-major (outer = column = phi, inner = row = u): the pmf of
-     * the lecture's cdf mode.  p(c, r) = L_avg(c, r) dOmega_r / |L| */
-    double *energy = malloc((size_t)w * (size_t)h * sizeof *energy);
-    if (!energy) {
-        envlight_free(el);
-        return error_set(err, NULL, 0, "out of memory for the sampling table of a %d x %d map", w, h);
+     * the lecture's cdf mode.  p(c, r) = L_avg(c, r) dOmega_r / |L|.  Uniform sampling needs
+     * only the power (lights.h chooses among lights by it) and kappa: no array. */
+    double *energy = NULL;
+    if (mode != ENVSAMPLING_UNIFORM) {
+        energy = malloc((size_t)w * (size_t)h * sizeof *energy);
+        if (!energy) {
+            envlight_free(el);
+            return error_set(err, NULL, 0, "out of memory for the sampling table of a %d x %d map", w, h);
+        }
     }
     double power = 0, second = 0;
     for (int r = 0; r < h; r++) {
@@ -322,7 +332,7 @@ int envlight_build(envlight *el, const envmap *env, envsampling_mode mode, envsa
             double L = rgb_avg(texel(el, c, r));
             power += L * om; /* |L| = sum L_avg dOmega, in double */
             second += L * L * om; /* sum L_avg^2 dOmega, for kappa */
-            energy[(size_t)c * h + r] = L * (mode == ENVSAMPLING_CDF_SINTHETA ? sin_c : om);
+            if (energy) energy[(size_t)c * h + r] = L * (mode == ENVSAMPLING_CDF_SINTHETA ? sin_c : om);
         }
     }
     el->power = power;
@@ -344,6 +354,17 @@ int envlight_build(envlight *el, const envmap *env, envsampling_mode mode, envsa
     if (status) envlight_free(el);
     el->build_seconds = (double)(clock() - t0) / CLOCKS_PER_SEC;
     return status;
+}
+
+int envlight_build(envlight *el, const envmap *env, envsampling_mode mode, envsampler_kind sampler,
+                   int mediancut_n, error *err)
+{
+    return build(el, env, mode, sampler, mediancut_n, 1, err);
+}
+
+int envlight_build_lookup(envlight *el, const envmap *env, error *err)
+{
+    return build(el, env, ENVSAMPLING_UNIFORM, ENVSAMPLER_BINARY, 0, 0, err);
 }
 
 void envlight_free(envlight *el)

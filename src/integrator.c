@@ -60,9 +60,9 @@ int integrator_init(integrator *it, const scene *sc, const bvh *accel, error *er
     int env_lights = it->env.present && sc->envmiss == ENVMISS_ENVMAP && sc->integrator != INTEGRATOR_ANALYTICDIRECT;
     if (env_lights) {
         /* tables only for an integrator that samples the envmap; otherwise just the
-         * piecewise-constant lookup (mode uniform builds no table) */
-        envsampling_mode mode = samples_lights ? sc->envsampling : ENVSAMPLING_UNIFORM;
-        if (envlight_build(&it->el, &it->env, mode, sc->envsampler, sc->mediancut_lights, err)) {
+         * piecewise-constant lookup, without a pass over the texels */
+        if (samples_lights ? envlight_build(&it->el, &it->env, sc->envsampling, sc->envsampler, sc->mediancut_lights, err)
+                           : envlight_build_lookup(&it->el, &it->env, err)) {
             /* about the scene's `envmap` (its transform, most often): reported at its line */
             char why[ERROR_MSG_MAX];
             snprintf(why, sizeof why, "%s", err->msg); /* err->msg cannot be an argument of error_set on err */

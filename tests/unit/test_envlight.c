@@ -803,6 +803,22 @@ START_TEST(test_envlight_radiance_is_the_scaled_texel)
                 bad += fabs(L.g - 3 * image_px(&im, c, r)[1]) > 1e-12;
             }
     ck_assert_int_eq(bad, 0);
+    /* the lookup-only light (envlight_build_lookup) reads the same radiance and draws the same
+     * uniform samples, without a pass over the texels: no power */
+    envlight lk;
+    error err = {0};
+    ck_assert_int_eq(envlight_build_lookup(&lk, &env, &err), 0);
+    ck_assert(lk.mode == ENVSAMPLING_UNIFORM && lk.power == 0 && lk.kappa == 0);
+    for (int j = 0; j < 200; j++) {
+        vec3 d = latlong_uv_to_dir((uv2){(j * 0.618034) - floor(j * 0.618034), (j + 0.5) / 200});
+        rgb a = envlight_radiance(&el, d), b = envlight_radiance(&lk, d);
+        ck_assert(same_rgb(a, b));
+        envlight_sample_result sa, sb;
+        double x1 = (j + 0.25) / 200, x2 = (j * 0.414214) - floor(j * 0.414214);
+        ck_assert(envlight_sample(&el, x1, x2, 0, &sa) && envlight_sample(&lk, x1, x2, 0, &sb));
+        ck_assert(same_rgb(sa.L, sb.L) && sa.pdf == sb.pdf && sa.wi.x == sb.wi.x && sa.wi.z == sb.wi.z);
+    }
+    envlight_free(&lk);
     envlight_free(&el);
     image_free(&im);
 }

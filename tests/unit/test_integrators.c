@@ -527,6 +527,31 @@ START_TEST(test_integrators_mis_with_env_fraction_zero_is_brdf_sampling)
 }
 END_TEST
 
+/* An integrator that only looks the envmap up (a path tracer without next-event estimation)
+ * makes no pass over its texels (envlight_build_lookup: power 0); one that samples it measures
+ * its power, which choosing among lights needs. */
+START_TEST(test_integrators_measure_the_envmap_only_when_they_sample_it)
+{
+    const char *modes[] = {"integrator pathtracer\nnexteventestimation off\n",
+                           "integrator pathtracer\nnexteventestimation on\nenvsampling uniform\n",
+                           "integrator pathtracer\nnexteventestimation mis\n", "integrator direct\n"};
+    for (int k = 0; k < 4; k++) {
+        char text[2048];
+        snprintf(text, sizeof text, "%s%s", nee_scene, modes[k]);
+        scene sc;
+        load(&sc, text);
+        set_env(&sc, GENENV_SUN, 64, 300);
+        rig rg;
+        rig_init(&rg, &sc);
+        ck_assert(rg.it.has_envlight);
+        ck_assert_msg(k == 0 ? rg.it.el.power == 0 && !rg.it.samples_env : rg.it.el.power > 0 && rg.it.samples_env,
+                      "%s: power %g", modes[k], rg.it.el.power);
+        rig_free(&rg);
+        scene_free(&sc);
+    }
+}
+END_TEST
+
 /* The power heuristic (Veach), w_f = (n_f p_f)^2 / ((n_f p_f)^2 + (n_g p_g)^2), not the balance
  * heuristic (both are unbiased, so no agreement test can tell them apart); a zero or NaN pdf has
  * weight 0, an infinite one weight 1. */
@@ -1134,6 +1159,7 @@ Suite *integrators_suite(void)
     tcase_add_test(tc, test_integrators_russian_roulette_keeps_the_mean);
     tcase_add_test(tc, test_integrators_a_path_stops_at_zero_throughput_without_roulette);
     tcase_add_test(tc, test_integrators_every_integrator_filters_textures_by_the_camera_footprint);
+    tcase_add_test(tc, test_integrators_measure_the_envmap_only_when_they_sample_it);
     tcase_add_test(tc, test_integrators_power_heuristic_values);
     tcase_add_test(tc, test_integrators_nee_and_mis_agree_with_two_quad_lights_and_several_samples);
     tcase_add_test(tc, test_integrators_a_delta_light_among_others_is_divided_by_its_pick_probability);
