@@ -35,9 +35,15 @@ int sphere_intersect(const scene_sphere *s, const ray *r, double *t_out)
 
 void sphere_hit(const scene_sphere *s, const ray *r, double t, hit *h)
 {
+    h->t = t;
+    if (s->untransformed) { /* M = I: p = o + t d, n = (p - c) / |p - c| (the products are exact) */
+        h->p = vec3_add(r->o, vec3_scale(r->d, t));
+        h->ng = h->ns = vec3_normalize(vec3_sub(h->p, s->center));
+        h->bary = (uv2){0, 0};
+        return;
+    }
     vec3 po = vec3_add(mat4_point(&s->inv, r->o), vec3_scale(mat4_dir(&s->inv, r->d), t));
     vec3 local = vec3_sub(po, s->center);
-    h->t = t;
     h->p = mat4_point(&s->xf, po);
     /* normal: object normal (p - c) through the inverse transpose */
     h->ng = h->ns = vec3_normalize(mat4_normal(&s->inv, local));

@@ -14,7 +14,7 @@
 /* Nearest t in (r->tmin, r->tmax) where the ray meets the (transformed) sphere: 1 and *t, or 0.
  * t is the world ray's parameter (the object-space ray keeps it, since the map is affine).
  * A sphere read without a transform (s->untransformed) skips the two matrix products, with
- * the same t: the identity's products are exact. */
+ * the same t: the identity's products are exact (sphere_hit skips its three too). */
 int sphere_intersect(const scene_sphere *s, const ray *r, double *t);
 
 /* Fill h->p and h->ng = h->ns (unit, outward, world space) for the hit at parameter t;

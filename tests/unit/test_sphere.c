@@ -279,8 +279,9 @@ START_TEST(test_sphere_nan_or_zero_ray_misses_without_crashing)
 END_TEST
 
 
-/* a sphere marked untransformed (no matrix products) finds exactly the t of the general path
- * through the identity matrices, for rays from outside, from inside and missing */
+/* a sphere marked untransformed (no matrix products) finds exactly the t, point and normal of
+ * the general path through the identity matrices, for rays from outside, from inside and
+ * missing */
 START_TEST(test_sphere_untransformed_fast_path_gives_the_general_paths_t)
 {
     rng g;
@@ -298,6 +299,13 @@ START_TEST(test_sphere_untransformed_fast_path_gives_the_general_paths_t)
         EXPECT_INT_EQ(h1, h0);
         if (h0) {
             if (t1 != t0) ck_abort_msg("ray %d: t %.17g untransformed, %.17g general", i, t1, t0);
+            /* and sphere_hit's point and normal, bit for bit (the identity's products are exact) */
+            hit a, b;
+            sphere_hit(&general, &r, t0, &a);
+            sphere_hit(&fast, &r, t1, &b);
+            if (!(a.p.x == b.p.x && a.p.y == b.p.y && a.p.z == b.p.z && a.ng.x == b.ng.x && a.ng.y == b.ng.y &&
+                  a.ng.z == b.ng.z && a.ns.z == b.ns.z && b.t == t1 && b.bary.u == 0 && b.bary.v == 0))
+                ck_abort_msg("ray %d: sphere_hit differs untransformed", i);
             hits++;
         }
     }
