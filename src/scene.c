@@ -1259,10 +1259,14 @@ static double brightest(const image *im)
 }
 
 /* The scaled envmap must stay a float radiance: scale x the brightest texel <= FLT_MAX.  Past
- * it (`envmap big.pfm 1e300`) the map's radiance is Inf, and Inf x 0 makes NaN pixels. */
-static int check_envmap_scale(parser *p, double bright)
+ * it (`envmap big.pfm 1e300`) the map's radiance is Inf, and Inf x 0 makes NaN pixels.  The n
+ * images are cleaned (finite texels), so a scale <= 1 needs no scan. */
+static int check_envmap_scale(parser *p, const image *im, int n)
 {
     scene_envmap *e = &p->sc->envmap;
+    if (e->scale <= 1) return 0;
+    double bright = 0;
+    for (int f = 0; f < n; f++) bright = fmax(bright, brightest(&im[f]));
     if (!(e->scale * bright <= FLT_MAX)) {
         char why[160];
         snprintf(why, sizeof why, "scale %g times its brightest texel %g is %g, above the largest float "
@@ -1294,13 +1298,11 @@ static int load_envmap(parser *p)
             }
         }
         e->cube.size = e->cube.face[0].w;
-        double bright = 0;
-        for (int f = 0; f < CUBEMAP_FACES; f++) bright = fmax(bright, brightest(&e->cube.face[f]));
-        return check_envmap_scale(p, bright);
+        return check_envmap_scale(p, e->cube.face, CUBEMAP_FACES);
     }
     if (imageio_read(e->path, &e->img, &ie)) return envmap_error(p, 0, ie.msg);
     clean_texels(p, &e->img, e->line, 1, "envmap", p->envmap_token[0]);
-    if (check_envmap_scale(p, brightest(&e->img))) return -1;
+    if (check_envmap_scale(p, &e->img, 1)) return -1;
     if (!e->kind_given && convert_kind_detect(e->img.w, e->img.h, &e->kind, &ie))
         return envmap_error(p, 0, ie.msg);
     if (e->kind == CONVERT_CUBE) {
