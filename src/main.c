@@ -332,9 +332,13 @@ static int cmd_render(int argc, char **argv)
             }
             fprintf(stderr, "envtex: %d textures (%d image files), %d mip pyramids (built only for trilinear/EWA), "
                     "%d packed for trilinear\n", sc.n_textures, sc.n_texture_images, mips, packed);
-        } else {
-            fprintf(stderr, "envtex: no textures: no ray differentials traced\n");
         }
+        if (st.ray_differentials)
+            fprintf(stderr, "envtex: ray differentials traced (a trilinear, EWA or bump map needs the footprint)\n");
+        else
+            fprintf(stderr, "envtex: no ray differentials traced (%s)\n",
+                    sc.n_textures ? "no trilinear, EWA or bump map: nearest and bilinear read one point"
+                                  : "no textures");
         if (st.displaced_spheres + st.displaced_triangles)
             fprintf(stderr, "envtex: displacement: %ld spheres (rate %d) and %ld triangles (rate %d) tessellated; "
                     "the BVH holds %ld triangles\n", st.displaced_spheres, st.displace_sphere_rate,

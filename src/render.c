@@ -147,6 +147,7 @@ int render_scene(const scene *sc, const render_opts *opts, image *out, render_st
     stats->spp = spp;
     stats->prims = accel.n_prims;
     stats->bvh_is_tree = accel.is_tree;
+    stats->ray_differentials = with_diff;
     stats->bvh_nodes = accel.n_nodes;
     stats->bvh_depth = accel.depth;
     integrator_free(&it);

@@ -50,6 +50,7 @@ typedef struct render_stats {
     /* what was built */
     long prims;
     int bvh_is_tree;
+    int ray_differentials;     /* camera rays carried differentials (a map needs a footprint) */
     long bvh_nodes;
     int bvh_depth;
     int envlight_built;        /* environment sampling tables were built */
