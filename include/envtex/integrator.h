@@ -40,7 +40,8 @@ typedef struct integrator {
     const bvh *accel;
     envmap env;
     envlight el;
-    int has_envlight;   /* el built (the envmap lights the scene: looked up, maybe sampled) */
+    int has_envlight;   /* el built (the envmap lights the scene: looked up, maybe sampled); without
+                         * samples_env only for lookups (envlight_build_lookup: no power) */
     int samples_env;    /* the integrator samples el as a light (direct, or pathtracer with NEE) */
     lights ls;
     int has_lights;     /* ls built */
