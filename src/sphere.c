@@ -36,8 +36,10 @@ int sphere_intersect(const scene_sphere *s, const ray *r, double *t_out)
 void sphere_hit(const scene_sphere *s, const ray *r, double t, hit *h)
 {
     h->t = t;
-    if (s->untransformed) { /* M = I: p = o + t d, n = (p - c) / |p - c| (the products are exact) */
-        h->p = vec3_add(r->o, vec3_scale(r->d, t));
+    if (s->untransformed) {
+        /* M = I: p = o + t d, n = (p - c) / |p - c|, the general path's bits: its products are
+         * exact, and its translation's + 0 turns a -0 into +0, so p gets the same + 0 */
+        h->p = vec3_add(vec3_add(r->o, vec3_scale(r->d, t)), vec3_make(0, 0, 0));
         h->ng = h->ns = vec3_normalize(vec3_sub(h->p, s->center));
         h->bary = (uv2){0, 0};
         return;

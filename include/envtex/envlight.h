@@ -89,9 +89,10 @@ int envlight_build(envlight *el, const envmap *env, envsampling_mode mode, envsa
                    int mediancut_n, error *err);
 
 /* The light for an integrator that looks it up but never samples it as a light (a path tracer
- * without next-event estimation): mode uniform, and no pass over the texels, so power, kappa,
- * n_bad and fell_back stay 0 (a 1024 x 512 map's pass was 15% of the instructions of a small
- * 1-spp render).  envlight_radiance, envlight_prefetch and uniform sampling work as after
+ * without next-event estimation): mode uniform, and no measuring pass over the texels (a map in
+ * another representation is still resampled to lat-long, which the lookups read), so power,
+ * kappa, n_bad and fell_back stay 0 (a 1024 x 512 map's pass was 15% of the instructions of a
+ * small 1-spp render).  envlight_radiance, envlight_prefetch and uniform sampling work as after
  * envlight_build; whatever needs the power (lights_build, envlight_mis_fraction) must not be
  * given it. */
 int envlight_build_lookup(envlight *el, const envmap *env, error *err);

@@ -14,7 +14,9 @@
 /* Nearest t in (r->tmin, r->tmax) where the ray meets the (transformed) sphere: 1 and *t, or 0.
  * t is the world ray's parameter (the object-space ray keeps it, since the map is affine).
  * A sphere read without a transform (s->untransformed) skips the two matrix products, with
- * the same t: the identity's products are exact (sphere_hit skips its three too). */
+ * the same t: the identity's products are exact (sphere_hit skips its three too).  One
+ * exception: an origin with a -0 coordinate (the products make it +0) where o.d is exactly 0
+ * picks the other of the two root formulas, and t can differ in its last bit. */
 int sphere_intersect(const scene_sphere *s, const ray *r, double *t);
 
 /* Fill h->p and h->ng = h->ns (unit, outward, world space) for the hit at parameter t;

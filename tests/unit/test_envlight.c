@@ -816,7 +816,8 @@ START_TEST(test_envlight_radiance_is_the_scaled_texel)
         envlight_sample_result sa, sb;
         double x1 = (j + 0.25) / 200, x2 = (j * 0.414214) - floor(j * 0.414214);
         ck_assert(envlight_sample(&el, x1, x2, 0, &sa) && envlight_sample(&lk, x1, x2, 0, &sb));
-        ck_assert(same_rgb(sa.L, sb.L) && sa.pdf == sb.pdf && sa.wi.x == sb.wi.x && sa.wi.z == sb.wi.z);
+        ck_assert(same_rgb(sa.L, sb.L) && sa.pdf == sb.pdf && sa.wi.x == sb.wi.x && sa.wi.y == sb.wi.y &&
+                  sa.wi.z == sb.wi.z);
     }
     envlight_free(&lk);
     envlight_free(&el);

@@ -520,8 +520,9 @@ START_TEST(test_differentials_only_for_maps_that_use_a_footprint)
     const char *head =
         "size 8 8\ncamera 0 0 0  0 0 -1  0 1 0  60\n"
         "texture c checker 4  0.1 0.2 0.3  0.7 0.8 0.9\ntexture n fbm 3 4  0 0 0  1 1 1\n";
-    const char *mats[] = {"texfilter nearest\ndiffusemap c\nroughnessmap n\n",
-                          "texfilter bilinear\ndiffusemap n\n", "texfilter nearest\nbumpmap c 1\n",
+    const char *mats[] = {"texfilter nearest\ndiffusemap c\nroughnessmap n\nspecularmap n\nemissionmap c\n",
+                          "texfilter bilinear\ndiffusemap n\nspecularmap c\n",
+                          "texfilter nearest\nbumpmap c 1\n",
                           "texfilter ewa\ndiffusemap c\n", "texfilter trilinear\nemissionmap n\n",
                           "texfilter ewa\n"};
     const int needs[] = {0, 0, 1, 1, 1, 0};
@@ -552,7 +553,7 @@ START_TEST(test_differentials_only_for_maps_that_use_a_footprint)
                     texshade_surface(&sc, &h, &r, NULL, &b);
                     ck_assert(a.has_diff && !b.has_diff);
                     ck_assert(a.kd.r == b.kd.r && a.kd.g == b.kd.g && a.kd.b == b.kd.b);
-                    ck_assert(a.roughness == b.roughness);
+                    ck_assert(a.ks.r == b.ks.r && a.emission.g == b.emission.g && a.roughness == b.roughness);
                 }
         }
         scene_free(&sc);

@@ -279,6 +279,13 @@ START_TEST(test_sphere_nan_or_zero_ray_misses_without_crashing)
 END_TEST
 
 
+/* point and normals equal bit for bit (memcmp: -0 and +0 differ) */
+static int same_hit_bits(const hit *a, const hit *b)
+{
+    return memcmp(&a->p, &b->p, sizeof a->p) == 0 && memcmp(&a->ng, &b->ng, sizeof a->ng) == 0 &&
+           memcmp(&a->ns, &b->ns, sizeof a->ns) == 0;
+}
+
 /* a sphere marked untransformed (no matrix products) finds exactly the t, point and normal of
  * the general path through the identity matrices, for rays from outside, from inside and
  * missing */
@@ -303,13 +310,35 @@ START_TEST(test_sphere_untransformed_fast_path_gives_the_general_paths_t)
             hit a, b;
             sphere_hit(&general, &r, t0, &a);
             sphere_hit(&fast, &r, t1, &b);
-            if (!(a.p.x == b.p.x && a.p.y == b.p.y && a.p.z == b.p.z && a.ng.x == b.ng.x && a.ng.y == b.ng.y &&
-                  a.ng.z == b.ng.z && a.ns.z == b.ns.z && b.t == t1 && b.bary.u == 0 && b.bary.v == 0))
+            if (!same_hit_bits(&a, &b) || b.t != t1 || b.bary.u != 0 || b.bary.v != 0)
                 ck_abort_msg("ray %d: sphere_hit differs untransformed", i);
             hits++;
         }
     }
     ck_assert_int_gt(hits, 12000); /* every inside ray and a share of the outside ones */
+    /* rays along the axes with -0 and +0 coordinates, from a sphere at the origin: the general
+     * path's products turn -0 into +0, and the fast path must too (a -0 in a normal flips an
+     * atan2 further on); both given the general path's t (sphere.h: t itself may differ there) */
+    const double v[] = {-0.0, 0.0, 0.5, -0.5, 1, -1, 5, -5, 0.3};
+    general = make_sphere(vec3_make(0, 0, 0), 1, mat4_identity());
+    fast = general;
+    fast.untransformed = 1;
+    int n = 0;
+    for (int k = 0; k < 9 * 9 * 9 * 27; k++) {
+        int q = k / 27, m = k % 27;
+        vec3 o = vec3_make(v[q % 9], v[q / 9 % 9], v[q / 81]);
+        vec3 d = vec3_make(v[m % 3], v[m / 3 % 3], v[m / 9 + 3 * (m % 2)]); /* +-0 and 0.5 mixed */
+        ray r = make_ray(o, d);
+        double t0;
+        if (!sphere_intersect(&general, &r, &t0)) continue;
+        hit a, b;
+        sphere_hit(&general, &r, t0, &a);
+        sphere_hit(&fast, &r, t0, &b);
+        if (!same_hit_bits(&a, &b)) ck_abort_msg("o (%g %g %g) d (%g %g %g): sphere_hit's bits differ untransformed",
+                                                 o.x, o.y, o.z, d.x, d.y, d.z);
+        n++;
+    }
+    ck_assert_int_gt(n, 1000);
 }
 END_TEST
 
