@@ -58,6 +58,13 @@ static void set_env(scene *sc, genenv_kind kind, int width, double sun_ratio)
     sc->envmap.xf = sc->envmap.inv = mat4_identity();
 }
 
+/* the scene of text under a 64-wide sun map (300 times the sky) */
+static void load_under_sun(scene *sc, const char *text)
+{
+    load(sc, text);
+    set_env(sc, GENENV_SUN, 64, 300);
+}
+
 static void render(const scene *sc, uint64_t seed, image *out)
 {
     render_opts o = render_defaults();
@@ -485,8 +492,7 @@ START_TEST(test_integrators_mis_with_env_fraction_zero_is_brdf_sampling)
         char text[2048];
         snprintf(text, sizeof text, "%sintegrator pathtracer\nspp 4\n%s", nee_scene, modes[i]);
         scene sc;
-        load(&sc, text);
-        set_env(&sc, GENENV_SUN, 64, 300);
+        load_under_sun(&sc, text);
         render(&sc, 7, &im[i]);
         scene_free(&sc);
     }
@@ -505,8 +511,7 @@ START_TEST(test_integrators_mis_with_env_fraction_zero_is_brdf_sampling)
     snprintf(text, sizeof text, "%sintegrator pathtracer\nquadLight -1 -1 3  2 0 0  0 2 0  5 5 5\n%s", nee_scene,
              modes[1]);
     scene sc;
-    load(&sc, text);
-    set_env(&sc, GENENV_SUN, 64, 300);
+    load_under_sun(&sc, text);
     rig rg;
     rig_init(&rg, &sc);
     ck_assert_double_eq(rg.it.env_fraction, 0);
@@ -517,8 +522,7 @@ START_TEST(test_integrators_mis_with_env_fraction_zero_is_brdf_sampling)
     const char *others[] = {"raytracer", "analyticdirect", "direct", "pathtracer"};
     for (int k = 0; k < 4; k++) {
         snprintf(text, sizeof text, "%sintegrator %s\n", nee_scene, others[k]);
-        load(&sc, text);
-        set_env(&sc, GENENV_SUN, 64, 300);
+        load_under_sun(&sc, text);
         rig_init(&rg, &sc);
         ck_assert_msg(rg.it.env_fraction == 1, "%s: env_fraction %g", others[k], rg.it.env_fraction);
         rig_free(&rg);
@@ -539,8 +543,7 @@ START_TEST(test_integrators_measure_the_envmap_only_when_they_sample_it)
         char text[2048];
         snprintf(text, sizeof text, "%s%s", nee_scene, modes[k]);
         scene sc;
-        load(&sc, text);
-        set_env(&sc, GENENV_SUN, 64, 300);
+        load_under_sun(&sc, text);
         rig rg;
         rig_init(&rg, &sc);
         ck_assert(rg.it.has_envlight);
