@@ -273,6 +273,8 @@ static int cmd_render(int argc, char **argv)
             goto done;
         }
     }
+    ro.warn = warn_keep; /* render_scene's own warnings join the scene's */
+    ro.warn_ctx = &ws;
     if (!quiet) { /* printed once render_scene has passed its own checks (spp, the envmap's transform...) */
         ro.start = warnings_print_at_start;
         ro.start_ctx = &ws;
@@ -289,7 +291,6 @@ static int cmd_render(int argc, char **argv)
             fprintf(stderr, "envtex: built BVH: %ld nodes, depth %d, %.3f s\n", st.bvh_nodes, st.bvh_depth, st.build_seconds);
         else
             fprintf(stderr, "envtex: no BVH (%ld primitives <= %d: tested linearly)\n", st.prims, BVH_MIN_PRIMS);
-        static const char *modes[] = {"uniform", "cdf", "cdf-sintheta", "mediancut"};
         if (sc.envmap.present) {
             int is_cube = sc.envmap.kind == CONVERT_CUBE;
             int ew = is_cube ? sc.envmap.cube.size : sc.envmap.img.w, eh = is_cube ? ew : sc.envmap.img.h;
@@ -307,7 +308,7 @@ static int cmd_render(int argc, char **argv)
                         sc.integrator == INTEGRATOR_PATHTRACER ? " without next-event estimation" : "");
             else if (st.envlight_mode != ENVSAMPLING_UNIFORM)
                 fprintf(stderr, "envtex: envmap sampling: '%s' tables (%s) built in %.3f s%s\n",
-                        modes[st.envlight_mode], sc.envsampler == ENVSAMPLER_ALIAS ? "alias" : "binary search",
+                        scene_envsampling_name(st.envlight_mode), sc.envsampler == ENVSAMPLER_ALIAS ? "alias" : "binary search",
                         st.envlight_seconds, st.envlight_fell_back ? " (black map: equal strata)" : "");
             else
                 fprintf(stderr, "envtex: envmap sampling: uniform directions, no tables%s\n",

@@ -83,6 +83,18 @@ int render_scene(const scene *sc, const render_opts *opts, image *out, render_st
         return error_prefix(err, "%s: output image", sc->path);
     }
 
+    if (opts->warn && it.samples_env && it.el.fell_back && sc->envsampling != ENVSAMPLING_UNIFORM) {
+        /* the issue's "an all-zero map falls back to uniform with a warning": nothing to
+         * importance sample (a scene that asked for uniform directions loses nothing) */
+        error w;
+        error_set(&w, sc->path, sc->envmap.line,
+                  "envmap %s is black (no texel above 0): 'envsampling %s' %s", sc->envmap.path,
+                  scene_envsampling_name(sc->envsampling),
+                  sc->envsampling == ENVSAMPLING_MEDIANCUT
+                      ? "has no energy to divide and cuts the map into strata of equal texel counts instead"
+                      : "has nothing to importance sample and samples uniform directions instead");
+        opts->warn(opts->warn_ctx, &w);
+    }
     if (opts->start) opts->start(opts->start_ctx); /* nothing below refuses the render */
 
     camera cam;

@@ -1616,6 +1616,17 @@ texmapping_kind scene_material_texmapping(const material *m, int is_sphere)
     return m->texmapping;
 }
 
+const char *scene_envsampling_name(envsampling_mode m)
+{
+    switch (m) {
+    case ENVSAMPLING_UNIFORM: return "uniform";
+    case ENVSAMPLING_CDF: return "cdf";
+    case ENVSAMPLING_CDF_SINTHETA: return "cdf-sintheta";
+    case ENVSAMPLING_MEDIANCUT: return "mediancut";
+    }
+    return "unknown";
+}
+
 const char *scene_integrator_name(integrator_kind k)
 {
     switch (k) {

@@ -21,8 +21,9 @@
  * |L| L_c / L_avg: exact for grey light, and coloured light still converges (the ratio
  * L_c / L_avg is bounded wherever L_avg > 0).  Texel channels that are NaN, Inf or
  * negative are counted (n_bad; a texel with three such channels counts 3) and treated as 0
- * everywhere, for lighting and sampling alike.  An all-black map falls back to uniform
- * sampling (fell_back).
+ * everywhere, for lighting and sampling alike.  An all-black map falls back (fell_back): `cdf`
+ * and `cdf-sintheta` to uniform sampling, `mediancut` to strata of equal texel counts
+ * (render_scene warns through render_opts.warn).
  *
  * A map in another representation (cube map, mirror ball, ...) is first resampled to a lat-long
  * map (envmap_to_latlong, solid-angle averaged, at the default resolution), which is then both
@@ -62,7 +63,7 @@ typedef struct envlight {
                           * relative variance of estimating the light with uniform directions
                           * (1 for a constant map, ~10^3 and more with a sun) */
     long n_bad;          /* NaN / Inf / negative texel channels found */
-    int fell_back;       /* 1 if the map was black and sampling is uniform */
+    int fell_back;       /* 1 if the map was black: sampling is uniform (median cut: equal strata) */
     double *cos_edge;    /* h + 1 entries: cos theta at the top edge of each row (and the bottom) */
     double *row_omega;   /* h entries: solid angle of one texel of each row */
     double *phi_cs;      /* cdf modes: cos and sin of phi_j = 2 pi j / (w phi_sub), interleaved,

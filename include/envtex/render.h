@@ -34,6 +34,12 @@ typedef struct render_opts {
                                 * be NULL).  A refused render never calls it: a caller prints the
                                 * scene's warnings here, so a refused run prints its error alone */
     void *start_ctx;
+    scene_warn_fn warn;        /* called for each warning of the render's own, before start (may
+                                * be NULL: dropped).  One so far: an envmap that is black (no
+                                * texel above 0) where the scene samples it by its values
+                                * (`envsampling cdf`, `cdf-sintheta`, `mediancut`), which then
+                                * falls back (envlight.h) */
+    void *warn_ctx;
     image *variance;           /* if not NULL: receives the per-pixel variance of the mean,
                                 * s^2 / spp with s^2 the unbiased sample variance of the pixel's
                                 * samples (needs spp >= 2; allocated here, free with image_free) */

@@ -235,6 +235,8 @@ material scene_default_material(void);
 
 /* "raytracer", "analyticdirect", "direct" or "pathtracer" (static strings), as in the file. */
 const char *scene_integrator_name(integrator_kind k);
+/* "uniform", "cdf", "cdf-sintheta" or "mediancut" (static strings), the words of `envsampling`. */
+const char *scene_envsampling_name(envsampling_mode m);
 
 /* The texture of a material map reference (0 = none): NULL, or the texture (owned by sc). */
 static inline const texture *scene_map(const scene *sc, int ref)

@@ -191,6 +191,63 @@ START_TEST(test_render_runs_every_integrator_and_a_black_map_stays_finite)
 }
 END_TEST
 
+static int warnings_seen;
+static error last_warning;
+static void keep_warning(void *ctx, const error *w)
+{
+    ck_assert_ptr_eq(ctx, &warnings_seen);
+    warnings_seen++;
+    last_warning = *w;
+}
+
+/* The issue: "an all-zero map falls back to uniform with a warning".  The warning comes once,
+ * through render_opts.warn, at the `envmap` line, whenever the scene samples the map by its
+ * values; not when it asked for uniform directions, nor when nothing samples the map, nor for a
+ * map that is not black. */
+START_TEST(test_render_warns_once_when_a_black_envmap_falls_back)
+{
+    static const struct { const char *lines; double value; int warns; const char *words; } cases[] = {
+        {"integrator direct\n", 0, 1, "'envsampling cdf' has nothing to importance sample and samples uniform"},
+        {"integrator direct\nenvsampling cdf-sintheta\n", 0, 1, "'envsampling cdf-sintheta' has nothing"},
+        {"integrator direct\nenvsampling mediancut 4\n", 0, 1, "'envsampling mediancut' has no energy to divide"},
+        {"integrator pathtracer\nnexteventestimation mis\n", 0, 1, "envmap black.exr is black"},
+        {"integrator direct\nenvsampling uniform\n", 0, 0, NULL}, /* asked for uniform */
+        {"integrator pathtracer\n", 0, 0, NULL},                    /* NEE off: looked up only */
+        {"integrator raytracer\n", 0, 0, NULL},
+        {"integrator direct\n", 0.5, 0, NULL},                      /* not black */
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        scene sc;
+        char text[512];
+        snprintf(text, sizeof text, "size 4 4\ncamera 0 0 4  0 0 0  0 1 0  45\nenvmap black.exr\n%s"
+                 "diffuse 0.5 0.5 0.5\nsphere 0 0 0 1\n", cases[i].lines);
+        load(&sc, text);
+        genenv_params p = genenv_defaults();
+        p.width = 16;
+        p.value = cases[i].value;
+        error err = {0};
+        ck_assert_int_eq(genenv_make(GENENV_CONSTANT, &p, &sc.envmap.img, &err), 0);
+        sc.envmap.present = 1;
+        render_opts o = render_defaults();
+        o.warn = keep_warning;
+        o.warn_ctx = &warnings_seen;
+        warnings_seen = 0;
+        image img;
+        render_stats st;
+        ck_assert_msg(render_scene(&sc, &o, &img, &st, &err) == 0, "case %zu: %s", i, err.msg);
+        ck_assert_msg(warnings_seen == cases[i].warns, "case %zu: %d warnings, want %d", i, warnings_seen,
+                      cases[i].warns);
+        if (cases[i].warns) {
+            ck_assert_str_eq(last_warning.file, "render.test");
+            ck_assert_int_eq(last_warning.line, 3); /* the envmap line */
+            ck_assert_msg(strstr(last_warning.msg, cases[i].words), "case %zu: %s", i, last_warning.msg);
+        }
+        image_free(&img);
+        scene_free(&sc);
+    }
+}
+END_TEST
+
 START_TEST(test_render_refuses_an_out_of_range_spp_naming_the_scene)
 {
     scene sc;
@@ -358,6 +415,7 @@ Suite *render_suite(void)
     tcase_add_test(tc, test_render_spp_0_takes_the_scenes_spp);
     tcase_add_test(tc, test_render_of_a_constant_environment_is_that_constant);
     tcase_add_test(tc, test_render_runs_every_integrator_and_a_black_map_stays_finite);
+    tcase_add_test(tc, test_render_warns_once_when_a_black_envmap_falls_back);
     tcase_add_test(tc, test_render_refuses_an_out_of_range_spp_naming_the_scene);
     tcase_add_test(tc, test_render_counts_nonfinite_pixels);
     tcase_add_test(tc, test_render_replays_as_documented_mean_variance_and_differential_scale);
