@@ -1,6 +1,6 @@
 /* bench_texture.c - microbenchmarks of texture lookups (make bench, tests/bench/bench_texture):
  *   - ns per texture_eval of a 512 x 512 image texture for each filter (nearest, bilinear,
- *     trilinear, EWA), median of repeats.  The queries come in scanlines, as a renderer makes
+ *     trilinear, EWA), median of repeats made in rounds (below).  The queries come in scanlines, as a renderer makes
  *     them: along a row of 512 "pixels" (s, t) advances by one footprint per pixel (dst/dx);
  *     each patch of rows has its own footprint, from 1/4 to 16 texels wide (log-uniform), its
  *     own direction and up to 4:1 anisotropy (a receding plane's range).  Two orders:
@@ -73,32 +73,37 @@ int main(int argc, char **argv)
         lines[l].dp = vec3_scale(vec3_normalize(vec3_make(rng_uniform(&g) - 0.5, rng_uniform(&g) - 0.5,
                                                           rng_uniform(&g) - 0.5)), 0.37);
     }
+    /* Rounds: each times every pass once, back to back (the 8 lookup passes, then Perlin), and a
+     * pass's figure is its median over the rounds.  The host runs slower part of the time, in
+     * phases of a second or so; a pass's repeats made back to back (35 ms for trilinear) all
+     * fell in one such phase now and then (45 ns for trilinear's usual 26), while rounds spread
+     * them over the whole run, as speed_vs_error's timing rounds do. */
+    enum { N_PASSES = 2 * (TEXFILTER_EWA + 1) + 1 }; /* (order, filter) pairs, then Perlin */
+    static double t[N_PASSES][64];
     double sink = 0;
-    for (int order = 0; order < 2; order++) /* 0: patches of adjacent rows, 1: rows alone */
-        for (int f = TEXFILTER_NEAREST; f <= TEXFILTER_EWA; f++) {
-            double t[64];
-            texture_query q;
-            memset(&q, 0, sizeof q);
-            q.filter = (texture_filter)f;
-            for (int k = 0; k < repeats; k++) {
-                double t0 = now();
-                for (int l = 0; l < N_LINES; l++) {
-                    q.st = order == 0 ? lines[l].st : lines[l].st0;
-                    q.dst_dx = lines[l].dx;
-                    q.dst_dy = lines[l].dy;
-                    for (int i = 0; i < TEX_SIZE; i++) {
-                        sink += texture_eval(&tx, &q).r;
-                        q.st.u += q.dst_dx.u; /* the next pixel of the row */
-                        q.st.v += q.dst_dx.v;
+    for (int k = 0; k < repeats; k++) {
+        int pass = 0;
+        for (int order = 0; order < 2; order++) /* 0: patches of adjacent rows, 1: rows alone */
+            for (int f = TEXFILTER_NEAREST; f <= TEXFILTER_EWA; f++, pass++) {
+                texture_query q;
+                memset(&q, 0, sizeof q);
+                q.filter = (texture_filter)f;
+                double t0 = 0;
+                for (int warm = 1; warm >= 0; warm--) { /* the pass twice, the second timed */
+                    t0 = now();
+                    for (int l = 0; l < N_LINES; l++) {
+                        q.st = order == 0 ? lines[l].st : lines[l].st0;
+                        q.dst_dx = lines[l].dx;
+                        q.dst_dy = lines[l].dy;
+                        for (int i = 0; i < TEX_SIZE; i++) {
+                            sink += texture_eval(&tx, &q).r;
+                            q.st.u += q.dst_dx.u; /* the next pixel of the row */
+                            q.st.v += q.dst_dx.v;
+                        }
                     }
                 }
-                t[k] = (now() - t0) / N_QUERIES * 1e9;
+                t[pass][k] = (now() - t0) / N_QUERIES * 1e9;
             }
-            printf("%s %s %.2f\n", order == 0 ? "lookup" : "lookup-rows",
-                   texture_filter_name((texture_filter)f), median(t, repeats));
-        }
-    double t[64];
-    for (int k = 0; k < repeats; k++) {
         double t0 = now();
         for (int l = 0; l < N_LINES; l++) {
             vec3 p = lines[l].p, dp = lines[l].dp;
@@ -107,9 +112,14 @@ int main(int argc, char **argv)
                 p = vec3_add(p, dp); /* marching through the solid texture */
             }
         }
-        t[k] = (now() - t0) / N_QUERIES * 1e9;
+        t[pass][k] = (now() - t0) / N_QUERIES * 1e9;
     }
-    printf("perlin %.2f\n", median(t, repeats));
+    int pass = 0;
+    for (int order = 0; order < 2; order++)
+        for (int f = TEXFILTER_NEAREST; f <= TEXFILTER_EWA; f++, pass++)
+            printf("%s %s %.2f\n", order == 0 ? "lookup" : "lookup-rows", texture_filter_name((texture_filter)f),
+                   median(t[pass], repeats));
+    printf("perlin %.2f\n", median(t[pass], repeats));
     fprintf(stderr, "(checksum %g)\n", sink);
     texture_free(&tx);
     image_free(&img);
