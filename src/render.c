@@ -83,9 +83,11 @@ int render_scene(const scene *sc, const render_opts *opts, image *out, render_st
         return error_prefix(err, "%s: output image", sc->path);
     }
 
-    if (opts->warn && it.samples_env && it.el.fell_back && sc->envsampling != ENVSAMPLING_UNIFORM) {
+    if (opts->warn && it.el.fell_back && sc->envsampling != ENVSAMPLING_UNIFORM) {
         /* the issue's "an all-zero map falls back to uniform with a warning": nothing to
-         * importance sample (a scene that asked for uniform directions loses nothing) */
+         * importance sample (a scene that asked for uniform directions loses nothing).  Only a
+         * light built for sampling measures the map, so only one can have fallen back (a
+         * lookup-only light, envlight_build_lookup, never sets fell_back). */
         error w;
         error_set(&w, sc->path, sc->envmap.line,
                   "envmap %s is black (no texel above 0): 'envsampling %s' %s", sc->envmap.path,

@@ -20,10 +20,12 @@ static void load(scene *sc, const char *text)
     if (scene_load_string(text, "render.test", &o, sc, &err)) ck_abort_msg("scene: line %d: %s", err.line, err.msg);
 }
 
-static void set_env(scene *sc, genenv_kind kind)
+/* the scene's envmap: a 128 x 64 generated map (value: a constant map's radiance) */
+static void set_env_value(scene *sc, genenv_kind kind, double value)
 {
     genenv_params p = genenv_defaults();
     p.width = 128;
+    p.value = value;
     error err = {0};
     image_free(&sc->envmap.img);
     ck_assert_int_eq(genenv_make(kind, &p, &sc->envmap.img, &err), 0);
@@ -31,6 +33,8 @@ static void set_env(scene *sc, genenv_kind kind)
     sc->envmap.scale = 1;
     sc->envmap.xf = sc->envmap.inv = mat4_identity();
 }
+
+static void set_env(scene *sc, genenv_kind kind) { set_env_value(sc, kind, genenv_defaults().value); }
 
 /* A mirror ball and a diffuse ball under a light, in the axes environment: edges everywhere, so
  * jittered samples change pixels. */
@@ -222,13 +226,9 @@ START_TEST(test_render_warns_once_when_a_black_envmap_falls_back)
         snprintf(text, sizeof text, "size 4 4\ncamera 0 0 4  0 0 0  0 1 0  45\nenvmap black.exr\n%s"
                  "diffuse 0.5 0.5 0.5\nsphere 0 0 0 1\n", cases[i].lines);
         load(&sc, text);
-        genenv_params p = genenv_defaults();
-        p.width = 16;
-        p.value = cases[i].value;
-        error err = {0};
-        ck_assert_int_eq(genenv_make(GENENV_CONSTANT, &p, &sc.envmap.img, &err), 0);
-        sc.envmap.present = 1;
+        set_env_value(&sc, GENENV_CONSTANT, cases[i].value);
         render_opts o = render_defaults();
+        error err = {0};
         o.warn = keep_warning;
         o.warn_ctx = &warnings_seen;
         warnings_seen = 0;
