@@ -66,7 +66,7 @@ static inline int fast_floor(double x)
 
 double perlin_noise(double x, double y, double z)
 {
-    /* STEP(perlin): Improved Noise (perlin.h): hash the 8 lattice corners with perm[], dot each corner's gradient with the offset (grad), blend with fade(t) = 6t^5 - 15t^4 + 10t^3 (lerp); the cell of any finite x is lattice_cell(floor(x)) (fast_floor(x) & 255 below PERLIN_INT_SAFE), a NaN or infinite coordinate gives 0 (slides 44-46) */
+    /* STEP(perlin): Improved Noise (perlin.h): hash the 8 lattice corners with perm[] by his chain (perlin.h: A = p[X] + Y, AA = p[A] + Z, ...), dot each corner's gradient with the offset (grad), blend with fade(t) = 6t^5 - 15t^4 + 10t^3 (lerp); the cell of any finite x is lattice_cell(floor(x)) (fast_floor(x) & 255 below PERLIN_INT_SAFE), a NaN or infinite coordinate gives 0 (slides 44-46) */
     /* STUB: (void)perm; (void)fade; (void)lerp; (void)grad; (void)lattice_cell; (void)fast_floor; (void)x; (void)y; (void)z; return 0.0; */
     unsigned X, Y, Z;
     if (fabs(x) < PERLIN_INT_SAFE && fabs(y) < PERLIN_INT_SAFE && fabs(z) < PERLIN_INT_SAFE) {

@@ -10,11 +10,17 @@
  *     double g = perlin_fbm_filtered(p, w, 6, 2.0, 0.5);
  *
  * perlin_noise agrees with Perlin's reference Java implementation
- * (https://mrl.nyu.edu/~perlin/noise/) to rounding, at every point: the same permutation of
- * 0..255 repeated twice, the fade curve 6t^5 - 15t^4 + 10t^3, and the 12 edge gradients of a
- * cube (padded to 16 by hash & 15).  Unlike a literal transcription it stays defined for any
- * finite coordinate: the lattice cell is floor(x) reduced modulo 256 in double, never an
- * overflowing int.  Every function here is pure, thread-safe and allocation free.
+ * (https://mrl.nyu.edu/~perlin/noise/) to rounding, at every point.  It has the same
+ * permutation p of 0..255 repeated twice, the fade curve 6t^5 - 15t^4 + 10t^3, the 12 edge
+ * gradients of a cube (padded to 16 by hash & 15), and his hash of the cell's corners: with
+ * (X, Y, Z) the cell, each mod 256, A = p[X] + Y, AA = p[A] + Z, AB = p[A + 1] + Z,
+ * B = p[X + 1] + Y, BA = p[B] + Z, BB = p[B + 1] + Z; the corner (i, j, k) takes the gradient
+ * of p[AA], p[BA], p[AB], p[BB] for (0,0,0), (1,0,0), (0,1,0), (1,1,0), and of p[AA + 1],
+ * p[BA + 1], p[AB + 1], p[BB + 1] for the same corners with k = 1.  (Any other hash would be as
+ * random, but not his noise: the tests compare with his values.)  Unlike a literal
+ * transcription it stays defined for any finite coordinate: the lattice cell is floor(x)
+ * reduced modulo 256 in double, never an overflowing int.  Every function here is pure,
+ * thread-safe and allocation free.
  *
  * The noise is 0 at every integer lattice point, continuous with continuous first and second
  * derivatives, and bounded by |n| <= PERLIN_NOISE_BOUND.
