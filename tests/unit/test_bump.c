@@ -5,11 +5,11 @@
 
 #include "unit.h"
 
-static void ck_vec_near(vec3 a, vec3 b, double tol)
-{
-    ck_assert_msg(vec3_length(vec3_sub(a, b)) <= tol, "(%.12g %.12g %.12g) != (%.12g %.12g %.12g)",
-                  a.x, a.y, a.z, b.x, b.y, b.z);
-}
+/* a macro, so that a failure names the test's own line and expressions */
+#define ck_vec_near(a, b, tol) do { \
+        vec3 a_ = (a), b_ = (b); \
+        ck_assert_msg(vec3_length(vec3_sub(a_, b_)) <= (tol), "%s = (%.12g %.12g %.12g), want %s = (%.12g %.12g %.12g)", \
+                      #a, a_.x, a_.y, a_.z, #b, b_.x, b_.y, b_.z); } while (0)
 
 static const vec3 Z = {0, 0, 1};
 
