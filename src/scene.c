@@ -716,9 +716,12 @@ static int cmd_envmiss(parser *p)
     return 0;
 }
 
+/* the words of `envsampling`, in envsampling_mode order (scene_envsampling_name too) */
+static const char *const envsampling_words[] = {"uniform", "cdf", "cdf-sintheta", "mediancut"};
+
 static int cmd_envsampling(parser *p)
 {
-    static const char *const w[] = {"uniform", "cdf", "cdf-sintheta", "mediancut"}; /* enum order */
+    const char *const *w = envsampling_words;
     int k = 0;
     if (arg_word(p, w, 4, &k)) return -1;
     if (k != ENVSAMPLING_MEDIANCUT && p->ntok > 2)
@@ -1618,13 +1621,7 @@ texmapping_kind scene_material_texmapping(const material *m, int is_sphere)
 
 const char *scene_envsampling_name(envsampling_mode m)
 {
-    switch (m) {
-    case ENVSAMPLING_UNIFORM: return "uniform";
-    case ENVSAMPLING_CDF: return "cdf";
-    case ENVSAMPLING_CDF_SINTHETA: return "cdf-sintheta";
-    case ENVSAMPLING_MEDIANCUT: return "mediancut";
-    }
-    return "unknown";
+    return (unsigned)m < sizeof envsampling_words / sizeof envsampling_words[0] ? envsampling_words[m] : "unknown";
 }
 
 const char *scene_integrator_name(integrator_kind k)
