@@ -71,6 +71,14 @@ EOS
     fi
 }
 
+# bench_field NAME: the VALUE of " NAME=VALUE" in the `envtex render` line on stdin ("relmse" is
+# not "relmse_trim")
+bench_field() {
+    local line
+    line=$(cat)
+    sed -n "s/.* $1=\([^ ]*\).*/\1/p" <<<" $line"
+}
+
 # bench_map ENV FILE: the map ENV made afresh as FILE: sky and sun from gen-env (512 wide), the
 # others copied from ../shared/hdri.  One kept from an earlier run would outlive changes to
 # genenv or ../shared/hdri, and the references' checksums, taken of this file, could not tell (a
