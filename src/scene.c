@@ -718,14 +718,14 @@ static int cmd_envmiss(parser *p)
 
 /* the words of `envsampling`, in envsampling_mode order (scene_envsampling_name too) */
 static const char *const envsampling_words[] = {"uniform", "cdf", "cdf-sintheta", "mediancut"};
+#define N_ENVSAMPLING_WORDS ((int)(sizeof envsampling_words / sizeof envsampling_words[0]))
 
 static int cmd_envsampling(parser *p)
 {
-    const char *const *w = envsampling_words;
     int k = 0;
-    if (arg_word(p, w, 4, &k)) return -1;
+    if (arg_word(p, envsampling_words, N_ENVSAMPLING_WORDS, &k)) return -1;
     if (k != ENVSAMPLING_MEDIANCUT && p->ntok > 2)
-        return fail(p, "'envsampling %s' takes no count (only 'mediancut N' does)", w[k]);
+        return fail(p, "'envsampling %s' takes no count (only 'mediancut N' does)", envsampling_words[k]);
     if (p->ntok > 2) {
         long n;
         if (arg_int(p, 2, 1, SCENE_MAX_MEDIANCUT, &n)) return -1;
@@ -1621,7 +1621,7 @@ texmapping_kind scene_material_texmapping(const material *m, int is_sphere)
 
 const char *scene_envsampling_name(envsampling_mode m)
 {
-    return (unsigned)m < sizeof envsampling_words / sizeof envsampling_words[0] ? envsampling_words[m] : "unknown";
+    return (int)m >= 0 && (int)m < N_ENVSAMPLING_WORDS ? envsampling_words[m] : "unknown";
 }
 
 const char *scene_integrator_name(integrator_kind k)
