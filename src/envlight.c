@@ -19,15 +19,6 @@
  * refuses a scale of 1 + 1e-6 along one axis, which would move a sample by ~1e-6 radians. */
 #define ENVLIGHT_CONFORMAL_TOL 1e-6
 
-/* envlight_sample, binary search: the most rows of the guide's interval whose texels are asked
- * for before the search.  The guide's first row is the sampled one for only 31% of samples of
- * the sunset map (the interval holds it); 4 rows cover the interval most of the time for one
- * prefetch a row (8 rows measured no faster). */
-#define ENVLIGHT_PREFETCH_ROWS 4
-
-/* the phi table's least number of steps round the circle (sample_cos_sin_phi) */
-#define ENVLIGHT_PHI_STEPS 256
-
 /* A texel as the light sees it: NaN, Inf and negative channels are 0, then scaled. */
 static inline double clean(float v) { return v > 0 && v <= FLT_MAX ? (double)v : 0.0; } /* NaN fails both */
 
@@ -53,32 +44,6 @@ static int world_to_texel(const envlight *el, vec3 wi, int *c, int *r, double *s
     *r = y < el->h ? y : el->h - 1;
     if (sin_theta) *sin_theta = sin(M_PI * uv.v);
     return 0;
-}
-
-/* atan2(y, x) within ~1e-5 rad, for envlight_prefetch only (a texel is 2 pi / w >= 7.7e-4 rad
- * wide for w <= 2^13): atan(a) for a = min / max in [0, 1] by the odd polynomial of degree 9 of
- * Abramowitz & Stegun 4.4.49 (error <= 1e-5), then the octant.  (0, 0) gives 0. */
-static inline double approx_atan2(double y, double x)
-{
-    double ax = fabs(x), ay = fabs(y);
-    double mx = ax > ay ? ax : ay, mn = ax > ay ? ay : ax;
-    double a = mx > 0 ? mn / mx : 0.0, a2 = a * a;
-    double t = a * (0.9998660 + a2 * (-0.3302995 + a2 * (0.1801410 + a2 * (-0.0851330 + a2 * 0.0208351))));
-    if (ay > ax) t = M_PI / 2 - t;
-    if (x < 0) t = M_PI - t;
-    return y < 0 ? -t : t;
-}
-
-long envlight_prefetch(const envlight *el, vec3 wi)
-{
-    vec3 d = el->identity ? wi : envmap_to_frame(el->env, wi);
-    double rxy = sqrt(d.x * d.x + d.y * d.y);
-    double u = approx_atan2(d.y, d.x) * (0.5 / M_PI), v = approx_atan2(rxy, d.z) * (1 / M_PI);
-    if (u < 0) u += 1;
-    double x = u * el->w, y = v * el->h; /* NaN fails both tests below: texel (0, 0) */
-    int c = x >= 0 && x < el->w ? (int)x : 0, r = y >= 0 && y < el->h ? (int)y : 0;
-    __builtin_prefetch(image_px(el->map, c, r));
-    return (long)r * el->w + c;
 }
 
 rgb envlight_radiance(const envlight *el, vec3 wi)
@@ -291,21 +256,6 @@ static int build(envlight *el, const envmap *env, envsampling_mode mode, envsamp
         el->row_omega[r] = (el->cos_edge[r] - el->cos_edge[r + 1]) * 2 * M_PI / w;
         /* END STEP(cdf) */
     }
-    if (mode == ENVSAMPLING_CDF || mode == ENVSAMPLING_CDF_SINTHETA) {
-        /* cos and sin of phi at w phi_sub equal steps (at least 256), for sample_cos_sin_phi */
-        el->phi_sub = (ENVLIGHT_PHI_STEPS + w - 1) / w;
-        int n = w * el->phi_sub;
-        el->phi_step = 2 * M_PI / n;
-        el->phi_cs = malloc(2 * (size_t)n * sizeof *el->phi_cs);
-        if (!el->phi_cs) {
-            envlight_free(el);
-            return error_set(err, NULL, 0, "out of memory for the phi table of a %d-column map", w);
-        }
-        for (int j = 0; j < n; j++) {
-            el->phi_cs[2 * j] = cos(2 * M_PI * j / n);
-            el->phi_cs[2 * j + 1] = sin(2 * M_PI * j / n);
-        }
-    }
     if (!measure) {
         el->build_seconds = (double)(clock() - t0) / CLOCKS_PER_SEC;
         return 0;
@@ -376,9 +326,8 @@ void envlight_free(envlight *el)
     el->map = NULL;
     free(el->cos_edge);
     free(el->row_omega);
-    free(el->phi_cs);
     el->points = NULL;
-    el->cos_edge = el->row_omega = el->phi_cs = NULL;
+    el->cos_edge = el->row_omega = NULL;
     el->n_points = 0;
 }
 
@@ -433,87 +382,72 @@ rgb envlight_radiance_pdf(const envlight *el, vec3 wi, double *pdf)
     return texel(el, c, r);
 }
 
-/* cos phi and sin phi for phi = 2 pi t / (w phi_sub), t = (c + rc) phi_sub in [0, w phi_sub]:
- * phi = phi_j + d with j = floor(t) and d = 2 pi (t - j) / (w phi_sub) < 2 pi / 256, so
- *     cos phi = cos phi_j cos d - sin phi_j sin d,   sin phi = sin phi_j cos d + cos phi_j sin d,
- * with cos d and sin d from their Taylor series to d^6 and d^7: the first term left out is
- * below d^8 / 8! < 4e-18, so this agrees with libm's cos and sin to a few ulps, in ~50
- * instructions where sincos took ~125 (a quarter of a sample's, callgrind). */
-static inline void sample_cos_sin_phi(const envlight *el, int c, double rc, double *cos_phi, double *sin_phi)
+/* uniform directions on the sphere, pdf = 1 / (4 pi): in the world, as in any frame */
+static int sample_uniform(const envlight *el, double xi1, double xi2, envlight_sample_result *out)
 {
-    int n = el->w * el->phi_sub;
-    double t = (c + rc) * el->phi_sub;
-    int j = (int)t;
-    if (j > n - 1) j = n - 1; /* c + rc rounds up to w when rc is within an ulp of 1 */
-    double d = (t - j) * el->phi_step, d2 = d * d;
-    double cd = 1 + d2 * (-1.0 / 2 + d2 * (1.0 / 24 - d2 * (1.0 / 720)));    /* 1 - d^2/2! + d^4/4! - d^6/6! */
-    double sd = d * (1 + d2 * (-1.0 / 6 + d2 * (1.0 / 120 - d2 * (1.0 / 5040)))); /* d - d^3/3! + d^5/5! - d^7/7! */
-    double cj = el->phi_cs[2 * j], sj = el->phi_cs[2 * j + 1];
-    *cos_phi = cj * cd - sj * sd;
-    *sin_phi = sj * cd + cj * sd;
+    out->wi = sampling_uniform_sphere(xi1, xi2);
+    out->pdf = 1 / (4 * M_PI);
+    out->L = envlight_radiance(el, out->wi);
+    return 1;
 }
 
-int envlight_sample(const envlight *el, double xi1, double xi2, int force_inversion, envlight_sample_result *out)
+/* cdf-sintheta (PBRT): a point uniform in theta inside texel (c, r) of probability pmf.  rr = 0
+ * in a lit row 0 would give theta = 0, where sin theta = 0 and the density is infinite: start
+ * ENVLIGHT_POLE_REM of a row inside it (a set of probability 1e-9 moved by 1e-9 of a row) */
+static int point_in_texel_sintheta(const envlight *el, int c, int r, double pmf, double rc,
+                                   double rr, envlight_sample_result *out)
 {
-    if (el->mode == ENVSAMPLING_UNIFORM) {
-        out->wi = sampling_uniform_sphere(xi1, xi2); /* uniform in any frame */
-        out->pdf = 1 / (4 * M_PI);
-        out->L = envlight_radiance(el, out->wi);
-        return 1;
-    }
+    double phi = 2 * M_PI * (c + rc) / el->w;
+    double theta = M_PI * (r + fmax(rr, ENVLIGHT_POLE_REM)) / el->h;
+    double sin_t = sin(theta);
+    out->wi = frame_to_world(el, vec3_make(sin_t * cos(phi), sin_t * sin(phi), cos(theta)));
+    out->L = texel(el, c, r);
+    /* p(omega) = p(c,r) W H / (2 pi^2 sin theta) */
+    out->pdf = sin_t > 0 ? pmf * el->w * el->h / (2 * M_PI * M_PI * sin_t) : 0;
+    return out->pdf > 0;
+}
+
+/* The lecture's point in the chosen texel (c, r): uniform in u = cos theta and in phi, where
+ * d(omega) = du dphi, so pdf(omega) = p(c, r) / dOmega_r = L_avg(c, r) / |L|: the pdf cancels
+ * the light.  (rc, rr) are the samples remapped to [0, 1) inside the cell. */
+static int point_in_texel(const envlight *el, int c, int r, double pmf, double rc, double rr,
+                          envlight_sample_result *out)
+{
+    if (el->mode == ENVSAMPLING_CDF_SINTHETA)
+        return point_in_texel_sintheta(el, c, r, pmf, rc, rr, out);
+    double phi = 2 * M_PI * (c + rc) / el->w;                     /* v = phi */
+    double u = el->cos_edge[r] + rr * (el->cos_edge[r + 1] - el->cos_edge[r]); /* u = cos theta */
+    double sin_t = sqrt(fmax(0.0, 1 - u * u));
+    out->wi = frame_to_world(el, vec3_make(sin_t * cos(phi), sin_t * sin(phi), u));
+    out->L = texel(el, c, r);
+    out->pdf = rgb_avg(out->L) / el->power; /* p(omega) = L_avg / |L| (cdf_pdf) */
+    return out->pdf > 0;
+}
+
+int envlight_sample(const envlight *el, double xi1, double xi2, envlight_sample_result *out)
+{
+    if (el->mode == ENVSAMPLING_UNIFORM) return sample_uniform(el, xi1, xi2, out);
+    if (el->mode != ENVSAMPLING_CDF && el->mode != ENVSAMPLING_CDF_SINTHETA) return 0;
+    /* slide 22: the column (phi) from the marginal CDF, then the row (u = cos theta) from the
+     * column's conditional CDF; alias tables pick the same cells in O(1) */
+    int c, r;
+    double pmf, rc, rr;
+    if (el->sampler == ENVSAMPLER_ALIAS)
+        distrib2d_sample_alias(&el->table, xi1, xi2, &c, &r, &pmf, &rc, &rr);
+    else
+        distrib2d_sample(&el->table, xi1, xi2, &c, &r, &pmf, &rc, &rr);
+    return point_in_texel(el, c, r, pmf, rc, rr, out);
+}
+
+int envlight_sample_stratified(const envlight *el, double xi1, double xi2,
+                               envlight_sample_result *out)
+{
+    if (el->mode == ENVSAMPLING_UNIFORM) return sample_uniform(el, xi1, xi2, out);
     if (el->mode != ENVSAMPLING_CDF && el->mode != ENVSAMPLING_CDF_SINTHETA) return 0;
     int c, r;
     double pmf, rc, rr;
-    /* the cdf mode takes its pdf from the texel (cdf_pdf): no pmf, so no read of the CDF for it */
-    double *want_pmf = el->mode == ENVSAMPLING_CDF ? NULL : &pmf;
-    if (el->sampler == ENVSAMPLER_ALIAS && !force_inversion) {
-        /* distrib2d_sample_alias in its two halves: between them, ask for the texel of the cell
-         * the row pick reads (the texel returned unless the pick takes the alias), so that on
-         * a map bigger than the cache the table's miss and the texel's overlap.  A small gain:
-         * 0.92x the time a sample of the 2048 x 1024 sun map (median of 8 alternating runs,
-         * 0.81-1.14; docs/environment-lighting.md) */
-        c = distrib1d_sample_alias(&el->table.marginal, xi1, NULL, &rc);
-        __builtin_prefetch(image_px(el->map, c, distrib_alias_first_bin(el->h, xi2)));
-        r = distrib2d_sample_alias_inner(&el->table, c, xi2, &rr);
-        if (want_pmf) pmf = distrib2d_pmf(&el->table, c, r);
-    } else {
-        /* distrib2d_sample in its two halves, the same way: between them, ask for the texels of
-         * the rows the search will look in (the guide's interval, its first
-         * ENVLIGHT_PREFETCH_ROWS rows) */
-        double p_outer, p_inner;
-        c = distrib1d_sample(&el->table.marginal, xi1, &p_outer, &rc);
-        int last, first = distrib2d_guide_bins(&el->table, c, xi2, &last);
-        if (last > first + ENVLIGHT_PREFETCH_ROWS - 1) last = first + ENVLIGHT_PREFETCH_ROWS - 1;
-        for (int k = first; k <= last; k++) __builtin_prefetch(image_px(el->map, c, k));
-        r = distrib2d_sample_inner(&el->table, c, xi2, &p_inner, &rr);
-        pmf = p_outer * p_inner; /* p(c, r) = p(c) p(r | c), as distrib2d_sample */
-    }
-    double cos_phi, sin_phi; /* phi = 2 pi (c + rc) / w: uniform in phi inside the column */
-    sample_cos_sin_phi(el, c, rc, &cos_phi, &sin_phi);
-    double cos_t, sin_t;
-    if (el->mode == ENVSAMPLING_CDF) {
-        /* uniform in u = cos theta inside the row: d(omega) = du dv, so pdf = p(c,r) / dOmega */
-        double u0 = el->cos_edge[r], u1 = el->cos_edge[r + 1];
-        cos_t = u0 + rr * (u1 - u0);
-        double sin2 = 1 - cos_t * cos_t;
-        sin_t = sin2 > 0 ? sqrt(sin2) : 0.0;
-        out->pdf = -1; /* set below from the texel: cdf_pdf */
-    } else {
-        /* uniform in theta: PBRT.  rr = 0 in a lit row 0 (xi at a CDF step) gives theta = 0,
-         * where sin theta = 0 and the density is infinite: start ENVLIGHT_POLE_REM of a row
-         * inside it instead (moves a set of probability 1e-9 by 1e-9 of a row: no bias) */
-        double theta = M_PI * (r + fmax(rr, ENVLIGHT_POLE_REM)) / el->h;
-        cos_t = cos(theta);
-        sin_t = sin(theta);
-        /* p(omega) = p(c,r) W H / (2 pi^2 sin theta) */
-        out->pdf = sin_t > 0 ? pmf * el->w * el->h / (2 * M_PI * M_PI * sin_t) : 0;
-    }
-    out->wi = frame_to_world(el, vec3_make(sin_t * cos_phi, sin_t * sin_phi, cos_t));
-    /* L and pdf of the sampled texel itself (envlight_pdf / envlight_radiance of wi agree
-     * except on texel edges, a set of measure zero) */
-    out->L = texel(el, c, r);
-    if (el->mode == ENVSAMPLING_CDF) out->pdf = rgb_avg(out->L) / el->power; /* cdf_pdf, one texel read */
-    return out->pdf > 0;
+    distrib2d_sample(&el->table, xi1, xi2, &c, &r, &pmf, &rc, &rr); /* inversion keeps strata */
+    return point_in_texel(el, c, r, pmf, rc, rr, out);
 }
 
 /* ---- how often MIS should sample the map (lights.h, envsamplefraction auto) --------------- */

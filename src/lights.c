@@ -156,7 +156,9 @@ int lights_sample(const lights *ls, int k, vec3 p, vec3 ng, double xi1, double x
             return 1;
         }
         envlight_sample_result s;
-        if (!envlight_sample(el, xi1, xi2, stratified, &s)) return 0;
+        if (!(stratified ? envlight_sample_stratified(el, xi1, xi2, &s)
+                         : envlight_sample(el, xi1, xi2, &s)))
+            return 0;
         out->wi = s.wi;
         out->Li = s.L;
         out->pdf = s.pdf;

@@ -128,9 +128,6 @@ rgb pathtracer_radiance_diff(integrator *it, ray r, const ray_diff *rd0, rng *g)
             rd.has = 0;
         }
         r = ray_spawn(s->p, s->ng, bs.wi);
-        /* after a non-delta bounce a ray that leaves the scene reads the light's texel: ask for it
-         * now, so that the cache fetches it while the ray is traced */
-        if (!specular_chain && it->has_envlight) envlight_prefetch(&it->el, r.d);
     }
     return L;
 }

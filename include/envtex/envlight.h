@@ -32,7 +32,7 @@
  *     envlight el;
  *     if (envlight_build(&el, &env, ENVSAMPLING_CDF, ENVSAMPLER_BINARY, 0, &err)) ...
  *     envlight_sample_result s;
- *     if (envlight_sample(&el, xi1, xi2, 0, &s)) ... s.wi, s.L, s.pdf ...
+ *     if (envlight_sample(&el, xi1, xi2, &s)) ... s.wi, s.L, s.pdf ...
  *     double pdf = envlight_pdf(&el, wi);   // for MIS, of a direction found another way
  *     envlight_free(&el);
  */
@@ -66,11 +66,6 @@ typedef struct envlight {
     int fell_back;       /* 1 if the map was black: sampling is uniform (median cut: equal strata) */
     double *cos_edge;    /* h + 1 entries: cos theta at the top edge of each row (and the bottom) */
     double *row_omega;   /* h entries: solid angle of one texel of each row */
-    double *phi_cs;      /* cdf modes: cos and sin of phi_j = 2 pi j / (w phi_sub), interleaved,
-                          * j in [0, w phi_sub): a sample's phi = phi_j + delta, delta < 2 pi / 256,
-                          * is turned into cos and sin by the angle-addition formula (no libm call) */
-    int phi_sub;         /* table entries per column: ceil(256 / w) */
-    double phi_step;     /* 2 pi / (w phi_sub), the table's step */
     int identity;        /* the envmap transform is the identity: skip the matrix per sample */
     mat4 to_world;       /* envmap frame -> world: the transpose of env->to_env, whose linear part is
                           * a rotation times s (its translation is no matter); normalize after it */
@@ -93,7 +88,7 @@ int envlight_build(envlight *el, const envmap *env, envsampling_mode mode, envsa
  * without next-event estimation): mode uniform, and no measuring pass over the texels (a map in
  * another representation is still resampled to lat-long, which the lookups read), so power,
  * kappa, n_bad and fell_back stay 0 (a 1024 x 512 map's pass was 15% of the instructions of a
- * small 1-spp render).  envlight_radiance, envlight_prefetch and uniform sampling work as after
+ * small 1-spp render).  envlight_radiance and uniform sampling work as after
  * envlight_build; whatever needs the power (lights_build, envlight_mis_fraction) must not be
  * given it. */
 int envlight_build_lookup(envlight *el, const envmap *env, error *err);
@@ -103,25 +98,21 @@ void envlight_free(envlight *el);
  * value (piecewise constant), scaled, bad texels as 0. */
 rgb envlight_radiance(const envlight *el, vec3 wi);
 
-/* Ask the cache for the texel envlight_radiance(wi) / envlight_radiance_pdf(wi) will read, and
- * return at once: a path tracer calls it when it spawns a ray that, should it leave the scene,
- * is looked up in the light, so that the texel's miss (a map of several MB is not in the cache)
- * overlaps tracing the ray.  Only a hint: it finds the texel with an approximate atan2 (within
- * ~1e-5 rad: the texel or a neighbour), reads and changes nothing; any wi, even NaN (texel 0).
- * Returns the texel asked for, r w + c (for the tests). */
-long envlight_prefetch(const envlight *el, vec3 wi);
-
 typedef struct envlight_sample_result {
     vec3 wi;     /* world direction towards the environment */
     rgb L;       /* envlight_radiance(wi) */
     double pdf;  /* per steradian, > 0 */
 } envlight_sample_result;
 
-/* Sample a direction with (xi1, xi2) in [0,1)^2 (modes uniform, cdf, cdf-sintheta).  With
- * stratified inputs use ENVSAMPLER_BINARY or pass force_inversion = 1: the alias method does not
- * keep strata.  Returns 0 if nothing can be sampled (never for a valid table). */
-int envlight_sample(const envlight *el, double xi1, double xi2, int force_inversion,
-                    envlight_sample_result *out);
+/* Sample a direction with (xi1, xi2) in [0,1)^2 (modes uniform, cdf, cdf-sintheta), by the
+ * scene's sampler (binary search or alias tables).  Returns 0 if nothing can be sampled (never
+ * for a valid table). */
+int envlight_sample(const envlight *el, double xi1, double xi2, envlight_sample_result *out);
+
+/* The same by CDF inversion whatever the sampler, for stratified (xi1, xi2): inversion is
+ * monotone in each xi, so strata stay strata; the alias method shuffles them. */
+int envlight_sample_stratified(const envlight *el, double xi1, double xi2,
+                               envlight_sample_result *out);
 
 /* pdf (per steradian) that envlight_sample returns wi. */
 double envlight_pdf(const envlight *el, vec3 wi);

@@ -36,7 +36,7 @@ static double time_samples(const envlight *el, int repeats, int n)
         double t0 = now();
         for (int i = 0; i < n; i++) {
             envlight_sample_result r;
-            envlight_sample(el, rng_uniform(&g), rng_uniform(&g), 0, &r); /* sample + pdf + L */
+            envlight_sample(el, rng_uniform(&g), rng_uniform(&g), &r); /* sample + pdf + L */
             sink += r.pdf;
         }
         t[k] = (now() - t0) / n * 1e9;

@@ -194,7 +194,7 @@ static void check_chisq(const envlight *el, const char *what, uint64_t seed)
     long failed = 0, pdf_bad = 0, L_bad = 0;
     for (long i = 0; i < N_SAMPLES; i++) {
         envlight_sample_result s;
-        if (!envlight_sample(el, rng_uniform(&r), rng_uniform(&r), 0, &s)) {
+        if (!envlight_sample(el, rng_uniform(&r), rng_uniform(&r), &s)) {
             failed++;
             continue;
         }
@@ -259,7 +259,7 @@ START_TEST(test_envlight_rotation_moves_samples_and_pdf_with_the_map)
     int outside = 0, unrotated = 0;
     for (int i = 0; i < 2000; i++) {
         envlight_sample_result s;
-        ck_assert(envlight_sample(&el, rng_uniform(&r), rng_uniform(&r), 0, &s));
+        ck_assert(envlight_sample(&el, rng_uniform(&r), rng_uniform(&r), &s));
         int c, rr;
         texel_of(&el, s.wi, &c, &rr);
         outside += c != 5 || rr != 3;
@@ -320,8 +320,8 @@ START_TEST(test_envlight_translation_and_uniform_scale_sample_as_the_rotation_al
                 continue;
             }
             envlight_sample_result sa, sb;
-            ck_assert(envlight_sample(&a, x1, x2, 0, &sa));
-            ck_assert(envlight_sample(&b, x1, x2, 0, &sb));
+            ck_assert(envlight_sample(&a, x1, x2, &sa));
+            ck_assert(envlight_sample(&b, x1, x2, &sb));
             vec3 w = sampling_uniform_sphere(x3, rng_uniform(&g)); /* any direction, for the lookups */
             bad += vec3_length(vec3_sub(sa.wi, sb.wi)) > 1e-12 || fabs(sa.pdf / sb.pdf - 1) > 1e-12 ||
                    !same_rgb(sa.L, sb.L) || !(fabs(envlight_pdf(&a, w) - envlight_pdf(&b, w)) <= 1e-12 * envlight_pdf(&a, w)) ||
@@ -386,7 +386,7 @@ START_TEST(test_envlight_all_black_map_falls_back_to_uniform)
         ck_assert_int_eq(el.mode, ENVSAMPLING_UNIFORM);
         ck_assert(el.power == 0);
         envlight_sample_result s;
-        ck_assert(envlight_sample(&el, 0.3, 0.8, 0, &s));
+        ck_assert(envlight_sample(&el, 0.3, 0.8, &s));
         ck_assert_near(s.pdf, 1 / (4 * M_PI), 1e-15);
         ck_assert(rgb_is_black(s.L));
         envlight_free(&el);
@@ -431,7 +431,8 @@ START_TEST(test_envlight_zero_texels_and_edge_xi_are_never_sampled)
             }
             for (int force = 0; force < 2; force++) {
                 envlight_sample_result s;
-                if (!envlight_sample(&el, xi1, xi2, force, &s)) {
+                if (!(force ? envlight_sample_stratified(&el, xi1, xi2, &s)
+                           : envlight_sample(&el, xi1, xi2, &s))) {
                     bad++;
                     continue;
                 }
@@ -446,11 +447,9 @@ START_TEST(test_envlight_zero_texels_and_edge_xi_are_never_sampled)
 }
 END_TEST
 
-/* A sample's phi comes from a table of cos and sin at >= 256 steps and a short Taylor series
- * for the rest (envlight.c, sample_cos_sin_phi).  Its direction must be a unit vector to the
- * last few ulps (a term too few in either series is off by ~1e-13 on a 1-column map) and lie
- * in the one lit column, on maps 1 to 2000 columns wide (1 to 256 table steps per column); and
- * on a constant map, where phi is known, it must be that phi to a few ulps. */
+/* A sample's direction must be a unit vector to the last few ulps and lie in the one lit
+ * column, on maps 1 to 2000 columns wide; and on a constant map, where phi is known, it must be
+ * that phi to a few ulps (phi = 2 pi (c + rc) / w, not e.g. the column's centre). */
 #define UNIT_TOL 1e-15
 #define PHI_TOL 1e-14 /* radians: a few ulps of 2 pi */
 START_TEST(test_envlight_sampled_phi_is_unit_and_in_its_column)
@@ -472,7 +471,7 @@ START_TEST(test_envlight_sampled_phi_is_unit_and_in_its_column)
             for (int i = 0; i < 20000; i++) {
                 double xi1 = i < 3 ? 0.5 * i : rng_uniform(&g); /* 0, 1/2, 1 and random */
                 envlight_sample_result s;
-                ck_assert(envlight_sample(&el, xi1, rng_uniform(&g), 0, &s));
+                ck_assert(envlight_sample(&el, xi1, rng_uniform(&g), &s));
                 double e = fabs(vec3_dot(s.wi, s.wi) - 1);
                 worst = e > worst ? e : worst;
                 uv2 uv;
@@ -505,7 +504,7 @@ START_TEST(test_envlight_sampled_phi_is_unit_and_in_its_column)
             for (int i = 0; i < 20000; i++) {
                 double xi1 = rng_uniform(&g);
                 envlight_sample_result s;
-                ck_assert(envlight_sample(&el, xi1, rng_uniform(&g), 0, &s));
+                ck_assert(envlight_sample(&el, xi1, rng_uniform(&g), &s));
                 double phi = atan2(s.wi.y, s.wi.x), want = 2 * M_PI * xi1;
                 if (phi < 0) phi += 2 * M_PI;
                 double e = fabs(phi - want);
@@ -520,11 +519,10 @@ START_TEST(test_envlight_sampled_phi_is_unit_and_in_its_column)
 }
 END_TEST
 
-/* The last column at xi1 -> 1: its remapped rc is within an ulp of 1, so c + rc rounds to w and
- * the phi table's index (c + rc) phi_sub to its size; sample_cos_sin_phi must clamp it to the
- * last entry, not read one past the table.  With only the last column lit (p = 1, so rc is
- * 1 - 2^-53), the sample is a unit vector in that column, at its phi = 2 pi edge. */
-START_TEST(test_envlight_last_column_at_xi_one_stays_in_the_table)
+/* The last column at xi1 -> 1: its remapped rc is within an ulp of 1, so c + rc rounds to w.
+ * With only the last column lit (p = 1, so rc is 1 - 2^-53), the sample is a unit vector in
+ * that column, at its phi = 2 pi edge. */
+START_TEST(test_envlight_last_column_at_xi_one_stays_in_its_column)
 {
     const int widths[] = {2, 3, 7, 257, 2000};
     const double xi1s[] = {1.0, 0x1.fffffffffffffp-1, 1 - 0x1p-40};
@@ -540,7 +538,7 @@ START_TEST(test_envlight_last_column_at_xi_one_stays_in_the_table)
             build(&el, &env, cfg_mode[cfg], cfg_sampler[cfg], 0);
             for (size_t i = 0; i < sizeof xi1s / sizeof xi1s[0]; i++) {
                 envlight_sample_result s;
-                ck_assert(envlight_sample(&el, xi1s[i], 0.3, 0, &s));
+                ck_assert(envlight_sample(&el, xi1s[i], 0.3, &s));
                 uv2 uv;
                 ck_assert_int_eq(latlong_dir_to_uv(s.wi, &uv), 0);
                 double x = uv.u * w; /* in [w - 1, w], or 0 at the seam */
@@ -586,7 +584,7 @@ START_TEST(test_envlight_bad_texels_are_counted_dark_and_never_sampled)
             long hit = 0;
             for (int i = 0; i < 50000; i++) {
                 envlight_sample_result s;
-                ck_assert(envlight_sample(&el, rng_uniform(&r), rng_uniform(&r), 0, &s));
+                ck_assert(envlight_sample(&el, rng_uniform(&r), rng_uniform(&r), &s));
                 int c, rr;
                 texel_of(&el, s.wi, &c, &rr);
                 hit += (c == 2 && rr == 2) || (c == 9 && rr == 4);
@@ -616,7 +614,7 @@ START_TEST(test_envlight_sintheta_sample_on_the_pole_edge_succeeds)
         for (int i = 0; i < 4; i++)
             for (int j = 0; j < 4; j++) {
                 envlight_sample_result s;
-                int ok = envlight_sample(&el, edge[i], edge[j], 1, &s);
+                int ok = envlight_sample_stratified(&el, edge[i], edge[j], &s);
                 bad += !ok || !(s.pdf > 0) || !isfinite(s.pdf) || rgb_is_black(s.L);
             }
         envlight_free(&el);
@@ -815,48 +813,11 @@ START_TEST(test_envlight_radiance_is_the_scaled_texel)
         ck_assert(same_rgb(a, b));
         envlight_sample_result sa, sb;
         double x1 = (j + 0.25) / 200, x2 = (j * 0.414214) - floor(j * 0.414214);
-        ck_assert(envlight_sample(&el, x1, x2, 0, &sa) && envlight_sample(&lk, x1, x2, 0, &sb));
+        ck_assert(envlight_sample(&el, x1, x2, &sa) && envlight_sample(&lk, x1, x2, &sb));
         ck_assert(same_rgb(sa.L, sb.L) && sa.pdf == sb.pdf && sa.wi.x == sb.wi.x && sa.wi.y == sb.wi.y &&
                   sa.wi.z == sb.wi.z);
     }
     envlight_free(&lk);
-    envlight_free(&el);
-    image_free(&im);
-}
-END_TEST
-
-/* envlight_prefetch asks for the texel of wi or a neighbour (its atan2 is within 1e-5 rad): on a
- * 2048-wide map under a rotation, for directions spread over the sphere, the poles and the
- * seam of phi, every guess is within one column (cyclically) and one row of the exact texel,
- * and at most 2% of them are off at all (a texel is 3e-3 rad: 1e-5 puts ~0.7% beside it; a
- * polynomial ten times worse would put ~7%).  NaN and zero directions ask for a texel too. */
-START_TEST(test_envlight_prefetch_asks_for_the_texel_or_a_neighbour)
-{
-    image im = {0};
-    error err = {0};
-    ck_assert_int_eq(image_alloc(&im, 2048, 1024, &err), 0);
-    envmap env = env_of(&im, 1, mat4_rotate(vec3_make(1, 2, 3), 0.7));
-    envlight el;
-    build(&el, &env, ENVSAMPLING_UNIFORM, ENVSAMPLER_BINARY, 0);
-    rng g;
-    rng_seed(&g, 5, 0);
-    int n = 200000, far = 0, off = 0;
-    for (int k = 0; k < n + 6; k++) {
-        static const vec3 special[6] = {{0, 0, 1}, {0, 0, -1}, {1, 0, 0}, {1, -1e-300, 0}, {-1, 1e-17, 0}, {0, -1, 0}};
-        vec3 w = k < n ? sampling_uniform_sphere(rng_uniform(&g), rng_uniform(&g)) : special[k - n];
-        int c, r;
-        texel_of(&el, w, &c, &r);
-        long t = envlight_prefetch(&el, w);
-        int gc = (int)(t % el.w), gr = (int)(t / el.w);
-        int dc = abs(gc - c);
-        if (dc > el.w / 2) dc = el.w - dc;
-        far += dc > 1 || abs(gr - r) > 1;
-        off += dc != 0 || gr != r;
-    }
-    ck_assert_msg(far == 0, "%d of %d guesses are more than a texel away", far, n + 6);
-    ck_assert_msg(off <= n / 50, "%d of %d guesses are a neighbour, not the texel", off, n + 6);
-    vec3 nan = {NAN, 0, 0};
-    ck_assert(envlight_prefetch(&el, nan) >= 0 && envlight_prefetch(&el, vec3_make(0, 0, 0)) >= 0);
     envlight_free(&el);
     image_free(&im);
 }
@@ -892,9 +853,9 @@ START_TEST(test_envlight_mis_fraction_minimizes_variance_times_time)
 }
 END_TEST
 
-/* with alias tables, force_inversion = 1 gives exactly the binary search's samples, which are
- * monotone in xi1 (the column, phi): stratified inputs stay stratified */
-START_TEST(test_envlight_forced_inversion_keeps_strata_with_alias_tables)
+/* with alias tables, envlight_sample_stratified gives exactly the binary search's samples,
+ * which are monotone in xi1 (the column, phi): stratified inputs stay stratified */
+START_TEST(test_envlight_stratified_sampling_keeps_strata_with_alias_tables)
 {
     image im;
     make_map(M_SUN, &im);
@@ -907,9 +868,9 @@ START_TEST(test_envlight_forced_inversion_keeps_strata_with_alias_tables)
     for (int i = 0; i < 4096; i++) {
         double xi1 = (i + 0.5) / 4096, xi2 = 0.37;
         envlight_sample_result a, b, c;
-        ck_assert(envlight_sample(&eb, xi1, xi2, 0, &b));
-        ck_assert(envlight_sample(&ea, xi1, xi2, 1, &a));
-        ck_assert(envlight_sample(&ea, xi1, xi2, 0, &c));
+        ck_assert(envlight_sample(&eb, xi1, xi2, &b));
+        ck_assert(envlight_sample_stratified(&ea, xi1, xi2, &a));
+        ck_assert(envlight_sample(&ea, xi1, xi2, &c));
         differ += a.wi.x != b.wi.x || a.wi.y != b.wi.y || a.wi.z != b.wi.z;
         alias_differs += c.wi.x != b.wi.x || c.wi.y != b.wi.y;
         double phi = atan2(b.wi.y, b.wi.x);
@@ -1156,14 +1117,13 @@ Suite *envlight_suite(void)
     tcase_add_test(tc, test_envlight_all_black_map_falls_back_to_uniform);
     tcase_add_test(tc, test_envlight_zero_texels_and_edge_xi_are_never_sampled);
     tcase_add_test(tc, test_envlight_sampled_phi_is_unit_and_in_its_column);
-    tcase_add_test(tc, test_envlight_last_column_at_xi_one_stays_in_the_table);
+    tcase_add_test(tc, test_envlight_last_column_at_xi_one_stays_in_its_column);
     tcase_add_test(tc, test_envlight_bad_texels_are_counted_dark_and_never_sampled);
     tcase_add_test(tc, test_envlight_large_table_is_normalized);
     tcase_add_test(tc, test_envlight_cdf_pdf_is_radiance_over_power);
     tcase_add_test(tc, test_envlight_radiance_is_the_scaled_texel);
     tcase_add_test(tc, test_envlight_south_pole_reads_the_last_row);
-    tcase_add_test(tc, test_envlight_prefetch_asks_for_the_texel_or_a_neighbour);
-    tcase_add_test(tc, test_envlight_forced_inversion_keeps_strata_with_alias_tables);
+    tcase_add_test(tc, test_envlight_stratified_sampling_keeps_strata_with_alias_tables);
     suite_add_tcase(s, tc);
     tc = tcase_create("mediancut");
     tcase_set_timeout(tc, 60);
