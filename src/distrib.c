@@ -11,10 +11,6 @@
  * "in [0, 1)" holds even after rounding (xi * n, (xi - c) / p can round up to exactly 1). */
 #define DISTRIB_ONE_MINUS_ULP 0x1.fffffffffffffp-1
 
-/* Bins per guide-table entry (see guide_size): 4 keeps the search inside ~1 cache line of the
- * CDF for 1/8 more memory. */
-#define DISTRIB_GUIDE_BINS 4
-
 /* xi clamped to [0, 1): NaN and negatives to 0, 1 and above to the largest double below 1. */
 static double clamp_xi(double xi)
 {
@@ -80,46 +76,6 @@ static int cdf_search(const double *cdf, int n, double x)
     /* END STEP(cdf) */
 }
 
-/* Number of guide entries for n bins: one per DISTRIB_GUIDE_BINS bins (at least 1).  The
- * search then starts from an interval of about DISTRIB_GUIDE_BINS + 1 bins on average, i.e.
- * one or two cache lines of the CDF instead of log2(n) lines far apart; the guide costs
- * 4 / DISTRIB_GUIDE_BINS bytes a bin. */
-static int guide_size(int n)
-{
-    return (n + DISTRIB_GUIDE_BINS - 1) / DISTRIB_GUIDE_BINS;
-}
-
-/* The guide table of the cutpoint method (Chen & Asau 1974): guide[g] = the bin that x = g / m
- * falls in, g = 0 .. m - 1, and guide[m] = n - 1.  The bin of any x in [g/m, (g+1)/m) lies in
- * [guide[g], guide[g + 1]].  O(n + m). */
-static void guide_build(const double *cdf, int n, int32_t *guide, int m)
-{
-    int i = 0;
-    for (int g = 0; g < m; g++) {
-        double x = (double)g / (double)m;
-        while (cdf[i + 1] <= x) i++; /* stops by i = n - 1: cdf[n] = 1 > x */
-        guide[g] = i;
-    }
-    guide[m] = n - 1;
-}
-
-/* cdf_search sped up by the guide: the same bin, bit for bit, found in [lo, hi] once
- * cdf[lo] <= x < cdf[hi + 1]; the first bin there with cdf[i + 1] > x is the first overall.
- *   lo: x * m can round UP to g for x an ulp below g / m (m = 6, g = 5 does), so a CDF step
- *       in (x, g / m] would be missed: step lo back while cdf[lo] > x.
- *   hi: never needs widening.  g = floor(fl(x m)) gives x m < g + 1, so x < (g + 1) / m, and
- *       x >= fl((g + 1) / m) only if x is that very double; either way the bin of x is at or
- *       before guide[g + 1]. */
-static int guide_search(const double *cdf, int n, const int32_t *guide, int m, double x)
-{
-    int g = (int)(x * (double)m);
-    if (g > m - 1) g = m - 1;
-    int lo = guide[g], hi = guide[g + 1];
-    while (lo > 0 && cdf[lo] > x) lo--;
-    assert(hi <= n - 1 && cdf[hi + 1] > x);
-    return lo + cdf_search(cdf + lo, hi - lo + 1, x);
-}
-
 /* remapped = (x - cdf[i]) / p_i: x rescaled to [0, 1) within bin i (p_i > 0). */
 static double cdf_remap(const double *cdf, int i, double x, double p)
 {
@@ -174,11 +130,7 @@ static void alias_build_table(const double *cdf, int n, distrib_alias *t, double
 }
 
 /* O(1) alias sampling: u = x n picks the cell i = floor(u), and f = u - i, uniform in [0, 1),
- * picks i itself (f < prob_i) or its alias; f is then rescaled to [0, 1) within that part.
- * A branch, not a select, on purpose: on a table bigger than the cache the CPU guesses the
- * branch and goes on (to the caller's read of the bin's data) while the cell is still on its
- * way from memory; a select waits for the cell.  Measured on the 2048 x 1024 sun map, the
- * select took ~1.4x the time a sample. */
+ * picks i itself (f < prob_i) or its alias; f is then rescaled to [0, 1) within that part. */
 static inline int alias_pick(const distrib_alias *t, int n, double xi, double *remapped)
 {
     double u = clamp_xi(xi) * (double)n;
@@ -218,17 +170,8 @@ static int distrib1d_build(distrib1d *d, const double *wd, const float *wf, int 
         return error_set(err, NULL, 0, "distrib1d: the sum of the %d weights overflows a double",
                          n);
     }
-    int m = guide_size(n);
-    int32_t *guide = malloc(((size_t)m + 1) * sizeof *guide);
-    if (!guide) {
-        free(cdf);
-        return error_set(err, NULL, 0, "distrib1d: out of memory for %d bins", n);
-    }
-    guide_build(cdf, n, guide, m);
     d->n = n;
     d->cdf = cdf;
-    d->guide = guide;
-    d->n_guide = m;
     d->n_bad = n_bad;
     d->fell_back_to_uniform = sum == 0.0;
     d->total = sum == 0.0 ? (double)n : sum;
@@ -279,7 +222,6 @@ void distrib1d_free(distrib1d *d)
 {
     if (!d) return;
     free(d->cdf);
-    free(d->guide);
     free(d->alias);
     memset(d, 0, sizeof *d);
 }
@@ -293,7 +235,7 @@ double distrib1d_pmf(const distrib1d *d, int i)
 int distrib1d_sample(const distrib1d *d, double xi, double *pmf, double *remapped)
 {
     double x = clamp_xi(xi);
-    int i = guide_search(d->cdf, d->n, d->guide, d->n_guide, x);
+    int i = cdf_search(d->cdf, d->n, x);
     double p = d->cdf[i + 1] - d->cdf[i];
     if (pmf) *pmf = p;
     if (remapped) *remapped = cdf_remap(d->cdf, i, x, p);
@@ -324,13 +266,10 @@ static int distrib2d_build(distrib2d *d, const double *wd, const float *wf, int 
                          "distrib2d: a %d x %d grid is empty or over the limit of %ld cells",
                          n_outer, n_inner, DISTRIB_MAX_BINS);
     size_t row = (size_t)n_inner + 1;
-    int m = guide_size(n_inner);
-    size_t grow = (size_t)m + 1;
     double *cond = malloc((size_t)n_outer * row * sizeof *cond);
-    int32_t *guide = malloc((size_t)n_outer * grow * sizeof *guide);
     double *colsum = malloc((size_t)n_outer * sizeof *colsum);
     int rc = 0, n_bad = 0;
-    if (!cond || !guide || !colsum) {
+    if (!cond || !colsum) {
         rc = error_set(err, NULL, 0, "distrib2d: out of memory for a %d x %d grid", n_outer,
                        n_inner);
         goto fail;
@@ -344,7 +283,6 @@ static int distrib2d_build(distrib2d *d, const double *wd, const float *wf, int 
                            "distrib2d: the sum of the weights of column %d overflows a double", o);
             goto fail;
         }
-        guide_build(cond + (size_t)o * row, n_inner, guide + (size_t)o * grow, m);
     }
     /* p(outer) = sum_inner w(outer, inner) / total : the marginal over the outer variable.
      * All columns 0 -> the marginal is uniform and so is every column: the uniform fallback. */
@@ -356,15 +294,12 @@ static int distrib2d_build(distrib2d *d, const double *wd, const float *wf, int 
     d->n_outer = n_outer;
     d->n_inner = n_inner;
     d->cond_cdf = cond;
-    d->cond_guide = guide;
-    d->n_guide_inner = m;
     d->n_bad = n_bad;
     d->fell_back_to_uniform = d->marginal.fell_back_to_uniform;
     d->total = d->fell_back_to_uniform ? (double)n_outer * n_inner : d->marginal.total;
     return 0;
 fail:
     free(cond);
-    free(guide);
     free(colsum);
     distrib1d_free(&d->marginal);
     memset(d, 0, sizeof *d);
@@ -415,7 +350,6 @@ void distrib2d_free(distrib2d *d)
     if (!d) return;
     distrib1d_free(&d->marginal);
     free(d->cond_cdf);
-    free(d->cond_guide);
     free(d->cond_alias);
     memset(d, 0, sizeof *d);
 }
@@ -438,42 +372,18 @@ double distrib2d_pmf(const distrib2d *d, int outer, int inner)
     return distrib2d_pmf_outer(d, outer) * distrib2d_pmf_inner(d, outer, inner);
 }
 
-static const int32_t *column_guide(const distrib2d *d, int outer)
-{
-    return d->cond_guide + (size_t)outer * ((size_t)d->n_guide_inner + 1);
-}
-
-int distrib2d_sample_inner(const distrib2d *d, int outer, double xi_inner, double *pmf_inner,
-                           double *rem_inner)
-{
-    assert(outer >= 0 && outer < d->n_outer);
-    const double *cdf = column_cdf(d, outer);
-    double x = clamp_xi(xi_inner);
-    int i = guide_search(cdf, d->n_inner, column_guide(d, outer), d->n_guide_inner, x);
-    double p_inner = cdf[i + 1] - cdf[i]; /* p(inner | outer) */
-    if (pmf_inner) *pmf_inner = p_inner;
-    if (rem_inner) *rem_inner = cdf_remap(cdf, i, x, p_inner);
-    return i;
-}
-
-int distrib2d_guide_bins(const distrib2d *d, int outer, double xi_inner, int *last)
-{
-    assert(outer >= 0 && outer < d->n_outer);
-    int m = d->n_guide_inner;
-    int g = (int)(clamp_xi(xi_inner) * (double)m); /* as guide_search */
-    const int32_t *guide = column_guide(d, outer) + (g < m - 1 ? g : m - 1);
-    *last = guide[1];
-    return guide[0];
-}
-
 void distrib2d_sample(const distrib2d *d, double xi_outer, double xi_inner, int *outer,
                       int *inner, double *pmf, double *rem_outer, double *rem_inner)
 {
     assert(outer && inner);
-    double p_outer, p_inner;
-    int o = distrib1d_sample(&d->marginal, xi_outer, &p_outer, rem_outer);
-    int i = distrib2d_sample_inner(d, o, xi_inner, &p_inner, rem_inner);
+    double p_outer;
+    int o = distrib1d_sample(&d->marginal, xi_outer, &p_outer, rem_outer); /* p(outer) */
+    const double *cdf = column_cdf(d, o);
+    double x = clamp_xi(xi_inner);
+    int i = cdf_search(cdf, d->n_inner, x); /* p(inner | outer): the column's conditional CDF */
+    double p_inner = cdf[i + 1] - cdf[i];
     if (pmf) *pmf = p_outer * p_inner; /* p(outer, inner) = p(outer) p(inner | outer) */
+    if (rem_inner) *rem_inner = cdf_remap(cdf, i, x, p_inner);
     *outer = o;
     *inner = i;
 }
@@ -483,20 +393,10 @@ void distrib2d_sample_alias(const distrib2d *d, double xi_outer, double xi_inner
 {
     assert(outer && inner);
     assert(d->cond_alias && "call distrib2d_alias_build first");
-    int o = alias_pick(d->marginal.alias, d->n_outer, xi_outer, rem_outer); /* distrib1d_sample_alias */
+    int o = alias_pick(d->marginal.alias, d->n_outer, xi_outer, rem_outer);
     int i = alias_pick(d->cond_alias + (size_t)o * (size_t)d->n_inner, d->n_inner, xi_inner,
                        rem_inner);
-    if (pmf) { /* p(outer) p(inner | outer), read only when asked for (two more cache lines) */
-        const double *cdf = column_cdf(d, o);
-        *pmf = distrib1d_pmf(&d->marginal, o) * (cdf[i + 1] - cdf[i]);
-    }
+    if (pmf) *pmf = distrib2d_pmf(d, o, i); /* p(outer) p(inner | outer) */
     *outer = o;
     *inner = i;
-}
-
-int distrib2d_sample_alias_inner(const distrib2d *d, int outer, double xi_inner, double *rem_inner)
-{
-    assert(d->cond_alias && "call distrib2d_alias_build first");
-    assert(outer >= 0 && outer < d->n_outer);
-    return alias_pick(d->cond_alias + (size_t)outer * (size_t)d->n_inner, d->n_inner, xi_inner, rem_inner);
 }

@@ -13,10 +13,8 @@
  *     distrib2d_free(&d);
  *
  * Two ways to sample the same distribution:
- *   - inversion by binary search over the CDF (`*_sample`): O(log n) (a guide table, the
- *     cutpoint method, first narrows the search to ~5 bins, so a search of a table too big for
- *     the cache costs ~2 cache misses, not log2 n), and MONOTONE: a larger xi never gives a
- *     smaller bin, and within one bin the remapped value grows with xi.  Stratified or
+ *   - inversion by binary search over the CDF (`*_sample`): O(log n), and MONOTONE: a larger
+ *     xi never gives a smaller bin, and within one bin the remapped value grows with xi.  Stratified or
  *     low-discrepancy inputs stay stratified, so use this one for them;
  *   - the alias method of Walker, built in O(n) with Vose's algorithm (`*_sample_alias`, after
  *     `*_alias_build`): O(1), but it scrambles the order of xi, so it does NOT preserve
@@ -52,21 +50,12 @@
  * off by up to 5%; at 10^5 some dim cells get a zero-width step and are NEVER sampled although
  * their weight is positive (a biased estimator); at 10^8 (a real sun) 2553 of 4096 cells vanish.
  * In double the CDF of an 8192 x 4096 grid (33.5M cells) is 268 MB, its last entries are
- * exactly 1 and the pmf sums to 1 within rounding (tested: < 1e-6); guide tables add 1 byte a
- * cell.  Alias tables take 8 bytes a cell: a float threshold and an int32 alias.  The float
+ * exactly 1 and the pmf sums to 1 within rounding (tested: < 1e-6).  Alias tables take 8 bytes a cell: a float threshold and an int32 alias.  The float
  * threshold rounds a cell's split by up to ~3e-8 of a cell.  The build hands the alias what the
  * stored threshold gives it (1 - prob, not 1 - q), so each rounding stays in the cell it
  * happened in and the roundings of many donors do not add up on one bin: a bin's sampled
  * probability is its pmf within ~3e-8 / (n pmf) relative (6e-8 for a bin of average
  * probability), far below Monte Carlo noise.
- *
- * Speed (one core, -O2): building 4096 x 2048 takes ~0.06 s (+0.1 s for the alias tables),
- * 8192 x 4096 ~0.35 s.  A 2D sample costs ~20-50 ns while the tables sit in cache; on a table
- * far bigger than the cache, with samples spread over it, both samplers are bound by memory
- * latency: ~120 ns alias (2 misses), ~140-200 ns binary search with the guide (~550 without).
- * A caller that reads its own data at the sampled cell can overlap that miss with the
- * table's: see distrib2d_sample_alias_inner and distrib_alias_first_bin (alias), distrib2d_sample_inner
- * and distrib2d_guide_bins (binary search).
  */
 #ifndef ENVTEX_DISTRIB_H
 #define ENVTEX_DISTRIB_H
@@ -95,9 +84,6 @@ typedef struct distrib1d {
     int fell_back_to_uniform; /* 1 if every weight was 0 and the table is uniform */
     int first_nonzero;        /* first bin with positive pmf */
     int last_nonzero;         /* last bin with positive pmf */
-    int32_t *guide;           /* n_guide + 1 entries: guide[g] = the bin of xi = g / n_guide,
-                               * so the bin of any xi lies in [guide[g], guide[g + 1]] */
-    int n_guide;              /* about n / 4 */
     distrib_alias *alias;     /* n cells after distrib1d_alias_build, else NULL */
 } distrib1d;
 
@@ -138,9 +124,6 @@ typedef struct distrib2d {
                                * column o is cond_cdf + o * (n_inner + 1); a column of weight 0
                                * gets a uniform one (its marginal is 0, so it is used only
                                * when every column is 0: the uniform fallback) */
-    int32_t *cond_guide;      /* n_outer rows of n_guide_inner + 1 entries: the guide of
-                               * each column, as distrib1d.guide */
-    int n_guide_inner;
     double total;             /* sum of all weights used (n_outer n_inner if all were 0) */
     int n_bad;                /* weights that were NaN, +-Inf or negative (used as 0) */
     int fell_back_to_uniform; /* 1 if every weight was 0 and the grid is uniform */
@@ -175,47 +158,9 @@ double distrib2d_pmf_inner(const distrib2d *d, int outer, int inner);
 void distrib2d_sample(const distrib2d *d, double xi_outer, double xi_inner, int *outer,
                       int *inner, double *pmf, double *rem_outer, double *rem_inner);
 
-/* distrib2d_sample in two halves, for a caller that prefetches between them:
- *     int o = distrib1d_sample(&d->marginal, xi_outer, &p_outer, &rem_outer);
- *     int last, first = distrib2d_guide_bins(d, o, xi_inner, &last);
- *     for (int k = first; k <= last; k++) __builtin_prefetch(data_of(o, k));
- *     int i = distrib2d_sample_inner(d, o, xi_inner, &p_inner, &rem_inner);
- * give the same o, i, remapped values and pmf = p_outer * p_inner as distrib2d_sample.
- * distrib2d_sample_inner: inversion of the conditional CDF of column `outer` (in range, assert)
- * with xi_inner; *pmf_inner = p(inner | outer); pmf_inner and rem_inner may be NULL. */
-int distrib2d_sample_inner(const distrib2d *d, int outer, double xi_inner, double *pmf_inner,
-                           double *rem_inner);
-
-/* The bins the guided search of xi_inner in column `outer` looks in, [first, *last] (the guide
- * entries of xi's cell, xi clamped as the search clamps it): distrib2d_sample_inner returns one
- * of them (but, rarely, a bin just before first when x m rounds up to the next cell; distrib.c,
- * guide_search).  On a table far bigger than the cache, a caller that reads its own data at the
- * returned bin can prefetch it for these few bins here (a handful on average, one in the
- * bright steps where most samples go): its miss and the CDF's then overlap instead of following
- * each other.  Reads two guide entries, which the search then finds in the cache. */
-int distrib2d_guide_bins(const distrib2d *d, int outer, double xi_inner, int *last);
-
 /* The same distribution with the alias method at both levels, O(1); distrib2d_alias_build must
  * have been called (assert).  Same outputs as distrib2d_sample, not monotone in xi. */
 void distrib2d_sample_alias(const distrib2d *d, double xi_outer, double xi_inner, int *outer,
                             int *inner, double *pmf, double *rem_outer, double *rem_inner);
-
-/* distrib2d_sample_alias in two halves, for a caller that prefetches between them:
- *     int o = distrib1d_sample_alias(&d->marginal, xi_outer, NULL, &rem_outer);
- *     __builtin_prefetch(data_of(o, distrib_alias_first_bin(d->n_inner, xi_inner)));
- *     int i = distrib2d_sample_alias_inner(d, o, xi_inner, &rem_inner);
- * give the same o, i and remapped values as distrib2d_sample_alias. */
-int distrib2d_sample_alias_inner(const distrib2d *d, int outer, double xi_inner, double *rem_inner);
-
-/* The cell an alias pick of xi over n bins reads, floor(xi n) with xi clamped to [0, 1): the
- * bin the pick returns unless it takes that cell's alias.  On a table far bigger than the
- * cache, a caller that reads its own data at the returned bin can prefetch it here, so that
- * its miss and the table's overlap instead of following each other. */
-static inline int distrib_alias_first_bin(int n, double xi)
-{
-    double u = (xi >= 0.0 ? (xi < 1.0 ? xi : 1.0) : 0.0) * (double)n; /* NaN: 0 */
-    int i = (int)u;
-    return i < n - 1 ? i : n - 1;
-}
 
 #endif

@@ -492,8 +492,9 @@ START_TEST(test_distrib_remapped_stays_below_one_just_below_a_step)
         ck_assert_int_eq(distrib2d_init(&d2, w, 1, n, &err), 0); /* one column: the same CDF */
         for (int i = 0; i < n; i++) {
             double x = nextafter(d.cdf[i + 1], 0.0), r2;
+            int o, j;
             distrib1d_sample(&d, x, NULL, &rem);
-            distrib2d_sample_inner(&d2, 0, x, NULL, &r2);
+            distrib2d_sample(&d2, 0.5, x, &o, &j, NULL, NULL, &r2);
             bad += !(rem >= 0.0 && rem < 1.0) || !(r2 >= 0.0 && r2 < 1.0);
         }
         distrib1d_free(&d);
@@ -546,13 +547,11 @@ static int linear_bin(const double *cdf, int n, double x)
     return i;
 }
 
-/* Probe point k of n + m + 2002: every CDF value, every guide point g / m, a grid of 2001. */
-static double probe_point(const double *cdf, int n, int m, int k)
+/* Probe point k of n + 2002: every CDF value, then a grid of 2001. */
+static double probe_point(const double *cdf, int n, int k)
 {
     if (k <= n) return cdf[k];
-    k -= n + 1;
-    if (k < m) return (double)k / m;
-    return (k - m) / 2000.0;
+    return (k - n - 1) / 2000.0;
 }
 
 /* Compare the 1D search, and the 2D search within a column, with linear_bin at every probe
@@ -572,8 +571,8 @@ static long count_search_disagreements_near(const double *w, int n, double only)
     ck_assert_int_eq(distrib2d_init(&d2, w2, 2, n, &err), 0);
     const double *col = d2.cond_cdf + (size_t)(n + 1);
     long bad = 0;
-    for (int k = 0; k < (only >= 0.0 ? 1 : n + d.n_guide + 2002); k++) {
-        double x = only >= 0.0 ? only : probe_point(d.cdf, n, d.n_guide, k);
+    for (int k = 0; k < (only >= 0.0 ? 1 : n + 2002); k++) {
+        double x = only >= 0.0 ? only : probe_point(d.cdf, n, k);
         for (int u = 0; u < 3; u++) x = nextafter(x, -1.0);
         for (int u = 0; u < 7; u++, x = nextafter(x, 2.0)) {
             bad += distrib1d_sample(&d, x, NULL, NULL) != linear_bin(d.cdf, n, x);
@@ -593,8 +592,8 @@ static long count_search_disagreements(const double *w, int n)
     return count_search_disagreements_near(w, n, -1.0);
 }
 
-/* Catches a guide table (the search's shortcut, 1D and 2D) that starts past the right bin,
- * e.g. when x * m rounds across a guide boundary, or stops short of it. */
+/* Catches a binary search (1D and 2D) that stops one bin early or late, at a CDF step or an
+ * ulp beside it. */
 START_TEST(test_distrib1d_search_agrees_with_a_linear_scan)
 {
     double w[1000];
@@ -612,9 +611,9 @@ START_TEST(test_distrib1d_search_agrees_with_a_linear_scan)
     }
     ck_assert_int_eq(count_search_disagreements(w, 1000), 0);
 
-    /* A CDF step at c = g/m (m guide entries), or one ulp above: x * m rounds across the guide
-     * boundary for x an ulp below g/m (e.g. m = 6, g = 5) or at the step above it, and the
-     * guide's interval must be widened.  Weights {c, 0, ..., 0, 1 - c} put cdf[1] at c. */
+    /* A CDF step at c = g/m, or one ulp above, with a long run of zero bins after it: the
+     * search must land on the bin before the run or the one after it, never inside.  Weights
+     * {c, 0, ..., 0, 1 - c} put cdf[1] at c. */
     long exact_steps = 0, bad = 0;
     for (int m = 2; m <= 48; m++) {
         for (int g = 1; g < m; g++) {
@@ -954,69 +953,6 @@ START_TEST(test_distrib2d_zero_columns_and_cells_are_never_chosen)
 }
 END_TEST
 
-/* The two halves a caller prefetches between (distrib2d_sample_alias_inner after the marginal
- * pick) give what distrib2d_sample_alias gives, and distrib_alias_first_bin names the cell the
- * row pick reads: the pick returns that bin or that cell's alias, for the sweep of xi (its
- * edges, NaN and out-of-range values included). */
-START_TEST(test_distrib2d_alias_in_two_halves_is_the_whole)
-{
-    double w[T2_MAX];
-    int no, ni;
-    distrib2d d = {0};
-    zero_grid_tables(&d, w, &no, &ni);
-    long differ = 0, not_first = 0;
-    for (int a = 0; a < N_SWEEP; a++) {
-        for (int b = 0; b < N_SWEEP; b++) {
-            double xs[2] = {sweep_xi(a), sweep_xi(b)};
-            int o, i;
-            double ro, ri, ro2, ri2;
-            distrib2d_sample_alias(&d, xs[0], xs[1], &o, &i, NULL, &ro, &ri);
-            int o2 = distrib1d_sample_alias(&d.marginal, xs[0], NULL, &ro2);
-            int i2 = distrib2d_sample_alias_inner(&d, o2, xs[1], &ri2);
-            differ += o2 != o || i2 != i || ro2 != ro || ri2 != ri;
-            int first = distrib_alias_first_bin(ni, xs[1]);
-            ck_assert(first >= 0 && first < ni);
-            not_first += i != first && i != d.cond_alias[(size_t)o * ni + first].alias;
-        }
-    }
-    ck_assert_msg(differ == 0, "%ld samples differ in two halves", differ);
-    ck_assert_msg(not_first == 0, "%ld picks neither the first bin nor its alias", not_first);
-    distrib2d_free(&d);
-}
-END_TEST
-
-/* The two halves a caller prefetches between (distrib2d_sample_inner after distrib1d_sample of
- * the marginal) give what distrib2d_sample gives, bit for bit (cells, remapped values, the pmf
- * as p_outer p_inner), and distrib2d_guide_bins names bins of the column whose last is at or
- * after the bin sampled, for the sweep of xi (its edges, NaN and out-of-range values included). */
-START_TEST(test_distrib2d_search_in_two_halves_is_the_whole)
-{
-    double w[T2_MAX];
-    int no, ni;
-    distrib2d d = {0};
-    zero_grid_tables(&d, w, &no, &ni);
-    long differ = 0, at_first = 0;
-    for (int a = 0; a < N_SWEEP; a++) {
-        for (int b = 0; b < N_SWEEP; b++) {
-            double xs[2] = {sweep_xi(a), sweep_xi(b)};
-            int o, i;
-            double pmf, ro, ri, po, pi, ro2, ri2;
-            distrib2d_sample(&d, xs[0], xs[1], &o, &i, &pmf, &ro, &ri);
-            int o2 = distrib1d_sample(&d.marginal, xs[0], &po, &ro2);
-            int last, first = distrib2d_guide_bins(&d, o2, xs[1], &last);
-            int i2 = distrib2d_sample_inner(&d, o2, xs[1], &pi, &ri2);
-            differ += o2 != o || i2 != i || ro2 != ro || ri2 != ri || po * pi != pmf;
-            ck_assert(first >= 0 && first <= last && last < ni && i <= last);
-            at_first += i == first;
-        }
-    }
-    ck_assert_msg(differ == 0, "%ld samples differ in two halves", differ);
-    ck_assert_msg(at_first > 0, "the guide's first bin was never the bin sampled");
-    distrib2d_free(&d);
-}
-END_TEST
-
-/* Catches the ends of either search landing on a zero column or cell. */
 START_TEST(test_distrib2d_edge_xi_give_the_first_and_last_nonzero_cells)
 {
     double w[T2_MAX];
@@ -1247,8 +1183,6 @@ Suite *distrib_suite(void)
     tcase_add_loop_test(tc, test_distrib2d_alias_samples_fit_the_binary_search_pmf, 0, T2_COUNT);
     tcase_add_test(tc, test_distrib2d_remapped_values_are_uniform_on_0_1);
     tcase_add_test(tc, test_distrib2d_zero_columns_and_cells_are_never_chosen);
-    tcase_add_test(tc, test_distrib2d_alias_in_two_halves_is_the_whole);
-    tcase_add_test(tc, test_distrib2d_search_in_two_halves_is_the_whole);
     tcase_add_test(tc, test_distrib2d_edge_xi_give_the_first_and_last_nonzero_cells);
     tcase_add_test(tc, test_distrib2d_inversion_is_monotone_in_each_xi);
     tcase_add_test(tc, test_distrib2d_all_zero_weights_fall_back_to_uniform);
