@@ -326,13 +326,10 @@ static int cmd_render(int argc, char **argv)
         }
         if (st.lights) fprintf(stderr, "envtex: %d light%s to sample%s\n", st.lights, st.lights == 1 ? "" : "s", st.lights == 1 ? "" : " (chosen by power)");
         if (sc.n_textures) {
-            int mips = 0, packed = 0;
-            for (int i = 0; i < sc.n_textures; i++) {
-                mips += sc.textures[i].tex.has_mip;
-                packed += sc.textures[i].tex.mip.packed != NULL;
-            }
-            fprintf(stderr, "envtex: %d textures (%d image files), %d mip pyramids (built only for trilinear/EWA), "
-                    "%d packed for trilinear\n", sc.n_textures, sc.n_texture_images, mips, packed);
+            int mips = 0;
+            for (int i = 0; i < sc.n_textures; i++) mips += sc.textures[i].tex.has_mip;
+            fprintf(stderr, "envtex: %d textures (%d image files), %d mip pyramids (built only for trilinear/EWA)\n",
+                    sc.n_textures, sc.n_texture_images, mips);
         }
         if (st.ray_differentials)
             fprintf(stderr, "envtex: ray differentials traced (a trilinear, EWA or bump map needs the footprint)\n");

@@ -97,40 +97,6 @@ cleanup:
     return status;
 }
 
-/* A texel as trilinear reads it: R, G, B and an unused 0 in one 16-byte vector (GCC and Clang
- * vector extensions: SSE on x86-64, NEON on arm64), so a texel is one aligned load and each
- * product or sum below works on the three channels at once. */
-typedef float mip_rgba __attribute__((vector_size(16)));
-
-/* Copy every level into m->packed (16-byte aligned, level after level, each level's rows from
- * the bottom) and describe each in m->packed_level. */
-static int pack_levels(mipmap *m, error *err)
-{
-    size_t n = 0, at[MIPMAP_MAX_LEVELS];
-    for (int l = 0; l < m->nlevels; l++) {
-        at[l] = n;
-        n += (size_t)m->level[l].w * (size_t)m->level[l].h;
-    }
-    mip_rgba *px = aligned_alloc(sizeof(mip_rgba), n * sizeof(mip_rgba));
-    if (!px) return error_set(err, NULL, 0, "out of memory for the packed levels of a %d x %d mipmap",
-                              m->level[0].w, m->level[0].h);
-    for (int l = 0; l < m->nlevels; l++) {
-        const image *im = &m->level[l];
-        mip_rgba *dst = px + at[l];
-        for (int j = 0; j < im->h; j++) { /* row j from the bottom is image row h - 1 - j */
-            const float *src = image_px(im, 0, im->h - 1 - j);
-            mip_rgba *row = dst + (size_t)j * (size_t)im->w;
-            for (int i = 0; i < im->w; i++)
-                row[i] = (mip_rgba){src[3 * i], src[3 * i + 1], src[3 * i + 2], 0.0f};
-        }
-        int tiled = m->wrap == WRAP_REPEAT && (im->w & (im->w - 1)) == 0 && (im->h & (im->h - 1)) == 0;
-        m->packed_level[l] = (struct mipmap_packed_level){(const float *)dst, im->w, im->h, im->w, im->h,
-                                                          tiled ? im->w - 1 : -1, tiled ? im->h - 1 : -1};
-    }
-    m->packed = (float *)px;
-    return 0;
-}
-
 int mipmap_build(mipmap *m, const image *base, wrap_mode wrap, error *err)
 {
     memset(m, 0, sizeof *m);
@@ -161,14 +127,7 @@ void mipmap_free(mipmap *m)
 {
     if (!m) return;
     for (int l = 1; l < m->nlevels && l < MIPMAP_MAX_LEVELS; l++) image_free(&m->level[l]);
-    free(m->packed);
     memset(m, 0, sizeof *m);
-}
-
-int mipmap_pack(mipmap *m, error *err)
-{
-    assert(m->nlevels > 0 && "mipmap_build first");
-    return m->packed ? 0 : pack_levels(m, err);
 }
 
 int mipmap_levels(const mipmap *m) { return m->nlevels; }
@@ -191,94 +150,22 @@ double mipmap_level_for_footprint(const mipmap *m, double width_in_texels)
     return l < top ? l : top;
 }
 
-/* texlookup_bilinear on packed level l: the same texels, indices and weights,
- *     c = (1-fy) [(1-fx) c00 + fx c10] + fy [(1-fx) c01 + fx c11],
- * in float on the three channels at once.  A tiled power-of-two level (the usual texture)
- * wraps by masks: k mod W = k & (W - 1) in two's complement; any other goes through
- * texlookup_bilinear_axis. */
-static inline __attribute__((always_inline)) mip_rgba bilinear_packed(const mipmap *m, int l, uv2 st)
-{
-    const struct mipmap_packed_level *pl = &m->packed_level[l];
-    double x = st.u * pl->w - 0.5, y = st.v * pl->h - 0.5; /* x = s W - 1/2, y = t H - 1/2 */
-    texlookup_axis ax, ay;
-    if (pl->wmask >= 0 && fabs(x) < TEXLOOKUP_INT_SAFE && fabs(y) < TEXLOOKUP_INT_SAFE) {
-        int i = texlookup_fast_floor(x), j = texlookup_fast_floor(y); /* false for NaN, Inf */
-        ax = (texlookup_axis){i & pl->wmask, (i + 1) & pl->wmask, x - i};
-        ay = (texlookup_axis){j & pl->hmask, (j + 1) & pl->hmask, y - j};
-    } else {
-        ax = texlookup_bilinear_axis(x, pl->iw, m->wrap);
-        ay = texlookup_bilinear_axis(y, pl->ih, m->wrap);
-    }
-    const mip_rgba *px = (const mip_rgba *)pl->texels;
-    const mip_rgba *r0 = px + (size_t)ay.i0 * (size_t)pl->iw, *r1 = px + (size_t)ay.i1 * (size_t)pl->iw;
-    float gx = (float)ax.f, gy = (float)ay.f;
-    mip_rgba bottom = r0[ax.i0] * (1.0f - gx) + r0[ax.i1] * gx, top = r1[ax.i0] * (1.0f - gx) + r1[ax.i1] * gx;
-    return bottom * (1.0f - gy) + top * gy;
-}
-
-/* Trilinear at level l + f (0 <= l <= levels - 1, 0 <= f <= 1, f = 0 at the top level):
- *     c = (1 - f) bilinear(level l, st) + f bilinear(level l + 1, st) */
-static inline __attribute__((always_inline)) rgb trilinear_at(const mipmap *m, uv2 st, int l, double f)
-{
-    /* STEP(mipmap): trilinear filtering at the level l + f of the footprint (given: l = floor(log2 footprint in texels), f its fraction): bilinear in levels l and l + 1 (bilinear_packed), blended by f; f = 0 at the top level, which has no level above (slides 36-39) */
-    /* STUB: (void)l; (void)f; (void)bilinear_packed; return texlookup_bilinear(&m->level[0], st, m->wrap); */
-    mip_rgba c = bilinear_packed(m, l, st); /* texlookup_bilinear(&m->level[l], st, m->wrap) */
-    if (f > 0.0) {
-        float g = (float)f;
-        c = c * (1.0f - g) + bilinear_packed(m, l + 1, st) * g; /* (1 - f) c0 + f c1 */
-    }
-    return (rgb){c[0], c[1], c[2]};
-    /* END STEP(mipmap) */
-}
-
 rgb mipmap_lookup_trilinear(const mipmap *m, uv2 st, double footprint_width)
 {
-    assert(m->packed && "mipmap_pack(m) first");
+    /* the level from log2 of the footprint in texels: lod = l + f, l = floor(lod) */
     double lod = mipmap_level_for_footprint(m, footprint_width * max_side(&m->level[0]));
-    int l = (int)lod; /* lod in [0, levels - 1]: l = floor(lod), and f = 0 at the top */
-    return trilinear_at(m, st, l, lod - l);
-}
-
-/* log2 x for a finite x > 1 whose bits are `bits` and exponent e (x = 2^e m, m in [1, 2)):
- * e + log2 m, with m halved (and e raised) when m >= sqrt 2, and
- *     log2 m = (2 / ln 2) atanh t = (2 / ln 2) (t + t^3/3 + t^5/5 + t^7/7 + t^9/9 + ...),
- *     t = (m - 1) / (m + 1),  |t| <= 3 - 2 sqrt 2 = 0.172,
- * the terms left out adding less than 1.1e-9.  Inline, not libm's log2: a call makes the
- * packed lookup's registers spill around it. */
-static inline double log2_above_one(uint64_t bits, int e)
-{
-    uint64_t mb = (bits & 0x000FFFFFFFFFFFFFull) | 0x3FF0000000000000ull; /* 2^0 m */
-    double m;
-    memcpy(&m, &mb, sizeof m);
-    double ee = e;
-    if (m >= 1.4142135623730951) {
-        m *= 0.5;
-        ee += 1.0;
+    int l = (int)lod;
+    double f = lod - l; /* 0 at the top level, which has no level above */
+    /* STEP(mipmap): trilinear filtering at the level l + f of the footprint (given: l and f):
+     * bilinear lookups in levels l and l + 1, blended by f (slides 36-39) */
+    /* STUB: (void)l; (void)f; return texlookup_bilinear(&m->level[0], st, m->wrap); */
+    rgb c = texlookup_bilinear(&m->level[l], st, m->wrap);
+    if (f > 0) {
+        rgb c1 = texlookup_bilinear(&m->level[l + 1], st, m->wrap);
+        c = rgb_add(rgb_scale(c, 1 - f), rgb_scale(c1, f)); /* (1 - f) c_l + f c_(l+1) */
     }
-    double t = (m - 1.0) / (m + 1.0), t2 = t * t;
-    return ee + 2.8853900817779268 * t * (1.0 + t2 * (1.0 / 3 + t2 * (1.0 / 5 + t2 * (1.0 / 7 + t2 * (1.0 / 9)))));
-}
-
-rgb mipmap_lookup_trilinear_axes(const mipmap *m, uv2 st, double len2_a, double len2_b)
-{
-    assert(m->packed && "mipmap_pack(m) first");
-    /* width^4 in texels: w4 = |a|^2 |b|^2 side^4, and the level is lod = log2(width) =
-     * log2(w4) / 4, with no square root on the way to the texels */
-    double side2 = (double)max_side(&m->level[0]) * max_side(&m->level[0]);
-    double w4 = len2_a * len2_b * side2 * side2;
-    int top = m->nlevels - 1;
-    if (!(w4 > 1.0)) return trilinear_at(m, st, 0, 0.0); /* magnification, or NaN: the base */
-    /* w4 = 2^e m with m in [1, 2), so log2 w4 = e + log2 m with 0 <= log2 m < 1, and
-     * l = floor(log2(w4) / 4) = floor(e / 4): the level, hence its texels' addresses, comes
-     * from the exponent's bits, and only the blend weight waits for the logarithm */
-    uint64_t bits;
-    memcpy(&bits, &w4, sizeof bits);
-    int e = (int)(bits >> 52) - 1023; /* w4 > 1: the sign bit is 0; +Inf gives 1024 */
-    int l = e >> 2;
-    if (l >= top) return trilinear_at(m, st, top, 0.0); /* the 1 x 1 level, or past it */
-    double f = 0.25 * log2_above_one(bits, e) - l; /* in [0, 1]: 1 only by rounding, just below
-                                                        level l + 1, which it then reads */
-    return trilinear_at(m, st, l, f < 0.0 ? 0.0 : f > 1.0 ? 1.0 : f);
+    return c;
+    /* END STEP(mipmap) */
 }
 
 /* ---- EWA ----------------------------------------------------------------------------------- */

@@ -92,8 +92,7 @@ int texture_init_solid(texture *t, texture_kind kind, const texture_solid_params
 int texture_needs_prepare(const texture *t, texture_filter filter)
 {
     if (t->kind != TEXTURE_IMAGE) return 0;
-    if (filter == TEXFILTER_TRILINEAR) return !t->has_mip || !t->mip.packed; /* levels + packed copy */
-    if (filter == TEXFILTER_EWA) return !t->has_mip;                         /* levels alone */
+    if (filter == TEXFILTER_TRILINEAR || filter == TEXFILTER_EWA) return !t->has_mip;
     return 0;
 }
 
@@ -104,7 +103,6 @@ int texture_prepare(texture *t, texture_filter filter, error *err)
         if (mipmap_build(&t->mip, t->img, t->wrap, err)) return -1;
         t->has_mip = 1;
     }
-    if (filter == TEXFILTER_TRILINEAR && mipmap_pack(&t->mip, err)) return -1; /* the pyramid stays */
     return 0;
 }
 
@@ -210,6 +208,19 @@ static double solid_value(const texture *t, vec3 p, double w)
     return v < 0 ? 0 : v > 1 ? 1 : v;
 }
 
+/* Trilinear's footprint width, w = sqrt(|dst/dx| |dst/dy|): the side of the square with the
+ * area of the pixel's footprint when its axes are perpendicular (docs/texture-mapping.md on why
+ * not pbrt's longer axis).  Each axis is measured in units of the longer side's texels,
+ * (ds W, dt H) / max(W, H): every level halves both sides, so a footprint one texel each way on
+ * a 2:1 image is level 0, not 0.5. */
+static double trilinear_width(const texture *t, const texture_query *q)
+{
+    double side = t->img->w > t->img->h ? t->img->w : t->img->h;
+    double ks = t->img->w / side, kt = t->img->h / side;
+    uv2 a = {q->dst_dx.u * ks, q->dst_dx.v * kt}, b = {q->dst_dy.u * ks, q->dst_dy.v * kt};
+    return sqrt(sqrt(uv_dot(a, a)) * sqrt(uv_dot(b, b)));
+}
+
 rgb texture_eval(const texture *t, const texture_query *q)
 {
     switch (t->kind) {
@@ -218,25 +229,8 @@ rgb texture_eval(const texture *t, const texture_query *q)
         case TEXFILTER_NEAREST: return texlookup_nearest(t->img, q->st, t->wrap);
         case TEXFILTER_BILINEAR: return texlookup_bilinear(t->img, q->st, t->wrap);
         case TEXFILTER_TRILINEAR:
-            assert(t->has_mip && t->mip.packed && "texture_prepare(t, TEXFILTER_TRILINEAR) first");
-            /* footprint width w = sqrt(|dst/dx| |dst/dy|): the side of the square with the area
-             * of the pixel's footprint when its axes are perpendicular (the area is
-             * |dst/dx x dst/dy|, smaller for skewed axes).  An isotropic filter must compromise
-             * on a receding plane: the long axis (pbrt's max) blurs the short one away, the short
-             * axis aliases; the area's side measured 3.4x less error than max on the receding
-             * checkerboard at 1 spp (docs/texture-mapping.md).  Equal to both when isotropic. */
-            if (t->img->w != t->img->h) {
-                /* each axis in units of the longer side's texels, (ds W, dt H) / max(W, H), which
-                 * is what mipmap_lookup_trilinear_axes measures: every level halves both sides,
-                 * so a footprint one texel each way on a 2:1 image is level 0, not 0.5 (a square
-                 * image, the usual texture, needs no scaling: ks = kt = 1) */
-                double side = t->img->w > t->img->h ? t->img->w : t->img->h;
-                double ks = t->img->w / side, kt = t->img->h / side;
-                uv2 a = {q->dst_dx.u * ks, q->dst_dx.v * kt}, b = {q->dst_dy.u * ks, q->dst_dy.v * kt};
-                return mipmap_lookup_trilinear_axes(&t->mip, q->st, uv_dot(a, a), uv_dot(b, b));
-            }
-            return mipmap_lookup_trilinear_axes(&t->mip, q->st, uv_dot(q->dst_dx, q->dst_dx),
-                                                uv_dot(q->dst_dy, q->dst_dy));
+            assert(t->has_mip && "texture_prepare(t, TEXFILTER_TRILINEAR) first");
+            return mipmap_lookup_trilinear(&t->mip, q->st, trilinear_width(t, q));
         case TEXFILTER_EWA:
             assert(t->has_mip && "texture_prepare(t, TEXFILTER_EWA) first");
             return mipmap_lookup_ewa(&t->mip, q->st, q->dst_dx, q->dst_dy);

@@ -6,7 +6,6 @@
  *
  *     mipmap m;
  *     if (mipmap_build(&m, &img, WRAP_REPEAT, &err)) return -1;  // img must outlive m
- *     if (mipmap_pack(&m, &err)) return -1;                      // for trilinear only
  *     rgb a = mipmap_lookup_trilinear(&m, st, 0.01);             // footprint: 1% of the texture
  *     rgb b = mipmap_lookup_ewa(&m, st, dst_dx, dst_dy);         // st's derivatives per pixel
  *     mipmap_free(&m);
@@ -55,21 +54,6 @@ typedef struct mipmap {
     image level[MIPMAP_MAX_LEVELS];  /* level[0] is a shallow copy of the base: its pixels are
                                         the caller's; levels 1.. are owned */
     double ewa_weight[MIPMAP_EWA_LUT_SIZE]; /* weight at r^2 = i / (SIZE - 1) */
-    float *packed;                   /* trilinear's copy of every level (mipmap_pack; NULL
-                                        until then): texels as 4 floats (R, G, B, 0), 16 bytes,
-                                        so a texel is one aligned load and the filter blends
-                                        three channels at once; each level's rows from the
-                                        BOTTOM, so row j is texel row j of the lookup (t up).
-                                        Owned; 16 bytes a texel over all levels (level 0
-                                        included): about 1.8 times the base image's bytes,
-                                        which EWA alone never pays */
-    struct mipmap_packed_level {     /* what a trilinear lookup reads of level l, in one place */
-        const float *texels;         /* its first texel in `packed` (bottom-left) */
-        double w, h;                 /* its size, as doubles for s W and t H */
-        int iw, ih;                  /* the same as ints */
-        int wmask, hmask;            /* W - 1 and H - 1 when the wrap is repeat and both sides
-                                        are powers of two (k mod W = k & (W - 1)), else -1 */
-    } packed_level[MIPMAP_MAX_LEVELS];
 } mipmap;
 
 /* Build the pyramid of `base` (non-empty) for lookups with `wrap`.  The mipmap REFERENCES the
@@ -79,14 +63,7 @@ typedef struct mipmap {
  * holds nothing to free (mipmap_free is still safe). */
 int mipmap_build(mipmap *m, const image *base, wrap_mode wrap, error *err);
 
-/* Make trilinear's packed copy of every level (m->packed), which mipmap_lookup_trilinear and
- * mipmap_lookup_trilinear_axes read: call it once after mipmap_build before their first use
- * (assert).  EWA and the levels themselves do not need it, so a pyramid used by EWA alone
- * never pays for it.  Once packed, later calls do nothing.  Returns 0, or -1 with *err set
- * (out of memory; *m is unchanged and still valid for EWA). */
-int mipmap_pack(mipmap *m, error *err);
-
-/* Free the owned levels (and the packed copy) and reset *m (the base image is untouched).  Safe
+/* Free the owned levels and reset *m (the base image is untouched).  Safe
  * on a zeroed, failed or already freed mipmap. */
 void mipmap_free(mipmap *m);
 
@@ -108,18 +85,8 @@ double mipmap_level_for_footprint(const mipmap *m, double width_in_texels);
  * l = floor(L), f = L - l:
  *     c = (1 - f) bilinear(level l, st) + f bilinear(level l + 1, st).
  * Continuous in footprint_width and in st; footprint <= 1 texel is a plain bilinear lookup of
- * the base.  Reads the packed levels and blends in float (single precision, as the texels are
- * stored): within a few float ulps of the same formula in double.  Allocation free.  Needs
- * mipmap_pack first (assert). */
+ * the base.  Allocation free. */
 rgb mipmap_lookup_trilinear(const mipmap *m, uv2 st, double footprint_width);
-
-/* mipmap_lookup_trilinear with the footprint given by the SQUARED lengths of its two axes (texture
- * units; e.g. |dst/dx|^2 and |dst/dy|^2): footprint_width = (len2_a len2_b)^(1/4), the geometric
- * mean of the axes' lengths (the side of a square of the footprint's area only when the axes are
- * perpendicular: the area is |a x b|), with no square root: the level's whole part comes from
- * the exponent of w4 = len2_a len2_b side^4 and its fraction from an inline log2 within 1e-9 of
- * libm's (so the result is within float rounding of mipmap_lookup_trilinear's). */
-rgb mipmap_lookup_trilinear_axes(const mipmap *m, uv2 st, double len2_a, double len2_b);
 
 /* EWA lookup (pbrt-v3 MIPMap::EWA).  dst_dx, dst_dy: the change of (s, t) per pixel step in x
  * and y (texture units), i.e. the two axes of the pixel's footprint in texture space.

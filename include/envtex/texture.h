@@ -34,7 +34,7 @@
  *              texels (each axis as (ds W, dt H): the side of the square of the footprint's
  *              area when the axes are perpendicular, their geometric mean always; a non-square
  *              image's s and t texels differ in texture units),
- *              mipmap_lookup_trilinear_axes; checker: the exact box-filtered value over the box
+ *              mipmap_lookup_trilinear; checker: the exact box-filtered value over the box
  *              max(|ds/dx|, |ds/dy|) wide in s (likewise t); solids: octaves band-limited by
  *              the footprint max(|dP/dx|, |dP/dy|) (perlin.h's filtered sums).
  *   ewa        image: mipmap_lookup_ewa with both derivative vectors; checker and solids: as
@@ -135,17 +135,15 @@ int texture_init_checker(texture *t, rgb c0, rgb c1, double frequency, error *er
 int texture_init_solid(texture *t, texture_kind kind, const texture_solid_params *sp, error *err);
 
 /* Get t ready for evaluations with `filter`: builds the mip pyramid of an image texture the
- * first time trilinear or EWA is asked for, and trilinear's packed copy of it (mipmap_pack) the
- * first time trilinear is (once each; later calls are free).  Other kinds and filters need
- * nothing, and a texture filtered by EWA alone never pays for the packed copy.  Returns 0, or
- * -1 with *err set (out of memory). */
+ * first time trilinear or EWA is asked for (once; later calls are free).  Other kinds and
+ * filters need nothing.  Returns 0, or -1 with *err set (out of memory). */
 int texture_prepare(texture *t, texture_filter filter, error *err);
 
 /* Free what t owns (its pyramid; not the image) and zero it.  Safe on a zeroed texture. */
 void texture_free(texture *t);
 
-/* 1 if evaluating with `filter` needs texture_prepare first (an image texture: trilinear without
- * the pyramid or its packed copy yet, or EWA without the pyramid). */
+/* 1 if evaluating with `filter` needs texture_prepare first (an image texture filtered by
+ * trilinear or EWA, without its pyramid yet). */
 int texture_needs_prepare(const texture *t, texture_filter filter);
 
 /* The texture's colour for query q, filtered by q->filter (see the table above).  An image

@@ -49,7 +49,6 @@ static mipmap build(const image *im, wrap_mode wrap)
     mipmap m;
     error err = {0};
     ck_assert_int_eq(mipmap_build(&m, im, wrap, &err), 0);
-    ck_assert_int_eq(mipmap_pack(&m, &err), 0);
     return m;
 }
 
@@ -268,82 +267,10 @@ START_TEST(test_trilinear_blends_the_two_nearest_levels_by_the_fraction)
 }
 END_TEST
 
-/* The squared-axes entry (what texture_eval calls) is the width entry at width = (a b)^(1/4):
- * isotropic, anisotropic, magnified, huge, zero, infinite and NaN footprints, every wrap mode. */
-START_TEST(test_trilinear_axes_is_trilinear_of_the_area_side)
-{
-    image im = random_image(37, 20);
-    const double len2[][2] = {{0, 0},         {1e-6, 1e-6},    {1e-4, 1e-4},  {1e-3, 1e-5},
-                              {0.01, 0.0004}, {0.003, 0.02},   {1, 1},        {1e6, 1e7},
-                              {0, 0.5},       {INFINITY, 1e-3}, {NAN, 0.01},  {0.02, 0.02}};
-    for (int md = 0; md < 3; md++) {
-        mipmap m = build(&im, all_modes[md]);
-        for (size_t k = 0; k < sizeof len2 / sizeof len2[0]; k++)
-            for (int q = 0; q < 20; q++) {
-                uv2 st = {rng_uniform(-2, 3), rng_uniform(-2, 3)};
-                double a = len2[k][0], b = len2[k][1], width = sqrt(sqrt(a) * sqrt(b));
-                rgb want = mipmap_lookup_trilinear(&m, st, width);
-                rgb got = mipmap_lookup_trilinear_axes(&m, st, a, b);
-                ck_rgb_near(got, want, 1e-6);
-            }
-        mipmap_free(&m);
-    }
-    image_free(&im);
-}
-END_TEST
-
-/* mipmap_lookup_trilinear_axes takes the level from w4's exponent and its fraction from its own
- * log2 series, and reads tiled power-of-two levels by masks: on a 32 x 16 texture (masks under
- * repeat) and a 37 x 20 one (never), in every wrap mode, at footprints every 1/64 of a level
- * from a quarter texel to past the top, at exact powers of two and next to them, and at
- * coordinates from -3 to 4 and far out (past 2^30 texels the general axis code takes over), it
- * agrees with mipmap_lookup_trilinear (libm's log2, the level split by a floor); and at each
- * whole level it is that level's bilinear lookup. */
-START_TEST(test_trilinear_axes_agrees_with_the_width_lookup_at_every_level)
-{
-    const int sizes[2][2] = {{32, 16}, {37, 20}};
-    for (int z = 0; z < 2; z++) {
-        image im = random_image(sizes[z][0], sizes[z][1]);
-        double side = sizes[z][0];
-        for (int md = 0; md < 3; md++) {
-            mipmap m = build(&im, all_modes[md]);
-            int levels = mipmap_levels(&m);
-            if (z == 0) ck_assert_int_eq(m.packed_level[0].wmask, md == 0 ? 31 : -1);
-            for (int q = 0; q < 12; q++) {
-                uv2 st = q < 10 ? (uv2){rng_uniform(-3, 4), rng_uniform(-3, 4)}
-                                : (uv2){rng_uniform(-1, 1) * 1e8, rng_uniform(-1, 1) * 1e8};
-                for (int k = -128; k <= 64 * (levels + 1); k++) {
-                    double texels = exp2(k / 64.0);
-                    for (int nb = -1; nb <= 1; nb++) { /* just below, at and just above 2^(k/64) */
-                        double w = texels * (1 + nb * 1e-12) / side, len2 = w * w;
-                        rgb want = mipmap_lookup_trilinear(&m, st, w);
-                        rgb got = mipmap_lookup_trilinear_axes(&m, st, len2, len2);
-                        if (!(fabs(got.r - want.r) <= 2e-6 && fabs(got.g - want.g) <= 2e-6))
-                            ck_abort_msg("%dx%d mode %d st (%g, %g) footprint 2^(%d/64)(1%+g): %.9g, want %.9g",
-                                         sizes[z][0], sizes[z][1], md, st.u, st.v, k, nb * 1e-12, got.g, want.g);
-                    }
-                    if (k % 64 == 0 && k >= 0 && k / 64 < levels) { /* a whole level: its bilinear */
-                        double w = texels / side;
-                        rgb got = mipmap_lookup_trilinear_axes(&m, st, w * w, w * w);
-                        rgb want = texlookup_bilinear(mipmap_level(&m, k / 64), st, all_modes[md]);
-                        if (!(fabs(got.g - want.g) <= 2e-5 * (1 + fabs(want.g))))
-                            ck_abort_msg("level %d, mode %d, st (%g, %g): %.9g, want %.9g", k / 64, md, st.u,
-                                         st.v, got.g, want.g);
-                    }
-                }
-            }
-            mipmap_free(&m);
-        }
-        image_free(&im);
-    }
-}
-END_TEST
-
 /* The blend weight itself: on a 2 x 2 texture whose texel (0, 0) is 0 and whose 1 x 1 level is
- * 0.5, a lookup at that texel's centre is f / 2 exactly, f the footprint's fraction of a level;
- * mipmap_lookup_trilinear_axes's own log2 must give f = log2(width in texels) to float
- * precision, mantissas near 2 (the series' worst case) included. */
-START_TEST(test_trilinear_axes_blend_weight_is_the_level_fraction)
+ * 0.5, a lookup at that texel's centre is f / 2 exactly, f the footprint's fraction of a level:
+ * f = log2(width in texels) (a level per doubling), not e.g. the width's fraction itself. */
+START_TEST(test_trilinear_blend_weight_is_the_level_fraction)
 {
     image im = new_image(2, 2);
     image_set(&im, 0, 1, rgb_gray(0)); /* (0, 0) from the bottom */
@@ -357,10 +284,9 @@ START_TEST(test_trilinear_axes_blend_weight_is_the_level_fraction)
     for (int k = 1; k < 4000; k++) {
         /* texels in (1, 2): w4 = texels^4 in (1, 16), every mantissa and exponents 0 to 3 */
         double texels = k < 3000 ? 1 + k / 3000.0 : exp2(0.25 * (4 - (k - 2999) * 1e-4)); /* up to 2^-1e-4 below 2 */
-        double w = texels / 2, len2 = w * w;
-        double f = 2 * mipmap_lookup_trilinear_axes(&m, centre, len2, len2).g;
+        double f = 2 * mipmap_lookup_trilinear(&m, centre, texels / 2).g;
         double want = log2(texels);
-        if (!(fabs(f - want) <= 1.5e-7))
+        if (!(fabs(f - want) <= 1e-12))
             ck_abort_msg("footprint %.12g texels: f = %.9g, log2 = %.9g", texels, f, want);
     }
     mipmap_free(&m);
@@ -652,43 +578,6 @@ START_TEST(test_ewa_is_continuous_in_the_footprint)
 }
 END_TEST
 
-/* Catches a pyramid that always pays for trilinear's packed copy (EWA alone never reads it), a
- * pack that copies again on a second call, and a packed copy that differs from the levels. */
-START_TEST(test_only_pack_makes_trilinears_copy_and_only_once)
-{
-    image im = new_image(6, 5);
-    for (int y = 0; y < 5; y++)
-        for (int x = 0; x < 6; x++) image_set(&im, x, y, rgb_make(x, y, x * y));
-    mipmap m;
-    error err = {0};
-    ck_assert_int_eq(mipmap_build(&m, &im, WRAP_CLAMP, &err), 0);
-    ck_assert_ptr_null(m.packed);
-    uv2 st = {0.4, 0.3}, zero = {0, 0};
-    rgb ewa = mipmap_lookup_ewa(&m, st, zero, zero); /* EWA runs on the levels alone */
-    ck_assert_int_eq(mipmap_pack(&m, &err), 0);
-    ck_assert_ptr_nonnull(m.packed);
-    float *first = m.packed;
-    ck_assert_int_eq(mipmap_pack(&m, &err), 0);
-    ck_assert_ptr_eq(m.packed, first);
-    for (int l = 0; l < mipmap_levels(&m); l++) { /* every level, texel for texel, as (R, G, B, 0), */
-        const image *lv = mipmap_level(&m, l);   /* its rows from the bottom */
-        const struct mipmap_packed_level *pl = &m.packed_level[l];
-        ck_assert(pl->iw == lv->w && pl->ih == lv->h && pl->w == lv->w && pl->h == lv->h);
-        ck_assert(pl->wmask == -1 && pl->hmask == -1); /* clamp: never the masks */
-        for (int j = 0; j < lv->h; j++)
-            for (int i = 0; i < lv->w; i++) {
-                const float *p = pl->texels + 4 * ((size_t)j * lv->w + i), *q = image_px(lv, i, lv->h - 1 - j);
-                ck_assert(p[0] == q[0] && p[1] == q[1] && p[2] == q[2] && p[3] == 0.0f);
-            }
-    }
-    rgb tri = mipmap_lookup_trilinear(&m, st, 0); /* below a texel: bilinear on the base */
-    ck_assert_near(tri.b, ewa.b, 1e-5);
-    mipmap_free(&m);
-    ck_assert_ptr_null(m.packed);
-    image_free(&im);
-}
-END_TEST
-
 START_TEST(test_build_rejects_an_empty_image_and_an_unknown_wrap_mode)
 {
     mipmap m;
@@ -756,9 +645,7 @@ Suite *mipmap_suite(void)
     tcase_add_test(tc, test_trilinear_below_one_texel_is_bilinear_on_the_base);
     tcase_add_test(tc, test_trilinear_measures_a_tall_images_footprint_by_its_longer_side);
     tcase_add_test(tc, test_trilinear_blends_the_two_nearest_levels_by_the_fraction);
-    tcase_add_test(tc, test_trilinear_axes_is_trilinear_of_the_area_side);
-    tcase_add_test(tc, test_trilinear_axes_agrees_with_the_width_lookup_at_every_level);
-    tcase_add_test(tc, test_trilinear_axes_blend_weight_is_the_level_fraction);
+    tcase_add_test(tc, test_trilinear_blend_weight_is_the_level_fraction);
     tcase_add_test(tc, test_trilinear_is_continuous_in_the_footprint);
     tcase_add_test(tc, test_ewa_of_a_constant_texture_is_the_constant);
     tcase_add_test(tc, test_ewa_with_zero_footprint_is_bilinear_on_the_base);
@@ -771,7 +658,6 @@ Suite *mipmap_suite(void)
     tcase_add_test(tc, test_ewa_far_coordinates_read_like_near_ones);
     tcase_add_test(tc, test_ewa_ellipse_is_the_footprint_plus_one_texel);
     tcase_add_test(tc, test_ewa_is_continuous_in_the_footprint);
-    tcase_add_test(tc, test_only_pack_makes_trilinears_copy_and_only_once);
     tcase_add_test(tc, test_build_rejects_an_empty_image_and_an_unknown_wrap_mode);
     suite_add_tcase(s, tc);
     return s;
