@@ -34,8 +34,8 @@ int budget_charge(budget *b, double bytes, const char *file, int line, error *er
     budget_format(b->limit, limit, sizeof limit);
     budget_format(b->used, used, sizeof used);
     if (b->used > 0)
-        return error_set(err, file, line, "%s = %s, beyond the memory budget of %s (%s of it in use; "
-                         "envtex --memory-budget SIZE sets it)", claim, size, limit, used);
+        return error_set(err, file, line, "%s = %s, beyond the memory budget of %s (%s of it in "
+                         "use; envtex --memory-budget SIZE sets it)", claim, size, limit, used);
     return error_set(err, file, line, "%s = %s, beyond the memory budget of %s (envtex "
                      "--memory-budget SIZE sets it)", claim, size, limit);
 }
@@ -93,8 +93,8 @@ int budget_parse(const char *text, double *bytes)
         for (const char *s = suffixes; s <= at; s++) scale *= 1024;
         rest++;
     }
-    if (strcmp(rest, "") && strcmp(rest, "B") && strcmp(rest, "b") && (!at || strcasecmp(rest, "iB")))
-        return -1;
+    int bytes_word = !strcmp(rest, "") || !strcmp(rest, "B") || !strcmp(rest, "b");
+    if (!bytes_word && (!at || strcasecmp(rest, "iB"))) return -1;
     if (!isfinite(v * scale) || v * scale < 1) return -1;
     *bytes = floor(v * scale);
     return 0;

@@ -31,8 +31,10 @@ static int open_input(const char *path, int pipes, infile_id *id, error *err)
     if (fd < 0) {
         int e = errno;
         struct stat st;
-        if (e == ELOOP) return error_set(err, path, 0, "cannot open: a loop of symbolic links (%s)", strerror(e));
-        if (e == ENXIO && stat(path, &st) == 0 && S_ISSOCK(st.st_mode)) /* a socket cannot be opened */
+        if (e == ELOOP)
+            return error_set(err, path, 0, "cannot open: a loop of symbolic links (%s)",
+                             strerror(e));
+        if (e == ENXIO && stat(path, &st) == 0 && S_ISSOCK(st.st_mode)) /* sockets do not open */
             return error_set(err, path, 0, "cannot open: it is a socket, not a regular file");
         return error_set(err, path, 0, "cannot open: %s", strerror(e));
     }
@@ -44,8 +46,8 @@ static int open_input(const char *path, int pipes, infile_id *id, error *err)
     }
     if (!S_ISREG(st.st_mode) && !(pipes && S_ISFIFO(st.st_mode))) {
         close(fd);
-        return error_set(err, path, 0, "cannot open: it is %s, not a regular file%s", kind_of(st.st_mode),
-                         pipes ? " or a pipe" : "");
+        return error_set(err, path, 0, "cannot open: it is %s, not a regular file%s",
+                         kind_of(st.st_mode), pipes ? " or a pipe" : "");
     }
     /* reads block as usual: a pipe's writer may be slow (a FIFO nobody opened reads as empty) */
     int flags = fcntl(fd, F_GETFL);
@@ -58,9 +60,15 @@ static int open_input(const char *path, int pipes, infile_id *id, error *err)
     return fd;
 }
 
-int infile_open(const char *path, infile_id *id, error *err) { return open_input(path, 0, id, err); }
+int infile_open(const char *path, infile_id *id, error *err)
+{
+    return open_input(path, 0, id, err);
+}
 
-int infile_open_stream(const char *path, infile_id *id, error *err) { return open_input(path, 1, id, err); }
+int infile_open_stream(const char *path, infile_id *id, error *err)
+{
+    return open_input(path, 1, id, err);
+}
 
 FILE *infile_fopen(const char *path, infile_id *id, error *err)
 {

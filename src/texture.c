@@ -97,14 +97,28 @@ int texture_needs_prepare(const texture *t, texture_filter filter)
     return 0;
 }
 
-int texture_prepare(texture *t, texture_filter filter, error *err)
+int texture_prepare(texture *t, texture_filter filter, budget *mem, error *err)
 {
     if (!texture_needs_prepare(t, filter)) return 0;
+    /* what is missing, charged before it is built: the levels (and their scratch) once, the
+     * packed copy for trilinear */
+    mipmap_cost c = mipmap_cost_of(t->img->w, t->img->h);
+    double levels = t->has_mip ? 0 : c.levels, scratch = t->has_mip ? 0 : c.scratch;
+    double packed = filter == TEXFILTER_TRILINEAR ? c.packed : 0;
+    if (budget_charge(mem, levels + scratch + packed, NULL, 0, err,
+                      "a mip pyramid of %d x %d texels%s", t->img->w, t->img->h,
+                      packed > 0 ? " and its packed copy for trilinear" : ""))
+        return -1;
     if (!t->has_mip) {
-        if (mipmap_build(&t->mip, t->img, t->wrap, err)) return -1;
+        int rc = mipmap_build(&t->mip, t->img, t->wrap, err);
+        budget_release(mem, scratch + (rc ? levels + packed : 0));
+        if (rc) return -1;
         t->has_mip = 1;
     }
-    if (filter == TEXFILTER_TRILINEAR && mipmap_pack(&t->mip, err)) return -1; /* the pyramid stays */
+    if (filter == TEXFILTER_TRILINEAR && mipmap_pack(&t->mip, err)) { /* the pyramid stays */
+        budget_release(mem, packed);
+        return -1;
+    }
     return 0;
 }
 

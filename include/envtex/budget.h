@@ -5,7 +5,8 @@
  *
  *     budget mem;
  *     budget_init(&mem, BUDGET_DEFAULT);
- *     if (budget_charge(&mem, (double)w * h * 15, path, 0, &err, "%ld x %ld texels x 15 bytes", w, h))
+ *     if (budget_charge(&mem, (double)w * h * 15, path, 0, &err, "%ld x %ld texels x 15 bytes",
+ *                       w, h))
  *         return -1;  // "a.png: 16384 x 16384 texels x 15 bytes = 3.75 GiB, beyond the memory ..."
  *     ... allocate, decode ...
  *     budget_release(&mem, (double)w * h * 3);  // the row buffer, freed again
