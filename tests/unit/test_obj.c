@@ -155,6 +155,13 @@ START_TEST(test_the_arrays_growth_is_charged_and_a_refusal_leaves_nothing_charge
     ck_assert(m.bytes == 64.0 * sizeof(vec3) + 64.0 * sizeof(obj_triangle)); /* 4 v, 2 triangles */
     ck_assert(mem.used == m.bytes);
     obj_free(&m);
+    char text[100 * 8 + 16] = "";
+    for (int i = 0; i < 100; i++) strcat(text + 8 * (i > 0 ? i - 1 : 0), "v 0 0 0\n");
+    budget_init(&mem, 1e9);
+    ck_assert_int_eq(obj_load_string(text, "m.obj", 0, &m, &mem, &err), 0);
+    ck_assert(m.bytes == 128.0 * sizeof(vec3)); /* 64, then 64 more */
+    ck_assert(mem.used == m.bytes);
+    obj_free(&m);
     budget_init(&mem, 2000);
     ck_assert_int_eq(obj_load_string(QUAD "f 1 2 3 4\n", "m.obj", 0, &m, &mem, &err), -1);
     ck_assert_str_eq(err.file, "m.obj");
