@@ -35,7 +35,8 @@ static int open_input(const char *path, int pipes, infile_id *id, error *err)
             return error_set(err, path, 0, "cannot open: a loop of symbolic links (%s)",
                              strerror(e));
         if (e == ENXIO && stat(path, &st) == 0 && S_ISSOCK(st.st_mode)) /* sockets do not open */
-            return error_set(err, path, 0, "cannot open: it is a socket, not a regular file");
+            return error_set(err, path, 0, "cannot open: it is a socket, not a regular file%s",
+                             pipes ? " or a pipe" : "");
         return error_set(err, path, 0, "cannot open: %s", strerror(e));
     }
     struct stat st;
