@@ -147,7 +147,19 @@ leaf:
     nd->axis = 0;
 }
 
-int bvh_build(bvh *b, const scene *sc, error *err)
+double bvh_bytes_per_prim(void)
+{
+    return 2.0 * sizeof(bvh_node) + sizeof(unsigned) + sizeof(bvh_tri) + sizeof(build_prim);
+}
+
+double bvh_bytes(long n, double *scratch)
+{
+    long m = n > 0 ? n : 1, max_nodes = n > 0 ? 2 * n - 1 : 1;
+    if (scratch) *scratch = (double)m * sizeof(build_prim);
+    return (double)max_nodes * sizeof(bvh_node) + (double)m * (sizeof(unsigned) + sizeof(bvh_tri));
+}
+
+int bvh_build(bvh *b, const scene *sc, budget *mem, error *err)
 {
     memset(b, 0, sizeof *b);
     clock_t t0 = clock();
@@ -155,6 +167,11 @@ int bvh_build(bvh *b, const scene *sc, error *err)
     b->n_spheres = sc->n_spheres;
     b->n_prims = n;
     if (n > 0x7fffffffL) return error_set(err, sc->path, 0, "too many primitives (%ld)", n);
+    double scratch, keep = bvh_bytes(n, &scratch);
+    double each = (keep + scratch) / (n > 0 ? n : 1);
+    if (budget_charge(mem, keep + scratch, sc->path, 0, err, "the BVH of %ld primitives x %.0f "
+                      "bytes", n, each))
+        return -1;
     long max_nodes = n > 0 ? 2 * n - 1 : 1;
     b->nodes = calloc((size_t)max_nodes, sizeof *b->nodes);
     b->prims = malloc((size_t)(n > 0 ? n : 1) * sizeof *b->prims);
@@ -163,6 +180,7 @@ int bvh_build(bvh *b, const scene *sc, error *err)
     if (!b->nodes || !b->prims || !b->tris || !bp) {
         free(bp);
         bvh_free(b);
+        budget_release(mem, keep + scratch);
         return error_set(err, sc->path, 0, "out of memory building the BVH (%ld primitives)", n);
     }
     for (long i = 0; i < n; i++) {
@@ -200,6 +218,7 @@ int bvh_build(bvh *b, const scene *sc, error *err)
         }
     }
     free(bp);
+    budget_release(mem, scratch);
     b->build_seconds = (double)(clock() - t0) / CLOCKS_PER_SEC;
     return 0;
 }

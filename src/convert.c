@@ -592,12 +592,12 @@ static int refile(error *err, const char *path)
     return error_set(err, path, 0, "%s", msg);
 }
 
-static int read_six_faces(const char *path, convert_map *out, error *err)
+static int read_six_faces(const char *path, convert_map *out, budget *mem, error *err)
 {
     char name[ERROR_FILE_MAX];
     for (int f = 0; f < CUBEMAP_FACES; f++) {
         image *im = &out->cube.face[f];
-        if (convert_face_path(path, f, name, sizeof name, err) || imageio_read(name, im, err))
+        if (convert_face_path(path, f, name, sizeof name, err) || imageio_read(name, im, mem, err))
             return -1;
         if (im->w != im->h)
             return error_set(err, name, 0, "a cube face must be square, not %d x %d", im->w, im->h);
@@ -609,7 +609,7 @@ static int read_six_faces(const char *path, convert_map *out, error *err)
     return 0;
 }
 
-int convert_read(const char *path, const char *from, convert_map *out, error *err)
+int convert_read(const char *path, const char *from, convert_map *out, budget *mem, error *err)
 {
     memset(out, 0, sizeof *out);
     convert_kind kind = CONVERT_LATLONG;
@@ -620,21 +620,27 @@ int convert_read(const char *path, const char *from, convert_map *out, error *er
     image img = {0};
     out->kind = kind;
     if (from && strcmp(from, "cube") == 0) {
-        if (read_six_faces(path, out, err)) goto done;
+        if (read_six_faces(path, out, mem, err)) goto done;
         rc = 0;
         goto done;
     }
-    if (imageio_read(path, &img, err)) goto done;
+    if (imageio_read(path, &img, mem, err)) goto done;
     if (!from && convert_kind_detect(img.w, img.h, &kind, err)) {
         refile(err, path);
         goto done;
     }
     out->kind = kind;
-    if (kind == CONVERT_CUBE) {
+    if (kind == CONVERT_CUBE) { /* six faces: half the cross's texels, the cross then freed */
+        double cross = (double)img.w * img.h * IMAGE_TEXEL_BYTES;
+        if (budget_charge(mem, cross / 2, path, 0, err,
+                          "six %d x %d cube faces of %d bytes a texel", img.w / 4, img.w / 4,
+                          IMAGE_TEXEL_BYTES))
+            goto done;
         if (cubemap_from_cross(&img, &out->cube, err)) {
             refile(err, path);
             goto done;
         }
+        budget_release(mem, cross);
     } else {
         out->img = img;
         img = (image){0};

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "envtex/bvh.h"
 #include "envtex/displace.h"
 
 static const texture *disp_map(const scene *sc, int material)
@@ -255,13 +256,18 @@ void displacemap_free(scene *out)
     memset(out, 0, sizeof *out);
 }
 
-int displacemap_apply(const scene *in, long max_tris, scene *out, displacemap_stats *st, error *err)
+int displacemap_apply(const scene *in, long max_tris, budget *mem, scene *out,
+                      displacemap_stats *st, error *err)
 {
     displacemap_stats dummy;
     if (!st) st = &dummy;
     memset(st, 0, sizeof *st);
     long budget = max_tris > 0 ? max_tris : DISPLACEMAP_MAX_TRIS;
     if (budget > SCENE_MAX_PRIMS) budget = SCENE_MAX_PRIMS;
+    /* and no more triangles than the memory budget holds with their BVH: the rates come down */
+    double per_tri = (double)sizeof *out->triangles + bvh_bytes_per_prim();
+    int by_memory = mem && (mem->limit - mem->used) / per_tri < (double)budget;
+    if (by_memory) budget = (long)((mem->limit - mem->used) / per_tri);
     int srate = DISPLACEMAP_SPHERE_RATE, trate = DISPLACEMAP_TRIANGLE_RATE;
     long total = count_tris(in, srate, trate);
     while (total > budget && (srate > 2 || trate > 1)) {
@@ -273,10 +279,18 @@ int displacemap_apply(const scene *in, long max_tris, scene *out, displacemap_st
     out->spheres = NULL;
     out->triangles = NULL;
     out->n_spheres = out->n_triangles = 0;
+    if (total > budget && by_memory) /* more than the budget holds: the charge names it */
+        return budget_charge(mem, total * per_tri, in->path, 0, err, "even at the lowest rates, "
+                             "displacement mapping's %ld triangles and their BVH x %.0f bytes",
+                             total, per_tri);
     if (total > budget)
         return error_set(err, in->path, 0,
                          "displacement mapping needs %ld triangles even at the lowest rates, "
                          "more than the limit %ld", total, budget);
+    double bytes = (double)total * sizeof *out->triangles; /* fits: the BVH is charged when built */
+    if (budget_charge(mem, bytes, in->path, 0, err, "displacement mapping's %ld triangles x %zu "
+                      "bytes", total, sizeof *out->triangles))
+        return -1;
     st->sphere_rate = srate;
     st->triangle_rate = trate;
     out->spheres = malloc((size_t)(in->n_spheres > 0 ? in->n_spheres : 1) * sizeof *out->spheres);
@@ -377,6 +391,7 @@ int displacemap_apply(const scene *in, long max_tris, scene *out, displacemap_st
     free(seams.at);
     return 0;
 fail:
+    budget_release(mem, bytes);
     displace_mesh_free(&m);
     free(qv);
     free(nv);

@@ -306,6 +306,18 @@ fail:
     return rc;
 }
 
+double distrib2d_bytes(int n_outer, int n_inner, int alias)
+{
+    double cells = (double)n_outer * n_inner;
+    double conditional = (double)n_outer * (n_inner + 1) * sizeof(double);
+    /* the marginal's cdf, and the column sums it is built from */
+    double marginal = (double)(n_outer + 1) * sizeof(double) + (double)n_outer * sizeof(double);
+    if (!alias) return conditional + marginal;
+    /* the cells of every column and of the marginal, and one column's scratch (q, small, large) */
+    return conditional + marginal + (cells + n_outer) * sizeof(distrib_alias) +
+           (double)(n_inner > n_outer ? n_inner : n_outer) * (sizeof(double) + 2 * sizeof(int));
+}
+
 int distrib2d_init(distrib2d *d, const double *w, int n_outer, int n_inner, error *err)
 {
     assert(d && (w || n_outer < 1 || n_inner < 1));

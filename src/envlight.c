@@ -210,8 +210,8 @@ static int transform_is_conformal(const mat4 *m)
 
 /* envlight_build, and with measure = 0 (mode uniform) envlight_build_lookup: no pass over the
  * texels at all. */
-static int build(envlight *el, const envmap *env, envsampling_mode mode, envsampler_kind sampler,
-                 int mediancut_n, int measure, error *err)
+static int build_tables(envlight *el, const envmap *env, envsampling_mode mode,
+                        envsampler_kind sampler, int mediancut_n, int measure, error *err)
 {
     memset(el, 0, sizeof *el);
     el->env = env;
@@ -306,15 +306,69 @@ static int build(envlight *el, const envmap *env, envsampling_mode mode, envsamp
     return status;
 }
 
-int envlight_build(envlight *el, const envmap *env, envsampling_mode mode, envsampler_kind sampler,
-                   int mediancut_n, error *err)
+/* The bytes build_tables keeps for env in `mode` (*tables of them for the sampling tables
+ * alone), and in *scratch the most it holds only while building: the energy of every texel and
+ * median cut's summed-area table.  *w, *h: the lat-long map it samples. */
+static double build_bytes(const envmap *env, envsampling_mode mode, envsampler_kind sampler,
+                          int n_lights, int measure, int *w, int *h, double *tables,
+                          double *scratch)
 {
-    return build(el, env, mode, sampler, mediancut_n, 1, err);
+    double keep = 0;
+    if (env->img) {
+        *w = env->img->w;
+        *h = env->img->h;
+    } else { /* resampled to lat-long first (envmap_to_latlong at its default width) */
+        convert_env v = envmap_view(env);
+        *w = convert_default_width(&v, CONVERT_LATLONG);
+        *h = *w / 2 > 1 ? *w / 2 : 1;
+        keep += (double)*w * *h * IMAGE_TEXEL_BYTES;
+    }
+    double texels = (double)*w * *h;
+    int cdf = mode == ENVSAMPLING_CDF || mode == ENVSAMPLING_CDF_SINTHETA;
+    keep += (2.0 * *h + 1) * sizeof(double); /* cos_edge, row_omega */
+    *tables = *scratch = 0;
+    if (!measure || mode == ENVSAMPLING_UNIFORM) return keep;
+    *scratch = texels * sizeof(double); /* the energy of each texel */
+    if (cdf) {
+        *tables = distrib2d_bytes(*w, *h, sampler == ENVSAMPLER_ALIAS);
+    } else { /* median cut: the summed-area table and the regions; the points and their choice */
+        int n = n_lights > 0 ? n_lights : 64;
+        *scratch += (double)(*w + 1) * (*h + 1) * sizeof(double) +
+                    (double)n * (2 * sizeof(region) + sizeof(double));
+        *tables = (double)n * (sizeof(envlight_point) + 2 * sizeof(double));
+    }
+    return keep + *tables;
 }
 
-int envlight_build_lookup(envlight *el, const envmap *env, error *err)
+/* build_tables, its memory charged to the budget first */
+static int build(envlight *el, const envmap *env, envsampling_mode mode, envsampler_kind sampler,
+                 int mediancut_n, int measure, budget *mem, error *err)
 {
-    return build(el, env, ENVSAMPLING_UNIFORM, ENVSAMPLER_BINARY, 0, 0, err);
+    memset(el, 0, sizeof *el);
+    if (!env->present) return error_set(err, NULL, 0, "no environment map to sample");
+    int w, h;
+    double tables, scratch;
+    double keep = build_bytes(env, mode, sampler, mediancut_n, measure, &w, &h, &tables, &scratch);
+    const char *what = measure && mode != ENVSAMPLING_UNIFORM ? "sampling tables" : "lookup tables";
+    if (budget_charge(mem, keep + scratch, NULL, 0, err, "%s for a %d x %d lat-long map", what, w,
+                      h))
+        return -1;
+    int rc = build_tables(el, env, mode, sampler, mediancut_n, measure, err);
+    /* a black map falls back to uniform directions: its cdf tables were never built */
+    double unused = rc ? keep : el->fell_back && el->mode == ENVSAMPLING_UNIFORM ? tables : 0;
+    budget_release(mem, scratch + unused);
+    return rc;
+}
+
+int envlight_build(envlight *el, const envmap *env, envsampling_mode mode, envsampler_kind sampler,
+                   int mediancut_n, budget *mem, error *err)
+{
+    return build(el, env, mode, sampler, mediancut_n, 1, mem, err);
+}
+
+int envlight_build_lookup(envlight *el, const envmap *env, budget *mem, error *err)
+{
+    return build(el, env, ENVSAMPLING_UNIFORM, ENVSAMPLER_BINARY, 0, 0, mem, err);
 }
 
 void envlight_free(envlight *el)

@@ -18,6 +18,7 @@
 #include <unistd.h>
 
 #include "envtex/imageio.h"
+#include "envtex/infile.h"
 
 /* ---- our stream: a file descriptor plus the first message the library reported ------------- */
 
@@ -260,9 +261,10 @@ fail:
  * chunk table once and a few bytes per chunk). */
 static int check_claims(exr_context_t ctx, exr_storage_t storage, exr_compression_t comp,
                         const exr_attr_box2i_t *dw, int32_t tile_w, int32_t tile_h, int32_t lines,
-                        exr_stream *s, const char *path, error *err)
+                        exr_stream *s, double *largest_chunk, const char *path, error *err)
 {
     double packed = 0.0, unpacked = 0.0; /* sums of bytes, double: no overflow */
+    *largest_chunk = 0.0; /* packed + unpacked bytes: what the library holds to decode it */
     long data_w = (long)dw->max.x - dw->min.x + 1, data_h = (long)dw->max.y - dw->min.y + 1;
     long ntx = 1, nty = (data_h + lines - 1) / lines;
     if (storage == EXR_STORAGE_TILED) {
@@ -283,6 +285,8 @@ static int check_claims(exr_context_t ctx, exr_storage_t storage, exr_compressio
                                  ty * ntx + tx + 1, ntx * nty);
             packed += (double)ci.packed_size;
             unpacked += (double)ci.unpacked_size;
+            double chunk = (double)ci.packed_size + (double)ci.unpacked_size;
+            if (chunk > *largest_chunk) *largest_chunk = chunk;
         }
     double most = comp == EXR_COMPRESSION_NONE ? packed : EXR_MAX_EXPANSION * packed;
     if (unpacked > most)
@@ -291,7 +295,7 @@ static int check_claims(exr_context_t ctx, exr_storage_t storage, exr_compressio
     return 0;
 }
 
-int exrfile_read(const char *path, image *out, error *err)
+int exrfile_read(const char *path, image *out, budget *mem, error *err)
 {
     out->w = out->h = 0;
     out->px = NULL;
@@ -302,12 +306,13 @@ int exrfile_read(const char *path, image *out, error *err)
     exr_target t = {0};
     image im = {0};
     exr_result_t r;
+    double image_bytes = 0, scratch_bytes = 0; /* charged to the budget */
 
-    s.fd = open(path, O_RDONLY);
-    if (s.fd < 0) return error_set(err, path, 0, "cannot open: %s", strerror(errno));
+    s.fd = infile_open(path, NULL, err);
+    if (s.fd < 0) return -1;
     struct stat st;
-    if (fstat(s.fd, &st) != 0 || S_ISDIR(st.st_mode)) {
-        error_set(err, path, 0, "cannot open: %s", S_ISDIR(st.st_mode) ? strerror(EISDIR) : strerror(errno));
+    if (fstat(s.fd, &st) != 0) {
+        error_set(err, path, 0, "cannot open: %s", strerror(errno));
         goto done;
     }
     s.size = (int64_t)st.st_size;
@@ -374,11 +379,23 @@ int exrfile_read(const char *path, image *out, error *err)
         t.buf_w = (int)data_w;
         if (lines > data_h) lines = (int32_t)data_h;
     }
-    if (check_claims(ctx, storage, comp, &dw, tile_w, tile_h, lines, &s, path, err)) goto done;
+    double largest_chunk;
+    if (check_claims(ctx, storage, comp, &dw, tile_w, tile_h, lines, &s, &largest_chunk, path, err))
+        goto done;
     if (disp_w * disp_h > data_w * data_h && disp_w * disp_h > EXR_MAX_PADDING_PIXELS) {
         error_set(err, path, 0, "display window %ld x %ld is far larger than the data window %ld x %ld "
                   "(envtex pads a data window with at most %ld pixels of black)",
                   disp_w, disp_h, data_w, data_h, EXR_MAX_PADDING_PIXELS);
+        goto done;
+    }
+    /* the image (float RGB), our chunk buffer (the same) and the library's buffers for the
+     * largest chunk, as the header claims them */
+    image_bytes = (double)disp_w * disp_h * IMAGE_TEXEL_BYTES;
+    scratch_bytes = (double)t.buf_w * lines * IMAGE_TEXEL_BYTES + largest_chunk;
+    if (budget_charge(mem, image_bytes + scratch_bytes, path, 0, err,
+                      "%ld x %ld texels x %d bytes, and %.0f bytes to decode a chunk", disp_w,
+                      disp_h, IMAGE_TEXEL_BYTES, scratch_bytes)) {
+        image_bytes = scratch_bytes = 0; /* nothing charged */
         goto done;
     }
     if (image_alloc(&im, (int)disp_w, (int)disp_h, err)) { error_prefix(err, "%s", path); goto done; }
@@ -423,6 +440,7 @@ done:
     if (s.fd >= 0) close(s.fd);
     free(t.buf);
     image_free(&im);
+    budget_release(mem, scratch_bytes + (rc ? image_bytes : 0)); /* what was freed */
     return rc;
 }
 

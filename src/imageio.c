@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "envtex/exrfile.h"
+#include "envtex/infile.h"
 #include "envtex/pfm.h"
 #include "envtex/pngfile.h"
 #include "envtex/rgbe.h"
@@ -79,30 +80,27 @@ void imageio_tmp_abandon(const char *tmp_path)
 
 /* ---- whole files --------------------------------------------------------------------------- */
 
-int imageio_read_all(const char *path, unsigned char **data, size_t *size, error *err)
+int imageio_read_all(const char *path, unsigned char **data, size_t *size, budget *mem, error *err)
 {
     *data = NULL;
     *size = 0;
-    int fd = open(path, O_RDONLY);
-    if (fd < 0) return error_set(err, path, 0, "cannot open: %s", strerror(errno));
+    int fd = infile_open(path, NULL, err);
+    if (fd < 0) return -1;
     struct stat st;
-    if (fstat(fd, &st) != 0) {
+    if (fstat(fd, &st) != 0 || (uint64_t)st.st_size > (uint64_t)SIZE_MAX - 1) {
         int e = errno;
         close(fd);
-        return error_set(err, path, 0, "cannot open: %s", strerror(e));
-    }
-    if (S_ISDIR(st.st_mode)) {
-        close(fd);
-        return error_set(err, path, 0, "cannot open: %s", strerror(EISDIR));
-    }
-    if (!S_ISREG(st.st_mode) || (uint64_t)st.st_size > (uint64_t)SIZE_MAX - 1) {
-        close(fd);
-        return error_set(err, path, 0, "cannot open: not a regular file");
+        return error_set(err, path, 0, "cannot read: %s", strerror(e));
     }
     size_t n = (size_t)st.st_size, done = 0;
+    if (budget_charge(mem, (double)n + 1, path, 0, err, "reading the %zu-byte file", n)) {
+        close(fd);
+        return -1;
+    }
     unsigned char *buf = malloc(n + 1); /* +1: never malloc(0), and room for a terminating 0 */
     if (!buf) {
         close(fd);
+        budget_release(mem, (double)n + 1);
         return error_set(err, path, 0, "out of memory reading %zu bytes", n);
     }
     while (done < n) {
@@ -112,12 +110,14 @@ int imageio_read_all(const char *path, unsigned char **data, size_t *size, error
             int e = errno;
             free(buf);
             close(fd);
+            budget_release(mem, (double)n + 1);
             return error_set(err, path, 0, "read error: %s", strerror(e));
         }
         if (got == 0) break; /* the file shrank: read what is there */
         done += (size_t)got;
     }
     close(fd);
+    budget_release(mem, (double)(n - done)); /* charged: the bytes read, + 1 */
     buf[done] = 0;
     *data = buf;
     *size = done;
@@ -136,30 +136,33 @@ static imageio_format format_of_magic(const unsigned char *m, size_t n)
     return IMAGEIO_UNKNOWN;
 }
 
-int imageio_read(const char *path, image *out, error *err)
+/* The first bytes (up to 8) of the regular file at path into m: their count, or -1 with *err. */
+static int read_magic(const char *path, unsigned char m[8], error *err)
 {
-    out->w = out->h = 0;
-    out->px = NULL;
-    int fd = open(path, O_RDONLY);
-    if (fd < 0) return error_set(err, path, 0, "cannot open: %s", strerror(errno));
-    struct stat st;
-    if (fstat(fd, &st) == 0 && S_ISDIR(st.st_mode)) {
-        close(fd);
-        return error_set(err, path, 0, "cannot open: %s", strerror(EISDIR));
-    }
-    unsigned char m[8] = {0};
+    int fd = infile_open(path, NULL, err);
+    if (fd < 0) return -1;
     ssize_t n;
-    do n = read(fd, m, sizeof m); while (n < 0 && errno == EINTR);
+    do n = read(fd, m, 8); while (n < 0 && errno == EINTR);
     int e = errno;
     close(fd);
     if (n < 0) return error_set(err, path, 0, "cannot read: %s", strerror(e));
+    return (int)n;
+}
+
+int imageio_read(const char *path, image *out, budget *mem, error *err)
+{
+    out->w = out->h = 0;
+    out->px = NULL;
+    unsigned char m[8] = {0};
+    int n = read_magic(path, m, err);
+    if (n < 0) return -1;
     if (n == 0) return error_set(err, path, 0, "file is empty");
 
     switch (format_of_magic(m, (size_t)n)) {
-    case IMAGEIO_EXR: return exrfile_read(path, out, err);
-    case IMAGEIO_PNG: return pngfile_read(path, out, err);
-    case IMAGEIO_RGBE: return rgbe_read(path, out, err);
-    case IMAGEIO_PFM: return pfm_read(path, out, err);
+    case IMAGEIO_EXR: return exrfile_read(path, out, mem, err);
+    case IMAGEIO_PNG: return pngfile_read(path, out, mem, err);
+    case IMAGEIO_RGBE: return rgbe_read(path, out, mem, err);
+    case IMAGEIO_PFM: return pfm_read(path, out, mem, err);
     case IMAGEIO_UNKNOWN: break;
     }
     return error_set(err, path, 0,
@@ -168,12 +171,8 @@ int imageio_read(const char *path, image *out, error *err)
 
 imageio_format imageio_detect(const char *path)
 {
-    int fd = open(path, O_RDONLY);
-    if (fd < 0) return IMAGEIO_UNKNOWN;
     unsigned char m[8] = {0};
-    ssize_t n;
-    do n = read(fd, m, sizeof m); while (n < 0 && errno == EINTR);
-    close(fd);
+    int n = read_magic(path, m, NULL);
     return n > 0 ? format_of_magic(m, (size_t)n) : IMAGEIO_UNKNOWN;
 }
 

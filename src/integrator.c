@@ -41,7 +41,7 @@ static double scene_radius(const scene *sc)
     return r > 0 ? r : 1.0;
 }
 
-int integrator_init(integrator *it, const scene *sc, const bvh *accel, error *err)
+int integrator_init(integrator *it, const scene *sc, const bvh *accel, budget *mem, error *err)
 {
     memset(it, 0, sizeof *it);
     it->env_fraction = 1; /* MIS sets its own below */
@@ -61,8 +61,9 @@ int integrator_init(integrator *it, const scene *sc, const bvh *accel, error *er
     if (env_lights) {
         /* tables only for an integrator that samples the envmap; otherwise just the
          * piecewise-constant lookup, without a pass over the texels */
-        if (samples_lights ? envlight_build(&it->el, &it->env, sc->envsampling, sc->envsampler, sc->mediancut_lights, err)
-                           : envlight_build_lookup(&it->el, &it->env, err)) {
+        if (samples_lights ? envlight_build(&it->el, &it->env, sc->envsampling, sc->envsampler,
+                                            sc->mediancut_lights, mem, err)
+                           : envlight_build_lookup(&it->el, &it->env, mem, err)) {
             /* about the scene's `envmap` (its transform, most often): reported at its line */
             char why[ERROR_MSG_MAX];
             snprintf(why, sizeof why, "%s", err->msg); /* err->msg cannot be an argument of error_set on err */
@@ -71,7 +72,8 @@ int integrator_init(integrator *it, const scene *sc, const bvh *accel, error *er
         it->has_envlight = 1;
         it->samples_env = samples_lights;
     }
-    if (lights_build(&it->ls, sc, it->has_envlight && samples_lights ? &it->el : NULL, scene_radius(sc), err)) {
+    const envlight *lit = it->has_envlight && samples_lights ? &it->el : NULL;
+    if (lights_build(&it->ls, sc, lit, scene_radius(sc), mem, err)) {
         integrator_free(it);
         return -1;
     }

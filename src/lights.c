@@ -35,16 +35,21 @@ static double light_log2_power(const lights *ls, int k)
 /* The quad lights' triangles and their BVH (lights.h).  Testing every light for every ray cost
  * a path tracer ~90% of its time with 100 quad lights, and 66% with 1000 point lights and no
  * quad at all. */
-static int build_quads(lights *ls, const scene *sc, error *err)
+static int build_quads(lights *ls, const scene *sc, budget *mem, error *err)
 {
     int nq = 0;
     for (int i = 0; i < sc->n_lights; i++) nq += sc->lights[i].kind == LIGHT_QUAD;
     if (nq == 0) return 0;
+    double bytes = (double)nq * (2 * sizeof(scene_triangle) + sizeof *ls->quad_light);
+    if (budget_charge(mem, bytes, sc->path, 0, err, "%d quad lights as 2 triangles x %zu bytes", nq,
+                      sizeof(scene_triangle)))
+        return -1;
     ls->quad_scene = calloc(1, sizeof *ls->quad_scene);
     ls->quad_light = malloc((size_t)nq * sizeof *ls->quad_light);
     scene_triangle *tris = calloc((size_t)nq * 2, sizeof *tris);
     if (!ls->quad_scene || !ls->quad_light || !tris) {
         free(tris);
+        budget_release(mem, bytes);
         return error_set(err, sc->path, 0, "out of memory for %d quad lights", nq);
     }
     memcpy(ls->quad_scene->path, sc->path, sizeof sc->path);
@@ -61,10 +66,11 @@ static int build_quads(lights *ls, const scene *sc, error *err)
         t[1].p[0] = a, t[1].p[1] = c, t[1].p[2] = d;
     }
     ls->quad_scene->n_triangles = 2L * nq;
-    return bvh_build(&ls->quad_bvh, ls->quad_scene, err);
+    return bvh_build(&ls->quad_bvh, ls->quad_scene, mem, err);
 }
 
-int lights_build(lights *ls, const scene *sc, const envlight *env, double scene_radius, error *err)
+int lights_build(lights *ls, const scene *sc, const envlight *env, double scene_radius, budget *mem,
+                 error *err)
 {
     memset(ls, 0, sizeof *ls);
     ls->sc = sc;
@@ -87,7 +93,7 @@ int lights_build(lights *ls, const scene *sc, const envlight *env, double scene_
     int st = distrib1d_init(&ls->choose, w, ls->n, err); /* fails only when memory runs out */
     free(w);
     if (st) error_set(err, sc->path, 0, "out of memory for the choice among %d lights", ls->n);
-    if (st == 0 && (st = build_quads(ls, sc, err)) != 0) lights_free(ls);
+    if (st == 0 && (st = build_quads(ls, sc, mem, err)) != 0) lights_free(ls);
     return st;
 }
 

@@ -10,6 +10,7 @@
  *                                     [--diff MAP.png]
  *   envtex tonemap IN OUT.png [--exposure EV] [--op clamp|reinhard|aces] [--gamma G]
  *   envtex convert IN OUT --to KIND [--from KIND] [--width W] [--samples K]
+ *   (render, compare, tonemap and convert also take --memory-budget SIZE: budget.h)
  *   envtex gen-env KIND OUT [--width W] [--value V] [--sun-ratio R] [--sun-radius DEG]
  *                           [--sun-elevation DEG] [--sun-azimuth DEG]
  *   envtex noise X Y Z              Perlin's improved noise at (X, Y, Z), 9 significant digits
@@ -23,12 +24,14 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "envtex/budget.h"
 #include "envtex/bvh.h"
 #include "envtex/compare.h"
 #include "envtex/convert.h"
 #include "envtex/genenv.h"
 #include "envtex/gradetest.h"
 #include "envtex/imageio.h"
+#include "envtex/infile.h"
 #include "envtex/perlin.h"
 #include "envtex/render.h"
 #include "envtex/scene.h"
@@ -43,6 +46,8 @@ static const char *usage_text =
     "       envtex tonemap IN OUT.png [--exposure EV] [--op clamp|reinhard|aces] [--gamma G]\n"
     "       envtex convert IN OUT --to latlong|cube|cross|mirrorball|angular|cylindrical|equalarea\n"
     "                      [--from KIND] [--width W] [--samples K]   (cube: OUT_px.exr ... OUT_nz.exr)\n"
+    "       render, compare, tonemap and convert take --memory-budget SIZE (512M, 8G, ...;\n"
+    "       default 2G; 'none': only the hard limits)\n"
     "       envtex gen-env constant|sky|sun|axes OUT [--width W] [--value V] [--sun-ratio R]\n"
     "                      [--sun-radius DEG] [--sun-elevation DEG] [--sun-azimuth DEG]\n"
     "       envtex noise X Y Z                   (Perlin's improved noise, 9 significant digits)\n";
@@ -97,6 +102,29 @@ static const char *opt_value(int argc, char **argv, int *i)
     return argv[++*i];
 }
 
+/* --memory-budget SIZE (budget.h): "512M", "4G", or "none" (*limit = 0: no budget). */
+static int memory_budget_option(int argc, char **argv, int *i, double *limit)
+{
+    const char *v = opt_value(argc, argv, i);
+    if (!v) return 1;
+    if (!strcmp(v, "none")) {
+        *limit = 0;
+        return 0;
+    }
+    if (budget_parse(v, limit))
+        return usage_error("--memory-budget needs a size such as 512M or 4G (or 'none'), got '%s'",
+                           v);
+    return 0;
+}
+
+/* The run's budget of `limit` bytes in *b, or NULL for limit 0 (--memory-budget none). */
+static budget *run_budget(budget *b, double limit)
+{
+    if (limit <= 0) return NULL;
+    budget_init(b, limit);
+    return b;
+}
+
 /* ---- render ------------------------------------------------------------------------------ */
 
 /* Scene warnings are kept until the scene has loaded: a scene that fails prints only its error
@@ -139,27 +167,24 @@ static void progress_bar(void *ctx, int done, int rows)
     fflush(stderr);
 }
 
-/* 1 if a and b name the same existing file (device and inode) */
+/* 1 if a and b name the same existing file (its identity, infile.h) */
 static int same_file(const char *a, const char *b)
 {
-    struct stat sa, sb;
-    return a && b && a[0] && b[0] && stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev &&
-           sa.st_ino == sb.st_ino;
+    infile_id ia, ib;
+    return infile_identify(a, &ia) == 0 && infile_identify(b, &ib) == 0 && infile_same(ia, ib);
 }
 
-/* An output must not replace a file the scene reads (its own file, the envmap, a texture):
- * the render would succeed and the input be gone. */
-static int check_not_an_input(const char *out, const scene *sc, error *err)
+/* An output must not replace a file the render reads: the render would succeed and the input be
+ * gone.  The inputs are the scene's (sc->inputs, listed by the loader as it read them: the
+ * scene file, its envmap or faces, textures, OBJ meshes) and the --ref image, which cmd_render
+ * adds; each is compared by identity, so ./a.obj and a hard link to a.obj are a.obj. */
+static int check_not_an_input(const char *out, const scene *sc, const char *ref_path, error *err)
 {
-    const char *what = NULL;
-    if (same_file(out, sc->path)) what = sc->path;
-    if (sc->envmap.present && same_file(out, sc->envmap.path)) what = sc->envmap.path;
-    for (int f = 0; sc->envmap.present && sc->envmap.six_files && f < CUBEMAP_FACES; f++)
-        if (same_file(out, sc->envmap.face_path[f])) what = sc->envmap.face_path[f];
-    for (int i = 0; i < sc->n_textures; i++)
-        if (same_file(out, sc->textures[i].path)) what = sc->textures[i].path;
-    if (what) return error_set(err, out, 0, "the output would replace an input of the scene (%s)", what);
-    return 0;
+    const char *in = infile_list_clash(&sc->inputs, out);
+    if (!in) return 0;
+    if (ref_path && !strcmp(in, ref_path))
+        return error_set(err, out, 0, "the output would replace the --ref image");
+    return error_set(err, out, 0, "the output would replace an input of the scene (%s)", in);
 }
 
 /* An output must not replace one of the command's input images (`compare --diff REF.exr`,
@@ -194,12 +219,15 @@ static int cmd_render(int argc, char **argv)
 {
     const char *scene_path = NULL, *out_path = NULL, *ref_path = NULL, *var_path = NULL;
     int quiet = 0, verbose = 0, strict = 0;
+    double mem_limit = BUDGET_DEFAULT;
     render_opts ro = render_defaults();
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i], *v;
         long n;
         if (!strcmp(a, "-o")) {
             if (!(out_path = opt_value(argc, argv, &i))) return 1;
+        } else if (!strcmp(a, "--memory-budget")) {
+            if (memory_budget_option(argc, argv, &i, &mem_limit)) return 1;
         } else if (!strcmp(a, "--spp")) {
             if (!(v = opt_value(argc, argv, &i))) return 1;
             if (parse_long(v, 1, SCENE_MAX_SPP, &n)) return usage_error("--spp needs a whole number from 1 to 1048576, got '%s'", v);
@@ -223,8 +251,11 @@ static int cmd_render(int argc, char **argv)
 
     error err = {0};
     scene sc;
+    budget mb;
+    budget *mem = run_budget(&mb, mem_limit);
     scene_load_opts lo = scene_load_defaults();
     lo.strict = strict;
+    lo.mem = ro.mem = mem;
     static warnings ws; /* static: about 40 KB */
     lo.warn = warn_keep;
     lo.warn_ctx = &ws;
@@ -247,7 +278,9 @@ static int cmd_render(int argc, char **argv)
                   "as a PNG under this exact name, as the course skeleton does", out_path);
         warn_keep(&ws, &w);
     }
-    if (check_output_as(out_path, out_format != IMAGEIO_UNKNOWN, &err) || check_not_an_input(out_path, &sc, &err)) {
+    if (ref_path && infile_list_add(&sc.inputs, ref_path, &err)) goto done; /* the run's inputs */
+    if (check_output_as(out_path, out_format != IMAGEIO_UNKNOWN, &err) ||
+        check_not_an_input(out_path, &sc, ref_path, &err)) {
         if (out_from_scene && sc.output_line > 0) { /* the name came from this line of the scene */
             char msg[ERROR_MSG_MAX]; /* err.msg cannot be an argument of error_set on err: they overlap */
             snprintf(msg, sizeof msg, "%s", err.msg);
@@ -255,18 +288,16 @@ static int cmd_render(int argc, char **argv)
         }
         goto done;
     }
-    if (var_path && (check_output(var_path, &err) || check_not_an_input(var_path, &sc, &err))) goto done;
+    if (var_path &&
+        (check_output(var_path, &err) || check_not_an_input(var_path, &sc, ref_path, &err)))
+        goto done;
     if (var_path && (!strcmp(var_path, out_path) || same_file(var_path, out_path))) {
         error_set(&err, var_path, 0, "--variance names the output file itself");
         goto done;
     }
-    if (ref_path && (same_file(ref_path, out_path) || (var_path && same_file(ref_path, var_path)))) {
-        error_set(&err, ref_path, 0, "the output would replace the --ref image");
-        goto done;
-    }
     if (var_path) ro.variance = &var;
     if (ref_path) {
-        if (imageio_read(ref_path, &ref, &err)) goto done;
+        if (imageio_read(ref_path, &ref, mem, &err)) goto done;
         if (ref.w != sc.width || ref.h != sc.height) {
             error_set(&err, NULL, 0, "--ref %s: image sizes differ: %d x %d against a %d x %d reference", ref_path,
                       sc.width, sc.height, ref.w, ref.h);
@@ -287,6 +318,13 @@ static int cmd_render(int argc, char **argv)
     if (verbose) {
         fprintf(stderr, "envtex: scene %s: %dx%d, %ld spheres and %ld triangles as read (%ld primitives rendered), %d lights, %d materials\n",
                 scene_path, sc.width, sc.height, sc.n_spheres, sc.n_triangles, st.prims, sc.n_lights, sc.n_materials);
+        char peak[32], limit[32];
+        budget_format(mem ? mem->peak : 0, peak, sizeof peak);
+        budget_format(mem ? mem->limit : 0, limit, sizeof limit);
+        fprintf(stderr, "envtex: %d input files, each read once (the scene, its envmap, textures, "
+                "meshes%s); memory charged: %s at most, %s%s\n", sc.inputs.n,
+                ref_path ? ", --ref" : "", peak, mem ? "of a budget of " : "no budget",
+                mem ? limit : "");
         if (st.bvh_is_tree)
             fprintf(stderr, "envtex: built BVH: %ld nodes, depth %d, %.3f s\n", st.bvh_nodes, st.bvh_depth, st.build_seconds);
         else
@@ -383,12 +421,17 @@ static int cmd_compare_test(int argc, char **argv)
 {
     const char *paths[3] = {NULL, NULL, NULL}, *map_path = NULL;
     int np = 0;
+    double mem_limit = BUDGET_DEFAULT;
     gradetest_params p = gradetest_defaults();
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i], *v;
         double *target = NULL;
         if (!strcmp(a, "--diff")) {
             if (!(map_path = opt_value(argc, argv, &i))) return 1;
+            continue;
+        }
+        if (!strcmp(a, "--memory-budget")) {
+            if (memory_budget_option(argc, argv, &i, &mem_limit)) return 1;
             continue;
         }
         if (!strcmp(a, "--img-spp")) target = &p.img_spp;
@@ -412,9 +455,10 @@ static int cmd_compare_test(int argc, char **argv)
     error err = {0};
     image im[3] = {{0}}, map = {0};
     int status = 1;
+    budget mb, *mem = run_budget(&mb, mem_limit);
     if (map_path && (check_output(map_path, &err) || check_not_replacing(map_path, paths, 3, &err))) goto done;
     for (int k = 0; k < 3; k++)
-        if (imageio_read(paths[k], &im[k], &err)) goto done;
+        if (imageio_read(paths[k], &im[k], mem, &err)) goto done;
     /* A PNG (the course skeleton's raytrace.png) is clamped to [0, 1] and rounded to 8 bits: every
      * pixel brighter than 1 would fail as a bias and the verdict say nothing about the code */
     static const char *const roles[3] = {"image", "reference", "variance"};
@@ -450,11 +494,16 @@ static int cmd_compare(int argc, char **argv)
     const char *a_path = NULL, *b_path = NULL, *diff_path = NULL;
     compare_thresholds_params th = compare_thresholds_defaults();
     int use_thresholds = 0;
+    double mem_limit = BUDGET_DEFAULT;
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i], *v;
         double *target = NULL;
         if (!strcmp(a, "--diff")) {
             if (!(diff_path = opt_value(argc, argv, &i))) return 1;
+            continue;
+        }
+        if (!strcmp(a, "--memory-budget")) {
+            if (memory_budget_option(argc, argv, &i, &mem_limit)) return 1;
             continue;
         }
         if (!strcmp(a, "--fail-percent")) target = &th.fail_percent;
@@ -475,7 +524,8 @@ static int cmd_compare(int argc, char **argv)
     int status = 1;
     const char *inputs[2] = {a_path, b_path};
     if (diff_path && (check_output(diff_path, &err) || check_not_replacing(diff_path, inputs, 2, &err))) goto done;
-    if (imageio_read(a_path, &a, &err) || imageio_read(b_path, &b, &err)) goto done;
+    budget mb, *mem = run_budget(&mb, mem_limit);
+    if (imageio_read(a_path, &a, mem, &err) || imageio_read(b_path, &b, mem, &err)) goto done;
     compare_result cr;
     if (compare_metrics(&a, &b, &cr, &err)) {
         char msg[ERROR_MSG_MAX]; /* err.msg cannot be an argument of error_set on err: they overlap */
@@ -514,9 +564,12 @@ static int cmd_tonemap(int argc, char **argv)
 {
     const char *in = NULL, *out = NULL;
     tonemap_params tm = tonemap_defaults();
+    double mem_limit = BUDGET_DEFAULT;
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i], *v;
-        if (!strcmp(a, "--exposure")) {
+        if (!strcmp(a, "--memory-budget")) {
+            if (memory_budget_option(argc, argv, &i, &mem_limit)) return 1;
+        } else if (!strcmp(a, "--exposure")) {
             if (!(v = opt_value(argc, argv, &i))) return 1;
             if (parse_double(v, &tm.exposure)) return usage_error("--exposure needs a number, got '%s'", v);
         } else if (!strcmp(a, "--op")) {
@@ -543,7 +596,8 @@ static int cmd_tonemap(int argc, char **argv)
         goto done;
     }
     if (check_output(out, &err) || check_not_replacing(out, &in, 1, &err)) goto done;
-    if (imageio_read(in, &img, &err)) goto done;
+    budget mb;
+    if (imageio_read(in, &img, run_budget(&mb, mem_limit), &err)) goto done;
     if (imageio_write(out, &img, &tm, &err)) goto done;
     status = 0;
 done:
@@ -561,9 +615,12 @@ static int cmd_convert(int argc, char **argv)
 {
     const char *in = NULL, *out = NULL, *to = NULL, *from = NULL;
     long width = 0, samples = 0;
+    double mem_limit = BUDGET_DEFAULT;
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i], *v;
-        if (!strcmp(a, "--to")) {
+        if (!strcmp(a, "--memory-budget")) {
+            if (memory_budget_option(argc, argv, &i, &mem_limit)) return 1;
+        } else if (!strcmp(a, "--to")) {
             if (!(to = opt_value(argc, argv, &i))) return 1;
         } else if (!strcmp(a, "--from")) {
             if (!(from = opt_value(argc, argv, &i))) return 1;
@@ -605,7 +662,8 @@ static int cmd_convert(int argc, char **argv)
         if (check_output(six ? name : out, &err) || check_not_replacing(six ? name : out, inputs, n_inputs, &err))
             goto done;
     }
-    if (convert_read(in, from, &src, &err)) goto done;
+    budget mb;
+    if (convert_read(in, from, &src, run_budget(&mb, mem_limit), &err)) goto done;
     if (src.bad_texels)
         fprintf(stderr, "envtex: warning: %s: %ld NaN, infinite or negative texel value%s (used as 0)\n",
                 in, src.bad_texels, src.bad_texels == 1 ? "" : "s");

@@ -123,6 +123,21 @@ int mipmap_build(mipmap *m, const image *base, wrap_mode wrap, error *err)
     return 0;
 }
 
+mipmap_cost mipmap_cost_of(int w, int h)
+{
+    mipmap_cost c = {0, 0};
+    while (w > 1 || h > 1) {
+        int wd = w / 2 > 1 ? w / 2 : 1, hd = h / 2 > 1 ? h / 2 : 1;
+        /* downsample's buffers: a wd x h grid of double RGB and the taps of each axis */
+        double scratch = (double)wd * h * 3 * sizeof(double) + (double)(wd + hd) * sizeof(taps);
+        if (scratch > c.scratch) c.scratch = scratch;
+        c.levels += (double)wd * hd * IMAGE_TEXEL_BYTES;
+        w = wd;
+        h = hd;
+    }
+    return c;
+}
+
 void mipmap_free(mipmap *m)
 {
     if (!m) return;

@@ -15,6 +15,7 @@ typedef struct reader {
     int line;
     long max;
     long cap_v, cap_vt, cap_vn, cap_tris;
+    budget *mem;
 } reader;
 
 static int fail(reader *r, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
@@ -35,8 +36,16 @@ static int grow(reader *r, void **arr, long n, long *cap, size_t size, const cha
     if (n < *cap) return 0;
     long c = *cap > 0 ? *cap : 64;
     while (c <= n) c *= 2; /* n < max <= OBJ_MAX_ELEMS: no overflow */
+    double more = (double)(c - *cap) * (double)size; /* what the array grows by */
+    if (budget_charge(r->mem, more, r->name, r->line, r->err, "room for %ld more %s x %zu bytes",
+                      c - *cap, what, size))
+        return -1;
     void *q = realloc(*arr, (size_t)c * size);
-    if (!q) return fail(r, "out of memory for %ld %s", n + 1, what);
+    if (!q) {
+        budget_release(r->mem, more);
+        return fail(r, "out of memory for %ld %s", n + 1, what);
+    }
+    r->m->bytes += more;
     *arr = q;
     *cap = c;
     return 0;
@@ -187,12 +196,13 @@ static int parse_line(reader *r, char *s)
 }
 
 static int parse(const char *text, size_t len, const char *name, long max_elems, obj_mesh *out,
-                 error *err)
+                 budget *mem, error *err)
 {
     memset(out, 0, sizeof *out);
     reader r;
     memset(&r, 0, sizeof r);
     r.m = out;
+    r.mem = mem;
     r.name = name ? name : "<string>";
     r.err = err;
     r.max = max_elems > 0 && max_elems < OBJ_MAX_ELEMS ? max_elems : OBJ_MAX_ELEMS;
@@ -225,23 +235,28 @@ static int parse(const char *text, size_t len, const char *name, long max_elems,
     rc = 0;
 done:
     free(buf);
-    if (rc) obj_free(out);
+    if (rc) {
+        budget_release(mem, out->bytes);
+        obj_free(out);
+    }
     return rc;
 }
 
-int obj_load_string(const char *text, const char *name, long max_elems, obj_mesh *out, error *err)
+int obj_load_string(const char *text, const char *name, long max_elems, obj_mesh *out, budget *mem,
+                    error *err)
 {
-    return parse(text, strlen(text), name, max_elems, out, err);
+    return parse(text, strlen(text), name, max_elems, out, mem, err);
 }
 
-int obj_load(const char *path, long max_elems, obj_mesh *out, error *err)
+int obj_load(const char *path, long max_elems, obj_mesh *out, budget *mem, error *err)
 {
     memset(out, 0, sizeof *out);
     unsigned char *data = NULL;
     size_t size = 0;
-    if (imageio_read_all(path, &data, &size, err)) return -1;
-    int rc = parse((const char *)data, size, path, max_elems, out, err);
+    if (imageio_read_all(path, &data, &size, mem, err)) return -1;
+    int rc = parse((const char *)data, size, path, max_elems, out, mem, err);
     free(data);
+    budget_release(mem, (double)size + 1); /* the file's bytes (imageio_read_all) */
     return rc;
 }
 

@@ -34,7 +34,7 @@ static long parse_long(const char *t)
     return v;
 }
 
-int pfm_read(const char *path, image *out, error *err)
+int pfm_read(const char *path, image *out, budget *mem, error *err)
 {
     out->w = out->h = 0;
     out->px = NULL;
@@ -42,7 +42,8 @@ int pfm_read(const char *path, image *out, error *err)
     size_t n = 0, at = 2;
     int rc = -1;
     image im = {0};
-    if (imageio_read_all(path, &d, &n, err)) return -1;
+    double charged = 0; /* the image's bytes, once charged */
+    if (imageio_read_all(path, &d, &n, mem, err)) return -1;
     if (n < 2 || d[0] != 'P' || (d[1] != 'F' && d[1] != 'f')) {
         error_set(err, path, 0, "not a PFM file (it must start with PF or Pf)");
         goto done;
@@ -79,6 +80,10 @@ int pfm_read(const char *path, image *out, error *err)
         error_set(err, path, 0, "truncated PFM: %zu bytes of pixels, %zu expected", n - at, count * 4);
         goto done;
     }
+    if (budget_charge(mem, (double)w * h * IMAGE_TEXEL_BYTES, path, 0, err,
+                      "%ld x %ld texels x %d bytes", w, h, IMAGE_TEXEL_BYTES))
+        goto done;
+    charged = (double)w * h * IMAGE_TEXEL_BYTES;
     if (image_alloc(&im, (int)w, (int)h, err)) { error_prefix(err, "%s", path); goto done; }
     int little = scale < 0;
     const unsigned char *p = d + at;
@@ -100,6 +105,8 @@ int pfm_read(const char *path, image *out, error *err)
     rc = 0;
 done:
     free(d);
+    budget_release(mem, (double)n + 1); /* the file's bytes (imageio_read_all) */
+    if (rc) budget_release(mem, charged);
     image_free(&im);
     return rc;
 }

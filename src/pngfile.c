@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include "envtex/imageio.h"
+#include "envtex/infile.h"
 
 /* Deflate's largest expansion: a 258-byte match coded in 2 bits is 1032 : 1 (RFC 1951). */
 #define PNG_MAX_INFLATE_RATIO 1032.0
@@ -31,6 +32,8 @@ typedef struct png_job {
     float *lut;           /* decode table (sRGB or a gAMA power law), 256 or 65536 entries */
     png_fixed_point gama; /* writing: gAMA's file gamma x 100000, or 0 for an sRGB chunk */
     image im;
+    budget *mem;          /* reading: the run's memory budget (may be NULL) */
+    double image_bytes, row_bytes; /* reading: charged to it for the image and the decoded rows */
     char msg[256];        /* libpng's message */
     int errnum;           /* writing: errno of a failed fwrite or fflush, else 0 */
 } png_job;
@@ -94,6 +97,14 @@ static int read_body(png_job *job, error *err)
     if (png_get_channels(job->png, job->info) != 3 || rowbytes != (size_t)w * 3 * (size_t)bytes_per)
         return error_set(err, job->path, 0, "unexpected PNG layout after conversion");
 
+    /* decoded, a pixel takes 12 bytes of float RGB and 3 or 6 of libpng's rows: a 32 KB 1-bit
+     * grey file of 16384 x 16384 claims 3.75 GiB (the deflate bound above allows it) */
+    int texel = IMAGE_TEXEL_BYTES + 3 * bytes_per;
+    if (budget_charge(job->mem, (double)w * h * texel, job->path, 0, err,
+                      "%u x %u texels x %d bytes", (unsigned)w, (unsigned)h, texel))
+        return -1;
+    job->image_bytes = (double)w * h * IMAGE_TEXEL_BYTES;
+    job->row_bytes = (double)w * h * 3 * bytes_per;
     if (image_alloc(&job->im, (int)w, (int)h, err)) return error_prefix(err, "%s", job->path);
     job->bytes = malloc(rowbytes * h);
     job->rows = malloc(sizeof *job->rows * h);
@@ -122,15 +133,15 @@ static int read_body(png_job *job, error *err)
     return 0;
 }
 
-int pngfile_read(const char *path, image *out, error *err)
+int pngfile_read(const char *path, image *out, budget *mem, error *err)
 {
     out->w = out->h = 0;
     out->px = NULL;
-    png_job job = {.path = path};
+    png_job job = {.path = path, .mem = mem};
     int rc = -1;
     unsigned char sig[8];
-    job.f = fopen(path, "rb");
-    if (!job.f) return error_set(err, path, 0, "cannot open: %s", strerror(errno));
+    job.f = infile_fopen(path, NULL, err);
+    if (!job.f) return -1;
     size_t got = fread(sig, 1, sizeof sig, job.f);
     if (got == 0 && ferror(job.f)) { /* e.g. a folder: EISDIR */
         error_set(err, path, 0, "cannot open: %s", strerror(errno));
@@ -158,6 +169,7 @@ done:
     free(job.rows);
     free(job.lut);
     image_free(&job.im);
+    budget_release(mem, job.row_bytes + (rc ? job.image_bytes : 0)); /* what was freed */
     return rc;
 }
 

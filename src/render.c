@@ -53,7 +53,7 @@ int render_scene(const scene *sc, const render_opts *opts, image *out, render_st
     int has_displaced = 0;
     if (displacemap_needed(sc)) {
         displacemap_stats ds;
-        if (displacemap_apply(sc, 0, &displaced, &ds, err)) return -1;
+        if (displacemap_apply(sc, 0, opts->mem, &displaced, &ds, err)) return -1;
         has_displaced = 1;
         stats->displaced_spheres = ds.spheres;
         stats->displaced_triangles = ds.triangles;
@@ -63,12 +63,12 @@ int render_scene(const scene *sc, const render_opts *opts, image *out, render_st
         sc = &displaced;
     }
     bvh accel;
-    if (bvh_build(&accel, sc, err)) {
+    if (bvh_build(&accel, sc, opts->mem, err)) {
         if (has_displaced) displacemap_free(&displaced);
         return -1;
     }
     integrator it;
-    if (integrator_init(&it, sc, &accel, err)) {
+    if (integrator_init(&it, sc, &accel, opts->mem, err)) {
         bvh_free(&accel);
         if (has_displaced) displacemap_free(&displaced);
         return -1;

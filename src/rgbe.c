@@ -135,7 +135,7 @@ static int next_line(const unsigned char *d, size_t n, size_t *at, char *line, s
     return 0;
 }
 
-int rgbe_read(const char *path, image *out, error *err)
+int rgbe_read(const char *path, image *out, budget *mem, error *err)
 {
     out->w = out->h = 0;
     out->px = NULL;
@@ -144,7 +144,8 @@ int rgbe_read(const char *path, image *out, error *err)
     int rc = -1;
     image im = {0};
     char line[256];
-    if (imageio_read_all(path, &d, &n, err)) return -1;
+    double image_bytes = 0; /* charged: the image (not its scanline buffer, 128 KB at most) */
+    if (imageio_read_all(path, &d, &n, mem, err)) return -1;
     if (n < 2 || d[0] != '#' || d[1] != '?') {
         error_set(err, path, 0, "not a Radiance file (it must start with #?)");
         goto done;
@@ -179,6 +180,13 @@ int rgbe_read(const char *path, image *out, error *err)
                   h, h * RGBE_MIN_SCANLINE_BYTES, n - at);
         goto done;
     }
+    /* That check bounds the height, not the memory: old-style runs repeat a pixel up to 255 << 16
+     * times, so a 32768-pixel scanline fits in 12 bytes and a 96 KB file claims 3 GB.  The
+     * decoded size is charged from the header before anything is allocated. */
+    if (budget_charge(mem, (double)w * h * IMAGE_TEXEL_BYTES, path, 0, err,
+                      "%ld x %ld texels x %d bytes", w, h, IMAGE_TEXEL_BYTES))
+        goto done;
+    image_bytes = (double)w * h * IMAGE_TEXEL_BYTES;
     if (image_alloc(&im, (int)w, (int)h, err)) { error_prefix(err, "%s", path); goto done; }
     scan = malloc((size_t)w * 4);
     if (!scan) {
@@ -199,6 +207,8 @@ truncated_header:
 done:
     free(d);
     free(scan);
+    budget_release(mem, (double)n + 1);       /* the file's bytes (imageio_read_all) */
+    if (rc) budget_release(mem, image_bytes); /* and the image, freed */
     image_free(&im);
     return rc;
 }

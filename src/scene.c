@@ -14,6 +14,7 @@
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "envtex/camera.h"
 #include "envtex/imageio.h"
@@ -69,6 +70,13 @@ typedef struct parser {
     long cap_textures;
     /* bookkeeping */
     long max_prims;            /* SCENE_MAX_PRIMS unless the options lower it */
+    struct parsed_obj {        /* each OBJ file read so far, parsed once (cmd_obj) */
+        infile_id id;
+        obj_mesh mesh;
+    } *objs;
+    int n_objs, cap_objs;
+    int *tex_index;            /* texture names: slots of indices into sc->textures, -1 empty */
+    size_t tex_slots;          /* a power of two, or 0 */
     int seen_size, warned_order;
     char envmap_token[CUBEMAP_FACES][1024]; /* the envmap file name(s) as written, for messages */
 } parser;
@@ -102,14 +110,22 @@ static void warn(parser *p, const char *fmt, ...)
 
 /* ---- growing arrays --------------------------------------------------------------------- */
 
-/* Make room for `need` elements of `size` bytes in *arr (capacity *cap), doubling. */
-static int grow(parser *p, void **arr, long *cap, long need, size_t size)
+/* Make room for `need` elements (`what`) of `size` bytes in *arr (capacity *cap), doubling; what
+ * the array grows by is charged to the budget first. */
+static int grow(parser *p, void **arr, long *cap, long need, size_t size, const char *what)
 {
     if (need <= *cap) return 0;
     long n = *cap > 0 ? *cap : 16;
     while (n < need) n *= 2; /* need <= SCENE_MAX_PRIMS, so n stays far below LONG_MAX */
+    double more = (double)(n - *cap) * (double)size;
+    if (budget_charge(p->opts->mem, more, p->name, p->line, p->err,
+                      "room for %ld more %s x %zu bytes", n - *cap, what, size))
+        return -1;
     void *q = realloc(*arr, (size_t)n * size);
-    if (!q) return fail(p, "out of memory for '%s' (%ld entries)", p->tok[0], need);
+    if (!q) {
+        budget_release(p->opts->mem, more);
+        return fail(p, "out of memory for '%s' (%ld entries)", p->tok[0], need);
+    }
     *arr = q;
     *cap = n;
     return 0;
@@ -255,7 +271,7 @@ static int material_index(parser *p, int *out)
         return 0;
     }
     if (grow(p, (void **)&sc->materials, &p->cap_materials, (long)sc->n_materials + 1,
-             sizeof *sc->materials))
+             sizeof *sc->materials, "materials"))
         return -1;
     sc->materials[sc->n_materials] = p->mat;
     *out = sc->n_materials++;
@@ -344,7 +360,8 @@ static int cmd_sphere(parser *p)
         return fail(p, "more than %ld spheres", p->max_prims);
     int m;
     if (material_index(p, &m)) return -1;
-    if (grow(p, (void **)&sc->spheres, &p->cap_spheres, sc->n_spheres + 1, sizeof *sc->spheres))
+    if (grow(p, (void **)&sc->spheres, &p->cap_spheres, sc->n_spheres + 1, sizeof *sc->spheres,
+             "spheres"))
         return -1;
     scene_sphere *s = &sc->spheres[sc->n_spheres++];
     s->center = vec3_make(v[0], v[1], v[2]);
@@ -363,8 +380,8 @@ static int cmd_maxverts(parser *p)
     if (arg_int(p, 1, 0, 1e18, &n)) return -1;
     if (n > HINT_CAP) n = HINT_CAP;
     if (strcmp(p->tok[0], "maxverts") == 0)
-        return grow(p, (void **)&p->verts, &p->cap_verts, n, sizeof *p->verts);
-    return grow(p, (void **)&p->vnorms, &p->cap_vnorms, n, sizeof *p->vnorms);
+        return grow(p, (void **)&p->verts, &p->cap_verts, n, sizeof *p->verts, "vertices");
+    return grow(p, (void **)&p->vnorms, &p->cap_vnorms, n, sizeof *p->vnorms, "vertex normals");
 }
 
 static int cmd_vertex(parser *p)
@@ -373,7 +390,8 @@ static int cmd_vertex(parser *p)
     if (arg_nums(p, 1, 3, v)) return -1;
     if (p->n_verts >= p->max_prims)
         return fail(p, "more than %ld vertices", p->max_prims);
-    if (grow(p, (void **)&p->verts, &p->cap_verts, p->n_verts + 1, sizeof *p->verts)) return -1;
+    if (grow(p, (void **)&p->verts, &p->cap_verts, p->n_verts + 1, sizeof *p->verts, "vertices"))
+        return -1;
     p->verts[p->n_verts++] = vec3_make(v[0], v[1], v[2]);
     return 0;
 }
@@ -389,7 +407,8 @@ static int cmd_vertexnormal(parser *p)
     if (vec3_unit_direction(vec3_make(v[3], v[4], v[5]), &n)) n = vec3_make(0, 0, 0);
     if (p->n_vnorms >= p->max_prims)
         return fail(p, "more than %ld vertex normals", p->max_prims);
-    if (grow(p, (void **)&p->vnorms, &p->cap_vnorms, p->n_vnorms + 1, sizeof *p->vnorms))
+    if (grow(p, (void **)&p->vnorms, &p->cap_vnorms, p->n_vnorms + 1, sizeof *p->vnorms,
+             "vertex normals"))
         return -1;
     p->vnorms[p->n_vnorms++] = (vertex_normal){vec3_make(v[0], v[1], v[2]), n};
     return 0;
@@ -438,7 +457,7 @@ static int add_triangle(parser *p, const scene_triangle *t)
     int m;
     if (material_index(p, &m)) return -1;
     if (grow(p, (void **)&sc->triangles, &p->cap_tris, sc->n_triangles + 1,
-             sizeof *sc->triangles))
+             sizeof *sc->triangles, "triangles"))
         return -1;
     scene_triangle *d = &sc->triangles[sc->n_triangles++];
     *d = *t;
@@ -529,7 +548,8 @@ static int cmd_push(parser *p)
         return fail(p, "'pushTransform' nested deeper than %d", SCENE_MAX_TRANSFORM_STACK);
     if (p->depth >= p->stack_cap) {
         long cap = p->stack_cap;
-        if (grow(p, (void **)&p->stack, &cap, p->depth + 1, sizeof *p->stack)) return -1;
+        if (grow(p, (void **)&p->stack, &cap, p->depth + 1, sizeof *p->stack, "transforms"))
+            return -1;
         p->stack_cap = (int)cap;
     }
     p->stack[p->depth++] = p->xf;
@@ -549,7 +569,8 @@ static int add_light(parser *p, const scene_light *l)
     scene *sc = p->sc;
     if (sc->n_lights >= p->max_prims)
         return fail(p, "more than %ld lights", p->max_prims);
-    if (grow(p, (void **)&sc->lights, &p->cap_lights, (long)sc->n_lights + 1, sizeof *sc->lights))
+    if (grow(p, (void **)&sc->lights, &p->cap_lights, (long)sc->n_lights + 1, sizeof *sc->lights,
+             "lights"))
         return -1;
     sc->lights[sc->n_lights++] = *l;
     if (l->kind != LIGHT_QUAD && !p->first_delta_line) p->first_delta_line = p->line;
@@ -862,7 +883,9 @@ static int cmd_vertextex(parser *p)
     if (arg_nums(p, 1, 5, v)) return -1;
     if (p->n_vtex >= p->max_prims)
         return fail(p, "more than %ld textured vertices", p->max_prims);
-    if (grow(p, (void **)&p->vtex, &p->cap_vtex, p->n_vtex + 1, sizeof *p->vtex)) return -1;
+    if (grow(p, (void **)&p->vtex, &p->cap_vtex, p->n_vtex + 1, sizeof *p->vtex,
+             "textured vertices"))
+        return -1;
     p->vtex[p->n_vtex++] = (vertex_tex){vec3_make(v[0], v[1], v[2]), {v[3], v[4]}};
     return 0;
 }
@@ -883,6 +906,45 @@ static int cmd_tritex(parser *p)
     return add_triangle(p, &t);
 }
 
+/* The mesh of the OBJ file `path` (token: as the line wrote it), parsed on its first `obj` line
+ * and kept for the next ones that name the same file, however spelled. */
+static int parsed_obj(parser *p, const char *path, const obj_mesh **out)
+{
+    infile_id id;
+    int known = infile_identify(path, &id) == 0;
+    for (int i = 0; known && i < p->n_objs; i++)
+        if (infile_same(p->objs[i].id, id)) {
+            *out = &p->objs[i].mesh;
+            return 0;
+        }
+    obj_mesh m;
+    error oe;
+    memset(&oe, 0, sizeof oe);
+    if (obj_load(path, p->max_prims, &m, p->opts->mem, &oe)) {
+        if (oe.line > 0) return fail(p, "obj '%s': %s:%d: %s", p->tok[1], oe.file, oe.line, oe.msg);
+        return fail(p, "obj '%s': %s: %s", p->tok[1], oe.file, oe.msg);
+    }
+    if (!known || infile_list_add_id(&p->sc->inputs, path, id, p->err)) { /* (the file went away) */
+        budget_release(p->opts->mem, m.bytes);
+        obj_free(&m);
+        return known ? -1 : fail(p, "obj '%s': the file changed while it was read", p->tok[1]);
+    }
+    if (p->n_objs == p->cap_objs) {
+        int cap = p->cap_objs > 0 ? 2 * p->cap_objs : 4;
+        struct parsed_obj *objs = realloc(p->objs, (size_t)cap * sizeof *objs);
+        if (!objs) {
+            budget_release(p->opts->mem, m.bytes);
+            obj_free(&m);
+            return fail(p, "out of memory for 'obj'");
+        }
+        p->objs = objs;
+        p->cap_objs = cap;
+    }
+    p->objs[p->n_objs] = (struct parsed_obj){id, m};
+    *out = &p->objs[p->n_objs++].mesh;
+    return 0;
+}
+
 /* `obj FILE`: every triangle of the mesh, under the current transform and material.  Corners
  * with vt give st (all three needed), with vn give normals (all three, each non-degenerate under
  * the transform, else the triangle is flat shaded). */
@@ -890,28 +952,21 @@ static int cmd_obj(parser *p)
 {
     char path[1024];
     if (scene_relative_path(p, p->tok[1], path, sizeof path)) return -1;
-    obj_mesh m;
-    error oe;
-    memset(&oe, 0, sizeof oe);
-    if (obj_load(path, p->max_prims, &m, &oe)) {
-        if (oe.line > 0) return fail(p, "obj '%s': %s:%d: %s", p->tok[1], oe.file, oe.line, oe.msg);
-        return fail(p, "obj '%s': %s: %s", p->tok[1], oe.file, oe.msg);
-    }
-    int rc = -1;
-    if (m.n_tris > p->max_prims - p->sc->n_triangles) {
-        fail(p, "obj '%s' has %ld triangles: more than %ld triangles in the scene", p->tok[1],
-             m.n_tris, p->max_prims);
-        goto done;
-    }
+    const obj_mesh *mp = NULL;
+    if (parsed_obj(p, path, &mp)) return -1;
+    const obj_mesh m = *mp;
+    if (m.n_tris > p->max_prims - p->sc->n_triangles)
+        return fail(p, "obj '%s' has %ld triangles: more than %ld triangles in the scene",
+                    p->tok[1], m.n_tris, p->max_prims);
     if (m.n_ignored > 0)
         warn(p, "obj '%s': %ld statement%s ignored (the first, '%s', at %s:%d)", p->tok[1],
              m.n_ignored, m.n_ignored == 1 ? "" : "s", m.first_ignored, path,
              m.first_ignored_line);
     const mat4 *inv = NULL;
-    if (m.n_vn > 0 && xf_inverse(p, &inv)) goto done;
+    if (m.n_vn > 0 && xf_inverse(p, &inv)) return -1;
     if (m.n_tris > 0 && grow(p, (void **)&p->sc->triangles, &p->cap_tris,
-                             p->sc->n_triangles + m.n_tris, sizeof *p->sc->triangles))
-        goto done;
+                             p->sc->n_triangles + m.n_tris, sizeof *p->sc->triangles, "triangles"))
+        return error_prefix(p->err, "obj '%s'", p->tok[1]);
     for (long i = 0; i < m.n_tris; i++) {
         const obj_triangle *o = &m.tris[i];
         scene_triangle t;
@@ -927,12 +982,9 @@ static int cmd_obj(parser *p)
                 if (vec3_unit_direction(n, &t.n[k])) t.has_normals = 0;
             }
         }
-        if (add_triangle(p, &t)) goto done;
+        if (add_triangle(p, &t)) return -1;
     }
-    rc = 0;
-done:
-    obj_free(&m);
-    return rc;
+    return 0;
 }
 
 static int cmd_texmapping(parser *p)
@@ -954,12 +1006,42 @@ static int cmd_texfilter(parser *p)
     return 0;
 }
 
+/* Texture names are found through a hash index (open addressing, at most half full), so a scene
+ * of many `texture` lines reads in linear time: a linear search took 6 s for 20000 textures. */
+static size_t name_slot(const parser *p, const char *name)
+{
+    unsigned long h = 2166136261u; /* FNV-1a */
+    for (const unsigned char *c = (const unsigned char *)name; *c; c++) h = (h ^ *c) * 16777619u;
+    return (size_t)h & (p->tex_slots - 1);
+}
+
 /* Index of the texture called `name`, or -1. */
 static int find_texture(const parser *p, const char *name)
 {
-    for (int i = 0; i < p->sc->n_textures; i++)
-        if (strcmp(p->sc->textures[i].name, name) == 0) return i;
-    return -1;
+    if (!p->tex_index) return -1;
+    for (size_t k = name_slot(p, name);; k = (k + 1) & (p->tex_slots - 1)) {
+        int i = p->tex_index[k];
+        if (i < 0 || strcmp(p->sc->textures[i].name, name) == 0) return i;
+    }
+}
+
+/* Put texture i (stored, named, not yet indexed) in the index, which doubles at half full. */
+static int index_texture(parser *p, int i)
+{
+    if (2 * ((size_t)i + 1) > p->tex_slots) {
+        size_t slots = p->tex_slots ? 2 * p->tex_slots : 64;
+        int *slot = malloc(slots * sizeof *slot);
+        if (!slot) return fail(p, "out of memory for 'texture'");
+        for (size_t k = 0; k < slots; k++) slot[k] = -1;
+        free(p->tex_index);
+        p->tex_index = slot;
+        p->tex_slots = slots;
+        for (int j = 0; j < i; j++) index_texture(p, j); /* fits: no growth */
+    }
+    size_t k = name_slot(p, p->sc->textures[i].name);
+    while (p->tex_index[k] >= 0) k = (k + 1) & (p->tex_slots - 1);
+    p->tex_index[k] = i;
+    return 0;
 }
 
 /* The numbers after `texture NAME KIND` for each procedural kind, then two colours. */
@@ -1051,11 +1133,12 @@ static int cmd_texture(parser *p)
     }
     scene *sc = p->sc;
     long cap = p->cap_textures;
-    if (grow(p, (void **)&sc->textures, &cap, (long)sc->n_textures + 1, sizeof *sc->textures))
+    if (grow(p, (void **)&sc->textures, &cap, (long)sc->n_textures + 1, sizeof *sc->textures,
+             "textures"))
         return -1;
     p->cap_textures = cap;
     sc->textures[sc->n_textures++] = st;
-    return 0;
+    return index_texture(p, sc->n_textures - 1);
 }
 
 /* diffusemap, specularmap, roughnessmap, emissionmap NAME; bumpmap NAME STRENGTH;
@@ -1279,6 +1362,50 @@ static int check_envmap_scale(parser *p, const image *im, int n)
     return 0;
 }
 
+/* Read envmap image `face` (0 for a one-file map) from `path` into *im, recording the file as an
+ * input; a cube face that names the same file as an earlier face copies it (read once). */
+static int read_envmap_image(parser *p, int face, const char *path, image *im)
+{
+    scene_envmap *e = &p->sc->envmap;
+    error ie;
+    memset(&ie, 0, sizeof ie);
+    infile_id id, earlier;
+    int known = infile_identify(path, &id) == 0;
+    for (int f = 0; known && f < face; f++)
+        if (infile_identify(e->face_path[f], &earlier) == 0 && infile_same(id, earlier)) {
+            const image *src = &e->cube.face[f];
+            double bytes = (double)src->w * src->h * IMAGE_TEXEL_BYTES;
+            if (budget_charge(p->opts->mem, bytes, path, 0, &ie, "%d x %d texels x %d bytes",
+                              src->w, src->h, IMAGE_TEXEL_BYTES) ||
+                image_alloc(im, src->w, src->h, &ie))
+                return envmap_error(p, face, ie.msg);
+            memcpy(im->px, src->px, (size_t)src->w * (size_t)src->h * IMAGE_TEXEL_BYTES);
+            return 0;
+        }
+    if (imageio_read(path, im, p->opts->mem, &ie)) return envmap_error(p, face, ie.msg);
+    if (!known) return envmap_error(p, face, "the file changed while it was read");
+    if (infile_list_add_id(&p->sc->inputs, path, id, &ie)) return envmap_error(p, face, ie.msg);
+    clean_texels(p, im, e->line, 1, "envmap", p->envmap_token[face]);
+    return 0;
+}
+
+/* A cross split into its six faces (half its texels), the cross then freed. */
+static int split_cross(parser *p)
+{
+    scene_envmap *e = &p->sc->envmap;
+    error ie;
+    memset(&ie, 0, sizeof ie);
+    double cross = (double)e->img.w * e->img.h * IMAGE_TEXEL_BYTES;
+    if (budget_charge(p->opts->mem, cross / 2, e->path, 0, &ie,
+                      "six %d x %d cube faces of %d bytes a texel", e->img.w / 4, e->img.w / 4,
+                      IMAGE_TEXEL_BYTES) ||
+        cubemap_from_cross(&e->img, &e->cube, &ie))
+        return envmap_error(p, 0, ie.msg);
+    image_free(&e->img);
+    budget_release(p->opts->mem, cross);
+    return 0;
+}
+
 static int load_envmap(parser *p)
 {
     scene_envmap *e = &p->sc->envmap;
@@ -1287,8 +1414,7 @@ static int load_envmap(parser *p)
     if (e->six_files) {
         for (int f = 0; f < CUBEMAP_FACES; f++) {
             image *im = &e->cube.face[f];
-            if (imageio_read(e->face_path[f], im, &ie)) return envmap_error(p, f, ie.msg);
-            clean_texels(p, im, e->line, 1, "envmap", p->envmap_token[f]);
+            if (read_envmap_image(p, f, e->face_path[f], im)) return -1;
             char why[128];
             if (im->w != im->h) {
                 snprintf(why, sizeof why, "a cube face must be square, not %d x %d", im->w, im->h);
@@ -1303,21 +1429,62 @@ static int load_envmap(parser *p)
         e->cube.size = e->cube.face[0].w;
         return check_envmap_scale(p, e->cube.face, CUBEMAP_FACES);
     }
-    if (imageio_read(e->path, &e->img, &ie)) return envmap_error(p, 0, ie.msg);
-    clean_texels(p, &e->img, e->line, 1, "envmap", p->envmap_token[0]);
+    if (read_envmap_image(p, 0, e->path, &e->img)) return -1;
     if (check_envmap_scale(p, &e->img, 1)) return -1;
     if (!e->kind_given && convert_kind_detect(e->img.w, e->img.h, &e->kind, &ie))
         return envmap_error(p, 0, ie.msg);
-    if (e->kind == CONVERT_CUBE) {
-        if (cubemap_from_cross(&e->img, &e->cube, &ie)) return envmap_error(p, 0, ie.msg);
-        image_free(&e->img);
-    }
+    if (e->kind == CONVERT_CUBE && split_cross(p)) return -1;
     if (e->kind == CONVERT_CYLINDRICAL) e->max_height = convert_cylindrical_height(e->img.w, e->img.h);
     return 0;
 }
 
-/* Read each image texture's file (once per distinct path, however many textures name it),
- * then build the mip pyramids the materials' filters need.  Errors are reported at the
+/* "texture 'NAME' file 'TOKEN' (PATH): why" at the `texture` line, the resolved path only when
+ * it differs from the token. */
+static int texture_file_error(parser *p, const scene_texture *t, const char *why)
+{
+    if (strcmp(t->token, t->path) == 0)
+        return error_set(p->err, p->name, t->line, "texture '%s' file '%s': %s", t->name,
+                         t->token, why);
+    return error_set(p->err, p->name, t->line, "texture '%s' file '%s' (%s): %s", t->name, t->token,
+                     t->path, why);
+}
+
+/* Read the image of texture t, or share that of an earlier texture naming the same file (by
+ * identity: a.png, ./a.png and a hard link are one file, read once). */
+static int load_texture_image(parser *p, scene_texture *t)
+{
+    scene *sc = p->sc;
+    int known = infile_identify(t->path, &t->file) == 0;
+    for (int j = 0; known && j < sc->n_textures && &sc->textures[j] != t; j++)
+        if (sc->textures[j].image >= 0 && infile_same(sc->textures[j].file, t->file)) {
+            t->image = sc->textures[j].image;
+            return 0;
+        }
+    error ie;
+    memset(&ie, 0, sizeof ie);
+    image *im = &sc->texture_images[sc->n_texture_images];
+    if (imageio_read(t->path, im, p->opts->mem, &ie)) return texture_file_error(p, t, ie.msg);
+    t->image = sc->n_texture_images++; /* scene_free frees it from here on */
+    if (!known) return texture_file_error(p, t, "the file changed while it was read");
+    if (infile_list_add_id(&sc->inputs, t->path, t->file, &ie))
+        return texture_file_error(p, t, ie.msg);
+    clean_texels(p, im, t->line, 0, "texture file", t->token);
+    return 0;
+}
+
+/* The texture whose pyramid texture i can use: the first with i's image and wrap mode (a mip
+ * pyramid depends on nothing else), possibly i itself. */
+static int pyramid_owner(const scene *sc, int i)
+{
+    const scene_texture *t = &sc->textures[i];
+    for (int j = 0; j < i; j++)
+        if (sc->textures[j].image == t->image && sc->textures[j].wrap == t->wrap) return j;
+    return i;
+}
+
+/* Read each image texture's file (once per distinct file, however many textures name it),
+ * then build the mip pyramids the materials' filters need, one per file and wrap mode (the
+ * materials' maps are pointed at the texture that owns it).  Errors are reported at the
  * `texture` line with the reader's reason. */
 static int load_textures(parser *p)
 {
@@ -1331,35 +1498,21 @@ static int load_textures(parser *p)
     for (int i = 0; i < sc->n_textures; i++) {
         scene_texture *t = &sc->textures[i];
         if (t->tex.kind != TEXTURE_IMAGE) continue;
-        for (int j = 0; j < i && t->image < 0; j++)
-            if (sc->textures[j].image >= 0 && strcmp(sc->textures[j].path, t->path) == 0)
-                t->image = sc->textures[j].image;
-        if (t->image < 0) {
-            error ie;
-            memset(&ie, 0, sizeof ie);
-            image *im = &sc->texture_images[sc->n_texture_images];
-            if (imageio_read(t->path, im, &ie)) {
-                if (strcmp(t->token, t->path) == 0)
-                    return error_set(p->err, p->name, t->line, "texture '%s' file '%s': %s",
-                                     t->name, t->token, ie.msg);
-                return error_set(p->err, p->name, t->line, "texture '%s' file '%s' (%s): %s",
-                                 t->name, t->token, t->path, ie.msg);
-            }
-            clean_texels(p, im, t->line, 0, "texture file", t->token);
-            t->image = sc->n_texture_images++;
-        }
+        if (load_texture_image(p, t)) return -1;
         texture_init_image(&t->tex, &sc->texture_images[t->image], t->wrap);
     }
     for (int m = 0; m < sc->n_materials; m++) {
-        const material *mt = &sc->materials[m];
-        const int refs[6] = {mt->diffusemap, mt->specularmap, mt->roughnessmap,
-                             mt->emissionmap, mt->bumpmap, mt->displacementmap};
+        material *mt = &sc->materials[m];
+        int *refs[6] = {&mt->diffusemap, &mt->specularmap, &mt->roughnessmap,
+                        &mt->emissionmap, &mt->bumpmap, &mt->displacementmap};
         for (int k = 0; k < 6; k++) {
-            if (refs[k] <= 0) continue;
-            scene_texture *t = &sc->textures[refs[k] - 1];
+            if (*refs[k] <= 0) continue;
+            if (sc->textures[*refs[k] - 1].image >= 0)
+                *refs[k] = pyramid_owner(sc, *refs[k] - 1) + 1;
+            scene_texture *t = &sc->textures[*refs[k] - 1];
             error ie;
             memset(&ie, 0, sizeof ie);
-            if (texture_prepare(&t->tex, mt->texfilter, &ie))
+            if (texture_prepare(&t->tex, mt->texfilter, p->opts->mem, &ie))
                 return error_set(p->err, p->name, t->line, "texture '%s': %s", t->name, ie.msg);
         }
     }
@@ -1480,6 +1633,27 @@ static int next_line(parser *p, line_source *src, char *line, size_t *n_out)
     return 1;
 }
 
+/* Free what only the parser holds (the vertex lists, the transform stack, the parsed OBJ
+ * meshes) and give its memory back to the budget. */
+static void parser_free(parser *p)
+{
+    budget *mem = p->opts->mem;
+    budget_release(mem, (double)p->cap_verts * sizeof *p->verts +
+                            (double)p->cap_vnorms * sizeof *p->vnorms +
+                            (double)p->cap_vtex * sizeof *p->vtex +
+                            (double)p->stack_cap * sizeof *p->stack);
+    free(p->stack);
+    free(p->verts);
+    free(p->vnorms);
+    free(p->vtex);
+    for (int i = 0; i < p->n_objs; i++) {
+        budget_release(mem, p->objs[i].mesh.bytes);
+        obj_free(&p->objs[i].mesh);
+    }
+    free(p->objs);
+    free(p->tex_index);
+}
+
 /* Parse the lines of `src` into *out. */
 static int parse(line_source *src, const char *name, const scene_load_opts *opts, scene *out,
                  error *err)
@@ -1540,10 +1714,7 @@ static int parse(line_source *src, const char *name, const scene_load_opts *opts
     rc = 0;
 done:
     free(buf);
-    free(p.stack);
-    free(p.verts);
-    free(p.vnorms);
-    free(p.vtex);
+    parser_free(&p);
     if (rc) scene_free(out);
     return rc;
 }
@@ -1581,8 +1752,15 @@ int scene_load(const char *path, const scene_load_opts *opts, scene *out, error 
 {
     assert(path && out);
     memset(out, 0, sizeof *out);
-    FILE *f = fopen(path, "rb");
-    if (!f) return error_set(err, path, 0, "cannot open: %s", strerror(errno));
+    infile_id id;
+    int fd = infile_open_stream(path, &id, err); /* a regular file or a pipe, never blocking */
+    if (fd < 0) return -1;
+    FILE *f = fdopen(fd, "rb");
+    if (!f) {
+        int e = errno;
+        close(fd);
+        return error_set(err, path, 0, "cannot open: %s", strerror(e));
+    }
     int rc = -1;
     char *chunk = malloc(SCENE_READ_CHUNK);
     if (!chunk) {
@@ -1590,6 +1768,10 @@ int scene_load(const char *path, const scene_load_opts *opts, scene *out, error 
     } else {
         line_source src = {f, chunk, 0, 0, 0, chunk};
         rc = parse(&src, path, opts, out, err);
+    }
+    if (rc == 0 && infile_list_add_id(&out->inputs, path, id, err)) { /* the scene's own file */
+        scene_free(out);
+        rc = -1;
     }
     free(chunk);
     fclose(f);
@@ -1609,6 +1791,7 @@ void scene_free(scene *sc)
     free(sc->texture_images);
     image_free(&sc->envmap.img);
     cubemap_free(&sc->envmap.cube);
+    infile_list_free(&sc->inputs);
     memset(sc, 0, sizeof *sc);
 }
 

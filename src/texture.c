@@ -96,13 +96,18 @@ int texture_needs_prepare(const texture *t, texture_filter filter)
     return 0;
 }
 
-int texture_prepare(texture *t, texture_filter filter, error *err)
+int texture_prepare(texture *t, texture_filter filter, budget *mem, error *err)
 {
     if (!texture_needs_prepare(t, filter)) return 0;
-    if (!t->has_mip) {
-        if (mipmap_build(&t->mip, t->img, t->wrap, err)) return -1;
-        t->has_mip = 1;
-    }
+    /* the pyramid, charged before it is built (its scratch only while it is) */
+    mipmap_cost c = mipmap_cost_of(t->img->w, t->img->h);
+    if (budget_charge(mem, c.levels + c.scratch, NULL, 0, err, "a mip pyramid of %d x %d texels",
+                      t->img->w, t->img->h))
+        return -1;
+    int rc = mipmap_build(&t->mip, t->img, t->wrap, err);
+    budget_release(mem, c.scratch + (rc ? c.levels : 0));
+    if (rc) return -1;
+    t->has_mip = 1;
     return 0;
 }
 

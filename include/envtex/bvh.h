@@ -4,7 +4,7 @@
  * cannot gain from (the slab test of an all-space box was 7-11% of such renders' instructions).
  *
  *     bvh b;
- *     if (bvh_build(&b, sc, &err)) ...
+ *     if (bvh_build(&b, sc, &mem, &err)) ...
  *     hit h; if (bvh_intersect(&b, sc, &r, &h)) shade(&h);
  *     bvh_free(&b);
  *
@@ -14,6 +14,7 @@
 #ifndef ENVTEX_BVH_H
 #define ENVTEX_BVH_H
 
+#include "envtex/budget.h"
 #include "envtex/error.h"
 #include "envtex/ray.h"
 #include "envtex/scene.h"
@@ -45,10 +46,17 @@ typedef struct bvh {
     double build_seconds;
 } bvh;
 
-/* Build b over sc's spheres and triangles.  Returns 0, or -1 with *err set (more than 2^31 - 1
- * primitives, out of memory) and b holding nothing.  Free with bvh_free, which is safe on a
- * zeroed or failed bvh. */
-int bvh_build(bvh *b, const scene *sc, error *err);
+/* Build b over sc's spheres and triangles, its memory charged to `mem` first (budget.h, bvh_bytes;
+ * NULL: no budget): the tree stays charged, the build's scratch is released.  Returns 0, or -1
+ * with *err set (more than 2^31 - 1 primitives, the budget, out of memory) and b holding
+ * nothing.  Free with bvh_free, which is safe on a zeroed or failed bvh. */
+int bvh_build(bvh *b, const scene *sc, budget *mem, error *err);
+
+/* The bytes a BVH of n primitives keeps (nodes, the leaf order, the triangles' corners: about
+ * 200 a primitive), and in *scratch (may be NULL) what its build holds only while it runs. */
+double bvh_bytes(long n, double *scratch);
+/* What one more primitive costs a BVH, its build's scratch included (the slope of bvh_bytes). */
+double bvh_bytes_per_prim(void);
 void bvh_free(bvh *b);
 
 /* Closest hit with t in (r->tmin, r->tmax): fills *h completely and returns 1, else 0. */

@@ -4,7 +4,7 @@
  * normalize ... easy convert between cube, latlong"; slide 22: d(omega) = d(cos theta) d(phi).
  *
  *     convert_map ll = {0}, cube = {0};
- *     if (convert_read("sky.exr", NULL, &ll, &err)) ...              // 2:1: lat-long
+ *     if (convert_read("sky.exr", NULL, &ll, NULL, &err)) ...        // 2:1: lat-long
  *     convert_env in = convert_view(&ll);
  *     if (convert_resample(&in, CONVERT_CUBE, 256, 0, &cube, &err)) ... // 256 x 256 faces
  *     rgb L = convert_lookup(&in, d);                                 // d in the envmap frame
@@ -59,6 +59,7 @@
 
 #include <stddef.h>
 
+#include "envtex/budget.h"
 #include "envtex/cubemap.h"
 #include "envtex/error.h"
 #include "envtex/image.h"
@@ -183,8 +184,10 @@ int convert_face_path(const char *path, int face, char *out, size_t size, error 
  * never NaN, infinite or negative: such channel values become 0 (image_zero_nonfinite_or_negative,
  * as the scene's envmap does), counted in out->bad_texels for the caller to report; left in, one
  * NaN texel would spread through the bilinear lookups into its neighbours and make the power
- * NaN.  *out is overwritten; on failure it is empty and err names the file. */
-int convert_read(const char *path, const char *from, convert_map *out, error *err);
+ * NaN.  The images, and a cross's faces, are charged to `mem` (budget.h; NULL: none) before
+ * they are allocated, and stay charged.  *out is overwritten; on failure it is empty and err
+ * names the file. */
+int convert_read(const char *path, const char *from, convert_map *out, budget *mem, error *err);
 
 /* Write *m to `path` (format by extension, imageio.h).  A cube map becomes six files named by
  * convert_face_path, written as one set by imageio_write_set: each face first goes to a

@@ -6,7 +6,7 @@
  *
  *     scene work;
  *     if (displacemap_needed(sc)) {
- *         if (displacemap_apply(sc, 0, &work, &st, &err)) return -1;
+ *         if (displacemap_apply(sc, 0, &mem, &work, &st, &err)) return -1;
  *         ... render `work` (build its BVH, integrate) ...
  *         displacemap_free(&work);
  *     }
@@ -37,10 +37,11 @@
  *             point's own weights (displace_triangle's q), so two triangles that share an
  *             edge read the same heights along it and their vertices there stay bit-equal.
  * If the whole scene would exceed max_tris (0: DISPLACEMAP_MAX_TRIS, never more than
- * SCENE_MAX_PRIMS) at those rates, both rates are halved together until it fits (down to 2 and
- * 1); if it still does not fit, an error.  The texture is read with the material's filter and
- * no footprint (texture.h's fallback: trilinear and EWA read the full-resolution image
- * bilinearly; nearest reads its nearest texel).
+ * SCENE_MAX_PRIMS), or more triangles than the memory budget still holds with their BVH
+ * (sizeof(scene_triangle) + bvh_bytes_per_prim() each), at those rates, both rates are halved
+ * together until it fits (down to 2 and 1); if it still does not fit, an error.  The texture
+ * is read with the material's filter and no footprint (texture.h's fallback: trilinear and EWA
+ * read the full-resolution image bilinearly; nearest reads its nearest texel).
  * Output triangles keep the material (whose displacement map the renderer ignores from then
  * on), get has_normals = 1 (recomputed, area-weighted over every displaced triangle around the
  * vertex: a vertex on the edge between two displaced triangles' patches, with the same normal
@@ -75,9 +76,11 @@ int displacemap_needed(const scene *sc);
 
 /* The displaced scene into *out (see above; out shares all but its geometry with in).
  * max_tris: the triangle budget for the result (0: DISPLACEMAP_MAX_TRIS), capped at
- * SCENE_MAX_PRIMS.  st may be NULL.  Returns 0, or -1 with *err set (the budget cannot be met,
- * out of memory); on failure *out owns nothing. */
-int displacemap_apply(const scene *in, long max_tris, scene *out, displacemap_stats *st, error *err);
+ * SCENE_MAX_PRIMS.  mem: the run's memory budget (budget.h; NULL: none), charged the result's
+ * triangles, which stay charged.  st may be NULL.  Returns 0, or -1 with *err set (the limit or
+ * the memory budget cannot be met, out of memory); on failure *out owns nothing. */
+int displacemap_apply(const scene *in, long max_tris, budget *mem, scene *out,
+                      displacemap_stats *st, error *err);
 
 /* Free what displacemap_apply allocated (the geometry arrays) and zero *out. */
 void displacemap_free(scene *out);

@@ -30,7 +30,7 @@
  * sampled and used as the light, so sampling and lighting stay consistent.
  *
  *     envlight el;
- *     if (envlight_build(&el, &env, ENVSAMPLING_CDF, ENVSAMPLER_BINARY, 0, &err)) ...
+ *     if (envlight_build(&el, &env, ENVSAMPLING_CDF, ENVSAMPLER_BINARY, 0, &mem, &err)) ...
  *     envlight_sample_result s;
  *     if (envlight_sample(&el, xi1, xi2, &s)) ... s.wi, s.L, s.pdf ...
  *     double pdf = envlight_pdf(&el, wi);   // for MIS, of a direction found another way
@@ -39,6 +39,7 @@
 #ifndef ENVTEX_ENVLIGHT_H
 #define ENVTEX_ENVLIGHT_H
 
+#include "envtex/budget.h"
 #include "envtex/distrib.h"
 #include "envtex/envmap.h"
 
@@ -80,9 +81,13 @@ typedef struct envlight {
  * modes (cdf, cdf-sintheta, mediancut) need A A^T = s^2 I, a rotation, possibly times a uniform
  * scale or a mirror (sampled directions go back as A^T d, normalized): anything else, a
  * non-uniform scale or a shear, would distort the pdf and is refused (-1, a message).  Uniform
- * sampling takes any transform, as the background does. */
+ * sampling takes any transform, as the background does.  What it builds is charged to `mem`
+ * first (budget.h; NULL: none) and stays charged, its scratch released: a map in another
+ * representation resampled to lat-long (12 bytes a texel), the energy of each texel while
+ * building (8), the cdf tables (about 8, 16 with alias tables: distrib2d_bytes), median cut's
+ * summed-area table while building (8). */
 int envlight_build(envlight *el, const envmap *env, envsampling_mode mode, envsampler_kind sampler,
-                   int mediancut_n, error *err);
+                   int mediancut_n, budget *mem, error *err);
 
 /* The light for an integrator that looks it up but never samples it as a light (a path tracer
  * without next-event estimation): mode uniform, and no measuring pass over the texels (a map in
@@ -91,7 +96,7 @@ int envlight_build(envlight *el, const envmap *env, envsampling_mode mode, envsa
  * small 1-spp render).  envlight_radiance and uniform sampling work as after
  * envlight_build; whatever needs the power (lights_build, envlight_mis_fraction) must not be
  * given it. */
-int envlight_build_lookup(envlight *el, const envmap *env, error *err);
+int envlight_build_lookup(envlight *el, const envmap *env, budget *mem, error *err);
 void envlight_free(envlight *el);
 
 /* Radiance arriving from world direction wi as the sampling integrators see it: the texel's

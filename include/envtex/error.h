@@ -5,7 +5,7 @@
  * line `envtex: FILE:LINE: what is wrong` (or `envtex: FILE: what is wrong` when no line applies).
  *
  *     error err = {0};
- *     if (imageio_read("sky.exr", &img, &err)) { error_print(&err, stderr); return 1; }
+ *     if (imageio_read("sky.exr", &img, NULL, &err)) { error_print(&err, stderr); return 1; }
  */
 #ifndef ENVTEX_ERROR_H
 #define ENVTEX_ERROR_H

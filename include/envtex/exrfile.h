@@ -2,7 +2,7 @@
  * images): OpenEXR stores linear radiance as half or float, which is why environment maps use it.
  *
  *     image sky = {0};
- *     if (exrfile_read("sky.exr", &sky, &err)) return -1;     // linear RGB float
+ *     if (exrfile_read("sky.exr", &sky, &mem, &err)) return -1;     // linear RGB float
  *     if (exrfile_write("out.exr", &sky, 1, &err)) return -1; // half float, ZIP, atomic
  *     image_free(&sky);
  *
@@ -29,14 +29,19 @@
 #ifndef ENVTEX_EXRFILE_H
 #define ENVTEX_EXRFILE_H
 
+#include "envtex/budget.h"
 #include "envtex/error.h"
 #include "envtex/image.h"
 
 /* The 4 magic bytes that open every OpenEXR file: 76 2f 31 01. */
 #define EXRFILE_MAGIC "\x76\x2f\x31\x01"
 
-/* Read `path` into *out (which must not own pixels; it stays empty on failure). */
-int exrfile_read(const char *path, image *out, error *err);
+/* Read the regular file `path` into *out (which must not own pixels; it stays empty on
+ * failure).  Charged to `mem` from the header before allocating (budget.h; NULL: none): the
+ * image, 12 bytes a texel of the display window, which stays charged, and the buffers that
+ * decode the largest chunk (ours, 12 bytes a texel, and the library's packed and unpacked
+ * bytes), released when read. */
+int exrfile_read(const char *path, image *out, budget *mem, error *err);
 
 /* Write `im` to `path`: RGB float (half == 0) or half (half != 0), ZIP, scanline, atomic. */
 int exrfile_write(const char *path, const image *im, int half, error *err);

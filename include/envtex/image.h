@@ -20,6 +20,8 @@
 
 #define IMAGE_MAX_SIDE 32768L
 #define IMAGE_MAX_PIXELS (1L << 28)
+/* The memory one pixel of an image takes: three floats (what a reader charges per texel). */
+#define IMAGE_TEXEL_BYTES 12
 
 typedef struct image {
     int w, h;  /* width and height in pixels; 0 x 0 for an empty image */

@@ -3,7 +3,7 @@
  * PFM; textures may also be PNG.
  *
  *     image im = {0};
- *     if (imageio_read("data/envmaps/sky.exr", &im, &err)) ... // err: "sky.exr: truncated ..."
+ *     if (imageio_read("data/envmaps/sky.exr", &im, &mem, &err)) ... // "sky.exr: truncated ..."
  *     if (imageio_write("out/demo.png", &im, NULL, &err)) ...  // tone mapped sRGB, atomic
  *
  * Reading picks the format by the file's magic bytes (not its name): OpenEXR (76 2f 31 01),
@@ -13,15 +13,19 @@
  * "PATH.tmp.XXXXXX" in the same folder and is renamed over the target only when complete, so a
  * failure never leaves a partial file and an existing target stays byte-identical.
  * Errors name the file (err->file) and say what is wrong ("cannot open: No such file or
- * directory", "cannot open: Is a directory", "unknown image format ..."); hostile headers are
- * refused before any allocation (image_check_size).  The formats themselves are in exrfile.h,
- * pngfile.h, rgbe.h and pfm.h.
+ * directory", "cannot open: it is a FIFO, not a regular file", "unknown image format ..."):
+ * only regular files are read, opened without blocking (infile.h).  Hostile headers are refused
+ * before any allocation: by the hard limits (image_check_size), by what the file can hold, and
+ * by the memory budget `mem` (budget.h; NULL: none), charged with the decoded bytes the header
+ * claims.  The image a reader returns stays charged; its scratch buffers are released.  The
+ * formats themselves are in exrfile.h, pngfile.h, rgbe.h and pfm.h.
  */
 #ifndef ENVTEX_IMAGEIO_H
 #define ENVTEX_IMAGEIO_H
 
 #include <stdio.h>
 
+#include "envtex/budget.h"
 #include "envtex/error.h"
 #include "envtex/image.h"
 #include "envtex/tonemap.h"
@@ -29,11 +33,12 @@
 /* Read any supported image into *out (linear RGB; PNG colour is decoded from sRGB, or with the
  * power law of a lone gAMA chunk (pngfile.h); grey is replicated, alpha dropped).  *out must
  * not own pixels; on failure it stays empty. */
-int imageio_read(const char *path, image *out, error *err);
+int imageio_read(const char *path, image *out, budget *mem, error *err);
 
 /* The format of the file at `path` by its magic bytes, as imageio_read picks it; unknown when
- * the file cannot be read or is none of the four (imageio_read then says why).  A PNG holds 8
- * bits a channel clamped to [0, 1]: a tester of linear HDR renders refuses it (main.c). */
+ * the file cannot be read (or is not a regular file) or is none of the four (imageio_read then
+ * says why).  A PNG holds 8 bits a channel clamped to [0, 1]: a tester of linear HDR renders
+ * refuses it (main.c). */
 typedef enum imageio_format {
     IMAGEIO_UNKNOWN, IMAGEIO_EXR, IMAGEIO_PNG, IMAGEIO_RGBE, IMAGEIO_PFM
 } imageio_format;
@@ -78,8 +83,10 @@ FILE *imageio_tmp_fopen(const char *path, char *tmp_path, error *err);
 int imageio_tmp_commit(const char *tmp_path, const char *path, error *err);
 void imageio_tmp_abandon(const char *tmp_path);
 
-/* Read a whole file into *data (malloc'd, one extra 0 byte after the *size bytes; free() it).
- * Errors: "cannot open: <strerror>" (missing file, folder, not a regular file), read errors. */
-int imageio_read_all(const char *path, unsigned char **data, size_t *size, error *err);
+/* Read a whole regular file into *data (malloc'd, one extra 0 byte after the *size bytes; free()
+ * it), its size + 1 charged to `mem` first (the caller releases it when it frees the data).
+ * Errors: "cannot open: ..." (missing, a folder, not a regular file: infile_open), the budget,
+ * read errors. */
+int imageio_read_all(const char *path, unsigned char **data, size_t *size, budget *mem, error *err);
 
 #endif

@@ -5,7 +5,7 @@
  * the pick table) for every integrator but `raytracer`, which builds nothing.
  *
  *     integrator it;
- *     if (integrator_init(&it, sc, &accel, &err)) ...
+ *     if (integrator_init(&it, sc, &accel, &mem, &err)) ...
  *     rgb L = integrator_radiance(&it, camera_ray(&cam, x, y), &r);
  *     integrator_free(&it);
  *
@@ -56,7 +56,9 @@ typedef struct integrator {
                            * estimator without a light pick and a pdf lookup per vertex) */
 } integrator;
 
-int integrator_init(integrator *it, const scene *sc, const bvh *accel, error *err);
+/* Build what sc's integrator needs (the envmap's tables charged to `mem`, envlight.h; NULL: no
+ * budget).  Returns 0, or -1 with *err set, an envmap problem at its `envmap` line. */
+int integrator_init(integrator *it, const scene *sc, const bvh *accel, budget *mem, error *err);
 void integrator_free(integrator *it);
 
 /* Radiance along a camera ray. */

@@ -13,7 +13,7 @@
  * scene whose lights are all point or directional tests none.
  *
  *     lights ls;
- *     lights_build(&ls, sc, el, radius, &err);
+ *     lights_build(&ls, sc, el, radius, &mem, &err);
  *     int k; double prob; lights_pick(&ls, xi, &k, &prob);
  *     light_sample s;
  *     if (lights_sample(&ls, k, p, ng, xi1, xi2, xi3, stratified, &s)) ... trace s.shadow ...
@@ -54,9 +54,11 @@ typedef struct light_sample {
 } light_sample;
 
 /* The light set of sc plus the environment env (NULL: none), both referenced: they must outlive
- * ls.  scene_radius is R above (<= 0: 1).  Returns 0, or -1 with *err set (out of memory);
+ * ls.  scene_radius is R above (<= 0: 1).  The quads' triangles and BVH are charged to `mem`
+ * first (budget.h; NULL: none).  Returns 0, or -1 with *err set (the budget, out of memory);
  * free with lights_free. */
-int lights_build(lights *ls, const scene *sc, const envlight *env, double scene_radius, error *err);
+int lights_build(lights *ls, const scene *sc, const envlight *env, double scene_radius, budget *mem,
+                 error *err);
 void lights_free(lights *ls);
 
 /* Pick a light with probability proportional to its power (xi in [0,1)). 0 if there are none. */

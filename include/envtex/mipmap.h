@@ -63,6 +63,15 @@ typedef struct mipmap {
  * holds nothing to free (mipmap_free is still safe). */
 int mipmap_build(mipmap *m, const image *base, wrap_mode wrap, error *err);
 
+/* What a pyramid of a w x h base costs, for a memory budget charged before it is built
+ * (budget.h): `levels`, what mipmap_build keeps (levels 1 and up, 12 bytes a texel: about a
+ * third of the base's bytes); `scratch`, the most it holds only while building (one level's
+ * filtering buffer of doubles, 24 bytes a texel of a w/2 x h grid: about the base's bytes). */
+typedef struct mipmap_cost {
+    double levels, scratch; /* bytes */
+} mipmap_cost;
+mipmap_cost mipmap_cost_of(int w, int h);
+
 /* Free the owned levels and reset *m (the base image is untouched).  Safe
  * on a zeroed, failed or already freed mipmap. */
 void mipmap_free(mipmap *m);

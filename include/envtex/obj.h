@@ -3,7 +3,7 @@
  * given at the vertices (the `vt` records) and interpolated across each triangle.
  *
  *     obj_mesh m;
- *     if (obj_load("scenes/bunny.obj", 0, &m, &err)) ...  // err: "scenes/bunny.obj:12: ..."
+ *     if (obj_load("scenes/bunny.obj", 0, &m, &mem, &err)) ...  // err: "scenes/bunny.obj:12: ..."
  *     for (long i = 0; i < m.n_tris; i++) { const obj_triangle *t = &m.tris[i]; ... }
  *     obj_free(&m);
  *
@@ -23,11 +23,14 @@
  * Errors are values: err->file is the OBJ's name, err->line the line, err->msg what is wrong
  * ("expected a number for 'v', got 'abc'", "index 9 of 'f' is out of range: 8 vertices so far",
  * "more than 1000 vertices").  Numbers must be finite (nan, inf, 1e999 are errors).  The count
- * of each record is checked against `max_elems` BEFORE the array grows.
+ * of each record is checked against `max_elems`, and what an array grows by (its capacity
+ * doubles: 24 bytes a vertex or normal, 16 a texture coordinate, 72 a triangle) is charged to
+ * the memory budget `mem` (budget.h; NULL: none), BEFORE the array grows.
  */
 #ifndef ENVTEX_OBJ_H
 #define ENVTEX_OBJ_H
 
+#include "envtex/budget.h"
 #include "envtex/error.h"
 #include "envtex/vec.h"
 
@@ -48,18 +51,21 @@ typedef struct obj_mesh {
     uv2 *vt; long n_vt;
     vec3 *vn; long n_vn;
     obj_triangle *tris; long n_tris;
+    double bytes;              /* what the arrays hold (their capacity), charged to the budget */
     long n_ignored;            /* statements skipped */
     char first_ignored[32];    /* the first skipped keyword (truncated), "" if none */
     int first_ignored_line;
 } obj_mesh;
 
-/* Read the OBJ file at `path` into *out (arrays owned by *out; free with obj_free).
- * max_elems: limit on each record count; 0 means OBJ_MAX_ELEMS.  Returns 0, or -1 with *err set
- * (file and line) and *out owning nothing. */
-int obj_load(const char *path, long max_elems, obj_mesh *out, error *err);
+/* Read the regular file `path` (an OBJ) into *out (arrays owned by *out; free with obj_free).
+ * max_elems: limit on each record count; 0 means OBJ_MAX_ELEMS.  `mem`: the run's memory budget
+ * (may be NULL), charged the file's bytes while it is read and out->bytes, which stay charged
+ * (obj_free does not release them).  Returns 0, or -1 with *err set (file and line) and *out
+ * owning nothing (and nothing left charged). */
+int obj_load(const char *path, long max_elems, obj_mesh *out, budget *mem, error *err);
 
 /* The same from text in memory (NUL-terminated); `name` is used in messages. */
-int obj_load_string(const char *text, const char *name, long max_elems, obj_mesh *out,
+int obj_load_string(const char *text, const char *name, long max_elems, obj_mesh *out, budget *mem,
                     error *err);
 
 /* Free the arrays and zero *m.  Safe on a zeroed or freed mesh. */

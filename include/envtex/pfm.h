@@ -2,7 +2,7 @@
  * 10 (HDR images): the simplest lossless HDR format, handy for tests and tools.
  *
  *     if (pfm_write("render.pfm", &im, &err)) return -1;   // exact floats, atomic
- *     if (pfm_read("render.pfm", &back, &err)) return -1;
+ *     if (pfm_read("render.pfm", &back, &mem, &err)) return -1;
  *
  * Format: "PF" (colour) or "Pf" (grey, replicated to r = g = b on read), white space, width,
  * height, white space, a scale whose sign gives the byte order (negative: little endian,
@@ -15,11 +15,14 @@
 #ifndef ENVTEX_PFM_H
 #define ENVTEX_PFM_H
 
+#include "envtex/budget.h"
 #include "envtex/error.h"
 #include "envtex/image.h"
 
-/* Read `path` into *out (which must not own pixels; it stays empty on failure). */
-int pfm_read(const char *path, image *out, error *err);
+/* Read the regular file `path` into *out (which must not own pixels; it stays empty on
+ * failure).  Charged to `mem` before allocating (budget.h; NULL: none): the file's bytes while
+ * it is read, and the image, 12 bytes a texel of the header's size, which stays charged. */
+int pfm_read(const char *path, image *out, budget *mem, error *err);
 
 /* Write `im` as a colour PFM, little endian, atomically.  Floats are stored exactly. */
 int pfm_write(const char *path, const image *im, error *err);

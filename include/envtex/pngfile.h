@@ -4,7 +4,7 @@
  * radiance, and writing tone maps first.
  *
  *     image tex = {0};
- *     if (pngfile_read("wood.png", &tex, &err)) return -1;          // linear RGB in [0,1]
+ *     if (pngfile_read("wood.png", &tex, &mem, &err)) return -1;          // linear RGB in [0,1]
  *     if (pngfile_write("out.png", &render, NULL, &err)) return -1;  // tone mapped, atomic
  *
  * Reading accepts every PNG colour type and depth: grey (1-16 bit, replicated to r = g = b),
@@ -26,6 +26,7 @@
 
 #include <stdint.h>
 
+#include "envtex/budget.h"
 #include "envtex/error.h"
 #include "envtex/image.h"
 #include "envtex/tonemap.h"
@@ -33,8 +34,11 @@
 /* The 8-byte PNG signature. */
 #define PNGFILE_MAGIC "\x89PNG\r\n\x1a\n"
 
-/* Read `path` into *out (linear RGB; *out must not own pixels; it stays empty on failure). */
-int pngfile_read(const char *path, image *out, error *err);
+/* Read the regular file `path` into *out (linear RGB; *out must not own pixels; it stays empty
+ * on failure).  Charged to `mem` from IHDR, before any pixel memory (budget.h; NULL: none): 15
+ * bytes a texel (18 for 16-bit files): the image's 12, which stay charged, and libpng's decoded
+ * rows, released when read. */
+int pngfile_read(const char *path, image *out, budget *mem, error *err);
 
 /* The largest gamma a PNG can record, and 1/PNGFILE_GAMMA_MAX the smallest: a gAMA chunk holds
  * the file gamma 1/g in units of 1e-5, and libpng accepts 16 to 625000000 of them. */

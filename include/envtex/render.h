@@ -40,6 +40,10 @@ typedef struct render_opts {
                                 * (`envsampling cdf`, `cdf-sintheta`, `mediancut`), which then
                                 * falls back (envlight.h) */
     void *warn_ctx;
+    budget *mem;               /* the run's memory budget (budget.h; NULL: none), charged before
+                                * each structure is built: the displaced geometry, the BVH, the
+                                * envmap's tables (the image and variance are not: SCENE_MAX_PIXELS
+                                * bounds them) */
     image *variance;           /* if not NULL: receives the per-pixel variance of the mean,
                                 * s^2 / spp with s^2 the unbiased sample variance of the pixel's
                                 * samples (needs spp >= 2; allocated here, free with image_free) */
@@ -82,7 +86,8 @@ render_opts render_defaults(void);
 /* Render `sc` into *out (allocated here, width x height; free with image_free).  opts may be
  * NULL (render_defaults()); stats may not.  Returns 0, or -1 with *err set, naming the scene file:
  * spp out of [1, SCENE_MAX_SPP] or over SCENE_MAX_CAMERA_SAMPLES, a variance asked for at spp 1,
- * a displacement budget, BVH or envmap table that cannot be built, out of memory.  On failure
+ * a displacement budget, BVH or envmap table that cannot be built or is beyond the memory
+ * budget, out of memory.  On failure
  * *out (and opts->variance) hold nothing to free and opts->start was not called. */
 int render_scene(const scene *sc, const render_opts *opts, image *out, render_stats *stats, error *err);
 

@@ -3,7 +3,7 @@
  * environment maps.
  *
  *     image sky = {0};
- *     if (rgbe_read("sky.hdr", &sky, &err)) return -1;   // linear RGB float
+ *     if (rgbe_read("sky.hdr", &sky, &mem, &err)) return -1;   // linear RGB float
  *     if (rgbe_write("copy.hdr", &sky, &err)) return -1;  // run-length encoded, atomic
  *
  * Format: a text header whose first line starts with "#?" (usually "#?RADIANCE" or "#?RGBE"),
@@ -21,11 +21,14 @@
 #ifndef ENVTEX_RGBE_H
 #define ENVTEX_RGBE_H
 
+#include "envtex/budget.h"
 #include "envtex/error.h"
 #include "envtex/image.h"
 
-/* Read `path` into *out (which must not own pixels; it stays empty on failure). */
-int rgbe_read(const char *path, image *out, error *err);
+/* Read the regular file `path` into *out (which must not own pixels; it stays empty on
+ * failure).  Charged to `mem` before allocating (budget.h; NULL: none): the file's bytes while
+ * it is read, and the image, 12 bytes a texel of the header's size, which stays charged. */
+int rgbe_read(const char *path, image *out, budget *mem, error *err);
 
 /* Write `im` with new-style run-length encoded scanlines (flat when the width is below 8 or
  * above 32767, where RLE is not defined), atomically. */

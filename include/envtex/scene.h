@@ -18,9 +18,11 @@
 
 #include <stdint.h>
 
+#include "envtex/budget.h"
 #include "envtex/convert.h"
 #include "envtex/error.h"
 #include "envtex/image.h"
+#include "envtex/infile.h"
 #include "envtex/texmapping.h"
 #include "envtex/texture.h"
 #include "envtex/transform.h"
@@ -154,6 +156,7 @@ typedef struct scene_texture {
     texture tex;        /* image textures: initialised by scene_load once the image is read
                            (load_images = 0 leaves tex.img NULL: not for rendering) */
     int image;          /* index into scene.texture_images, or -1 (procedural, or not loaded) */
+    infile_id file;     /* image textures, once loaded: the file's identity (infile.h) */
     wrap_mode wrap;     /* image textures */
     char path[1024];    /* image textures: resolved path (relative to the scene's folder) */
     char token[1024];   /* the file name as written, for messages */
@@ -194,6 +197,9 @@ typedef struct scene {
     image *texture_images; int n_texture_images; /* one per distinct file: read once */
     /* where it came from */
     char path[1024];
+    infile_list inputs;        /* every file read: the scene itself, the envmap (or its faces),
+                                  the textures and OBJ meshes, each once by identity (infile.h),
+                                  so no output replaces one (main.c); owned */
 } scene;
 
 typedef void (*scene_warn_fn)(void *ctx, const error *warning);
@@ -205,6 +211,9 @@ typedef struct scene_load_opts {
     int load_images;     /* 1 (default): read the envmap and texture images (and build the
                           * pyramids their filters need); 0: leave them (parser tests) */
     long max_prims;      /* 0 (default): SCENE_MAX_PRIMS; a smaller limit lets tests reach it */
+    budget *mem;         /* the run's memory budget (budget.h), charged before each allocation
+                          * from what the file claims: the scene's arrays as they grow, OBJ
+                          * meshes, images, mip pyramids; NULL (default): none, only the limits */
 } scene_load_opts;
 
 scene_load_opts scene_load_defaults(void);
@@ -217,8 +226,13 @@ scene_load_opts scene_load_defaults(void);
  * Errors found only at the end ("no 'size' command", "no 'camera' command") have line 0; an
  * envmap image that cannot be read is reported at the `envmap` line with the reader's reason.
  * The file is read a chunk at a time and each line is checked as it arrives (a NUL byte or a
- * line over SCENE_MAX_LINE bytes stops the reading there), so `path` may be a pipe, and an
- * endless stream such as /dev/zero fails at once instead of filling memory. */
+ * line over SCENE_MAX_LINE bytes stops the reading there), so `path` may be a pipe (a FIFO
+ * nobody writes to reads as empty; a device, socket or folder is refused: infile.h).
+ * Every other file (envmap, cube faces, textures, OBJ meshes) must be a regular file, and is
+ * read once however many lines name it and however they spell it (by identity: a.png, ./a.png,
+ * a hard link): textures of one file share its image (and, with one wrap mode, its mip
+ * pyramid), and each `obj` line of one mesh appends its own transformed triangles from one
+ * parse.  What the scene holds stays charged to opts->mem (scene_free does not release it). */
 int scene_load(const char *path, const scene_load_opts *opts, scene *out, error *err);
 
 /* The same from a string in memory; `name` is used in messages and as the base folder for

@@ -91,8 +91,7 @@ typedef struct texlookup_axis {
 
 texlookup_axis texlookup_bilinear_axis_far(double x, int n, wrap_mode wrap);
 
-/* One axis of a bilinear lookup over n texels (for lookups on other layouts, such as mipmap.h's
- * packed levels), x = s n - 1/2 (texel centres at integers); a non-finite x reads a border
+/* One axis of a bilinear lookup over n texels (for lookups on other layouts), x = s n - 1/2 (texel centres at integers); a non-finite x reads a border
  * texel with weight 1.  Inline for the common cases, both texels inside or a tiled
  * power-of-two texture; the rest (other wraps, huge or non-finite x) is
  * texlookup_bilinear_axis_far. */

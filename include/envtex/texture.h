@@ -7,7 +7,7 @@
  *
  *     texture tx;
  *     texture_init_image(&tx, &img, WRAP_REPEAT);       // img must outlive tx
- *     if (texture_prepare(&tx, TEXFILTER_TRILINEAR, &err)) return -1;  // builds the pyramid
+ *     if (texture_prepare(&tx, TEXFILTER_TRILINEAR, &mem, &err)) return -1;  // builds the pyramid
  *     texture_query q = {0};
  *     q.st = st; q.dst_dx = dx; q.dst_dy = dy; q.filter = TEXFILTER_TRILINEAR;
  *     rgb kd = texture_eval(&tx, &q);
@@ -49,6 +49,7 @@
 #ifndef ENVTEX_TEXTURE_H
 #define ENVTEX_TEXTURE_H
 
+#include "envtex/budget.h"
 #include "envtex/error.h"
 #include "envtex/image.h"
 #include "envtex/mipmap.h"
@@ -136,8 +137,10 @@ int texture_init_solid(texture *t, texture_kind kind, const texture_solid_params
 
 /* Get t ready for evaluations with `filter`: builds the mip pyramid of an image texture the
  * first time trilinear or EWA is asked for (once; later calls are free).  Other kinds and
- * filters need nothing.  Returns 0, or -1 with *err set (out of memory). */
-int texture_prepare(texture *t, texture_filter filter, error *err);
+ * filters need nothing.  What it builds is charged to `mem` first (budget.h, mipmap_cost_of;
+ * NULL: no budget) and stays charged; the building scratch is released.  Returns 0, or -1 with
+ * *err set (the budget, out of memory). */
+int texture_prepare(texture *t, texture_filter filter, budget *mem, error *err);
 
 /* Free what t owns (its pyramid; not the image) and zero it.  Safe on a zeroed texture. */
 void texture_free(texture *t);

@@ -21,6 +21,12 @@
 #include <stddef.h>
 #include <stdint.h>
 
+/* The memory budget every target passes its loader (budget.h): far below make fuzz's
+ * -malloc_limit_mb and -rss_limit_mb, so a header that claims more is refused by the budget, as
+ * the contract says, and one that escapes the budget (a loader that allocates before it
+ * charges) fails the fuzzer as an out-of-memory or a timeout instead of passing slowly. */
+#define FUZZ_MEMORY_BUDGET (64.0 * 1024 * 1024)
+
 /* Put `data` into an in-memory file (created once, truncated and rewritten on every call) and
  * return its path, valid until the next call.  NULL if the file could not be made (the target
  * then skips the input). */

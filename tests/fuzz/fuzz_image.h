@@ -1,5 +1,6 @@
 /* fuzz_image.h - the body shared by the image-reader fuzz targets: write the input to an
- * in-memory file, read it with READER, check the reader's contract, free.
+ * in-memory file, read it with READER under a memory budget of FUZZ_MEMORY_BUDGET, check the
+ * reader's contract (and that only the image stays charged), free.
  *
  *     #include "fuzz_image.h"
  *     FUZZ_IMAGE_TARGET(pfm_read)
@@ -7,6 +8,7 @@
 #ifndef ENVTEX_FUZZ_IMAGE_H
 #define ENVTEX_FUZZ_IMAGE_H
 
+#include "envtex/budget.h"
 #include "envtex/image.h"
 #include "fuzz.h"
 
@@ -36,8 +38,12 @@ static inline void fuzz_image_check(int rc, const image *im, const error *err)
         if (!path) return 0;                                                                       \
         image im = {0};                                                                            \
         error err = {0};                                                                           \
-        int rc = READER(path, &im, &err);                                                          \
+        budget mem;                                                                                \
+        budget_init(&mem, FUZZ_MEMORY_BUDGET);                                                     \
+        int rc = READER(path, &im, &mem, &err);                                                    \
         fuzz_image_check(rc, &im, &err);                                                           \
+        fuzz_check(rc || mem.used == (double)im.w * im.h * IMAGE_TEXEL_BYTES,                      \
+                   "a read image stays charged, its scratch released");                           \
         image_free(&im);                                                                           \
         return 0;                                                                                  \
     }

@@ -17,7 +17,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     text[size] = '\0';
     obj_mesh m;
     error err = {0};
-    int rc = obj_load_string(text, "fuzz.obj", FUZZ_OBJ_MAX_ELEMS, &m, &err);
+    budget mem;
+    budget_init(&mem, FUZZ_MEMORY_BUDGET);
+    int rc = obj_load_string(text, "fuzz.obj", FUZZ_OBJ_MAX_ELEMS, &m, &mem, &err);
     if (rc == 0) {
         fuzz_check(m.n_v <= FUZZ_OBJ_MAX_ELEMS && m.n_vt <= FUZZ_OBJ_MAX_ELEMS &&
                        m.n_vn <= FUZZ_OBJ_MAX_ELEMS && m.n_tris <= FUZZ_OBJ_MAX_ELEMS,
@@ -29,9 +31,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                 fuzz_check(t->vt[k] >= -1 && t->vt[k] < m.n_vt, "uv index in range or -1");
                 fuzz_check(t->vn[k] >= -1 && t->vn[k] < m.n_vn, "normal index in range or -1");
             }
+        fuzz_check(mem.used == m.bytes, "the mesh's arrays are what is charged");
         obj_free(&m);
     } else {
         fuzz_check(rc == -1 && err.msg[0] != '\0', "a failed load returns -1 and says why");
+        fuzz_check(mem.used == 0, "a failed load leaves nothing charged");
     }
     free(text);
     return 0;

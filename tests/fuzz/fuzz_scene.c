@@ -15,6 +15,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     scene_load_opts o = scene_load_defaults();
     o.load_images = 0;
     o.max_prims = 100000; /* the parser's own limit, lowered so a long input cannot eat memory */
+    budget mem;
+    budget_init(&mem, FUZZ_MEMORY_BUDGET);
+    o.mem = &mem;
     scene sc;
     error err = {0};
     int rc = scene_load_string(text, NULL, &o, &sc, &err);

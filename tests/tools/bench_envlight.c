@@ -58,7 +58,7 @@ int main(int argc, char **argv)
     double result[2];
     for (int s = 0; s < 2; s++) {
         envlight el;
-        if (envlight_build(&el, &env, ENVSAMPLING_CDF, (envsampler_kind)s, 0, &err)) goto fail;
+        if (envlight_build(&el, &env, ENVSAMPLING_CDF, (envsampler_kind)s, 0, NULL, &err)) goto fail;
         result[s] = time_samples(&el, repeats, n);
         printf("envlight sample+pdf 2048x1024 sun, %-6s: median %6.1f ns per sample (%d repeats of %d)\n",
                names[s], result[s], repeats, n);
@@ -69,7 +69,7 @@ int main(int argc, char **argv)
     if (make_env(128, &img, &env, &err)) goto fail;
     {
         envlight el;
-        if (envlight_build(&el, &env, ENVSAMPLING_CDF, ENVSAMPLER_ALIAS, 0, &err)) goto fail;
+        if (envlight_build(&el, &env, ENVSAMPLING_CDF, ENVSAMPLER_ALIAS, 0, NULL, &err)) goto fail;
         double small = time_samples(&el, repeats, n);
         printf("envlight sample+pdf 128x64 sun (in cache), alias: median %6.1f ns per sample; "
                "the 2048x1024 map takes %.2fx that\n", small, result[1] / small);
@@ -82,7 +82,7 @@ int main(int argc, char **argv)
         for (int k = 0; k < repeats && k < 64; k++) {
             envlight el;
             double t0 = now();
-            if (envlight_build(&el, &env, ENVSAMPLING_CDF, (envsampler_kind)s, 0, &err)) goto fail;
+            if (envlight_build(&el, &env, ENVSAMPLING_CDF, (envsampler_kind)s, 0, NULL, &err)) goto fail;
             t[k] = now() - t0;
             envlight_free(&el);
         }

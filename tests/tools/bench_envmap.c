@@ -73,7 +73,7 @@ int main(int argc, char **argv)
     convert_map src = {0};
     const char *src_name = "genenv sun";
     if (first_map < argc) {
-        if (convert_read(argv[first_map], "latlong", &src, &err)) goto fail;
+        if (convert_read(argv[first_map], "latlong", &src, NULL, &err)) goto fail;
         src_name = argv[first_map];
     } else {
         genenv_params p = genenv_defaults();
@@ -129,7 +129,7 @@ int main(int argc, char **argv)
     int bad = 0;
     for (int i = first_map; i < argc; i++) {
         convert_map a = {0}, mid = {0}, back = {0};
-        if (convert_read(argv[i], "latlong", &a, &err)) goto fail;
+        if (convert_read(argv[i], "latlong", &a, NULL, &err)) goto fail;
         convert_env av = convert_view(&a);
         static const convert_kind via[] = {CONVERT_CUBE, CONVERT_MIRRORBALL};
         printf("  power %s:", argv[i]);

@@ -55,7 +55,7 @@ int main(int argc, char **argv)
         for (int x = 0; x < TEX_SIZE; x++)
             image_set(&img, x, y, rgb_make(rng_uniform(&g), rng_uniform(&g), rng_uniform(&g)));
     texture_init_image(&tx, &img, WRAP_REPEAT);
-    if (texture_prepare(&tx, TEXFILTER_EWA, &err) || texture_prepare(&tx, TEXFILTER_TRILINEAR, &err)) goto fail;
+    if (texture_prepare(&tx, TEXFILTER_EWA, NULL, &err) || texture_prepare(&tx, TEXFILTER_TRILINEAR, NULL, &err)) goto fail;
     for (int l = 0; l < N_LINES; l++) { /* a scanline: its start, footprint and direction */
         if (l % PATCH_ROWS) { /* patch order: the row below the previous one (kept for "rows") */
             lines[l] = lines[l - 1];

@@ -16,7 +16,7 @@ int main(int argc, char **argv)
         fprintf(stderr, "usage: halve IN OUT.exr\n");
         return 1;
     }
-    if (imageio_read(argv[1], &in, &err) || image_alloc(&out, in.w / 2, in.h / 2, &err)) {
+    if (imageio_read(argv[1], &in, NULL, &err) || image_alloc(&out, in.w / 2, in.h / 2, &err)) {
         error_print(&err, stderr);
         return 1;
     }

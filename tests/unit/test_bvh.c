@@ -137,7 +137,7 @@ static void check_against_brute_force(const scene *sc, int n_rays, uint64_t seed
 {
     error err = {0};
     bvh b;
-    EXPECT_INT_EQ(bvh_build(&b, sc, &err), 0);
+    EXPECT_INT_EQ(bvh_build(&b, sc, NULL, &err), 0);
     rng g;
     rng_seed(&g, seed, 1);
     int hits = 0;
@@ -180,7 +180,7 @@ START_TEST(test_bvh_with_3_primitives_builds_no_tree_and_matches_brute_force)
     random_scene(&sc, 3, 41);
     error err = {0};
     bvh b;
-    EXPECT_INT_EQ(bvh_build(&b, &sc, &err), 0);
+    EXPECT_INT_EQ(bvh_build(&b, &sc, NULL, &err), 0);
     EXPECT_INT_EQ(b.is_tree, 0);
     EXPECT_INT_EQ(b.n_nodes, 1);
     bvh_free(&b);
@@ -195,16 +195,42 @@ START_TEST(test_bvh_is_a_tree_only_above_bvh_min_prims)
     bvh b;
     scene sc;
     random_scene(&sc, BVH_MIN_PRIMS, 42);
-    EXPECT_INT_EQ(bvh_build(&b, &sc, &err), 0);
+    EXPECT_INT_EQ(bvh_build(&b, &sc, NULL, &err), 0);
     EXPECT_INT_EQ(b.is_tree, 0);
     bvh_free(&b);
     scene_free(&sc);
     random_scene(&sc, BVH_MIN_PRIMS + 1, 42);
-    EXPECT_INT_EQ(bvh_build(&b, &sc, &err), 0);
+    EXPECT_INT_EQ(bvh_build(&b, &sc, NULL, &err), 0);
     EXPECT_INT_EQ(b.is_tree, 1);
     EXPECT_INT_EQ(b.n_prims, BVH_MIN_PRIMS + 1);
     bvh_free(&b);
     bvh_free(&b); /* twice: safe */
+    scene_free(&sc);
+}
+END_TEST
+
+/* The tree's memory is charged before it is built and its build's scratch released afterwards;
+ * a budget one byte short refuses with one message naming the scene and the primitives. */
+START_TEST(test_bvh_is_charged_to_the_budget_before_it_is_built)
+{
+    error err = {0};
+    bvh b;
+    scene sc;
+    random_scene(&sc, 1000, 7);
+    snprintf(sc.path, sizeof sc.path, "s.test");
+    double scratch, keep = bvh_bytes(1000, &scratch);
+    EXPECT(keep > 1000 * 2 * sizeof(bvh_node) && scratch > 0);
+    EXPECT(bvh_bytes_per_prim() * 1000 >= keep + scratch);
+    budget mem;
+    budget_init(&mem, keep + scratch - 1);
+    EXPECT_INT_EQ(bvh_build(&b, &sc, &mem, &err), -1);
+    EXPECT(strcmp(err.file, "s.test") == 0 && strstr(err.msg, "the BVH of 1000 primitives x ") &&
+           strstr(err.msg, "beyond the memory budget"));
+    EXPECT(mem.used == 0 && b.nodes == NULL);
+    budget_init(&mem, keep + scratch);
+    EXPECT_INT_EQ(bvh_build(&b, &sc, &mem, &err), 0);
+    EXPECT(mem.used == keep);
+    bvh_free(&b);
     scene_free(&sc);
 }
 END_TEST
@@ -243,7 +269,7 @@ START_TEST(test_bvh_with_1000_primitives_matches_brute_force)
     random_scene(&sc, 1000, 44);
     error err = {0};
     bvh b;
-    EXPECT_INT_EQ(bvh_build(&b, &sc, &err), 0);
+    EXPECT_INT_EQ(bvh_build(&b, &sc, NULL, &err), 0);
     EXPECT_INT_EQ(b.is_tree, 1);
     ck_assert_int_le(b.n_nodes, 2 * 1000 - 1);
     ck_assert_int_le(b.depth, BVH_MAX_DEPTH);
@@ -313,7 +339,7 @@ START_TEST(test_bvh_of_a_geometric_series_stays_within_the_depth_limit)
         set_sphere(&sc.spheres[k], vec3_make(ldexp(1, -k), 0, 0), ldexp(0.1, -k), mat4_identity(), 0);
     error err = {0};
     bvh b;
-    EXPECT_INT_EQ(bvh_build(&b, &sc, &err), 0);
+    EXPECT_INT_EQ(bvh_build(&b, &sc, NULL, &err), 0);
     ck_assert_int_le(b.depth, BVH_MAX_DEPTH);
     rng g;
     rng_seed(&g, 48, 0);
@@ -343,7 +369,7 @@ START_TEST(test_bvh_of_an_empty_scene_never_hits)
     scene_alloc(&sc, 0, 0);
     error err = {0};
     bvh b;
-    EXPECT_INT_EQ(bvh_build(&b, &sc, &err), 0);
+    EXPECT_INT_EQ(bvh_build(&b, &sc, NULL, &err), 0);
     EXPECT_INT_EQ(b.is_tree, 0);
     ray r = {vec3_make(0, 0, 0), vec3_make(0, 0, 1), 0.0, INFINITY};
     hit h;
@@ -362,7 +388,7 @@ START_TEST(test_bvh_triangle_hit_fills_barycentrics_and_normals)
     *t = (scene_triangle){.p = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, .material = 1};
     error err = {0};
     bvh b;
-    EXPECT_INT_EQ(bvh_build(&b, &sc, &err), 0);
+    EXPECT_INT_EQ(bvh_build(&b, &sc, NULL, &err), 0);
     ray r = {vec3_make(0.25, 0.5, 3), vec3_make(0, 0, -1), 0.0, INFINITY};
     hit h;
     EXPECT_INT_EQ(bvh_intersect(&b, &sc, &r, &h), 1);
@@ -404,7 +430,7 @@ START_TEST(test_bvh_agrees_with_brute_force_on_rays_through_a_silhouette_edge)
     }
     error err = {0};
     bvh b;
-    ck_assert_int_eq(bvh_build(&b, &sc, &err), 0);
+    ck_assert_int_eq(bvh_build(&b, &sc, NULL, &err), 0);
     ck_assert_int_eq(b.is_tree, 1);
     rng g;
     rng_seed(&g, 49, 0);
@@ -432,6 +458,7 @@ Suite *bvh_suite(void)
     tcase_set_timeout(tc, 60); /* generous for sanitizer builds; the tests take well under 1 s */
     tcase_add_test(tc, test_bvh_with_3_primitives_builds_no_tree_and_matches_brute_force);
     tcase_add_test(tc, test_bvh_is_a_tree_only_above_bvh_min_prims);
+    tcase_add_test(tc, test_bvh_is_charged_to_the_budget_before_it_is_built);
     tcase_add_test(tc, test_bvh_with_9_primitives_matches_brute_force);
     tcase_add_test(tc, test_bvh_with_1000_primitives_matches_brute_force);
     tcase_add_test(tc, test_bvh_of_only_spheres_or_only_triangles_matches_brute_force);

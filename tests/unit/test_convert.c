@@ -562,7 +562,7 @@ START_TEST(test_six_faces_are_written_as_a_set_and_read_back)
     /* the good case: six files, read back the same */
     ck_assert_msg(convert_write(path, &cube, &err) == 0, "%s", err.msg);
     ck_assert_int_eq(count_files(dir), 6);
-    ck_assert_msg(convert_read(path, "cube", &again, &err) == 0, "%s", err.msg);
+    ck_assert_msg(convert_read(path, "cube", &again, NULL, &err) == 0, "%s", err.msg);
     ck_assert_int_eq(again.kind, CONVERT_CUBE);
     ck_assert_int_eq(again.cube.size, 8);
     for (int f = 0; f < CUBEMAP_FACES; f++)
@@ -571,18 +571,18 @@ START_TEST(test_six_faces_are_written_as_a_set_and_read_back)
     /* a cross, detected by its shape */
     snprintf(path, sizeof path, "%s/cross.pfm", dir);
     ck_assert_int_eq(convert_write_cross(path, &cube, &err), 0);
-    ck_assert_msg(convert_read(path, NULL, &again, &err) == 0, "%s", err.msg);
+    ck_assert_msg(convert_read(path, NULL, &again, NULL, &err) == 0, "%s", err.msg);
     ck_assert_int_eq(again.kind, CONVERT_CUBE);
     ck_assert_int_eq(memcmp(again.cube.face[4].px, cube.cube.face[4].px, 8 * 8 * 3 * sizeof(float)), 0);
     convert_map_free(&again);
     /* errors name the file */
-    ck_assert_int_eq(convert_read(path, "fisheye", &again, &err), -1);
+    ck_assert_int_eq(convert_read(path, "fisheye", &again, NULL, &err), -1);
     ck_assert_str_eq(err.file, path);
     snprintf(path, sizeof path, "%s/sky_px.pfm", dir);
-    ck_assert_int_eq(convert_read(path, NULL, &again, &err), -1); /* square: which kind? */
+    ck_assert_int_eq(convert_read(path, NULL, &again, NULL, &err), -1); /* square: which kind? */
     ck_assert_str_eq(err.file, path);
     ck_assert_msg(strstr(err.msg, "square"), "%s", err.msg);
-    ck_assert_int_eq(convert_read(path, "angular", &again, &err), 0);
+    ck_assert_int_eq(convert_read(path, "angular", &again, NULL, &err), 0);
     ck_assert_int_eq(again.kind, CONVERT_ANGULAR);
     convert_map_free(&again);
     char cmd[128];
@@ -608,7 +608,7 @@ START_TEST(test_bad_texels_in_a_file_are_read_as_zero_and_counted)
     image_px(&src.img, 2, 5)[2] = -5.0f;
     error err = {0};
     ck_assert_int_eq(imageio_write(path, &src.img, NULL, &err), 0);
-    ck_assert_msg(convert_read(path, NULL, &again, &err) == 0, "%s", err.msg);
+    ck_assert_msg(convert_read(path, NULL, &again, NULL, &err) == 0, "%s", err.msg);
     ck_assert_int_eq(again.bad_texels, 3);
     ck_assert(image_get(&again.img, 5, 3).r == 0 && image_get(&again.img, 9, 4).g == 0 &&
               image_get(&again.img, 2, 5).b == 0);
@@ -623,7 +623,7 @@ START_TEST(test_bad_texels_in_a_file_are_read_as_zero_and_counted)
     out.cube.face[CUBEMAP_POS_Z].px[0] = -1;
     ck_assert_int_eq(convert_write(path, &out, &err), 0);
     convert_map_free(&again);
-    ck_assert_msg(convert_read(path, "cube", &again, &err) == 0, "%s", err.msg);
+    ck_assert_msg(convert_read(path, "cube", &again, NULL, &err) == 0, "%s", err.msg);
     ck_assert_int_eq(again.bad_texels, 2);
     ck_assert(again.cube.face[CUBEMAP_NEG_Y].px[7] == 0 && again.cube.face[CUBEMAP_POS_Z].px[0] == 0);
     convert_map_free(&again);

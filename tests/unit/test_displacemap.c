@@ -39,7 +39,7 @@ START_TEST(test_displaced_sphere_vertices_lie_at_radius_plus_scale_times_height)
     scene out;
     displacemap_stats st;
     error err = {0};
-    ck_assert_msg(displacemap_apply(&sc, 0, &out, &st, &err) == 0, "%s", err.msg);
+    ck_assert_msg(displacemap_apply(&sc, 0, NULL, &out, &st, &err) == 0, "%s", err.msg);
     ck_assert_int_eq(st.spheres, 1);
     ck_assert_int_eq(st.sphere_rate, DISPLACEMAP_SPHERE_RATE);
     long n = DISPLACEMAP_SPHERE_RATE;
@@ -75,7 +75,7 @@ START_TEST(test_displaced_triangle_moves_along_its_normal_and_keeps_object_corne
     displacemap_stats st;
     error err = {0};
     ck_assert(displacemap_needed(&sc)); /* a displaced triangle alone needs it too */
-    ck_assert(displacemap_apply(&sc, 0, &out, &st, &err) == 0);
+    ck_assert(displacemap_apply(&sc, 0, NULL, &out, &st, &err) == 0);
     long n = DISPLACEMAP_TRIANGLE_RATE;
     ck_assert_int_eq(out.n_triangles, n * n);
     for (long i = 0; i < out.n_triangles; i++)
@@ -104,7 +104,7 @@ START_TEST(test_triangles_without_normals_that_share_an_edge_are_displaced_witho
     scene out;
     displacemap_stats st;
     error err = {0};
-    ck_assert_msg(displacemap_apply(&sc, 0, &out, &st, &err) == 0, "%s", err.msg);
+    ck_assert_msg(displacemap_apply(&sc, 0, NULL, &out, &st, &err) == 0, "%s", err.msg);
     long n = DISPLACEMAP_TRIANGLE_RATE, shared = 0;
     ck_assert_int_eq(out.n_triangles, 2 * n * n);
     for (long a = 0; a < n * n; a++)          /* the first triangle's patch */
@@ -145,7 +145,7 @@ START_TEST(test_normals_on_the_edge_between_two_patches_are_shared_not_one_sided
     scene out;
     displacemap_stats st;
     error err = {0};
-    ck_assert_msg(displacemap_apply(&sc, 0, &out, &st, &err) == 0, "%s", err.msg);
+    ck_assert_msg(displacemap_apply(&sc, 0, NULL, &out, &st, &err) == 0, "%s", err.msg);
     long n = DISPLACEMAP_TRIANGLE_RATE, shared = 0;
     double worst = 0;
     for (long a = 0; a < n * n; a++)
@@ -200,7 +200,7 @@ START_TEST(test_patches_with_a_solid_texture_share_their_edge_bit_for_bit)
         scene sc = load(text), out;
         displacemap_stats st;
         error err = {0};
-        ck_assert_msg(displacemap_apply(&sc, 0, &out, &st, &err) == 0, "%s", err.msg);
+        ck_assert_msg(displacemap_apply(&sc, 0, NULL, &out, &st, &err) == 0, "%s", err.msg);
         long n = (long)st.triangle_rate * st.triangle_rate, equal = 0, near = 0;
         double worst = 0;
         for (long a = 0; a < n; a++)
@@ -238,7 +238,7 @@ START_TEST(test_a_displaced_sphere_under_a_mirror_keeps_its_triangles_facing_out
         scene sc = load(text), out;
         displacemap_stats st;
         error err = {0};
-        ck_assert_msg(displacemap_apply(&sc, 0, &out, &st, &err) == 0, "%s", err.msg);
+        ck_assert_msg(displacemap_apply(&sc, 0, NULL, &out, &st, &err) == 0, "%s", err.msg);
         vec3 c = mat4_point(&sc.spheres[0].xf, sc.spheres[0].center);
         long inward = 0;
         for (long i = 0; i < out.n_triangles; i++) {
@@ -262,12 +262,12 @@ START_TEST(test_rates_are_halved_until_the_budget_fits_and_an_impossible_budget_
     displacemap_stats st;
     error err = {0};
     /* rate 96: 36480 triangles; 48: 9024 fits 10000 */
-    ck_assert(displacemap_apply(&sc, 10000, &out, &st, &err) == 0);
+    ck_assert(displacemap_apply(&sc, 10000, NULL, &out, &st, &err) == 0);
     ck_assert_int_eq(st.sphere_rate, 48);
     ck_assert_int_eq(out.n_triangles, 4 * 48 * 47);
     displacemap_free(&out);
     /* the lowest rate, 2, still needs 8 triangles */
-    ck_assert(displacemap_apply(&sc, 7, &out, &st, &err) == -1);
+    ck_assert(displacemap_apply(&sc, 7, NULL, &out, &st, &err) == -1);
     ck_assert(strstr(err.msg, "lowest rates") != NULL);
     ck_assert(out.triangles == NULL && out.spheres == NULL);
     scene_free(&sc);
@@ -279,7 +279,7 @@ static uv2 st_seen_from_above(const scene *sc, double x, double z)
 {
     bvh b;
     error err = {0};
-    ck_assert_msg(bvh_build(&b, sc, &err) == 0, "%s", err.msg);
+    ck_assert_msg(bvh_build(&b, sc, NULL, &err) == 0, "%s", err.msg);
     ray r = {vec3_make(x, 10, z), vec3_make(0, -1, 0), 0, INFINITY};
     hit h;
     ck_assert(bvh_intersect(&b, sc, &r, &h));
@@ -310,7 +310,7 @@ START_TEST(test_a_displaced_sphere_keeps_its_texture_mapping)
         scene sc = load(text), out;
         displacemap_stats st;
         error err = {0};
-        ck_assert_msg(displacemap_apply(&sc, 0, &out, &st, &err) == 0, "%s", err.msg);
+        ck_assert_msg(displacemap_apply(&sc, 0, NULL, &out, &st, &err) == 0, "%s", err.msg);
         /* rays near the top of the ellipsoid, world centre (1.4, 0, 0): object directions
          * near +y, away from the spherical seam and inside the cube's +y face */
         for (int i = 0; i < 9; i++) {
@@ -338,7 +338,7 @@ START_TEST(test_the_budget_counts_the_whole_scene_exactly)
     error err = {0};
     scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX("1")
                     "displacementmap h 0.1\nsphere 0 0 0 1\n");
-    ck_assert_msg(displacemap_apply(&sc, 4 * 48 * 47, &out, &st, &err) == 0, "%s", err.msg);
+    ck_assert_msg(displacemap_apply(&sc, 4 * 48 * 47, NULL, &out, &st, &err) == 0, "%s", err.msg);
     ck_assert_int_eq(st.sphere_rate, 48);
     displacemap_free(&out);
     scene_free(&sc);
@@ -346,12 +346,12 @@ START_TEST(test_the_budget_counts_the_whole_scene_exactly)
     sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX("1")
               "displacementmap h 0.1\nsphere 0 0 0 1\n"
               "vertex 0 0 3\nvertex 1 0 3\nvertex 0 1 3\ntri 0 1 2\nnomaps\ntri 0 1 2\n");
-    ck_assert_msg(displacemap_apply(&sc, 10, &out, &st, &err) == 0, "%s", err.msg);
+    ck_assert_msg(displacemap_apply(&sc, 10, NULL, &out, &st, &err) == 0, "%s", err.msg);
     ck_assert_int_eq(st.sphere_rate, 2);
     ck_assert_int_eq(st.triangle_rate, 1);
     ck_assert_int_eq(out.n_triangles, 10);
     displacemap_free(&out);
-    ck_assert(displacemap_apply(&sc, 9, &out, &st, &err) == -1);
+    ck_assert(displacemap_apply(&sc, 9, NULL, &out, &st, &err) == -1);
     scene_free(&sc);
 }
 END_TEST
@@ -368,7 +368,7 @@ START_TEST(test_a_triangle_with_vertex_normals_moves_along_them)
     scene out;
     displacemap_stats st;
     error err = {0};
-    ck_assert_msg(displacemap_apply(&sc, 0, &out, &st, &err) == 0, "%s", err.msg);
+    ck_assert_msg(displacemap_apply(&sc, 0, NULL, &out, &st, &err) == 0, "%s", err.msg);
     const vec3 n0 = {0, 0, 1}, n1 = {0.6, 0, 0.8}, n2 = {0, 0.6, 0.8};
     for (long i = 0; i < out.n_triangles; i++)
         for (int k = 0; k < 3; k++) {
@@ -399,7 +399,7 @@ START_TEST(test_a_hard_edge_between_patches_stays_hard)
     scene out;
     displacemap_stats st;
     error err = {0};
-    ck_assert_msg(displacemap_apply(&sc, 0, &out, &st, &err) == 0, "%s", err.msg);
+    ck_assert_msg(displacemap_apply(&sc, 0, NULL, &out, &st, &err) == 0, "%s", err.msg);
     long n = DISPLACEMAP_TRIANGLE_RATE;
     ck_assert_int_eq(out.n_triangles, 2 * n * n);
     vec3 left = vec3_normalize(vec3_make(-1, 0, 1)), right = vec3_normalize(vec3_make(1, 0, 1));
@@ -427,7 +427,7 @@ START_TEST(test_a_corner_without_normals_moves_along_the_angle_weighted_mean_of_
     scene out;
     displacemap_stats st;
     error err = {0};
-    ck_assert_msg(displacemap_apply(&sc, 0, &out, &st, &err) == 0, "%s", err.msg);
+    ck_assert_msg(displacemap_apply(&sc, 0, NULL, &out, &st, &err) == 0, "%s", err.msg);
     /* the faces and their angles at the origin, by the documented formula */
     vec3 na = vec3_make(0, 0, 1), nb = vec3_normalize(vec3_make(-1, 0, 0.5));
     double aa = M_PI / 2, ab = vec3_angle(vec3_make(0, -1, 0), vec3_make(0.5, -1, 1));
@@ -464,7 +464,7 @@ START_TEST(test_a_displaced_sphere_under_a_scale_has_the_ellipsoids_normals)
     scene out;
     displacemap_stats st;
     error err = {0};
-    ck_assert_msg(displacemap_apply(&sc, 0, &out, &st, &err) == 0, "%s", err.msg);
+    ck_assert_msg(displacemap_apply(&sc, 0, NULL, &out, &st, &err) == 0, "%s", err.msg);
     for (long i = 0; i < out.n_triangles; i++)
         for (int k = 0; k < 3; k++) {
             vec3 q = out.triangles[i].q[k];
@@ -489,7 +489,7 @@ START_TEST(test_a_displaced_spheres_solid_texture_sees_the_object_point)
     scene out;
     displacemap_stats st;
     error err = {0};
-    ck_assert_msg(displacemap_apply(&sc, 2000, &out, &st, &err) == 0, "%s", err.msg);
+    ck_assert_msg(displacemap_apply(&sc, 2000, NULL, &out, &st, &err) == 0, "%s", err.msg);
     const material *m = &sc.materials[sc.spheres[0].material];
     const texture *tex = scene_map(&sc, m->displacementmap);
     vec3 c = vec3_make(1, -2, 0.5);
@@ -536,7 +536,7 @@ START_TEST(test_heights_under_a_planar_mapping_read_the_documented_point)
              "translate 0 0 4\nvertex 0.2 0.3 0\nvertex 1.7 0.1 0\nvertex 0.4 1.2 0\ntri 0 1 2\n", path);
     scene sc = load(text), out;
     displacemap_stats st;
-    ck_assert_msg(displacemap_apply(&sc, 3000, &out, &st, &err) == 0, "%s", err.msg);
+    ck_assert_msg(displacemap_apply(&sc, 3000, NULL, &out, &st, &err) == 0, "%s", err.msg);
     const material *m = &sc.materials[sc.spheres[0].material];
     const texture *tex = scene_map(&sc, m->displacementmap);
     vec3 c = vec3_make(1, -2, 0.5);
@@ -573,12 +573,46 @@ START_TEST(test_heights_under_a_planar_mapping_read_the_documented_point)
 }
 END_TEST
 
+/* The memory budget lowers the rates as max_tris does: the displaced triangles, with their BVH,
+ * must fit in what the budget still holds; they are charged.  Even the lowest rates beyond it:
+ * one message naming the scene and the budget. */
+START_TEST(test_the_memory_budget_lowers_the_rates_until_the_triangles_fit)
+{
+    scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX("0.5")
+                    "displacementmap h 0.2\nsphere 0 0 0 1\n");
+    snprintf(sc.path, sizeof sc.path, "d.test");
+    double per_tri = sizeof(scene_triangle) + bvh_bytes_per_prim();
+    budget mem;
+    budget_init(&mem, 9100 * per_tri); /* rate 96 makes 36480 triangles, 48 makes 9024 */
+    scene out;
+    displacemap_stats st;
+    error err = {0};
+    ck_assert_msg(displacemap_apply(&sc, 0, &mem, &out, &st, &err) == 0, "%s", err.msg);
+    ck_assert_int_eq(st.sphere_rate, 48);
+    ck_assert_int_eq(out.n_triangles, 4 * 48 * 47);
+    ck_assert(mem.used == 9024.0 * sizeof(scene_triangle));
+    displacemap_free(&out);
+    budget_init(&mem, 10 * per_tri); /* rate 2 makes 8 */
+    ck_assert_int_eq(displacemap_apply(&sc, 0, &mem, &out, &st, &err), 0);
+    ck_assert_int_eq(st.sphere_rate, 2);
+    displacemap_free(&out);
+    budget_init(&mem, 7 * per_tri);
+    ck_assert_int_eq(displacemap_apply(&sc, 0, &mem, &out, &st, &err), -1);
+    ck_assert_str_eq(err.file, "d.test");
+    ck_assert_msg(strstr(err.msg, "even at the lowest rates, displacement mapping's 8 triangles and their BVH x ") &&
+                  strstr(err.msg, "beyond the memory budget"), "%s", err.msg);
+    ck_assert(mem.used == 0 && out.triangles == NULL);
+    scene_free(&sc);
+}
+END_TEST
+
 Suite *displacemap_suite(void)
 {
     Suite *s = suite_create("displacemap");
     TCase *tc = tcase_create("core");
     tcase_set_timeout(tc, 60); /* it renders displaced spheres: Check's default (4 s, times CK_TIMEOUT_MULTIPLIER) timed out twice on a loaded machine */
     tcase_add_test(tc, test_scenes_without_displacement_need_none);
+    tcase_add_test(tc, test_the_memory_budget_lowers_the_rates_until_the_triangles_fit);
     tcase_add_test(tc, test_displaced_sphere_vertices_lie_at_radius_plus_scale_times_height);
     tcase_add_test(tc, test_displaced_triangle_moves_along_its_normal_and_keeps_object_corners);
     tcase_add_test(tc, test_triangles_without_normals_that_share_an_edge_are_displaced_without_a_crack);

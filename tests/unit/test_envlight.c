@@ -109,7 +109,7 @@ static envmap env_of(const image *im, double scale, mat4 to_env)
 static void build(envlight *el, const envmap *env, envsampling_mode mode, envsampler_kind sampler, int n)
 {
     error err = {0};
-    if (envlight_build(el, env, mode, sampler, n, &err)) ck_abort_msg("envlight_build: %s", err.msg);
+    if (envlight_build(el, env, mode, sampler, n, NULL, &err)) ck_abort_msg("envlight_build: %s", err.msg);
 }
 
 /* the texel of world direction w: what envlight.c must agree with */
@@ -362,7 +362,7 @@ START_TEST(test_envlight_non_rotation_transform_is_refused)
         envmap env = env_of(&im, 1, bad[i]);
         envlight el;
         error err = {0};
-        ck_assert_int_eq(envlight_build(&el, &env, ENVSAMPLING_CDF, ENVSAMPLER_BINARY, 0, &err), -1);
+        ck_assert_int_eq(envlight_build(&el, &env, ENVSAMPLING_CDF, ENVSAMPLER_BINARY, 0, NULL, &err), -1);
         ck_assert_msg(strstr(err.msg, "rotation") != NULL, "message: %s", err.msg);
         envlight_free(&el); /* safe after a failure */
     }
@@ -805,7 +805,7 @@ START_TEST(test_envlight_radiance_is_the_scaled_texel)
      * uniform samples, without a pass over the texels: no power */
     envlight lk;
     error err = {0};
-    ck_assert_int_eq(envlight_build_lookup(&lk, &env, &err), 0);
+    ck_assert_int_eq(envlight_build_lookup(&lk, &env, NULL, &err), 0);
     ck_assert(lk.mode == ENVSAMPLING_UNIFORM && lk.power == 0 && lk.kappa == 0);
     for (int j = 0; j < 200; j++) {
         vec3 d = latlong_uv_to_dir((uv2){(j * 0.618034) - floor(j * 0.618034), (j + 0.5) / 200});
@@ -1098,6 +1098,48 @@ START_TEST(test_envlight_mediancut_cuts_polar_strata_across_theta)
 }
 END_TEST
 
+/* The tables are charged to the budget before they are built: what stays (the cdf tables, the
+ * median-cut points), and while building the texels' energy, released after.  A budget one byte
+ * short refuses with one message naming the map; a black map, which falls back to uniform
+ * directions, keeps no cdf table charged. */
+START_TEST(test_envlight_tables_are_charged_before_they_are_built)
+{
+    const envsampling_mode modes[4] = {ENVSAMPLING_UNIFORM, ENVSAMPLING_CDF, ENVSAMPLING_CDF, ENVSAMPLING_MEDIANCUT};
+    const envsampler_kind samplers[4] = {ENVSAMPLER_BINARY, ENVSAMPLER_BINARY, ENVSAMPLER_ALIAS, ENVSAMPLER_BINARY};
+    image im = {0}, black = {0};
+    make_map(M_ONE_HOT, &im);
+    fill(&black, 16, 8);
+    envmap env = env_of(&im, 1, mat4_identity()), dark = env_of(&black, 1, mat4_identity());
+    double kept_cdf = 0;
+    for (int k = 0; k < 4; k++) {
+        error err = {0};
+        envlight el;
+        budget mem;
+        budget_init(&mem, 1e9);
+        ck_assert_int_eq(envlight_build(&el, &env, modes[k], samplers[k], 4, &mem, &err), 0);
+        double used = mem.used, peak = mem.peak;
+        ck_assert_msg(used > 0 && (k == 0 || peak > used), "mode %d: used %g, peak %g", k, used, peak);
+        if (k == 1) kept_cdf = used;
+        if (k == 2) ck_assert(used > kept_cdf + 16 * 8 * sizeof(distrib_alias)); /* the alias cells */
+        envlight_free(&el);
+        budget_init(&mem, peak - 1);
+        ck_assert_int_eq(envlight_build(&el, &env, modes[k], samplers[k], 4, &mem, &err), -1);
+        ck_assert_msg(strstr(err.msg, "for a 16 x 8 lat-long map = ") && strstr(err.msg, "beyond the memory budget"),
+                      "%s", err.msg);
+        ck_assert(mem.used == 0);
+    }
+    error err = {0};
+    envlight el;
+    budget mem;
+    budget_init(&mem, 1e9);
+    ck_assert_int_eq(envlight_build(&el, &dark, ENVSAMPLING_CDF, ENVSAMPLER_BINARY, 0, &mem, &err), 0);
+    ck_assert(el.fell_back && mem.used < kept_cdf - distrib2d_bytes(16, 8, 0) / 2);
+    envlight_free(&el);
+    image_free(&im);
+    image_free(&black);
+}
+END_TEST
+
 Suite *envlight_suite(void)
 {
     Suite *s = suite_create("envlight");
@@ -1110,6 +1152,7 @@ Suite *envlight_suite(void)
     tcase_set_timeout(tc, 60);
     tcase_add_test(tc, test_envlight_rotation_moves_samples_and_pdf_with_the_map);
     tcase_add_test(tc, test_envlight_kappa_and_the_combined_lookup);
+    tcase_add_test(tc, test_envlight_tables_are_charged_before_they_are_built);
     tcase_add_test(tc, test_envlight_mis_fraction_model);
     tcase_add_test(tc, test_envlight_mis_fraction_minimizes_variance_times_time);
     tcase_add_test(tc, test_envlight_non_rotation_transform_is_refused);

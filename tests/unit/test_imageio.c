@@ -45,7 +45,7 @@ START_TEST(test_every_extension_writes_and_reads_back)
         ck_assert(imageio_can_write(names[f]));
         ck_assert_msg(imageio_write(in_dir(names[f]), &im, NULL, &err) == 0, "%s: %s", names[f], err.msg);
         image back = {0};
-        ck_assert_msg(imageio_read(in_dir(names[f]), &back, &err) == 0, "%s: %s", names[f], err.msg);
+        ck_assert_msg(imageio_read(in_dir(names[f]), &back, NULL, &err) == 0, "%s: %s", names[f], err.msg);
         ck_assert_int_eq(back.w, 12);
         ck_assert_int_eq(back.h, 10);
         double worst = 0.0;
@@ -67,7 +67,7 @@ START_TEST(test_reading_goes_by_magic_bytes_not_the_name)
     fill(&im);
     ck_assert_int_eq(imageio_write(in_dir("x.pfm"), &im, NULL, &err), 0);
     ck_assert_int_eq(rename(in_dir("x.pfm"), in_dir("looks_like.png")), 0);
-    ck_assert_msg(imageio_read(in_dir("looks_like.png"), &back, &err) == 0, "%s", err.msg);
+    ck_assert_msg(imageio_read(in_dir("looks_like.png"), &back, NULL, &err) == 0, "%s", err.msg);
     ck_assert_int_eq(memcmp(back.px, im.px, sizeof(float) * 360), 0);
     image_free(&back);
     image_free(&im);
@@ -105,20 +105,56 @@ START_TEST(test_unknown_missing_empty_and_folder_inputs_are_clear_errors)
     make_dir();
     image im = {0};
     error err = {0};
-    ck_assert_int_eq(imageio_read(in_dir("missing.exr"), &im, &err), -1);
+    ck_assert_int_eq(imageio_read(in_dir("missing.exr"), &im, NULL, &err), -1);
     ck_assert_str_eq(err.msg, "cannot open: No such file or directory");
     ck_assert_str_eq(err.file, in_dir("missing.exr"));
-    ck_assert_int_eq(imageio_read(dir, &im, &err), -1);
-    ck_assert_str_eq(err.msg, "cannot open: Is a directory");
+    ck_assert_int_eq(imageio_read(dir, &im, NULL, &err), -1);
+    ck_assert_str_eq(err.msg, "cannot open: it is a directory, not a regular file");
     write_bytes(in_dir("empty.exr"), "", 0);
-    ck_assert_int_eq(imageio_read(in_dir("empty.exr"), &im, &err), -1);
+    ck_assert_int_eq(imageio_read(in_dir("empty.exr"), &im, NULL, &err), -1);
     ck_assert_str_eq(err.msg, "file is empty");
     write_bytes(in_dir("gif.exr"), "GIF89a\1\0\1\0", 10);
-    ck_assert_int_eq(imageio_read(in_dir("gif.exr"), &im, &err), -1);
+    ck_assert_int_eq(imageio_read(in_dir("gif.exr"), &im, NULL, &err), -1);
     ck_assert_ptr_nonnull(strstr(err.msg, "unknown image format"));
     write_bytes(in_dir("short"), "\x76\x2f", 2); /* half an EXR magic */
-    ck_assert_int_eq(imageio_read(in_dir("short"), &im, &err), -1);
+    ck_assert_int_eq(imageio_read(in_dir("short"), &im, NULL, &err), -1);
     ck_assert_ptr_null(im.px);
+    remove_dir();
+}
+END_TEST
+
+/* Every reader charges the memory budget before it allocates: the decoded image (12 bytes a
+ * texel), which stays charged, and its scratch (the file's bytes, PNG's rows, OpenEXR's chunk
+ * buffers), which it releases.  A budget one byte short of the peak refuses the file with one
+ * message naming the file, the claim and the budget, and leaves nothing charged. */
+START_TEST(test_every_reader_charges_the_budget_and_keeps_only_the_image_charged)
+{
+    make_dir();
+    image im = {0};
+    error err = {0};
+    fill_noise(&im, 40, 30, 7u, 1.0f);
+    const char *names[] = {"a.exr", "b.pfm", "c.hdr", "d.png"};
+    for (int f = 0; f < 4; f++) {
+        ck_assert_int_eq(imageio_write(in_dir(names[f]), &im, NULL, &err), 0);
+        budget mem;
+        budget_init(&mem, 1e9);
+        image back = {0};
+        ck_assert_msg(imageio_read(in_dir(names[f]), &back, &mem, &err) == 0, "%s: %s", names[f], err.msg);
+        ck_assert_msg(mem.used == 40 * 30 * IMAGE_TEXEL_BYTES, "%s: %g charged", names[f], mem.used);
+        ck_assert_msg(mem.peak > mem.used, "%s: no scratch charged (peak %g)", names[f], mem.peak);
+        image_free(&back);
+        double peak = mem.peak;
+        budget_init(&mem, peak - 1);
+        ck_assert_int_eq(imageio_read(in_dir(names[f]), &back, &mem, &err), -1);
+        ck_assert_ptr_null(back.px);
+        ck_assert_str_eq(err.file, in_dir(names[f]));
+        ck_assert_msg(strstr(err.msg, "beyond the memory budget of"), "%s: %s", names[f], err.msg);
+        ck_assert_msg(mem.used == 0, "%s: %g left charged", names[f], mem.used);
+        budget_init(&mem, peak);
+        ck_assert_msg(imageio_read(in_dir(names[f]), &back, &mem, &err) == 0, "%s: %s", names[f], err.msg);
+        image_free(&back);
+    }
+    image_free(&im);
     remove_dir();
 }
 END_TEST
@@ -138,7 +174,7 @@ START_TEST(test_truncated_files_of_every_format_are_errors)
         for (size_t i = 0; i < 4; i++) {
             write_bytes(in_dir("cut"), d, cuts[i]);
             image back = {0};
-            ck_assert_msg(imageio_read(in_dir("cut"), &back, &err) == -1, "%s cut at %zu", names[f], cuts[i]);
+            ck_assert_msg(imageio_read(in_dir("cut"), &back, NULL, &err) == -1, "%s cut at %zu", names[f], cuts[i]);
             ck_assert_ptr_null(back.px);
         }
         free(d);
@@ -180,7 +216,7 @@ START_TEST(test_write_as_a_named_format_whatever_the_name)
     snprintf(p2, sizeof p2, "%s", in_dir("scene6.bmp"));
     ck_assert_msg(imageio_write_as(p1, IMAGEIO_PNG, &im, NULL, &err) == 0, "%s", err.msg);
     ck_assert_int_eq(imageio_detect(p1), IMAGEIO_PNG);
-    ck_assert_msg(imageio_read(p1, &back, &err) == 0, "%s", err.msg);
+    ck_assert_msg(imageio_read(p1, &back, NULL, &err) == 0, "%s", err.msg);
     ck_assert_int_eq(back.w, im.w);
     image_free(&back);
     const char *paths[1] = {p2};
@@ -272,7 +308,7 @@ START_TEST(test_a_set_of_images_is_written_all_or_none)
     /* the good case: both replaced, read back */
     ck_assert_msg(imageio_write_set(2, paths, images, NULL, NULL, &err) == 0, "%s", err.msg);
     image back = {0};
-    ck_assert_msg(imageio_read(pb, &back, &err) == 0, "%s", err.msg);
+    ck_assert_msg(imageio_read(pb, &back, NULL, &err) == 0, "%s", err.msg);
     ck_assert_int_eq(memcmp(back.px, big.px, sizeof(float) * 64 * 64 * 3), 0);
     ck_assert_int_eq(count_files("partial"), 0);
     image_free(&back);
@@ -329,6 +365,7 @@ Suite *imageio_suite(void)
     tcase_add_test(tc, test_a_write_that_fails_part_way_leaves_the_old_file_and_no_temporary);
     tcase_add_test(tc, test_a_set_of_images_is_written_all_or_none);
     tcase_add_test(tc, test_truncated_files_of_every_format_are_errors);
+    tcase_add_test(tc, test_every_reader_charges_the_budget_and_keeps_only_the_image_charged);
     tcase_add_test(tc, test_unknown_extension_and_invalid_images_write_nothing);
     tcase_add_test(tc, test_write_as_a_named_format_whatever_the_name);
     tcase_add_test(tc, test_temporary_files_live_beside_the_target_and_commit_by_rename);

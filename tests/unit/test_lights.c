@@ -61,10 +61,10 @@ START_TEST(test_lights_pick_probability_is_proportional_to_power)
     ck_assert_int_eq(genenv_make(GENENV_CONSTANT, &gp, &im, &err), 0);
     envmap env = latlong_env(&im, 2.0);
     envlight el;
-    ck_assert_int_eq(envlight_build(&el, &env, ENVSAMPLING_CDF, ENVSAMPLER_BINARY, 0, &err), 0);
+    ck_assert_int_eq(envlight_build(&el, &env, ENVSAMPLING_CDF, ENVSAMPLER_BINARY, 0, NULL, &err), 0);
     double R = 3.0;
     lights ls;
-    ck_assert_int_eq(lights_build(&ls, &sc, &el, R, &err), 0);
+    ck_assert_int_eq(lights_build(&ls, &sc, &el, R, NULL, &err), 0);
     ck_assert_int_eq(ls.n, 5);
     ck_assert_int_eq(lights_env_index(&ls), 4);
     double pw[5] = {M_PI * 1.0 * 6.0,          /* 1 x 1 quad, L_avg = 6 */
@@ -114,7 +114,7 @@ START_TEST(test_lights_pick_probability_is_proportional_to_power)
     ck_assert(ls.env_fraction == 1);
     lights_free(&ls);
     /* without an environment the set is the scene's lights only */
-    ck_assert_int_eq(lights_build(&ls, &sc, NULL, R, &err), 0);
+    ck_assert_int_eq(lights_build(&ls, &sc, NULL, R, NULL, &err), 0);
     ck_assert_int_eq(ls.n, 4);
     ck_assert_int_eq(lights_env_index(&ls), -1);
     lights_free(&ls);
@@ -144,7 +144,7 @@ START_TEST(test_lights_pick_probabilities_of_powers_past_the_largest_double)
         error err = {0};
         if (scene_load_string(texts[i], "huge.test", &o, &sc, &err)) ck_abort_msg("scene %d: %s", i, err.msg);
         lights ls;
-        ck_assert_msg(lights_build(&ls, &sc, NULL, 3, &err) == 0, "scene %d: %s", i, err.msg);
+        ck_assert_msg(lights_build(&ls, &sc, NULL, 3, NULL, &err) == 0, "scene %d: %s", i, err.msg);
         double p0 = lights_pick_prob(&ls, 0), p1 = lights_pick_prob(&ls, 1);
         if (i < 2) {
             ck_assert_msg(fabs(p0 - 1.0 / 3) < 1e-12 && fabs(p1 - 2.0 / 3) < 1e-12, "scene %d: %g %g", i, p0, p1);
@@ -167,7 +167,7 @@ START_TEST(test_lights_quad_sample_pdf_matches_lights_quad_pdf)
     load(&sc);
     lights ls;
     error err = {0};
-    ck_assert_int_eq(lights_build(&ls, &sc, NULL, 3, &err), 0);
+    ck_assert_int_eq(lights_build(&ls, &sc, NULL, 3, NULL, &err), 0);
     vec3 p = vec3_make(0, 0, 0), ng = vec3_make(0, 1, 0);
     rng g;
     rng_seed(&g, 9, 0);
@@ -201,7 +201,7 @@ START_TEST(test_lights_quad_emits_on_the_side_of_ac_cross_ab)
     load(&sc);
     lights ls;
     error err = {0};
-    ck_assert_int_eq(lights_build(&ls, &sc, NULL, 3, &err), 0);
+    ck_assert_int_eq(lights_build(&ls, &sc, NULL, 3, NULL, &err), 0);
     ray up = {vec3_make(0.1, 0, 0.1), vec3_make(0, 1, 0), 0, INFINITY};
     ray down = {vec3_make(0.1, 5, 0.1), vec3_make(0, -1, 0), 0, INFINITY};
     int k;
@@ -231,7 +231,7 @@ START_TEST(test_lights_delta_lights_give_intensity_over_attenuation)
     load(&sc);
     lights ls;
     error err = {0};
-    ck_assert_int_eq(lights_build(&ls, &sc, NULL, 3, &err), 0);
+    ck_assert_int_eq(lights_build(&ls, &sc, NULL, 3, NULL, &err), 0);
     light_sample s;
     ck_assert(lights_sample(&ls, 2, vec3_make(0, 1, 0), vec3_make(0, 1, 0), 0.2, 0.2, 0.2, 0, &s));
     ck_assert(s.is_delta && s.pdf == 0);
@@ -257,7 +257,7 @@ START_TEST(test_lights_point_attenuation_uses_all_three_terms_at_the_distance)
                        "attenuation 0.5 0.25 0.125\npoint 0 3 0  3 6 9\n";
     if (scene_load_string(text, "atten.test", &o, &sc, &err)) ck_abort_msg("scene: %s", err.msg);
     lights ls;
-    ck_assert_int_eq(lights_build(&ls, &sc, NULL, 3, &err), 0);
+    ck_assert_int_eq(lights_build(&ls, &sc, NULL, 3, NULL, &err), 0);
     light_sample s;
     ck_assert(lights_sample(&ls, 0, vec3_make(0, 1, 0), vec3_make(0, 1, 0), 0.5, 0.5, 0.5, 0, &s));
     ck_assert_near(s.Li.r, 3 / 1.5, 1e-12);
@@ -281,9 +281,9 @@ START_TEST(test_lights_median_cut_shadow_ray_is_jittered_in_the_stratum)
     ck_assert_int_eq(genenv_make(GENENV_SKY, &gp, &im, &err), 0);
     envmap env = latlong_env(&im, 1.0);
     envlight el;
-    ck_assert_int_eq(envlight_build(&el, &env, ENVSAMPLING_MEDIANCUT, ENVSAMPLER_BINARY, 4, &err), 0);
+    ck_assert_int_eq(envlight_build(&el, &env, ENVSAMPLING_MEDIANCUT, ENVSAMPLER_BINARY, 4, NULL, &err), 0);
     lights ls;
-    ck_assert_int_eq(lights_build(&ls, &sc, &el, 3, &err), 0);
+    ck_assert_int_eq(lights_build(&ls, &sc, &el, 3, NULL, &err), 0);
     int ke = lights_env_index(&ls);
     vec3 p = vec3_make(0, 1, 0), n = vec3_make(0, 1, 0);
     int moved = 0;
@@ -367,7 +367,7 @@ START_TEST(test_lights_intersect_quad_finds_the_nearest_quad_of_many)
         load_many_quads(&sc, counts[c], 7 + (uint64_t)c);
         lights ls;
         error err = {0};
-        ck_assert_int_eq(lights_build(&ls, &sc, NULL, 3, &err), 0);
+        ck_assert_int_eq(lights_build(&ls, &sc, NULL, 3, NULL, &err), 0);
         ck_assert_int_eq(ls.n_quads, counts[c]);
         rng g;
         rng_seed(&g, 99, (uint64_t)c);
@@ -407,7 +407,7 @@ START_TEST(test_lights_quads_get_a_bvh_and_other_lights_none)
     load_many_quads(&sc, 300, 3);
     lights ls;
     error err = {0};
-    ck_assert_int_eq(lights_build(&ls, &sc, NULL, 3, &err), 0);
+    ck_assert_int_eq(lights_build(&ls, &sc, NULL, 3, NULL, &err), 0);
     ck_assert(ls.quad_bvh.is_tree);
     ck_assert_int_eq(ls.quad_bvh.n_prims, 600);
     ck_assert_int_le(ls.quad_bvh.depth, 24); /* a balanced tree of 600 / 4 leaves: ~9 levels */
@@ -415,7 +415,7 @@ START_TEST(test_lights_quads_get_a_bvh_and_other_lights_none)
     scene_free(&sc);
 
     load_many_quads(&sc, 4, 3);
-    ck_assert_int_eq(lights_build(&ls, &sc, NULL, 3, &err), 0);
+    ck_assert_int_eq(lights_build(&ls, &sc, NULL, 3, NULL, &err), 0);
     ck_assert(!ls.quad_bvh.is_tree); /* 8 triangles: BVH_MIN_PRIMS, tested in a loop */
     lights_free(&ls);
     scene_free(&sc);
@@ -424,7 +424,7 @@ START_TEST(test_lights_quads_get_a_bvh_and_other_lights_none)
     scene_load_opts o = scene_load_defaults();
     o.load_images = 0;
     ck_assert_int_eq(scene_load_string(points, "points.test", &o, &sc, &err), 0);
-    ck_assert_int_eq(lights_build(&ls, &sc, NULL, 3, &err), 0);
+    ck_assert_int_eq(lights_build(&ls, &sc, NULL, 3, NULL, &err), 0);
     ck_assert_int_eq(ls.n, 2);
     ck_assert_int_eq(ls.n_quads, 0);
     ck_assert_ptr_null(ls.quad_scene);

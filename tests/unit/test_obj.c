@@ -11,7 +11,7 @@
 static void load_ok(const char *text, obj_mesh *m)
 {
     error err = {0};
-    int rc = obj_load_string(text, "m.obj", 0, m, &err);
+    int rc = obj_load_string(text, "m.obj", 0, m, NULL, &err);
     ck_assert_msg(rc == 0, "unexpected error: %s:%d: %s", err.file, err.line, err.msg);
 }
 
@@ -19,7 +19,7 @@ static void load_fails(const char *text, long max, int line, const char *what)
 {
     obj_mesh m;
     error err = {0};
-    ck_assert_msg(obj_load_string(text, "m.obj", max, &m, &err) == -1, "no error for:\n%s", text);
+    ck_assert_msg(obj_load_string(text, "m.obj", max, &m, NULL, &err) == -1, "no error for:\n%s", text);
     ck_assert_str_eq(err.file, "m.obj");
     ck_assert_msg(err.line == line, "line %d, expected %d: %s", err.line, line, err.msg);
     ck_assert_msg(strstr(err.msg, what) != NULL, "'%s' lacks \"%s\"", err.msg, what);
@@ -138,8 +138,38 @@ START_TEST(test_limits_are_checked_before_the_arrays_grow)
     load_fails(QUAD "f 1 2 3 4 1 2 3\n", 4, 5, "more than 4 triangles");
     obj_mesh m;
     error err = {0};
-    ck_assert_int_eq(obj_load_string(QUAD, "m.obj", 4, &m, &err), 0);
+    ck_assert_int_eq(obj_load_string(QUAD, "m.obj", 4, &m, NULL, &err), 0);
     obj_free(&m);
+}
+END_TEST
+
+/* What each array grows by (its capacity doubles from 64) is charged before it grows; a refusal
+ * names the line and the budget and leaves nothing charged. */
+START_TEST(test_the_arrays_growth_is_charged_and_a_refusal_leaves_nothing_charged)
+{
+    obj_mesh m;
+    error err = {0};
+    budget mem;
+    budget_init(&mem, 1e9);
+    ck_assert_int_eq(obj_load_string(QUAD "f 1 2 3 4\n", "m.obj", 0, &m, &mem, &err), 0);
+    ck_assert(m.bytes == 64.0 * sizeof(vec3) + 64.0 * sizeof(obj_triangle)); /* 4 v, 2 triangles */
+    ck_assert(mem.used == m.bytes);
+    obj_free(&m);
+    char text[100 * 8 + 16] = "";
+    for (int i = 0; i < 100; i++) strcat(text + 8 * (i > 0 ? i - 1 : 0), "v 0 0 0\n");
+    budget_init(&mem, 1e9);
+    ck_assert_int_eq(obj_load_string(text, "m.obj", 0, &m, &mem, &err), 0);
+    ck_assert(m.bytes == 128.0 * sizeof(vec3)); /* 64, then 64 more */
+    ck_assert(mem.used == m.bytes);
+    obj_free(&m);
+    budget_init(&mem, 2000);
+    ck_assert_int_eq(obj_load_string(QUAD "f 1 2 3 4\n", "m.obj", 0, &m, &mem, &err), -1);
+    ck_assert_str_eq(err.file, "m.obj");
+    ck_assert_int_eq(err.line, 5); /* the face: 64 vertices fit (1.5 KiB), 64 triangles do not */
+    ck_assert_str_eq(err.msg, "room for 64 more triangles x 72 bytes = 4.5 KiB, beyond the memory budget of "
+                              "1.95 KiB (1.5 KiB of it in use; envtex --memory-budget SIZE sets it)");
+    ck_assert(mem.used == 0);
+    ck_assert_ptr_null(m.v);
 }
 END_TEST
 
@@ -153,11 +183,11 @@ START_TEST(test_files_are_read_and_missing_ones_named)
     close(fd);
     obj_mesh m;
     error err = {0};
-    ck_assert_int_eq(obj_load(path, 0, &m, &err), 0);
+    ck_assert_int_eq(obj_load(path, 0, &m, NULL, &err), 0);
     ck_assert_int_eq(m.n_tris, 2);
     obj_free(&m);
     unlink(path);
-    ck_assert_int_eq(obj_load(path, 0, &m, &err), -1);
+    ck_assert_int_eq(obj_load(path, 0, &m, NULL, &err), -1);
     ck_assert_str_eq(err.file, path);
     ck_assert_ptr_nonnull(strstr(err.msg, "cannot open"));
 }
@@ -174,6 +204,7 @@ Suite *obj_suite(void)
     tcase_add_test(tc, test_a_utf8_byte_order_mark_at_the_start_is_skipped);
     tcase_add_test(tc, test_each_error_names_its_line);
     tcase_add_test(tc, test_limits_are_checked_before_the_arrays_grow);
+    tcase_add_test(tc, test_the_arrays_growth_is_charged_and_a_refusal_leaves_nothing_charged);
     tcase_add_test(tc, test_files_are_read_and_missing_ones_named);
     suite_add_tcase(s, tc);
     return s;

@@ -42,7 +42,7 @@ START_TEST(test_pfm_roundtrip_is_bit_exact_including_nan_and_inf)
     im.px[7] = INFINITY;
     im.px[8] = -0.0f;
     ck_assert_int_eq(pfm_write(in_dir("a.pfm"), &im, &err), 0);
-    ck_assert_msg(pfm_read(in_dir("a.pfm"), &back, &err) == 0, "%s", err.msg);
+    ck_assert_msg(pfm_read(in_dir("a.pfm"), &back, NULL, &err) == 0, "%s", err.msg);
     ck_assert_int_eq(back.w, 5);
     ck_assert_int_eq(back.h, 3);
     ck_assert_int_eq(memcmp(im.px, back.px, sizeof(float) * 45), 0);
@@ -61,7 +61,7 @@ START_TEST(test_pfm_rows_are_stored_bottom_to_top)
     write_pfm_bytes(in_dir("rows.pfm"), "PF\n1 2\n-1.0\n", v, 6);
     image im = {0};
     error err = {0};
-    ck_assert_msg(pfm_read(in_dir("rows.pfm"), &im, &err) == 0, "%s", err.msg);
+    ck_assert_msg(pfm_read(in_dir("rows.pfm"), &im, NULL, &err) == 0, "%s", err.msg);
     ck_assert(image_px(&im, 0, 0)[0] == 4.0f); /* top row = last stored */
     ck_assert(image_px(&im, 0, 1)[2] == 3.0f);
     image_free(&im);
@@ -79,7 +79,7 @@ START_TEST(test_pfm_header_with_crlf_line_ends)
     write_pfm_bytes(in_dir("crlf.pfm"), "PF\r\n2 1\r\n-1.0\r\n", v, 6);
     image im = {0};
     error err = {0};
-    ck_assert_msg(pfm_read(in_dir("crlf.pfm"), &im, &err) == 0, "%s", err.msg);
+    ck_assert_msg(pfm_read(in_dir("crlf.pfm"), &im, NULL, &err) == 0, "%s", err.msg);
     ck_assert_int_eq(im.w, 2);
     for (int i = 0; i < 6; i++) ck_assert_msg(im.px[i] == v[i], "px[%d] = %g, want %g", i, im.px[i], v[i]);
     image_free(&im);
@@ -94,7 +94,7 @@ START_TEST(test_pfm_header_with_crlf_line_ends)
     ck_assert_int_eq(e[12], 0x0A);
     free(e);
     float first = g[0];
-    ck_assert_msg(pfm_read(in_dir("cr.pfm"), &im, &err) == 0, "%s", err.msg);
+    ck_assert_msg(pfm_read(in_dir("cr.pfm"), &im, NULL, &err) == 0, "%s", err.msg);
     ck_assert(im.px[0] == first && im.px[3] == 2.0f);
     image_free(&im);
     remove_dir();
@@ -115,7 +115,7 @@ START_TEST(test_big_endian_grey_pfm_is_replicated)
     write_bytes(in_dir("g.pfm"), d, sizeof d);
     image im = {0};
     error err = {0};
-    ck_assert_msg(imageio_read(in_dir("g.pfm"), &im, &err) == 0, "%s", err.msg);
+    ck_assert_msg(imageio_read(in_dir("g.pfm"), &im, NULL, &err) == 0, "%s", err.msg);
     ck_assert(im.px[0] == 1.2345678f && im.px[1] == 1.2345678f && im.px[2] == 1.2345678f);
     ck_assert(im.px[3] == -2.0f && im.px[5] == -2.0f);
     image_free(&im);
@@ -130,15 +130,15 @@ START_TEST(test_absurd_pfm_size_is_refused_before_allocation)
     write_bytes(in_dir("big.pfm"), h, strlen(h));
     image im = {0};
     error err = {0};
-    ck_assert_int_eq(pfm_read(in_dir("big.pfm"), &im, &err), -1);
+    ck_assert_int_eq(pfm_read(in_dir("big.pfm"), &im, NULL, &err), -1);
     ck_assert_ptr_nonnull(strstr(err.msg, "over the limit"));
     ck_assert_ptr_null(im.px);
     const char *z = "PF\n2 2\n0\n";
     write_bytes(in_dir("zero.pfm"), z, strlen(z));
-    ck_assert_int_eq(pfm_read(in_dir("zero.pfm"), &im, &err), -1); /* scale 0: no byte order */
+    ck_assert_int_eq(pfm_read(in_dir("zero.pfm"), &im, NULL, &err), -1); /* scale 0: no byte order */
     const char *m = "P6\n2 2\n255\n";
     write_bytes(in_dir("ppm.pfm"), m, strlen(m));
-    ck_assert_int_eq(pfm_read(in_dir("ppm.pfm"), &im, &err), -1);
+    ck_assert_int_eq(pfm_read(in_dir("ppm.pfm"), &im, NULL, &err), -1);
     ck_assert_ptr_nonnull(strstr(err.msg, "not a PFM"));
     remove_dir();
 }
@@ -167,7 +167,7 @@ START_TEST(test_malformed_pfm_header_tokens_are_refused)
         write_bytes(in_dir("h.pfm"), d, n + 12); /* room for one pixel */
         image im = {0};
         error err = {0};
-        ck_assert_msg(pfm_read(in_dir("h.pfm"), &im, &err) == -1, "no error for %s", h);
+        ck_assert_msg(pfm_read(in_dir("h.pfm"), &im, NULL, &err) == -1, "no error for %s", h);
         ck_assert_msg(strstr(err.msg, cases[i].msg) != NULL, "'%s' for %s", err.msg, h);
         ck_assert_ptr_null(im.px);
     }
@@ -189,7 +189,7 @@ START_TEST(test_truncated_pfm_is_an_error_at_every_offset)
     for (size_t i = 0; i < sizeof cuts / sizeof cuts[0]; i++) {
         write_bytes(in_dir("cut.pfm"), d, cuts[i]);
         image back = {0};
-        ck_assert_msg(pfm_read(in_dir("cut.pfm"), &back, &err) == -1, "cut at %zu", cuts[i]);
+        ck_assert_msg(pfm_read(in_dir("cut.pfm"), &back, NULL, &err) == -1, "cut at %zu", cuts[i]);
         ck_assert_ptr_null(back.px);
     }
     free(d);

@@ -49,8 +49,8 @@ START_TEST(test_rle_and_flat_roundtrips_are_within_rgbe_precision)
     fill(&im, 300, 7);
     ck_assert_int_eq(rgbe_write(in_dir("r.hdr"), &im, &err), 0);
     ck_assert_int_eq(rgbe_write_flat(in_dir("f.hdr"), &im, &err), 0);
-    ck_assert_msg(rgbe_read(in_dir("r.hdr"), &rle, &err) == 0, "%s", err.msg);
-    ck_assert_msg(rgbe_read(in_dir("f.hdr"), &flat, &err) == 0, "%s", err.msg);
+    ck_assert_msg(rgbe_read(in_dir("r.hdr"), &rle, NULL, &err) == 0, "%s", err.msg);
+    ck_assert_msg(rgbe_read(in_dir("f.hdr"), &flat, NULL, &err) == 0, "%s", err.msg);
     ck_assert_int_eq(memcmp(rle.px, flat.px, sizeof(float) * 3 * 300 * 7), 0); /* same pixels */
     ck_assert_double_le(worst_error(&im, &rle), 1.0 / 256.0);
     size_t nr, nf;
@@ -72,7 +72,7 @@ START_TEST(test_narrow_images_are_written_flat_and_read_back)
     error err = {0};
     fill(&im, 5, 3); /* below 8 pixels new-style RLE is undefined */
     ck_assert_int_eq(rgbe_write(in_dir("n.hdr"), &im, &err), 0);
-    ck_assert_msg(imageio_read(in_dir("n.hdr"), &back, &err) == 0, "%s", err.msg);
+    ck_assert_msg(imageio_read(in_dir("n.hdr"), &back, NULL, &err) == 0, "%s", err.msg);
     ck_assert_double_le(worst_error(&im, &back), 1.0 / 256.0);
     image_free(&im);
     image_free(&back);
@@ -116,7 +116,7 @@ START_TEST(test_handmade_flat_file_with_comments_and_exposure_reads)
     write_bytes(in_dir("hand.hdr"), d, sizeof d);
     image im = {0};
     error err = {0};
-    ck_assert_msg(imageio_read(in_dir("hand.hdr"), &im, &err) == 0, "%s", err.msg);
+    ck_assert_msg(imageio_read(in_dir("hand.hdr"), &im, NULL, &err) == 0, "%s", err.msg);
     ck_assert_int_eq(im.w, 1);
     ck_assert_int_eq(im.h, 2);
     ck_assert(im.px[0] == 128.5f / 128.0f && im.px[1] == 64.5f / 128.0f && im.px[2] == 0.5f / 128.0f);
@@ -136,13 +136,13 @@ START_TEST(test_old_style_runs_repeat_the_previous_pixel)
     write_bytes(in_dir("old.hdr"), d, sizeof d);
     image im = {0};
     error err = {0};
-    ck_assert_msg(rgbe_read(in_dir("old.hdr"), &im, &err) == 0, "%s", err.msg);
+    ck_assert_msg(rgbe_read(in_dir("old.hdr"), &im, NULL, &err) == 0, "%s", err.msg);
     for (int x = 0; x < 5; x++) ck_assert(image_px(&im, x, 0)[1] == 128.5f / 128.0f);
     ck_assert(image_px(&im, 5, 0)[1] == 64.5f / 128.0f);
     image_free(&im);
     memcpy(d + sizeof h - 1 + 4, "\x01\x01\x01\x09", 4); /* a run of 9 in a 6-pixel scanline */
     write_bytes(in_dir("old2.hdr"), d, sizeof d);
-    ck_assert_int_eq(rgbe_read(in_dir("old2.hdr"), &im, &err), -1);
+    ck_assert_int_eq(rgbe_read(in_dir("old2.hdr"), &im, NULL, &err), -1);
     ck_assert_ptr_nonnull(strstr(err.msg, "overflows"));
     remove_dir();
 }
@@ -174,19 +174,19 @@ START_TEST(test_hostile_rle_runs_that_overflow_the_scanline_are_errors)
     image im = {0};
     error err = {0};
     write_rle8(in_dir("ok.hdr"), (const unsigned char *)"\x88\x20", 2); /* a run of 8: fine */
-    ck_assert_msg(rgbe_read(in_dir("ok.hdr"), &im, &err) == 0, "%s", err.msg);
+    ck_assert_msg(rgbe_read(in_dir("ok.hdr"), &im, NULL, &err) == 0, "%s", err.msg);
     image_free(&im);
     write_rle8(in_dir("run.hdr"), (const unsigned char *)"\xff\x20", 2); /* a run of 127 */
-    ck_assert_int_eq(rgbe_read(in_dir("run.hdr"), &im, &err), -1);
+    ck_assert_int_eq(rgbe_read(in_dir("run.hdr"), &im, NULL, &err), -1);
     ck_assert_ptr_nonnull(strstr(err.msg, "overflows"));
     write_rle8(in_dir("lit.hdr"), (const unsigned char *)"\x04\x01\x02\x03\x04\x80", 6); /* 4 + 128 */
-    ck_assert_int_eq(rgbe_read(in_dir("lit.hdr"), &im, &err), -1);
+    ck_assert_int_eq(rgbe_read(in_dir("lit.hdr"), &im, NULL, &err), -1);
     ck_assert_ptr_nonnull(strstr(err.msg, "overflows"));
     write_rle8(in_dir("lit9.hdr"), (const unsigned char *)"\x09\x01\x02\x03\x04\x05\x06\x07\x08\x09", 10);
-    ck_assert_int_eq(rgbe_read(in_dir("lit9.hdr"), &im, &err), -1); /* one byte more than 8 */
+    ck_assert_int_eq(rgbe_read(in_dir("lit9.hdr"), &im, NULL, &err), -1); /* one byte more than 8 */
     ck_assert_ptr_nonnull(strstr(err.msg, "overflows"));
     write_rle8(in_dir("zero.hdr"), (const unsigned char *)"\x00", 1);
-    ck_assert_int_eq(rgbe_read(in_dir("zero.hdr"), &im, &err), -1);
+    ck_assert_int_eq(rgbe_read(in_dir("zero.hdr"), &im, NULL, &err), -1);
     ck_assert_ptr_nonnull(strstr(err.msg, "zero-length RLE literal"));
     ck_assert_ptr_null(im.px);
     remove_dir();
@@ -205,7 +205,7 @@ START_TEST(test_rle_literals_of_128_bytes_roundtrip_exactly)
     for (int y = 0; y < 2; y++)
         for (int x = 0; x < 300; x++) image_px(&im, x, y)[0] = (float)((128 + x % 128 + 0.5) / 256.0);
     ck_assert_int_eq(rgbe_write(in_dir("lit.hdr"), &im, &err), 0);
-    ck_assert_msg(rgbe_read(in_dir("lit.hdr"), &back, &err) == 0, "%s", err.msg);
+    ck_assert_msg(rgbe_read(in_dir("lit.hdr"), &back, NULL, &err) == 0, "%s", err.msg);
     for (int i = 0; i < 600; i++) /* red exactly; green and blue are 0, read as half a bin */
         ck_assert_msg(back.px[3 * i] == im.px[3 * i], "pixel %d: %.9g, want %.9g", i, back.px[3 * i], im.px[3 * i]);
     image_free(&im);
@@ -233,7 +233,7 @@ START_TEST(test_rle_length_other_than_the_width_is_an_error)
     write_bytes(in_dir("len.hdr"), d, o);
     image im = {0};
     error err = {0};
-    ck_assert_int_eq(rgbe_read(in_dir("len.hdr"), &im, &err), -1);
+    ck_assert_int_eq(rgbe_read(in_dir("len.hdr"), &im, NULL, &err), -1);
     ck_assert_ptr_nonnull(strstr(err.msg, "RLE length 9"));
     ck_assert_ptr_null(im.px);
     remove_dir();
@@ -247,19 +247,19 @@ START_TEST(test_unsupported_headers_are_refused_with_a_reason)
     error err = {0};
     const char *flip = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n+Y 2 +X 2\n";
     write_bytes(in_dir("flip.hdr"), flip, strlen(flip));
-    ck_assert_int_eq(rgbe_read(in_dir("flip.hdr"), &im, &err), -1);
+    ck_assert_int_eq(rgbe_read(in_dir("flip.hdr"), &im, NULL, &err), -1);
     ck_assert_ptr_nonnull(strstr(err.msg, "only -Y H +X W"));
     const char *xyze = "#?RADIANCE\nFORMAT=32-bit_rle_xyze\n\n-Y 2 +X 2\n";
     write_bytes(in_dir("xyze.hdr"), xyze, strlen(xyze));
-    ck_assert_int_eq(rgbe_read(in_dir("xyze.hdr"), &im, &err), -1);
+    ck_assert_int_eq(rgbe_read(in_dir("xyze.hdr"), &im, NULL, &err), -1);
     ck_assert_ptr_nonnull(strstr(err.msg, "xyze"));
     const char *big = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 99999 +X 99999\n";
     write_bytes(in_dir("big.hdr"), big, strlen(big));
-    ck_assert_int_eq(rgbe_read(in_dir("big.hdr"), &im, &err), -1);
+    ck_assert_int_eq(rgbe_read(in_dir("big.hdr"), &im, NULL, &err), -1);
     ck_assert_ptr_nonnull(strstr(err.msg, "over the limit"));
     const char *junk = "#?RADIANCE\n\n-Y two +X 2\n";
     write_bytes(in_dir("junk.hdr"), junk, strlen(junk));
-    ck_assert_int_eq(rgbe_read(in_dir("junk.hdr"), &im, &err), -1);
+    ck_assert_int_eq(rgbe_read(in_dir("junk.hdr"), &im, NULL, &err), -1);
     ck_assert_ptr_null(im.px);
     remove_dir();
 }
@@ -274,7 +274,7 @@ static int read_bytes_hdr(const char *res, const void *px, size_t n, image *im, 
     ck_assert(h > 0 && (size_t)h + n <= sizeof d);
     memcpy(d + h, px, n);
     write_bytes(in_dir("b.hdr"), d, (size_t)h + n);
-    return rgbe_read(in_dir("b.hdr"), im, err);
+    return rgbe_read(in_dir("b.hdr"), im, NULL, err);
 }
 
 /* What marks a scanline as new-style RLE: width 8 to 32767 and 2, 2, then a length whose high
@@ -350,12 +350,12 @@ START_TEST(test_header_lines_magic_and_resolution)
     error err = {0};
     const char *ws = "#?RADIANCE \r\nFORMAT=32-bit_rle_rgbe \t\r\n\r\n-Y 1 +X 1 \r\n\x80\x80\x80\x81";
     write_bytes(in_dir("ws.hdr"), ws, strlen(ws));
-    ck_assert_msg(rgbe_read(in_dir("ws.hdr"), &im, &err) == 0, "%s", err.msg);
+    ck_assert_msg(rgbe_read(in_dir("ws.hdr"), &im, NULL, &err) == 0, "%s", err.msg);
     ck_assert(im.px[0] == 128.5f / 128.0f);
     image_free(&im);
     const char *magic = "#!RADIANCE\n\n-Y 1 +X 1\n\x80\x80\x80\x81";
     write_bytes(in_dir("magic.hdr"), magic, strlen(magic));
-    ck_assert_int_eq(rgbe_read(in_dir("magic.hdr"), &im, &err), -1);
+    ck_assert_int_eq(rgbe_read(in_dir("magic.hdr"), &im, NULL, &err), -1);
     ck_assert_ptr_nonnull(strstr(err.msg, "not a Radiance file"));
     ck_assert_int_eq(read_bytes_hdr("-Y 1 +X 1 junk", "\x80\x80\x80\x81", 4, &im, &err), -1);
     ck_assert_ptr_nonnull(strstr(err.msg, "bad Radiance resolution line \"-Y 1 +X 1 junk\""));
@@ -380,7 +380,7 @@ START_TEST(test_truncated_hdr_is_an_error_at_every_offset)
         for (size_t i = 0; i < sizeof cuts / sizeof cuts[0]; i++) {
             write_bytes(in_dir("cut.hdr"), d, cuts[i]);
             image back = {0};
-            ck_assert_msg(rgbe_read(in_dir("cut.hdr"), &back, &err) == -1, "flat %d cut at %zu", flat, cuts[i]);
+            ck_assert_msg(rgbe_read(in_dir("cut.hdr"), &back, NULL, &err) == -1, "flat %d cut at %zu", flat, cuts[i]);
             ck_assert_ptr_null(back.px);
         }
         free(d);

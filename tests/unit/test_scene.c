@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "envtex/imageio.h"
@@ -1676,10 +1677,43 @@ END_TEST
 /* A file that never ends (/dev/zero) is refused at its first NUL byte, line 1, instead of read
  * until memory runs out (the whole file used to be read before the NUL check).  Catches a
  * reader that checks only after the end of the file: this test then runs out of memory or time. */
-START_TEST(test_an_endless_binary_file_is_refused_at_its_first_nul)
+/* A pipe that never ends (a child writes zeros until the pipe is closed): the reader checks each
+ * line as it arrives, so it fails at the first byte instead of filling memory. */
+START_TEST(test_an_endless_binary_stream_is_refused_at_its_first_nul)
 {
-    if (access("/dev/zero", R_OK) != 0) return; /* not on this system */
-    load_file_fails("/dev/zero", 1, "NUL byte");
+    int fds[2];
+    ck_assert_int_eq(pipe(fds), 0);
+    pid_t child = fork();
+    ck_assert_int_ge(child, 0);
+    if (child == 0) {
+        close(fds[0]);
+        static const char zeros[4096];
+        while (write(fds[1], zeros, sizeof zeros) > 0) {}
+        _exit(0); /* the reader closed its end: EPIPE (or SIGPIPE) */
+    }
+    close(fds[1]);
+    char path[64];
+    snprintf(path, sizeof path, "/dev/fd/%d", fds[0]);
+    load_file_fails(path, 1, "NUL byte");
+    close(fds[0]);
+    ck_assert_int_eq(waitpid(child, NULL, 0), child);
+}
+END_TEST
+
+/* A device, a folder or a FIFO nobody writes to: one line, and no read that could block.  Only
+ * regular files and pipes are scenes (infile_open_stream). */
+START_TEST(test_a_device_or_folder_is_no_scene_and_a_silent_fifo_reads_as_empty)
+{
+    if (access("/dev/zero", R_OK) == 0) load_file_fails("/dev/zero", 0, "it is a character device");
+    load_file_fails("/", 0, "it is a directory, not a regular file or a pipe");
+    char fifo[] = "/tmp/envtex_fifo_XXXXXX";
+    ck_assert_ptr_nonnull(mkdtemp(fifo));
+    char path[64];
+    snprintf(path, sizeof path, "%s/f", fifo);
+    ck_assert_int_eq(mkfifo(path, 0600), 0);
+    load_file_fails(path, 0, "no 'size' command"); /* no writer: end of file at once */
+    unlink(path);
+    rmdir(fifo);
 }
 END_TEST
 
@@ -1805,6 +1839,112 @@ START_TEST(test_texture_images_are_read_once_and_pyramids_built_only_when_needed
 }
 END_TEST
 
+/* A texture file named three ways (a path, ./ and a hard link) is read once and its pyramid
+ * built once; an OBJ named three ways is parsed once and each line appends its own triangles;
+ * the scene lists every file it read once, by identity, for main.c's output check. */
+START_TEST(test_files_named_many_ways_are_read_once_and_listed_as_inputs)
+{
+    char dir[] = "/tmp/test_scene_XXXXXX";
+    ck_assert_ptr_nonnull(mkdtemp(dir));
+    char img_path[512], link_path[512], path[512];
+    snprintf(img_path, sizeof img_path, "%s/wood.pfm", dir);
+    snprintf(link_path, sizeof link_path, "%s/link.pfm", dir);
+    snprintf(path, sizeof path, "%s/x.test", dir);
+    image im = {0};
+    error err = {0};
+    ck_assert_int_eq(image_alloc(&im, 8, 8, &err), 0);
+    ck_assert_msg(imageio_write(img_path, &im, NULL, &err) == 0, "%s", err.msg);
+    image_free(&im);
+    ck_assert_int_eq(link(img_path, link_path), 0);
+    write_file(dir, "quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
+    write_file(dir, "x.test", HEAD "texture a wood.pfm\ntexture b ./wood.pfm\ntexture c link.pfm\n"
+                                   "texfilter trilinear\ndiffusemap a\nsphere 0 0 0 1\ndiffusemap b\n"
+                                   "sphere 0 0 0 1\ndiffusemap c\nsphere 0 0 0 1\n"
+                                   "obj quad.obj\nobj ./quad.obj\ntranslate 1 0 0\nobj ././quad.obj\n");
+    scene sc;
+    ck_assert_msg(scene_load(path, NULL, &sc, &err) == 0, "%s", err.msg);
+    ck_assert_int_eq(sc.n_texture_images, 1);
+    ck_assert_int_eq(sc.textures[0].tex.has_mip, 1); /* one pyramid, used by the three maps */
+    ck_assert_int_eq(sc.textures[1].tex.has_mip + sc.textures[2].tex.has_mip, 0);
+    for (int m = 0; m < sc.n_materials; m++)
+        ck_assert(sc.materials[m].diffusemap == 0 || sc.materials[m].diffusemap == 1);
+    ck_assert_int_eq(sc.n_triangles, 6); /* three lines of two triangles */
+    assert_vec_near(sc.triangles[4].p[1], 2, 0, 0); /* the last line's own transform */
+    ck_assert_int_eq(sc.inputs.n, 3); /* wood.pfm, quad.obj, the scene */
+    ck_assert_str_eq(sc.inputs.at[2].path, path);
+    ck_assert_ptr_nonnull(strstr(sc.inputs.at[0].path, "quad.obj")); /* at its line */
+    ck_assert_ptr_nonnull(strstr(sc.inputs.at[1].path, "wood.pfm")); /* at the end */
+    ck_assert_ptr_nonnull(infile_list_clash(&sc.inputs, link_path));
+    scene_free(&sc);
+    unlink(img_path);
+    unlink(link_path);
+    remove_file(dir, "quad.obj");
+    remove_file(dir, "x.test");
+    rmdir(dir);
+}
+END_TEST
+
+/* A mesh named by many `obj` lines is parsed once (its arrays charged once: the peak grows by
+ * the triangles alone), and the triangles each line appends are charged, so a budget refuses
+ * the line that would exceed it, naming the mesh and the budget. */
+START_TEST(test_an_obj_named_often_is_parsed_once_and_its_triangles_are_charged)
+{
+    char dir[] = "/tmp/test_scene_XXXXXX";
+    ck_assert_ptr_nonnull(mkdtemp(dir));
+    char path[512];
+    snprintf(path, sizeof path, "%s/x.test", dir);
+    char *mesh = malloc(20000 * 8 + 64); /* 20000 vertices, one triangle */
+    ck_assert_ptr_nonnull(mesh);
+    mesh[0] = '\0';
+    for (int i = 0; i < 20000; i++) strcat(mesh + (i > 0 ? 8 * (i - 1) : 0), "v 0 0 0\n");
+    strcat(mesh + 8 * 19999, "f 1 2 3\n");
+    write_file(dir, "m.obj", mesh);
+    free(mesh);
+    double peak[2];
+    for (int k = 0; k < 2; k++) {
+        write_file(dir, "x.test", k == 0 ? HEAD "obj m.obj\n" : HEAD "obj m.obj\nobj ./m.obj\nobj m.obj\n");
+        budget mem;
+        budget_init(&mem, 1e9);
+        scene_load_opts o = scene_load_defaults();
+        o.mem = &mem;
+        scene sc;
+        error err = {0};
+        ck_assert_msg(scene_load(path, &o, &sc, &err) == 0, "%s", err.msg);
+        ck_assert_int_eq(sc.n_triangles, k == 0 ? 1 : 3);
+        peak[k] = mem.peak;
+        scene_free(&sc);
+    }
+    ck_assert_msg(peak[1] == peak[0], "peak %g for three lines, %g for one", peak[1], peak[0]);
+    /* a mesh of 1000 triangles: a budget that holds one line's (1024 scene triangles) refuses the
+     * second line, which needs room for 1024 more */
+    char *tris = malloc(1000 * 8 + 64);
+    ck_assert_ptr_nonnull(tris);
+    strcpy(tris, "v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+    for (int i = 0; i < 1000; i++) strcat(tris + 24 + 8 * (i > 0 ? i - 1 : 0), "f 1 2 3\n");
+    write_file(dir, "t.obj", tris);
+    free(tris);
+    write_file(dir, "x.test", HEAD "obj t.obj\n");
+    budget mem;
+    budget_init(&mem, 1e9);
+    scene_load_opts o = scene_load_defaults();
+    o.mem = &mem;
+    scene sc;
+    error err = {0};
+    ck_assert_msg(scene_load(path, &o, &sc, &err) == 0, "%s", err.msg);
+    scene_free(&sc);
+    write_file(dir, "x.test", HEAD "obj t.obj\nobj ./t.obj\n");
+    budget_init(&mem, mem.peak);
+    ck_assert_int_eq(scene_load(path, &o, &sc, &err), -1);
+    ck_assert_int_eq(err.line, 4);
+    ck_assert_msg(strstr(err.msg, "obj './t.obj': room for 1024 more triangles x "), "%s", err.msg);
+    ck_assert_ptr_nonnull(strstr(err.msg, "beyond the memory budget of"));
+    remove_file(dir, "t.obj");
+    remove_file(dir, "m.obj");
+    remove_file(dir, "x.test");
+    rmdir(dir);
+}
+END_TEST
+
 Suite *scene_suite(void)
 {
     Suite *s = suite_create("scene");
@@ -1815,7 +1955,8 @@ Suite *scene_suite(void)
     tcase_add_test(errors, test_a_scene_without_camera_is_an_error_at_the_end);
     tcase_add_test(errors, test_a_line_longer_than_the_limit_is_an_error_not_an_overflow);
     tcase_add_test(errors, test_a_scene_file_is_read_across_its_chunks_as_one_text);
-    tcase_add_test(errors, test_an_endless_binary_file_is_refused_at_its_first_nul);
+    tcase_add_test(errors, test_an_endless_binary_stream_is_refused_at_its_first_nul);
+    tcase_add_test(errors, test_a_device_or_folder_is_no_scene_and_a_silent_fifo_reads_as_empty);
     tcase_add_test(errors, test_push_deeper_than_the_stack_limit_is_an_error);
     tcase_add_test(errors, test_more_primitives_than_the_limit_is_an_error);
     tcase_add_test(errors, test_limits_hold_at_their_exact_bounds);
@@ -1874,6 +2015,8 @@ Suite *scene_suite(void)
     tcase_add_test(tex, test_texture_errors_name_their_line_and_token);
     tcase_add_test(tex, test_obj_meshes_load_under_the_transform_and_material);
     tcase_add_test(tex, test_texture_images_are_read_once_and_pyramids_built_only_when_needed);
+    tcase_add_test(tex, test_files_named_many_ways_are_read_once_and_listed_as_inputs);
+    tcase_add_test(tex, test_an_obj_named_often_is_parsed_once_and_its_triangles_are_charged);
     suite_add_tcase(s, tex);
     return s;
 }

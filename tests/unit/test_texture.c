@@ -52,14 +52,14 @@ START_TEST(test_image_filters_are_the_lookups_they_name)
     texture_init_image(&tx, &im, WRAP_REPEAT);
     ck_assert(texture_needs_prepare(&tx, TEXFILTER_TRILINEAR));
     ck_assert(!texture_needs_prepare(&tx, TEXFILTER_BILINEAR));
-    ck_assert_int_eq(texture_prepare(&tx, TEXFILTER_BILINEAR, &err), 0);
+    ck_assert_int_eq(texture_prepare(&tx, TEXFILTER_BILINEAR, NULL, &err), 0);
     ck_assert_int_eq(tx.has_mip, 0); /* no pyramid unless a filter needs it */
-    ck_assert_int_eq(texture_prepare(&tx, TEXFILTER_EWA, &err), 0);
+    ck_assert_int_eq(texture_prepare(&tx, TEXFILTER_EWA, NULL, &err), 0);
     ck_assert_int_eq(tx.has_mip, 1);
     ck_assert(!texture_needs_prepare(&tx, TEXFILTER_EWA));
     ck_assert(!texture_needs_prepare(&tx, TEXFILTER_TRILINEAR)); /* the same pyramid */
     const image *level1 = mipmap_level(&tx.mip, 1);
-    ck_assert_int_eq(texture_prepare(&tx, TEXFILTER_TRILINEAR, &err), 0);
+    ck_assert_int_eq(texture_prepare(&tx, TEXFILTER_TRILINEAR, NULL, &err), 0);
     ck_assert_ptr_eq(mipmap_level(&tx.mip, 1)->px, level1->px); /* the pyramid is not rebuilt */
     texture_query q;
     memset(&q, 0, sizeof q);
@@ -84,6 +84,32 @@ START_TEST(test_image_filters_are_the_lookups_they_name)
     texture_free(&tx);
     ck_assert_int_eq(tx.has_mip, 0);
     texture_free(&tx); /* safe twice */
+    image_free(&im);
+}
+END_TEST
+
+/* The pyramid is charged before it is built (mipmap_cost_of), the building scratch released; a
+ * budget one byte short refuses and leaves nothing. */
+START_TEST(test_the_pyramid_is_charged_before_it_is_built)
+{
+    image im = ramp(8, 4);
+    texture tx;
+    error err = {0};
+    mipmap_cost c = mipmap_cost_of(8, 4);
+    /* levels 4x2, 2x1, 1x1: 11 texels of 12 bytes; scratch 4 x 4 doubles */
+    ck_assert(c.levels == 11 * 12.0 && c.scratch >= 4 * 4 * 3 * 8.0);
+    budget mem;
+    budget_init(&mem, c.levels + c.scratch - 1);
+    texture_init_image(&tx, &im, WRAP_REPEAT);
+    ck_assert_int_eq(texture_prepare(&tx, TEXFILTER_TRILINEAR, &mem, &err), -1);
+    ck_assert_msg(strstr(err.msg, "a mip pyramid of 8 x 4 texels = "), "%s", err.msg);
+    ck_assert(mem.used == 0 && !tx.has_mip);
+    budget_init(&mem, c.levels + c.scratch);
+    ck_assert_int_eq(texture_prepare(&tx, TEXFILTER_EWA, &mem, &err), 0); /* the levels */
+    ck_assert(mem.used == c.levels && mem.peak == c.levels + c.scratch);
+    ck_assert_int_eq(texture_prepare(&tx, TEXFILTER_TRILINEAR, &mem, &err), 0); /* nothing more */
+    ck_assert(mem.used == c.levels);
+    texture_free(&tx);
     image_free(&im);
 }
 END_TEST
@@ -431,7 +457,7 @@ START_TEST(test_trilinear_measures_a_non_square_images_footprint_in_texels)
             for (int i = 0; i < w; i++) image_set(&im, i, j, rgb_gray((i + j) % 2));
         texture t;
         texture_init_image(&t, &im, WRAP_REPEAT);
-        ck_assert_int_eq(texture_prepare(&t, TEXFILTER_TRILINEAR, &err), 0);
+        ck_assert_int_eq(texture_prepare(&t, TEXFILTER_TRILINEAR, NULL, &err), 0);
         texture_query q = {0};
         q.filter = TEXFILTER_TRILINEAR;
         q.st = (uv2){5.5 / w, (h - 2.5) / h}; /* the centre of texel (5, 2) from the top: 1 */
@@ -455,6 +481,7 @@ Suite *texture_suite(void)
     TCase *tc = tcase_create("core");
     tcase_add_test(tc, test_names_round_trip);
     tcase_add_test(tc, test_image_filters_are_the_lookups_they_name);
+    tcase_add_test(tc, test_the_pyramid_is_charged_before_it_is_built);
     tcase_add_test(tc, test_checker_point_values_follow_the_parity_of_the_squares);
     tcase_add_test(tc, test_checker_box_filter_matches_a_brute_force_average);
     tcase_add_test(tc, test_checker_is_point_sampled_by_nearest_and_bilinear);

@@ -72,7 +72,7 @@ static inline unsigned char *slurp(const char *path, size_t *n)
 {
     unsigned char *d = NULL;
     error err = {0};
-    ck_assert_msg(imageio_read_all(path, &d, n, &err) == 0, "%s", err.msg);
+    ck_assert_msg(imageio_read_all(path, &d, n, NULL, &err) == 0, "%s", err.msg);
     return d;
 }
 
