@@ -17,7 +17,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "envtex/imageio.h"
+#include "envtex/fileio.h"
 #include "envtex/infile.h"
 
 /* ---- our stream: a file descriptor plus the first message the library reported ------------- */
@@ -486,7 +486,7 @@ int exrfile_write(const char *path, const image *im, int half, error *err)
     int enc_ready = 0, rc = -1;
     exr_result_t r;
 
-    s.fd = imageio_tmp_open(path, tmp, err);
+    s.fd = fileio_tmp_open(path, tmp, err);
     if (s.fd < 0) return -1;
 
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
@@ -555,7 +555,7 @@ int exrfile_write(const char *path, const image *im, int half, error *err)
         error_set(err, path, 0, "cannot write: %s", strerror(errno));
         goto done;
     }
-    rc = imageio_tmp_commit(tmp, path, err);
+    rc = fileio_tmp_commit(tmp, path, err);
     tmp[0] = '\0'; /* commit removes the temporary file itself when it fails */
     goto done;
 fail:
@@ -564,7 +564,7 @@ done:
     if (enc_ready) exr_encoding_destroy(ctx, &enc);
     if (ctx) exr_finish(&ctx);
     if (s.fd >= 0) close(s.fd);
-    if (rc != 0 && tmp[0]) imageio_tmp_abandon(tmp);
+    if (rc != 0 && tmp[0]) fileio_tmp_abandon(tmp);
     free(guard.copy);
     writing = NULL;
     return rc;

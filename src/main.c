@@ -30,6 +30,7 @@
 #include "envtex/convert.h"
 #include "envtex/genenv.h"
 #include "envtex/gradetest.h"
+#include "envtex/fileio.h"
 #include "envtex/imageio.h"
 #include "envtex/infile.h"
 #include "envtex/perlin.h"
@@ -206,10 +207,10 @@ static int check_output_as(const char *path, int any_name, error *err)
     if (!any_name && !imageio_can_write(path))
         return error_set(err, path, 0, "cannot write this format: use .exr, .png, .pfm or .hdr");
     char tmp[ERROR_FILE_MAX];
-    int fd = imageio_tmp_open(path, tmp, err);
+    int fd = fileio_tmp_open(path, tmp, err);
     if (fd < 0) return -1;
     close(fd);
-    imageio_tmp_abandon(tmp);
+    fileio_tmp_abandon(tmp);
     return 0;
 }
 

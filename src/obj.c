@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "envtex/imageio.h"
+#include "envtex/fileio.h"
 
 typedef struct reader {
     obj_mesh *m;
@@ -253,10 +253,10 @@ int obj_load(const char *path, long max_elems, obj_mesh *out, budget *mem, error
     memset(out, 0, sizeof *out);
     unsigned char *data = NULL;
     size_t size = 0;
-    if (imageio_read_all(path, &data, &size, mem, err)) return -1;
+    if (fileio_read_all(path, &data, &size, mem, err)) return -1;
     int rc = parse((const char *)data, size, path, max_elems, out, mem, err);
     free(data);
-    budget_release(mem, (double)size + 1); /* the file's bytes (imageio_read_all) */
+    budget_release(mem, (double)size + 1); /* the file's bytes (fileio_read_all) */
     return rc;
 }
 

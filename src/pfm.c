@@ -10,7 +10,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "envtex/imageio.h"
+#include "envtex/fileio.h"
 
 /* Skip white space, then read a token of at most 63 characters; returns its length (0 at end). */
 static size_t next_token(const unsigned char *d, size_t n, size_t *at, char tok[64])
@@ -43,7 +43,7 @@ int pfm_read(const char *path, image *out, budget *mem, error *err)
     int rc = -1;
     image im = {0};
     double charged = 0; /* the image's bytes, once charged */
-    if (imageio_read_all(path, &d, &n, mem, err)) return -1;
+    if (fileio_read_all(path, &d, &n, mem, err)) return -1;
     if (n < 2 || d[0] != 'P' || (d[1] != 'F' && d[1] != 'f')) {
         error_set(err, path, 0, "not a PFM file (it must start with PF or Pf)");
         goto done;
@@ -105,7 +105,7 @@ int pfm_read(const char *path, image *out, budget *mem, error *err)
     rc = 0;
 done:
     free(d);
-    budget_release(mem, (double)n + 1); /* the file's bytes (imageio_read_all) */
+    budget_release(mem, (double)n + 1); /* the file's bytes (fileio_read_all) */
     if (rc) budget_release(mem, charged);
     image_free(&im);
     return rc;
@@ -116,7 +116,7 @@ int pfm_write(const char *path, const image *im, error *err)
     if (!im || !im->px || image_check_size(im->w, im->h, path, err))
         return error_set(err, path, 0, "cannot write an empty or invalid image");
     char tmp[ERROR_FILE_MAX];
-    FILE *f = imageio_tmp_fopen(path, tmp, err);
+    FILE *f = fileio_tmp_fopen(path, tmp, err);
     if (!f) return -1;
     size_t rowbytes = (size_t)im->w * 3 * 4;
     unsigned char *row = malloc(rowbytes);
@@ -138,8 +138,8 @@ int pfm_write(const char *path, const image *im, error *err)
     free(row);
     if (fclose(f) != 0 && ok) { ok = 0; e = errno; }
     if (!ok) {
-        imageio_tmp_abandon(tmp);
+        fileio_tmp_abandon(tmp);
         return error_set(err, path, 0, "cannot write: %s", oom ? "out of memory" : strerror(e));
     }
-    return imageio_tmp_commit(tmp, path, err);
+    return fileio_tmp_commit(tmp, path, err);
 }

@@ -16,7 +16,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "envtex/imageio.h"
+#include "envtex/fileio.h"
 #include "envtex/infile.h"
 
 /* Deflate's largest expansion: a 258-byte match coded in 2 bits is 1032 : 1 (RFC 1951). */
@@ -221,7 +221,7 @@ static int write_png(const char *path, png_fixed_point gama, int w, int h, const
     char tmp[ERROR_FILE_MAX];
     png_job job = {.path = path, .gama = gama};
     int rc = -1;
-    job.f = imageio_tmp_fopen(path, tmp, err);
+    job.f = fileio_tmp_fopen(path, tmp, err);
     if (!job.f) return -1;
     job.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &job, job_error, job_warning);
     if (job.png) job.info = png_create_info_struct(job.png);
@@ -236,10 +236,10 @@ done:
     if (job.f && fclose(job.f) != 0 && rc == 0)
         rc = error_set(err, path, 0, "cannot write: %s", strerror(errno));
     if (rc != 0) {
-        imageio_tmp_abandon(tmp);
+        fileio_tmp_abandon(tmp);
         return -1;
     }
-    return imageio_tmp_commit(tmp, path, err);
+    return fileio_tmp_commit(tmp, path, err);
 }
 
 int pngfile_write_rgb8(const char *path, int w, int h, const uint8_t *rgb8, error *err)

@@ -9,7 +9,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "envtex/imageio.h"
+#include "envtex/fileio.h"
 
 /* Below this the brightest channel stores as black (e = 0): RGBE's smallest exponent is 2^-128,
  * and Radiance itself uses 1e-32 as its "black" cut-off. */
@@ -145,7 +145,7 @@ int rgbe_read(const char *path, image *out, budget *mem, error *err)
     image im = {0};
     char line[256];
     double image_bytes = 0; /* charged: the image (not its scanline buffer, 128 KB at most) */
-    if (imageio_read_all(path, &d, &n, mem, err)) return -1;
+    if (fileio_read_all(path, &d, &n, mem, err)) return -1;
     if (n < 2 || d[0] != '#' || d[1] != '?') {
         error_set(err, path, 0, "not a Radiance file (it must start with #?)");
         goto done;
@@ -207,7 +207,7 @@ truncated_header:
 done:
     free(d);
     free(scan);
-    budget_release(mem, (double)n + 1);       /* the file's bytes (imageio_read_all) */
+    budget_release(mem, (double)n + 1);       /* the file's bytes (fileio_read_all) */
     if (rc) budget_release(mem, image_bytes); /* and the image, freed */
     image_free(&im);
     return rc;
@@ -251,7 +251,7 @@ static int write_rgbe(const char *path, const image *im, int rle, error *err)
         return error_set(err, path, 0, "cannot write an empty or invalid image");
     if (im->w < 8 || im->w > 0x7fff) rle = 0; /* new-style RLE is undefined outside [8, 32767] */
     char tmp[ERROR_FILE_MAX];
-    FILE *f = imageio_tmp_fopen(path, tmp, err);
+    FILE *f = fileio_tmp_fopen(path, tmp, err);
     if (!f) return -1;
     size_t w = (size_t)im->w;
     unsigned char *scan = malloc(4 * w), *packed = malloc(4 * (w + w / 128 + 2) + 4);
@@ -277,10 +277,10 @@ static int write_rgbe(const char *path, const image *im, int rle, error *err)
     free(packed);
     if (fclose(f) != 0 && ok) { ok = 0; e = errno; }
     if (!ok) {
-        imageio_tmp_abandon(tmp);
+        fileio_tmp_abandon(tmp);
         return error_set(err, path, 0, "cannot write: %s", oom ? "out of memory" : strerror(e));
     }
-    return imageio_tmp_commit(tmp, path, err);
+    return fileio_tmp_commit(tmp, path, err);
 }
 
 int rgbe_write(const char *path, const image *im, error *err) { return write_rgbe(path, im, 1, err); }

@@ -72,21 +72,4 @@ int imageio_write_set(int n, const char *const *paths, const image *const *image
 /* 1 if `path` ends in an extension imageio_write knows, else 0. */
 int imageio_can_write(const char *path);
 
-/* Atomic-write helpers shared by the format modules: open a temporary file beside `path`
- * (its name goes to tmp_path, at least ERROR_FILE_MAX bytes; mode 0666 less the umask), and
- * commit (fsync-free rename) or abandon it (unlink).  The caller closes the descriptor (and
- * checks close / fclose) BEFORE commit.  A failed commit unlinks the temporary file itself.
- * Library code outside imageio may use them for other output files. */
-int imageio_tmp_open(const char *path, char *tmp_path, error *err); /* returns an fd or -1 */
-/* imageio_tmp_open as a stdio stream ("wb"); NULL on failure (nothing left behind). */
-FILE *imageio_tmp_fopen(const char *path, char *tmp_path, error *err);
-int imageio_tmp_commit(const char *tmp_path, const char *path, error *err);
-void imageio_tmp_abandon(const char *tmp_path);
-
-/* Read a whole regular file into *data (malloc'd, one extra 0 byte after the *size bytes; free()
- * it), its size + 1 charged to `mem` first (the caller releases it when it frees the data).
- * Errors: "cannot open: ..." (missing, a folder, not a regular file: infile_open), the budget,
- * read errors. */
-int imageio_read_all(const char *path, unsigned char **data, size_t *size, budget *mem, error *err);
-
 #endif

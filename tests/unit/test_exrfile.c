@@ -512,7 +512,7 @@ START_TEST(test_dwa_files_are_refused_with_a_resave_hint)
     ck_assert_int_eq(exrfile_write(in_dir("z.exr"), &im, 1, &err), 0);
     unsigned char *d;
     size_t n;
-    ck_assert_int_eq(imageio_read_all(in_dir("z.exr"), &d, &n, NULL, &err), 0);
+    ck_assert_int_eq(fileio_read_all(in_dir("z.exr"), &d, &n, NULL, &err), 0);
     long at = compression_byte(d, n);
     ck_assert_int_ge(at, 0);
     ck_assert_int_eq(d[at], EXR_COMPRESSION_ZIP);
@@ -562,7 +562,7 @@ START_TEST(test_corrupted_exr_bytes_never_crash)
     ck_assert_int_eq(exrfile_write(in_dir("ok.exr"), &im, 1, &err), 0);
     unsigned char *d;
     size_t n;
-    ck_assert_int_eq(imageio_read_all(in_dir("ok.exr"), &d, &n, NULL, &err), 0);
+    ck_assert_int_eq(fileio_read_all(in_dir("ok.exr"), &d, &n, NULL, &err), 0);
     unsigned s = 12345u; /* fixed seed: the same corruptions every run */
     for (int trial = 0; trial < 60; trial++) {
         unsigned char *c = malloc(n);
@@ -609,10 +609,10 @@ START_TEST(test_failed_exr_write_leaves_the_old_file_byte_identical)
     ck_assert_int_eq(exrfile_write(in_dir("keep.exr"), &im, 0, &err), 0);
     unsigned char *before, *after;
     size_t nb, na;
-    ck_assert_int_eq(imageio_read_all(in_dir("keep.exr"), &before, &nb, NULL, &err), 0);
+    ck_assert_int_eq(fileio_read_all(in_dir("keep.exr"), &before, &nb, NULL, &err), 0);
     ck_assert_int_eq(exrfile_write(in_dir("keep.exr"), &empty, 0, &err), -1); /* invalid image */
     ck_assert_int_eq(exrfile_write(in_dir("no/such/folder.exr"), &im, 0, &err), -1);
-    ck_assert_int_eq(imageio_read_all(in_dir("keep.exr"), &after, &na, NULL, &err), 0);
+    ck_assert_int_eq(fileio_read_all(in_dir("keep.exr"), &after, &na, NULL, &err), 0);
     ck_assert_uint_eq(na, nb);
     ck_assert_int_eq(memcmp(before, after, nb), 0);
     ck_assert(!count_tmp_files());

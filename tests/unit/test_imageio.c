@@ -1,4 +1,4 @@
-/* test_imageio.c - reading by magic bytes, writing by extension, atomic temporary files. */
+/* test_imageio.c - reading by magic bytes, writing by extension. */
 #include <dirent.h>
 #include <math.h>
 #include <stdio.h>
@@ -318,42 +318,6 @@ START_TEST(test_a_set_of_images_is_written_all_or_none)
 }
 END_TEST
 
-START_TEST(test_temporary_files_live_beside_the_target_and_commit_by_rename)
-{
-    make_dir();
-    char tmp[ERROR_FILE_MAX];
-    error err = {0};
-    int fd = imageio_tmp_open(in_dir("t.bin"), tmp, &err);
-    ck_assert_int_ge(fd, 0);
-    ck_assert_int_eq(strncmp(tmp, in_dir("t.bin.tmp."), strlen(in_dir("t.bin.tmp."))), 0);
-    ck_assert_int_eq((int)write(fd, "abc", 3), 3);
-    ck_assert_int_eq(close(fd), 0);
-    struct stat st;
-    ck_assert_int_eq(stat(tmp, &st), 0);
-    mode_t mask = umask(0);
-    umask(mask);
-    ck_assert_int_eq((int)(st.st_mode & 0777), (int)(0666 & ~mask)); /* not mkstemp's 0600 */
-    ck_assert_int_eq(imageio_tmp_commit(tmp, in_dir("t.bin"), &err), 0);
-    size_t n;
-    unsigned char *d = slurp(in_dir("t.bin"), &n);
-    ck_assert_uint_eq(n, 3);
-    free(d);
-    fd = imageio_tmp_open(in_dir("t.bin"), tmp, &err);
-    ck_assert_int_ge(fd, 0);
-    close(fd);
-    imageio_tmp_abandon(tmp);
-    ck_assert_int_eq(count_files(".tmp."), 0);
-    ck_assert_int_eq(imageio_tmp_open(in_dir("no/t.bin"), tmp, &err), -1);
-    ck_assert_ptr_nonnull(strstr(err.msg, "No such file or directory"));
-    char longpath[ERROR_FILE_MAX + 10];
-    memset(longpath, 'a', sizeof longpath - 1);
-    longpath[sizeof longpath - 1] = '\0';
-    ck_assert_int_eq(imageio_tmp_open(longpath, tmp, &err), -1);
-    ck_assert_ptr_nonnull(strstr(err.msg, "too long"));
-    remove_dir();
-}
-END_TEST
-
 Suite *imageio_suite(void)
 {
     Suite *s = suite_create("imageio");
@@ -368,7 +332,6 @@ Suite *imageio_suite(void)
     tcase_add_test(tc, test_every_reader_charges_the_budget_and_keeps_only_the_image_charged);
     tcase_add_test(tc, test_unknown_extension_and_invalid_images_write_nothing);
     tcase_add_test(tc, test_write_as_a_named_format_whatever_the_name);
-    tcase_add_test(tc, test_temporary_files_live_beside_the_target_and_commit_by_rename);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -12,6 +12,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include "envtex/fileio.h"
 #include "envtex/imageio.h"
 #include "unit.h"
 
@@ -72,7 +73,7 @@ static inline unsigned char *slurp(const char *path, size_t *n)
 {
     unsigned char *d = NULL;
     error err = {0};
-    ck_assert_msg(imageio_read_all(path, &d, n, NULL, &err) == 0, "%s", err.msg);
+    ck_assert_msg(fileio_read_all(path, &d, n, NULL, &err) == 0, "%s", err.msg);
     return d;
 }
 
