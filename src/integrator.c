@@ -4,9 +4,6 @@
 #include <string.h>
 #include <time.h>
 
-#include "envtex/analyticdirect.h"
-#include "envtex/direct.h"
-#include "envtex/pathtracer.h"
 #include "envtex/sphere.h"
 #include "envtex/texshade.h"
 
@@ -98,18 +95,6 @@ void integrator_free(integrator *it)
     if (it->has_envlight) envlight_free(&it->el);
     if (it->has_lights) lights_free(&it->ls);
     it->has_envlight = it->has_lights = 0;
-}
-
-rgb integrator_radiance(integrator *it, ray r, rng *g) { return integrator_radiance_diff(it, r, NULL, g); }
-
-rgb integrator_radiance_diff(integrator *it, ray r, const ray_diff *rd, rng *g)
-{
-    switch (it->sc->integrator) {
-    case INTEGRATOR_RAYTRACER: return raytracer_trace_diff(&it->rt, r, rd);
-    case INTEGRATOR_ANALYTICDIRECT: return analyticdirect_radiance_diff(it, r, rd, g);
-    case INTEGRATOR_DIRECT: return direct_radiance_diff(it, r, rd, g);
-    default: return pathtracer_radiance_diff(it, r, rd, g);
-    }
 }
 
 void integrator_intersect(integrator *it, const ray *r, scene_hit *out)

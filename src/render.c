@@ -4,12 +4,27 @@
 #include <string.h>
 #include <time.h>
 
+#include "envtex/analyticdirect.h"
 #include "envtex/bvh.h"
 #include "envtex/camera.h"
+#include "envtex/direct.h"
 #include "envtex/displacemap.h"
 #include "envtex/integrator.h"
+#include "envtex/pathtracer.h"
 #include "envtex/rng.h"
 #include "envtex/texshade.h"
+
+rgb render_radiance(integrator *it, ray r, rng *g) { return render_radiance_diff(it, r, NULL, g); }
+
+rgb render_radiance_diff(integrator *it, ray r, const ray_diff *rd, rng *g)
+{
+    switch (it->sc->integrator) {
+    case INTEGRATOR_RAYTRACER: return raytracer_trace_diff(&it->rt, r, rd);
+    case INTEGRATOR_ANALYTICDIRECT: return analyticdirect_radiance_diff(it, r, rd, g);
+    case INTEGRATOR_DIRECT: return direct_radiance_diff(it, r, rd, g);
+    default: return pathtracer_radiance_diff(it, r, rd, g);
+    }
+}
 
 /* Camera rays' differentials are scaled by max(1 / sqrt(spp), RENDER_MIN_DIFF_SCALE): with spp
  * samples in a pixel each stands for a 1 / sqrt(spp) wide part of it (pbrt does the same and
@@ -122,9 +137,9 @@ int render_scene(const scene *sc, const render_opts *opts, image *out, render_st
                 if (with_diff) {
                     ray_diff rd;
                     ray cr = camera_ray_differential(&cam, x + jx, y + jy, diff_scale, &rd);
-                    v = integrator_radiance_diff(&it, cr, &rd, &r);
+                    v = render_radiance_diff(&it, cr, &rd, &r);
                 } else {
-                    v = integrator_radiance(&it, camera_ray(&cam, x + jx, y + jy), &r);
+                    v = render_radiance(&it, camera_ray(&cam, x + jx, y + jy), &r);
                 }
                 rgb d = rgb_make(v.r - mean.r, v.g - mean.g, v.b - mean.b);
                 mean = rgb_madd(mean, d, 1.0 / (s + 1));         /* mean += (v - mean) / n */

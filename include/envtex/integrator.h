@@ -6,7 +6,7 @@
  *
  *     integrator it;
  *     if (integrator_init(&it, sc, &accel, &mem, &err)) ...
- *     rgb L = integrator_radiance(&it, camera_ray(&cam, x, y), &r);
+ *     rgb L = render_radiance(&it, camera_ray(&cam, x, y), &r);   // render.h
  *     integrator_free(&it);
  *
  * The sampling integrators see the environment two ways (docs/environment-lighting.md): along
@@ -60,13 +60,6 @@ typedef struct integrator {
  * budget).  Returns 0, or -1 with *err set, an envmap problem at its `envmap` line. */
 int integrator_init(integrator *it, const scene *sc, const bvh *accel, budget *mem, error *err);
 void integrator_free(integrator *it);
-
-/* Radiance along a camera ray. */
-rgb integrator_radiance(integrator *it, ray r, rng *g);
-
-/* The same with the camera ray's differentials (raydiff.h; NULL: none), which texture
- * filtering uses and perfect mirror / glass bounces carry on (docs/texture-mapping.md). */
-rgb integrator_radiance_diff(integrator *it, ray r, const ray_diff *rd, rng *g);
 
 /* ---- shared by the integrators ---------------------------------------------------------- */
 

@@ -19,6 +19,7 @@
 
 #include "envtex/error.h"
 #include "envtex/image.h"
+#include "envtex/integrator.h"
 #include "envtex/scene.h"
 
 typedef void (*render_progress_fn)(void *ctx, int rows_done, int rows);
@@ -90,5 +91,13 @@ render_opts render_defaults(void);
  * budget, out of memory.  On failure
  * *out (and opts->variance) hold nothing to free and opts->start was not called. */
 int render_scene(const scene *sc, const render_opts *opts, image *out, render_stats *stats, error *err);
+
+/* Radiance along a camera ray by the scene's integrator (`integrator raytracer|analyticdirect|
+ * direct|pathtracer`), in the context `it` built for it (integrator.h). */
+rgb render_radiance(integrator *it, ray r, rng *g);
+
+/* The same with the camera ray's differentials (raydiff.h; NULL: none), which texture
+ * filtering uses and perfect mirror / glass bounces carry on (docs/texture-mapping.md). */
+rgb render_radiance_diff(integrator *it, ray r, const ray_diff *rd, rng *g);
 
 #endif

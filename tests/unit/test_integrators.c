@@ -110,14 +110,14 @@ static void rig_free(rig *r)
 
 typedef struct stats { double mean, se, var; } stats;
 
-/* n estimates of integrator_radiance along ray r (channel ch) */
+/* n estimates of render_radiance along ray r (channel ch) */
 static stats radiance_stats(rig *rg, ray r, int ch, long n, uint64_t seed)
 {
     rng g;
     rng_seed(&g, seed, 0);
     double s = 0, s2 = 0;
     for (long i = 0; i < n; i++) {
-        rgb L = integrator_radiance(&rg->it, r, &g);
+        rgb L = render_radiance(&rg->it, r, &g);
         double v = ch == 0 ? L.r : ch == 1 ? L.g : L.b;
         s += v;
         s2 += v * v;
@@ -726,7 +726,7 @@ START_TEST(test_integrators_envmiss_black_keeps_the_envmap_out_of_reflections)
             rng_seed(&g, 1, 0);
             ray sky = {sc.eye, vec3_make(0, 1, 0), 0, INFINITY};
             ray ball = {sc.eye, vec3_make(0, 0, -1), 0, INFINITY};
-            rgb Ls = integrator_radiance(&rg.it, sky, &g), Lb = integrator_radiance(&rg.it, ball, &g);
+            rgb Ls = render_radiance(&rg.it, sky, &g), Lb = render_radiance(&rg.it, ball, &g);
             ck_assert_msg(Ls.g > 0, "%s %s: the background is black", integ[k], modes[i]);
             if (k < 3) {
                 if (i == 0) ck_assert_msg(fabs(Lb.g - 0.8 * Ls.g) < 1e-6 * Ls.g, "%s: the mirror shows %g", integ[k], Lb.g);

@@ -309,7 +309,7 @@ START_TEST(test_render_replays_as_documented_mean_variance_and_differential_scal
                     double jx = rng_uniform(&g), jy = rng_uniform(&g);
                     ray_diff rd;
                     ray r = camera_ray_differential(&cam, x + jx, y + jy, scale, &rd);
-                    v[s] = integrator_radiance_diff(&it, r, &rd, &g).g;
+                    v[s] = render_radiance_diff(&it, r, &rd, &g).g;
                     mean += v[s];
                 }
                 mean /= spp;
