@@ -124,6 +124,49 @@ START_TEST(test_lights_pick_probability_is_proportional_to_power)
 }
 END_TEST
 
+/* lights_selection_prob, the probability that one light sample is of light k: under
+ * `lightselection all` (the default) 1 for every light and c for the envmap, whatever their
+ * powers; under `power` the pick probability (c P for the envmap), lights_pick_prob. */
+START_TEST(test_lights_selection_probability_follows_the_selection)
+{
+    for (int mode = 0; mode < 2; mode++) {
+        scene sc;
+        load(&sc);
+        sc.lightselection = mode ? LIGHTSELECTION_POWER : LIGHTSELECTION_ALL;
+        image im;
+        genenv_params gp = genenv_defaults();
+        gp.width = 32;
+        error err = {0};
+        ck_assert_int_eq(genenv_make(GENENV_CONSTANT, &gp, &im, &err), 0);
+        envmap env = latlong_env(&im, 1.0);
+        envlight el;
+        ck_assert_int_eq(envlight_build(&el, &env, ENVSAMPLING_CDF, ENVSAMPLER_BINARY, 0, &err), 0);
+        lights ls;
+        ck_assert_int_eq(lights_build(&ls, &sc, &el, 3.0, &err), 0);
+        const double fractions[] = {1.0, 0.3, 0.0};
+        double p_env = lights_pick_prob(&ls, 4); /* P(pick the envmap) at c = 1 */
+        for (int f = 0; f < 3; f++) {
+            lights_set_env_fraction(&ls, fractions[f]);
+            double sum = 0;
+            for (int k = 0; k < ls.n; k++) {
+                double p = lights_selection_prob(&ls, k), want = mode ? lights_pick_prob(&ls, k)
+                                                                   : k == 4 ? fractions[f] : 1.0;
+                ck_assert_msg(p == want, "%s, c %g, light %d: %.17g, want %.17g", mode ? "power" : "all",
+                              fractions[f], k, p, want);
+                sum += p;
+            }
+            double want_sum = mode ? 1 - (1 - fractions[f]) * p_env : 4 + fractions[f];
+            ck_assert_msg(fabs(sum - want_sum) < 1e-12, "%s, c %g: probabilities sum to %.17g", mode ? "power" : "all",
+                          fractions[f], sum);
+        }
+        lights_free(&ls);
+        envlight_free(&el);
+        image_free(&im);
+        scene_free(&sc);
+    }
+}
+END_TEST
+
 /* Powers that do not fit a double, though every number in the scene does: two point lights of
  * intensity 1e307 and 2e307 (4 pi I overflows their sum, and at 1.7e308 each power is +Inf),
  * and a quad light of area 1e308 (pi A L overflows).  Only the ratios matter: 1/3 and 2/3, and the huge quad wins
@@ -443,6 +486,7 @@ Suite *lights_suite(void)
     TCase *tc = tcase_create("lights");
     tcase_set_timeout(tc, 60); /* generous for sanitizer builds */
     tcase_add_test(tc, test_lights_pick_probability_is_proportional_to_power);
+    tcase_add_test(tc, test_lights_selection_probability_follows_the_selection);
     tcase_add_test(tc, test_lights_pick_probabilities_of_powers_past_the_largest_double);
     tcase_add_test(tc, test_lights_quad_sample_pdf_matches_lights_quad_pdf);
     tcase_add_test(tc, test_lights_quad_emits_on_the_side_of_ac_cross_ab);
