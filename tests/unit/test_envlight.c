@@ -1010,6 +1010,54 @@ START_TEST(test_envlight_mediancut_points_lie_inside_their_strata)
 }
 END_TEST
 
+/* Each point light sits at its stratum's energy centroid, L dOmega weighted (Debevec 2005), in
+ * image coordinates: u = sum e (c + 1/2) / (W sum e), v = sum e (r + 1/2) / (H sum e) with
+ * e = L_avg(c, r) dOmega_r, dOmega_r = (cos(pi r / H) - cos(pi (r + 1) / H)) 2 pi / W computed
+ * here from the texels, then turned by the envmap's rotation.  Catches the texels weighted by L
+ * alone (strata spanning rows of different solid angle: points off by up to 0.06 in uv here). */
+START_TEST(test_envlight_mediancut_points_sit_at_their_strata_energy_centroids)
+{
+    image im;
+    small_sun_map(&im);
+    const int ns[] = {10, 64, 256};
+    const double s = 2; /* the envmap's scale, which cancels in the centroid */
+    mat4 rot = mat4_rotate(vec3_make(0.3, 1, 0.2), 40);
+    for (int t = 0; t < 3; t++) {
+        envmap env = env_of(&im, s, rot);
+        envlight el;
+        build(&el, &env, ENVSAMPLING_MEDIANCUT, ENVSAMPLER_BINARY, ns[t]);
+        int bad = 0, multirow = 0;
+        double worst = 0;
+        for (int k = 0; k < el.n_points; k++) {
+            const envlight_point *pt = &el.points[k];
+            double su = 0, sv = 0, se = 0;
+            for (int r = pt->r0; r < pt->r1; r++) {
+                double om = (cos(M_PI * r / 32) - cos(M_PI * (r + 1) / 32)) * 2 * M_PI / 64;
+                for (int c = pt->c0; c < pt->c1; c++) {
+                    const float *px = image_px(&im, c, r);
+                    double e = s * ((double)px[0] + px[1] + px[2]) / 3 * om;
+                    su += e * (c + 0.5);
+                    sv += e * (r + 0.5);
+                    se += e;
+                }
+            }
+            ck_assert(se > 0);
+            uv2 want = {su / se / 64, sv / se / 32}, got;
+            ck_assert_int_eq(latlong_dir_to_uv(mat4_dir(&el.env->to_env, pt->dir), &got), 0);
+            double du = fabs(got.u - want.u), dv = fabs(got.v - want.v);
+            worst = fmax(worst, fmax(du, dv));
+            bad += !(du < 1e-9 && dv < 1e-9); /* sums in double: ~1e-15 */
+            multirow += pt->r1 - pt->r0 > 1;
+        }
+        ck_assert_msg(multirow > 0, "N = %d: no stratum spans rows: the test cannot fail", ns[t]);
+        ck_assert_msg(bad == 0, "N = %d: %d of %d points off their L dOmega centroid (by up to %g in uv)", ns[t],
+                      bad, el.n_points, worst);
+        envlight_free(&el);
+    }
+    image_free(&im);
+}
+END_TEST
+
 /* the shadow direction is uniform in (cos theta, phi) over its stratum: with one stratum, the
  * whole map, cos theta = 1 - 2 xi1 and phi = 2 pi xi2, which is sampling_uniform_sphere(xi1, xi2)
  * (a jitter over only part of the stratum, in either coordinate, would not be) */
@@ -1170,6 +1218,7 @@ Suite *envlight_suite(void)
     tcase_add_test(tc, test_envlight_mediancut_strata_partition_the_map_and_its_power);
     tcase_add_test(tc, test_envlight_mediancut_strata_of_a_constant_map_have_equal_energy);
     tcase_add_test(tc, test_envlight_mediancut_points_lie_inside_their_strata);
+    tcase_add_test(tc, test_envlight_mediancut_points_sit_at_their_strata_energy_centroids);
     tcase_add_test(tc, test_envlight_mediancut_shadow_directions_cover_the_stratum);
     tcase_add_test(tc, test_envlight_mediancut_cuts_polar_strata_across_theta);
     tcase_add_test(tc, test_envlight_sintheta_sample_on_the_pole_edge_succeeds);
