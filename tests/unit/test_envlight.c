@@ -116,7 +116,7 @@ static void build(envlight *el, const envmap *env, envsampling_mode mode, envsam
 static void texel_of(const envlight *el, vec3 w, int *c, int *r)
 {
     uv2 uv;
-    ck_assert_int_eq(latlong_dir_to_uv(mat4_dir(&el->env->to_env, w), &uv), 0);
+    ck_require(latlong_dir_to_uv(mat4_dir(&el->env->to_env, w), &uv) == 0);
     *c = (int)(uv.u * el->w);
     *r = (int)(uv.v * el->h);
     if (*c >= el->w) *c = el->w - 1;
@@ -320,8 +320,8 @@ START_TEST(test_envlight_translation_and_uniform_scale_sample_as_the_rotation_al
                 continue;
             }
             envlight_sample_result sa, sb;
-            ck_assert(envlight_sample(&a, x1, x2, 0, &sa));
-            ck_assert(envlight_sample(&b, x1, x2, 0, &sb));
+            ck_require(envlight_sample(&a, x1, x2, 0, &sa));
+            ck_require(envlight_sample(&b, x1, x2, 0, &sb));
             vec3 w = sampling_uniform_sphere(x3, rng_uniform(&g)); /* any direction, for the lookups */
             bad += vec3_length(vec3_sub(sa.wi, sb.wi)) > 1e-12 || fabs(sa.pdf / sb.pdf - 1) > 1e-12 ||
                    !same_rgb(sa.L, sb.L) || !(fabs(envlight_pdf(&a, w) - envlight_pdf(&b, w)) <= 1e-12 * envlight_pdf(&a, w)) ||
@@ -472,11 +472,11 @@ START_TEST(test_envlight_sampled_phi_is_unit_and_in_its_column)
             for (int i = 0; i < 20000; i++) {
                 double xi1 = i < 3 ? 0.5 * i : rng_uniform(&g); /* 0, 1/2, 1 and random */
                 envlight_sample_result s;
-                ck_assert(envlight_sample(&el, xi1, rng_uniform(&g), 0, &s));
+                ck_require(envlight_sample(&el, xi1, rng_uniform(&g), 0, &s));
                 double e = fabs(vec3_dot(s.wi, s.wi) - 1);
                 worst = e > worst ? e : worst;
                 uv2 uv;
-                ck_assert_int_eq(latlong_dir_to_uv(s.wi, &uv), 0);
+                ck_require(latlong_dir_to_uv(s.wi, &uv) == 0);
                 double x = uv.u * w; /* in [lit, lit + 1], or at the seam 0 = w for column 0 */
                 int in = (x > lit - EDGE_TOL && x < lit + 1 + EDGE_TOL) || (lit == 0 && x > w - EDGE_TOL);
                 outside += !in;
@@ -505,7 +505,7 @@ START_TEST(test_envlight_sampled_phi_is_unit_and_in_its_column)
             for (int i = 0; i < 20000; i++) {
                 double xi1 = rng_uniform(&g);
                 envlight_sample_result s;
-                ck_assert(envlight_sample(&el, xi1, rng_uniform(&g), 0, &s));
+                ck_require(envlight_sample(&el, xi1, rng_uniform(&g), 0, &s));
                 double phi = atan2(s.wi.y, s.wi.x), want = 2 * M_PI * xi1;
                 if (phi < 0) phi += 2 * M_PI;
                 double e = fabs(phi - want);
@@ -586,7 +586,7 @@ START_TEST(test_envlight_bad_texels_are_counted_dark_and_never_sampled)
             long hit = 0;
             for (int i = 0; i < 50000; i++) {
                 envlight_sample_result s;
-                ck_assert(envlight_sample(&el, rng_uniform(&r), rng_uniform(&r), 0, &s));
+                ck_require(envlight_sample(&el, rng_uniform(&r), rng_uniform(&r), 0, &s));
                 int c, rr;
                 texel_of(&el, s.wi, &c, &rr);
                 hit += (c == 2 && rr == 2) || (c == 9 && rr == 4);
@@ -776,8 +776,8 @@ START_TEST(test_envlight_kappa_and_the_combined_lookup)
             vec3 w = sampling_uniform_sphere(rng_uniform(&g), rng_uniform(&g));
             double pdf;
             rgb L = envlight_radiance_pdf(&el, w, &pdf), L1 = envlight_radiance(&el, w);
-            ck_assert(L.r == L1.r && L.g == L1.g && L.b == L1.b);
-            ck_assert_msg(pdf == envlight_pdf(&el, w), "mode %d: %g vs %g", mode, pdf, envlight_pdf(&el, w));
+            ck_require(L.r == L1.r && L.g == L1.g && L.b == L1.b);
+            ck_require_msg(pdf == envlight_pdf(&el, w), "mode %d: %g vs %g", mode, pdf, envlight_pdf(&el, w));
         }
         envlight_free(&el);
     }
@@ -970,7 +970,7 @@ START_TEST(test_envlight_mediancut_strata_partition_the_map_and_its_power)
             int k, c, r;
             vec3 sd;
             double prob;
-            ck_assert(envlight_mediancut_pick(&el, rng_uniform(&g), rng_uniform(&g), rng_uniform(&g), &k, &sd, &prob));
+            ck_require(envlight_mediancut_pick(&el, rng_uniform(&g), rng_uniform(&g), rng_uniform(&g), &k, &sd, &prob));
             bad += fabs(prob - rgb_avg(el.points[k].power) / avg_sum) > 1e-12;
             texel_of(&el, sd, &c, &r);
             const envlight_point *pt = &el.points[k];

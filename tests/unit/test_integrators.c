@@ -1057,9 +1057,9 @@ START_TEST(test_integrators_analytic_irradiance_in_the_lights_own_plane)
         vec3 p = vec3_add(l.pos, vec3_add(vec3_scale(l.ab, s), vec3_scale(l.ac, t)));
         vec3 n = k & 1 ? nl : vec3_neg(nl);
         double E = analyticdirect_irradiance(&l, p, n);
-        ck_assert_msg(isfinite(E) && E >= 0, "case %d: E = %g", k, E);
+        ck_require_msg(isfinite(E) && E >= 0, "case %d: E = %g", k, E);
         if (s < -0.01 || s > 1.01 || t < -0.01 || t > 1.01) {
-            ck_assert_msg(E < 1e-6, "case %d: (s, t) = (%g, %g) outside the light: E = %g", k, s, t, E);
+            ck_require_msg(E < 1e-6, "case %d: (s, t) = (%g, %g) outside the light: E = %g", k, s, t, E);
             outside++;
         }
     }

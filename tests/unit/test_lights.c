@@ -79,10 +79,10 @@ START_TEST(test_lights_pick_probability_is_proportional_to_power)
     for (int i = 0; i < N; i++) {
         int k;
         double prob;
-        ck_assert(lights_pick(&ls, (i + 0.5) / N, &k, &prob));
-        ck_assert(k >= 0 && k < 5);
+        ck_require(lights_pick(&ls, (i + 0.5) / N, &k, &prob));
+        ck_require(k >= 0 && k < 5);
         count[k]++;
-        ck_assert(prob == lights_pick_prob(&ls, k));
+        ck_require(prob == lights_pick_prob(&ls, k));
     }
     for (int k = 0; k < 5; k++) {
         ck_assert_msg(fabs(lights_pick_prob(&ls, k) - pw[k] / total) < 1e-12, "light %d: %.17g, want %.17g", k,
@@ -101,7 +101,7 @@ START_TEST(test_lights_pick_probability_is_proportional_to_power)
             double prob;
             if (!lights_pick(&ls, (i + 0.5) / N, &k, &prob)) { none++; continue; }
             kept[k]++;
-            ck_assert(prob == lights_pick_prob(&ls, k));
+            ck_require(prob == lights_pick_prob(&ls, k));
         }
         ck_assert_msg(fabs(lights_pick_prob(&ls, 4) - c * pw[4] / total) < 1e-12, "c %g: %g", c, lights_pick_prob(&ls, 4));
         ck_assert_msg(fabs((double)kept[4] / N - c * pw[4] / total) < 2.0 / N, "c %g: env kept %ld times", c, kept[4]);
@@ -219,7 +219,7 @@ START_TEST(test_lights_quad_sample_pdf_matches_lights_quad_pdf)
     enum { N = 40000 };
     for (int i = 0; i < N; i++) {
         light_sample s;
-        ck_assert(lights_sample(&ls, 0, p, ng, rng_uniform(&g), rng_uniform(&g), rng_uniform(&g), 0, &s));
+        ck_require(lights_sample(&ls, 0, p, ng, rng_uniform(&g), rng_uniform(&g), rng_uniform(&g), 0, &s));
         vec3 q = vec3_add(s.shadow.o, s.shadow.d); /* the shadow ray ends at the sampled point */
         double t = vec3_length(vec3_sub(q, p));
         double pq = lights_quad_pdf(&ls, 0, s.wi, t);
@@ -427,10 +427,10 @@ START_TEST(test_lights_intersect_quad_finds_the_nearest_quad_of_many)
             double t0 = 0, t1 = 0;
             int h0 = nearest_quad_by_testing_all(&sc, &r, &k0, &t0);
             int h1 = lights_intersect_quad(&ls, &r, &k1, &t1);
-            ck_assert_int_eq(h1, h0);
+            ck_require(h1 == h0);
             if (h0) {
-                ck_assert_int_eq(k1, k0);
-                ck_assert(t1 == t0);
+                ck_require(k1 == k0);
+                ck_require(t1 == t0);
                 hits++;
             }
         }
