@@ -417,7 +417,7 @@ START_TEST(test_integrators_nee_off_on_and_mis_agree_under_a_sun_map)
                            "nexteventestimation on\nimportancesampling cosine\n",
                            "nexteventestimation mis\nimportancesampling brdf\n",
                            "nexteventestimation mis\nimportancesampling brdf\nenvsampling cdf-sintheta\nenvsampler alias\n",
-                           /* the envmap sampled at 30% of its picks: still unbiased (lights.h) */
+                           /* the envmap sampled at 30% of its light samples: still unbiased (lights.h) */
                            "nexteventestimation mis\nimportancesampling brdf\nenvsamplefraction 0.3\n"};
     long ns[] = {400000, 60000, 60000, 60000, 60000};
     stats st[5];
