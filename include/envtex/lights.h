@@ -8,9 +8,10 @@
  *   quad: pi A L_avg;  point: 4 pi I_avg;  directional: pi R^2 E_avg;  envmap: pi R^2 |L|
  * where R is the radius of the scene's bounding sphere (a distant light's power is what falls
  * on the scene).  lights_selection_prob gives the probability that one light sample is of
- * light k in the selection in use, which the estimate divides by and MIS weights with.  A quad light emits on the side of ac x ab (FORMAT.md) and is opaque from both
- * sides to every ray: camera and BRDF rays stop at it (lights_intersect_quad), and it blocks
- * shadow rays towards other lights (integrator_occluded), so NEE and BRDF sampling agree.
+ * light k in the selection in use, which the estimate divides by and MIS weights with.  A quad
+ * light emits on the side of ac x ab (FORMAT.md) and is opaque from both sides to every ray:
+ * camera and BRDF rays stop at it (lights_intersect_quad), and it blocks shadow rays towards
+ * other lights (integrator_occluded), so NEE and BRDF sampling agree.
  * Every camera, BRDF and shadow ray asks for the nearest quad, so the quads get a BVH of their
  * own (bvh.h, two triangles a quad): a ray tests O(log n) of n quads, not all of them, and a
  * scene whose lights are all point or directional tests none.
