@@ -315,8 +315,8 @@ static int cmd_render(int argc, char **argv)
                         st.envlight_fell_back && sc.envsampling != ENVSAMPLING_UNIFORM ? " (black map: uniform fallback)" : "");
             if (st.envlight_points) fprintf(stderr, "envtex: median cut: %d point lights\n", st.envlight_points);
             if (st.envlight_built && sc.integrator == INTEGRATOR_PATHTRACER && sc.nee == NEE_MIS)
-                fprintf(stderr, "envtex: MIS: the envmap is sampled at a fraction %.3g of its light "
-                                "samples (%s; kappa = E[L^2]/E[L]^2 = %.4g)%s\n",
+                fprintf(stderr, "envtex: MIS: the envmap is sampled at a fraction %.3g of its "
+                                "light samples (%s; kappa = E[L^2]/E[L]^2 = %.4g)%s\n",
                         st.env_fraction, sc.envsamplefraction < 0 ? "auto: least variance x time, envlight.h" : "envsamplefraction",
                         st.envlight_kappa, st.nee == NEE_OFF ? "; no other light, so paths run as BRDF sampling alone" : "");
             if (st.envlight_bad_texels)
