@@ -609,8 +609,8 @@ START_TEST(test_integrators_nee_and_mis_agree_with_quad_lights_beside_the_envmap
                            "nexteventestimation on\nlightsamples 2\n",
                            "nexteventestimation mis\nimportancesampling brdf\nlightsamples 2\nenvsamplefraction 0.3\n",
                            "lightselection power\nnexteventestimation on\nlightsamples 2\n",
-                           "lightselection power\nnexteventestimation mis\nimportancesampling brdf\nlightsamples 2\n"
-                           "envsamplefraction 0.3\n"};
+                           ("lightselection power\nnexteventestimation mis\nimportancesampling brdf\nlightsamples 2\n"
+                            "envsamplefraction 0.3\n")};
     long ns[] = {200000, 10000, 10000, 30000, 30000};
     stats st[5];
     for (int i = 0; i < 5; i++) {
@@ -627,8 +627,8 @@ END_TEST
  * envmap at a fraction c. */
 START_TEST(test_integrators_with_one_light_both_selections_render_the_same_image)
 {
-    const char *setups[] = {"quadLight -1 -1 3  2 0 0  0 2 0  5 5 5\nnexteventestimation mis\n"
-                            "importancesampling brdf\nlightsamples 3\nlightstratify on\n",
+    const char *setups[] = {("quadLight -1 -1 3  2 0 0  0 2 0  5 5 5\nnexteventestimation mis\n"
+                             "importancesampling brdf\nlightsamples 3\nlightstratify on\n"),
                             "nexteventestimation mis\nimportancesampling brdf\nlightsamples 2\nenvsamplefraction 0.5\n"};
     for (int i = 0; i < 2; i++) {
         image im[2];
