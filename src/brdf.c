@@ -28,8 +28,8 @@ rgb brdf_eval(const surface *s, vec3 wo, vec3 wi)
     double cos_i = vec3_dot(s->n, wi), cos_o = vec3_dot(s->n, wo);
     if (cos_i <= 0 || cos_o <= 0 || brdf_is_delta(s)) return rgb_gray(0);
     rgb f = rgb_scale(s->kd, 1 / M_PI); /* kd / pi */
-    if (rgb_is_black(s->ks)) return f;
     if (s->kind == BRDF_PHONG) {
+        if (rgb_is_black(s->ks)) return f; /* the lobe is ks times a finite number: exactly 0 */
         vec3 r = vec3_reflect(vec3_neg(wo), s->n); /* mirror direction of wo */
         /* cos = r . wi in [0, 1]: two unit vectors' dot product rounds up to 1 + 2^-52, and
          * (1 + 2^-52)^s is Inf for a huge s (1e18): clamp to the axis, where the lobe peaks */
@@ -37,7 +37,7 @@ rgb brdf_eval(const surface *s, vec3 wo, vec3 wi)
         if (c > 0) f = rgb_madd(f, s->ks, (s->shininess + 2) / (2 * M_PI) * pow(c, s->shininess));
         return f;
     }
-    /* GGX microfacet term F G D / (4 cos_i cos_o) */
+    /* GGX microfacet term F G D / (4 cos_i cos_o), even for ks = 0: Schlick's F is not 0 there */
     vec3 h = vec3_normalize(vec3_add(wi, wo));
     double a = sampling_ggx_alpha(s->roughness); /* clamped where the lobe is its limit */
     double D = sampling_ggx_d(a, vec3_dot(s->n, h));
@@ -52,9 +52,11 @@ rgb brdf_eval(const surface *s, vec3 wo, vec3 wi)
 double brdf_specular_probability(const surface *s)
 {
     double ks = rgb_avg(s->ks), kd = rgb_avg(s->kd);
-    if (!(ks + kd > 0)) return 0;
+    /* ks = kd = 0, t = 0/0: GGX's Fresnel lobe is the only one that reflects; Phong's f is 0 */
+    if (!(ks + kd > 0)) return s->kind == BRDF_GGX ? 1 : 0;
     double t = ks / (ks + kd); /* t = avg(ks) / (avg(ks) + avg(kd)) */
-    if (s->kind == BRDF_GGX && ks > 0 && t < 0.25) t = 0.25; /* the course's GGX scenes clamp t */
+    /* the course's GGX scenes clamp t, ks = 0 too: that is how F's rim reflection is sampled */
+    if (s->kind == BRDF_GGX && t < 0.25) t = 0.25;
     return t;
 }
 

@@ -77,6 +77,7 @@ int lights_build(lights *ls, const scene *sc, const envlight *env, double scene_
     ls->env = env;
     ls->radius = scene_radius > 0 ? scene_radius : 1;
     ls->env_fraction = 1;
+    ls->selection = sc->lightselection;
     ls->n = sc->n_lights + (env ? 1 : 0);
     if (ls->n == 0) return 0;
     double *w = malloc((size_t)ls->n * sizeof *w);
@@ -134,6 +135,12 @@ double lights_pick_prob(const lights *ls, int k)
     if (!ls->n) return 0;
     double p = distrib1d_pmf(&ls->choose, k);
     return k == lights_env_index(ls) ? p * ls->env_fraction : p;
+}
+
+double lights_selection_prob(const lights *ls, int k)
+{
+    if (ls->selection == LIGHTSELECTION_POWER) return lights_pick_prob(ls, k);
+    return k == lights_env_index(ls) ? ls->env_fraction : 1.0; /* every light: its own samples */
 }
 
 void lights_set_env_fraction(lights *ls, double c) { ls->env_fraction = c >= 0 && c <= 1 ? c : 1; }

@@ -354,7 +354,8 @@ static int cmd_render(int argc, char **argv)
                         st.envlight_fell_back && sc.envsampling != ENVSAMPLING_UNIFORM ? " (black map: uniform fallback)" : "");
             if (st.envlight_points) fprintf(stderr, "envtex: median cut: %d point lights\n", st.envlight_points);
             if (st.envlight_built && sc.integrator == INTEGRATOR_PATHTRACER && sc.nee == NEE_MIS)
-                fprintf(stderr, "envtex: MIS: the envmap is sampled at a fraction %.3g of its picks (%s; kappa = E[L^2]/E[L]^2 = %.4g)%s\n",
+                fprintf(stderr, "envtex: MIS: the envmap is sampled at a fraction %.3g of its "
+                                "light samples (%s; kappa = E[L^2]/E[L]^2 = %.4g)%s\n",
                         st.env_fraction, sc.envsamplefraction < 0 ? "auto: least variance x time, envlight.h" : "envsamplefraction",
                         st.envlight_kappa, st.nee == NEE_OFF ? "; no other light, so paths run as BRDF sampling alone" : "");
             if (st.envlight_bad_texels)
@@ -363,7 +364,14 @@ static int cmd_render(int argc, char **argv)
         } else {
             fprintf(stderr, "envtex: no envmap\n");
         }
-        if (st.lights) fprintf(stderr, "envtex: %d light%s to sample%s\n", st.lights, st.lights == 1 ? "" : "s", st.lights == 1 ? "" : " (chosen by power)");
+        if (st.lights) {
+            const char *how = sc.lightselection == LIGHTSELECTION_POWER
+                                  ? " (lightselection power: one a light sample, chosen by power)"
+                                  : " (lightselection all: lightsamples samples of each)";
+            const char *plural = st.lights == 1 ? "" : "s";
+            fprintf(stderr, "envtex: %d light%s to sample%s\n", st.lights, plural,
+                    *plural ? how : "");
+        }
         if (sc.n_textures) {
             int mips = 0;
             for (int i = 0; i < sc.n_textures; i++) mips += sc.textures[i].tex.has_mip;

@@ -2,38 +2,8 @@
  * (see include/envtex/pathtracer.h). */
 #include "envtex/pathtracer.h"
 
+#include "envtex/direct.h"
 #include "envtex/texshade.h"
-
-/* Next-event estimation at surface s: `lightsamples` light samples, each of a light picked by
- * power on its own, averaged.  With MIS each is weighted against BRDF sampling. */
-static rgb next_event(integrator *it, const surface *s, vec3 wo, rng *g, int mis)
-{
-    const scene *sc = it->sc;
-    const lights *ls = &it->ls;
-    rgb sum = rgb_gray(0);
-    int n = sc->lightsamples;
-    int m = integrator_strata(n, sc->lightstratify);
-    for (int j = 0; j < n; j++) {
-        double xc = rng_uniform(g), xi1 = rng_uniform(g), xi2 = rng_uniform(g), xi3 = rng_uniform(g);
-        int strat = integrator_stratum(j, m, &xi1, &xi2);
-        int k;
-        double pick;
-        if (!lights_pick(ls, xc, &k, &pick)) continue; /* no sample this time (env fraction) */
-        light_sample l;
-        rgb c;
-        if (!integrator_light_sample(it, s, wo, k, xi1, xi2, xi3, strat, &l, &c)) continue;
-        if (l.is_delta) {
-            c = rgb_scale(c, 1 / pick); /* f E cos / P(pick) */
-        } else {
-            double pl = pick * l.pdf; /* pdf of this sample among all lights */
-            double w = 1;
-            if (mis) w = integrator_power_heuristic(n, pl, 1, brdf_pdf(s, wo, l.wi, sc->importancesampling));
-            c = rgb_scale(c, w / pl); /* f Li cos / pdf, MIS weighted */
-        }
-        sum = rgb_add(sum, c);
-    }
-    return rgb_scale(sum, 1.0 / n);
-}
 
 rgb pathtracer_radiance(integrator *it, ray r, rng *g) { return pathtracer_radiance_diff(it, r, NULL, g); }
 
@@ -70,7 +40,7 @@ rgb pathtracer_radiance_diff(integrator *it, ray r, const ray_diff *rd0, rng *g)
                 Le = mis_env ? envlight_radiance_pdf(&it->el, r.d, &pdf_env) : envlight_radiance(&it->el, r.d);
                 if (!counts) {
                     if (mis_env) {
-                        double pl = lights_pick_prob(&it->ls, ke) * pdf_env;
+                        double pl = lights_selection_prob(&it->ls, ke) * pdf_env; /* lights.h */
                         Le = rgb_scale(Le, integrator_power_heuristic(1, brdf_pdf_prev, n_light, pl));
                     } else if (ke >= 0) {
                         Le = rgb_gray(0); /* sampled by NEE (median cut: only by NEE) */
@@ -85,7 +55,9 @@ rgb pathtracer_radiance_diff(integrator *it, ray r, const ray_diff *rd0, rng *g)
                 if (nee == NEE_MIS) {
                     vec3 d = vec3_normalize(r.d);
                     double t = sh.t * vec3_length(r.d);
-                    double pl = lights_pick_prob(&it->ls, sh.light) * lights_quad_pdf(&it->ls, sh.light, d, t);
+                    /* lightsamples x P(light k's sample) x pdf_k: NEE's density of this point */
+                    double pl = lights_selection_prob(&it->ls, sh.light) *
+                                lights_quad_pdf(&it->ls, sh.light, d, t);
                     Le = rgb_scale(Le, integrator_power_heuristic(1, brdf_pdf_prev, n_light, pl));
                 } else {
                     Le = rgb_gray(0);
@@ -98,7 +70,11 @@ rgb pathtracer_radiance_diff(integrator *it, ray r, const ray_diff *rd0, rng *g)
         L = rgb_fma(L, beta, s->emission); /* emissive geometry is not a sampled light */
         if (bounce >= it->maxdepth) break; /* a path may have at most maxdepth bounces */
         int delta = brdf_is_delta(s);
-        if (!delta && nee != NEE_OFF) L = rgb_fma(L, beta, next_event(it, s, wo, g, nee == NEE_MIS));
+        if (!delta && nee != NEE_OFF) { /* next-event estimation: the direct light at this vertex */
+            rgb Ld = nee == NEE_MIS ? direct_lighting_mis(it, s, wo, g)
+                                    : direct_lighting(it, s, wo, g);
+            L = rgb_fma(L, beta, Ld);
+        }
         brdf_sample_result bs;
         double xi1 = rng_uniform(g), xi2 = rng_uniform(g), xi3 = rng_uniform(g);
         if (!brdf_sample(s, wo, sc->importancesampling, xi1, xi2, xi3, &bs)) break;

@@ -666,6 +666,15 @@ static int cmd_lightsamples(parser *p)
 
 static int cmd_lightstratify(parser *p) { return arg_onoff(p, &p->sc->lightstratify); }
 
+static int cmd_lightselection(parser *p)
+{
+    static const char *const w[] = {"all", "power"}; /* light_selection order */
+    int k = 0;
+    if (arg_word(p, w, 2, &k)) return -1;
+    p->sc->lightselection = (light_selection)k;
+    return 0;
+}
+
 static int cmd_spp(parser *p)
 {
     long n = 0;
@@ -1224,6 +1233,7 @@ static const command commands[] = {
     {"quadLight", cmd_quadlight, 12, 12},
     {"lightsamples", cmd_lightsamples, 1, 1},
     {"lightstratify", cmd_lightstratify, 1, 1},
+    {"lightselection", cmd_lightselection, 1, 1},
     {"spp", cmd_spp, 1, 1},
     {"nexteventestimation", cmd_nee, 1, 1},
     {"russianroulette", cmd_russianroulette, 1, 1},
@@ -1564,6 +1574,7 @@ static void scene_init(scene *sc)
     sc->integrator = INTEGRATOR_RAYTRACER;
     sc->spp = 1;
     sc->lightsamples = 1;
+    sc->lightselection = LIGHTSELECTION_ALL;
     sc->nee = NEE_OFF;
     sc->importancesampling = SAMPLING_HEMISPHERE;
     sc->envmiss = ENVMISS_ENVMAP;

@@ -6,9 +6,10 @@
  *           G1 = 2 / (1 + sqrt(1 + alpha^2 tan^2 theta)),  Schlick F = ks + (1 - ks)(1 - wi.h)^5
  *           alpha = roughness clamped by sampling_ggx_alpha (roughness 0 is the mirror limit,
  *           alpha = 2^-27), so any finite roughness >= 0 gives finite f, pdfs and weights
- *   BRDF sampling picks the specular lobe with probability t = avg(ks) / (avg(ks) + avg(kd))
- *   (GGX with ks > 0: t at least 0.25, as the course's scenes do), else the cosine-weighted
- *   diffuse lobe.
+ *   BRDF sampling picks the specular lobe with probability t = avg(ks) / (avg(ks) + avg(kd)),
+ *   else the cosine-weighted diffuse lobe.  GGX: t at least 0.25, as the course's scenes do, ks = 0
+ *   included (F = (1 - wi.h)^5 there: the rim reflections of a `specular 0` surface); ks = kd = 0
+ *   (t = 0/0): GGX t = 1 (the Fresnel lobe alone reflects), Phong t = 0 (f = 0: t is no matter).
  *
  *     surface s; ... (filled by the integrator from the hit and its material)
  *     brdf_sample_result r;
@@ -46,7 +47,7 @@ static inline int brdf_is_delta(const surface *s) { return s->kind == BRDF_MIRRO
 /* f(wo, wi); 0 below the surface and for delta BRDFs. */
 rgb brdf_eval(const surface *s, vec3 wo, vec3 wi);
 
-/* Probability that BRDF sampling picks the specular lobe (t above). */
+/* Probability that BRDF sampling picks the specular lobe (t above), in [0, 1]. */
 double brdf_specular_probability(const surface *s);
 
 /* pdf (per steradian) of brdf_sample producing wi with the given strategy; 0 for delta BRDFs. */

@@ -2,19 +2,23 @@
  * 17: "extend next-event estimation to envmaps"): quad lights, point and directional lights,
  * and the environment (envlight.h), one set that the sampling integrators share.
  *
- * Choosing a light: with probability proportional to its power, estimated as
+ * Which lights a shading point samples (`lightselection`, direct.h): `all`, the course's, every
+ * light (its own `lightsamples` samples; one for a point or directional light); or `power`, each
+ * light sample of one light picked with probability proportional to its power, estimated as
  *   quad: pi A L_avg;  point: 4 pi I_avg;  directional: pi R^2 E_avg;  envmap: pi R^2 |L|
  * where R is the radius of the scene's bounding sphere (a distant light's power is what falls
- * on the scene).  A quad light emits on the side of ac x ab (FORMAT.md) and is opaque from both
- * sides to every ray: camera and BRDF rays stop at it (lights_intersect_quad), and it blocks
- * shadow rays towards other lights (integrator_occluded), so NEE and BRDF sampling agree.
+ * on the scene).  lights_selection_prob gives the probability that one light sample is of
+ * light k in the selection in use, which the estimate divides by and MIS weights with.  A quad
+ * light emits on the side of ac x ab (FORMAT.md) and is opaque from both sides to every ray:
+ * camera and BRDF rays stop at it (lights_intersect_quad), and it blocks shadow rays towards
+ * other lights (integrator_occluded), so NEE and BRDF sampling agree.
  * Every camera, BRDF and shadow ray asks for the nearest quad, so the quads get a BVH of their
  * own (bvh.h, two triangles a quad): a ray tests O(log n) of n quads, not all of them, and a
  * scene whose lights are all point or directional tests none.
  *
  *     lights ls;
  *     lights_build(&ls, sc, el, radius, &mem, &err);
- *     int k; double prob; lights_pick(&ls, xi, &k, &prob);
+ *     int k; double prob; lights_pick(&ls, xi, &k, &prob);     // lightselection power
  *     light_sample s;
  *     if (lights_sample(&ls, k, p, ng, xi1, xi2, xi3, stratified, &s)) ... trace s.shadow ...
  */
@@ -31,6 +35,7 @@ typedef struct lights {
     const scene *sc;
     const envlight *env;  /* NULL: no environment light */
     int n;                /* sc->n_lights, plus 1 for the environment (last index) */
+    light_selection selection; /* sc->lightselection */
     distrib1d choose;     /* pick a light by power */
     double radius;
     double env_fraction;  /* c in [0, 1]: a pick of the envmap is sampled with probability c
@@ -61,14 +66,24 @@ int lights_build(lights *ls, const scene *sc, const envlight *env, double scene_
                  error *err);
 void lights_free(lights *ls);
 
-/* Pick a light with probability proportional to its power (xi in [0,1)). 0 if there are none. */
+/* Pick a light with probability proportional to its power (xi in [0,1)), envmap fraction c
+ * included (below): 1, *k and *prob = lights_pick_prob(k); 0 if there are none, or when the
+ * envmap was picked but not kept.  (`lightselection power`; any selection may call it.) */
 int lights_pick(const lights *ls, double xi, int *k, double *prob);
 double lights_pick_prob(const lights *ls, int k);
 
-/* Sample the envmap at only a fraction c of its picks (MIS only: with NEE alone the skipped
- * directions would be lost).  Picking is unchanged, but a pick of the envmap is kept with
- * probability c (lights_pick returns 0 otherwise: no light sample this time) and its pick
- * probability, hence its pdf in the MIS weights, is multiplied by c on both sides: the light
+/* The probability that one light sample is a sample of light k in the selection in use:
+ *   all:    c for the envmap, 1 for every other light (each has samples of its own);
+ *   power:  lights_pick_prob(k) = P(pick k), times c for the envmap.
+ * A light sample of k estimates f Li cos / (lights_selection_prob(k) pdf_k); MIS weighs a BRDF
+ * ray that finds light k against lightsamples x lights_selection_prob(k) x pdf_k. */
+double lights_selection_prob(const lights *ls, int k);
+
+/* Sample the envmap at only a fraction c of its samples (MIS only: with NEE alone the skipped
+ * directions would be lost).  A light sample of the envmap (every one of its own samples under
+ * `all`, a pick of it under `power`) is kept with probability c (lights_pick returns 0
+ * otherwise: no light sample this time) and its selection probability P (1 or the pick's),
+ * hence its pdf in the MIS weights, is multiplied by c on both sides: the light
  * sample's estimate f L cos w / (c P pdf) and a BRDF ray's weight p_b^2 / (p_b^2 + (c P pdf)^2).
  * The weights still sum to 1, so the estimator stays unbiased for any c; c = 0 leaves the
  * envmap to BRDF sampling alone.  The choice of c (pathtracer: `envsamplefraction`):

@@ -8,10 +8,13 @@
  * without roulette a path whose throughput is 0, after a black surface, ends too, as nothing
  * further along can add to it).  `nexteventestimation`:
  *   off  light is found only by hitting it;
- *   on   at every non-delta bounce `lightsamples` light samples (stratified with
- *        `lightstratify on`), each of a light picked by power on its own; hitting a light after
- *        a non-delta bounce adds nothing, so no path is counted twice;
- *   mis  both, weighted by the power heuristic (beta = 2), for quad lights and the envmap.
+ *   on   at every non-delta bounce the direct light by light sampling, direct_lighting (direct.h:
+ *        `lightsamples` samples of every light under `lightselection all`, the default; of a
+ *        light picked by power each under `power`); hitting a light after a non-delta bounce adds
+ *        nothing, so no path is counted twice;
+ *   mis  both, weighted by the power heuristic (beta = 2), for quad lights and the envmap: a
+ *        light sample by direct_lighting_mis, a BRDF ray that finds light k against
+ *        lightsamples x lights_selection_prob(k) x pdf_k (lights.h), whichever the selection.
  * All three converge to the same image (tested).  Geometry with `emission` is not sampled as a
  * light and always counts when hit.  Both strategies see only directions above the geometric
  * surface (ng . wi > 0): a diffuse or glossy sample that an interpolated or bumped normal sends

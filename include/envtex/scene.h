@@ -115,6 +115,11 @@ typedef enum integrator_kind {
 } integrator_kind;
 
 typedef enum nee_mode { NEE_OFF, NEE_ON, NEE_MIS } nee_mode;
+/* `lightselection all|power` (envtex's): which lights direct lighting and NEE sample (lights.h) */
+typedef enum light_selection {
+    LIGHTSELECTION_ALL,  /* every light, `lightsamples` samples of each: the course's; default */
+    LIGHTSELECTION_POWER /* each sample of one light picked by power: for scenes of many lights */
+} light_selection;
 typedef enum sampling_kind { SAMPLING_HEMISPHERE, SAMPLING_COSINE, SAMPLING_BRDF } sampling_kind;
 typedef enum envmiss_mode { ENVMISS_ENVMAP, ENVMISS_BLACK } envmiss_mode;
 /* `envsampling MODE [N]`: how the envmap is sampled as a light (envlight.h) */
@@ -177,6 +182,7 @@ typedef struct scene {
     int spp;                   /* default 1 */
     int lightsamples;          /* default 1 */
     int lightstratify;         /* 0/1 */
+    light_selection lightselection; /* default LIGHTSELECTION_ALL */
     nee_mode nee;
     int russianroulette;       /* 0/1 */
     sampling_kind importancesampling;

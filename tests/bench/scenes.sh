@@ -17,11 +17,16 @@ strategy_lines() {
 }
 strategies="brdf uniform cdf cdf-sintheta mediancut mis"
 
-# Two bench scenes, three balls on a plane each, path traced (4 bounces):
+# The bench scenes (kinds), three balls on a plane each, path traced (4 bounces):
 #   matte: a diffuse ball and GGX balls of roughness 0.2 and 0.5 (light reaches the camera
 #          after a diffuse or glossy bounce: what environment sampling is for);
 #   shiny: a GGX 0.05 ball, a mirror ball and a glass ball (the floor also receives caustics,
-#          light that only BRDF sampling can find: every strategy converges slowly there).
+#          light that only BRDF sampling can find: every strategy converges slowly there);
+#   lamps: matte's balls under two quad lights beside the envmap, a large dim one and a small
+#          bright one (next-event estimation samples each light and the envmap, lightselection
+#          all: the strategies' envmap sampling is one of three lights there).
+# BENCH_KINDS chooses some of them (default: all three).
+kinds=${BENCH_KINDS:-matte shiny lamps}
 scene() { # kind envfile strategy spp
     cat <<EOS
 size 160 40
@@ -44,7 +49,12 @@ vertex -20 0 20
 tri 0 2 1
 tri 0 3 2
 EOS
-    if [ "$1" = matte ]; then cat <<EOS
+    if [ "$1" = lamps ]; then cat <<EOS
+quadLight -2.5 3 -1.5  0 0 2  2 0 0  5 5 5
+quadLight 1.8 1.6 0.8  0 0 0.3  0.3 0 0  150 150 150
+EOS
+    fi
+    if [ "$1" != shiny ]; then cat <<EOS
 diffuse 0.7 0.7 0.7
 sphere -1.65 0.5 0 0.5
 brdf ggx

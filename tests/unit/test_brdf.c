@@ -13,6 +13,7 @@
 #include <stdint.h>
 
 #include "chisq.h"
+#include "envtex/fresnel.h"
 #include "envtex/rng.h"
 #include "envtex/sampling.h"
 #include "sphchisq.h"
@@ -42,6 +43,8 @@ static const brdf_case cases[] = {
     {"ggx alpha=0.3", BRDF_GGX, SAMPLING_BRDF, 0.3, 0.5, 0, 0.3, 60},
     {"ggx alpha=0.7 (t clamped to 0.25)", BRDF_GGX, SAMPLING_BRDF, 0.8, 0.1, 0, 0.7, 30},
     {"ggx alpha=1 specular only", BRDF_GGX, SAMPLING_BRDF, 0.0, 0.9, 0, 1.0, 75},
+    {"ggx ks=0 (Fresnel lobe, t = 0.25)", BRDF_GGX, SAMPLING_BRDF, 0.5, 0.0, 0, 0.2, 70},
+    {"ggx kd=ks=0 (Fresnel lobe alone, t = 1)", BRDF_GGX, SAMPLING_BRDF, 0.0, 0.0, 0, 0.3, 80},
     {"hemisphere", BRDF_PHONG, SAMPLING_HEMISPHERE, 0.3, 0.5, 10, 0, 40},
     {"cosine", BRDF_GGX, SAMPLING_COSINE, 0.3, 0.5, 0, 0.3, 40},
 };
@@ -165,7 +168,9 @@ START_TEST(test_brdf_phong_albedo_never_exceeds_kd_plus_ks)
 }
 END_TEST
 
-/* t = avg(ks) / (avg(ks) + avg(kd)); GGX clamps t to 0.25; a black surface gives 0, not NaN */
+/* t = avg(ks) / (avg(ks) + avg(kd)); GGX clamps t to 0.25, ks = 0 included (Schlick's F is not 0
+ * there); ks = kd = 0 (0/0): GGX 1, the Fresnel lobe being all that reflects, Phong 0 (f = 0),
+ * not NaN */
 START_TEST(test_brdf_specular_probability_follows_the_course)
 {
     brdf_case c = {"", BRDF_PHONG, SAMPLING_BRDF, 0.6, 0.2, 10, 0, 0};
@@ -173,15 +178,55 @@ START_TEST(test_brdf_specular_probability_follows_the_course)
     ck_assert_near(brdf_specular_probability(&s), 0.25, 1e-15);
     s.kd = rgb_make(0.9, 0.0, 0.3); /* averages: kd 0.4, ks 0.2 */
     ck_assert_near(brdf_specular_probability(&s), 0.2 / 0.6, 1e-15);
+    s.ks = rgb_gray(0);
+    ck_assert(brdf_specular_probability(&s) == 0); /* Phong: no specular lobe, never sampled */
+    s.kd = rgb_gray(0);
+    ck_assert(brdf_specular_probability(&s) == 0); /* Phong black: f = 0 */
     s.kind = BRDF_GGX;
     s.kd = rgb_gray(0.9);
     s.ks = rgb_gray(0.1);
     ck_assert_near(brdf_specular_probability(&s), 0.25, 1e-15); /* 0.1 clamped up */
     s.ks = rgb_gray(0);
-    ck_assert(brdf_specular_probability(&s) == 0); /* no specular lobe: never sampled */
+    ck_assert_near(brdf_specular_probability(&s), 0.25, 1e-15); /* F = (1 - wi.h)^5 */
     s.kd = rgb_gray(0);
-    double t = brdf_specular_probability(&s);
-    ck_assert(t == 0);
+    ck_assert(brdf_specular_probability(&s) == 1); /* the Fresnel lobe alone */
+}
+END_TEST
+
+/* A GGX surface of `specular 0` still reflects: Schlick's F = ks + (1 - ks)(1 - wi.h)^5 is
+ * (1 - wi.h)^5 there, and at roughness 0.01 (hw4 ggx.test's fifth sphere) the directional albedo
+ * of that lobe is F at the mirror direction times Smith's G: G1(wo)^2 (1 - cos_o)^5, black
+ * facing the viewer, bright at the rim.  Estimated from BRDF samples (f cos / pdf) at five
+ * viewing angles, with kd 0 (t = 1) and kd 0.5 (t = 0.25: albedo kd + that).  Catches the
+ * specular term skipped when ks is black (albedo kd), and the lobe never sampled (t = 0: a
+ * mirror-like lobe found by cosine samples alone, the estimate far off). */
+START_TEST(test_brdf_ggx_with_ks_zero_reflects_schlicks_fresnel)
+{
+    const double view[] = {0, 40, 60, 75, 85}, kds[] = {0, 0.5}, a = 0.01;
+    enum { N = 20000 };
+    rng r;
+    rng_seed(&r, 19, 0);
+    for (int ki = 0; ki < 2; ki++)
+        for (int vi = 0; vi < 5; vi++) {
+            brdf_case c = {"", BRDF_GGX, SAMPLING_BRDF, kds[ki], 0.0, 0, a, view[vi]};
+            surface s = make_surface(&c);
+            vec3 wo = wo_of(view[vi]);
+            double sum = 0, sum2 = 0;
+            for (int i = 0; i < N; i++) {
+                brdf_sample_result bs;
+                double w = 0;
+                if (brdf_sample(&s, wo, SAMPLING_BRDF, rng_uniform(&r), rng_uniform(&r), rng_uniform(&r), &bs))
+                    w = bs.weight.g;
+                sum += w;
+                sum2 += w * w;
+            }
+            double mean = sum / N, se = sqrt(fmax(0, sum2 / N - mean * mean) / (N - 1));
+            double co = wo.z, tan2 = (1 - co * co) / (co * co), g1 = 2 / (1 + sqrt(1 + a * a * tan2));
+            double want = kds[ki] + g1 * g1 * pow(1 - co, 5);
+            /* within 3%: at 85 degrees some of the lobe falls below the horizon (-1.9%) */
+            ck_assert_msg(fabs(mean - want) < 4 * se + 0.03 * want + 1e-4,
+                          "kd %g at %g deg: albedo %.5f, want %.5f (SE %.5f)", kds[ki], view[vi], mean, want, se);
+        }
 }
 END_TEST
 
@@ -362,7 +407,7 @@ START_TEST(test_brdf_delta_surfaces_reflect_and_refract_exactly)
     rng g;
     rng_seed(&g, 5, 0);
     for (long i = 0; i < n; i++) {
-        ck_assert(brdf_sample(&s, wo, SAMPLING_BRDF, 0.5, 0.5, rng_uniform(&g), &bs));
+        ck_require(brdf_sample(&s, wo, SAMPLING_BRDF, 0.5, 0.5, rng_uniform(&g), &bs));
         bad += !(bs.weight.r == 1 && bs.weight.g == 1 && bs.weight.b == 1 && bs.is_delta);
         if (bs.wi.z > 0) {
             refl++;
@@ -380,6 +425,48 @@ START_TEST(test_brdf_delta_surfaces_reflect_and_refract_exactly)
     double rs = pow((ci - 1.5 * ct) / (ci + 1.5 * ct), 2), rp = pow((1.5 * ci - ct) / (1.5 * ci + ct), 2);
     double F = 0.5 * (rs + rp), se = sqrt(F * (1 - F) / n);
     ck_assert_msg(fabs((double)refl / n - F) < 4 * se, "reflected %g, want F = %g", (double)refl / n, F);
+}
+END_TEST
+
+/* Glass seen from inside (entering = 0: a ray leaving the ball, the normal turned to its side):
+ * eta = n_t / n_i = 1 / ior.  Below the critical angle asin(1 / 1.5) = 41.8 degrees it reflects
+ * exactly when xi3 < F = fresnel_dielectric(cos, 1 / ior) (written out here: F at 40 degrees is
+ * 0.245, with the entering eta 0.046) and otherwise refracts by Snell, sin_t = ior sin_i, on the
+ * far side; beyond it, it always reflects (total internal reflection).  Catches eta = ior when
+ * leaving, and F computed with the entering eta. */
+START_TEST(test_brdf_glass_leaving_the_ball_refracts_with_one_over_ior)
+{
+    const double ior = 1.5, eta = 1 / ior, below[] = {10, 25, 40}, beyond[] = {45, 60, 85};
+    brdf_case c = {"", BRDF_GLASS, SAMPLING_BRDF, 0, 0, 0, 0, 0};
+    surface s = make_surface(&c);
+    s.entering = 0;
+    s.ior = ior;
+    brdf_sample_result bs;
+    for (int i = 0; i < 3; i++) {
+        vec3 wo = wo_of(below[i]), mirror = vec3_make(-wo.x, -wo.y, wo.z);
+        double ci = wo.z, si = sqrt(1 - ci * ci), ct = sqrt(1 - pow(si / eta, 2));
+        double rs = (ci - eta * ct) / (ci + eta * ct), rp = (eta * ci - ct) / (eta * ci + ct);
+        double F = 0.5 * (rs * rs + rp * rp);
+        ck_assert_near(F, fresnel_dielectric(ci, eta), 1e-12);
+        ck_assert(brdf_sample(&s, wo, SAMPLING_BRDF, 0.5, 0.5, F * (1 - 1e-6), &bs));
+        ck_assert_msg(vec3_length(vec3_sub(bs.wi, mirror)) < 1e-12, "%g deg: xi3 below F = %g did not reflect",
+                      below[i], F);
+        ck_assert(brdf_sample(&s, wo, SAMPLING_BRDF, 0.5, 0.5, F * (1 + 1e-6), &bs));
+        double st = sqrt(bs.wi.x * bs.wi.x + bs.wi.y * bs.wi.y);
+        ck_assert_msg(bs.wi.z < 0 && fabs(st - si / eta) < 1e-12, "%g deg: sin_t %g, want %g (wi.z %g)", below[i],
+                      st, si / eta, bs.wi.z);
+        ck_assert(fabs(bs.wi.x * wo.y - bs.wi.y * wo.x) < 1e-12 && bs.wi.x * wo.x <= 0); /* plane, far side */
+        ck_assert(bs.is_delta && bs.weight.r == 1 && bs.weight.g == 1 && bs.weight.b == 1);
+    }
+    for (int i = 0; i < 3; i++) {
+        vec3 wo = wo_of(beyond[i]), mirror = vec3_make(-wo.x, -wo.y, wo.z);
+        const double xis[] = {0, 0.3, 0.7, 0.999999};
+        for (int k = 0; k < 4; k++) {
+            ck_assert(brdf_sample(&s, wo, SAMPLING_BRDF, 0.5, 0.5, xis[k], &bs));
+            ck_assert_msg(vec3_length(vec3_sub(bs.wi, mirror)) < 1e-12 && bs.weight.g == 1,
+                          "%g deg, xi3 %g: no total internal reflection", beyond[i], xis[k]);
+        }
+    }
 }
 END_TEST
 
@@ -458,6 +545,8 @@ Suite *brdf_suite(void)
     tcase_add_test(tc, test_brdf_eval_is_reciprocal);
     tcase_add_test(tc, test_brdf_phong_albedo_never_exceeds_kd_plus_ks);
     tcase_add_test(tc, test_brdf_specular_probability_follows_the_course);
+    tcase_add_test(tc, test_brdf_ggx_with_ks_zero_reflects_schlicks_fresnel);
+    tcase_add_test(tc, test_brdf_glass_leaving_the_ball_refracts_with_one_over_ior);
     tcase_add_test(tc, test_brdf_is_zero_below_the_surface);
     tcase_add_test(tc, test_brdf_delta_surfaces_reflect_and_refract_exactly);
     tcase_add_test(tc, test_brdf_delta_surfaces_have_no_f_or_pdf_even_with_a_diffuse_colour);

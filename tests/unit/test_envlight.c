@@ -116,7 +116,7 @@ static void build(envlight *el, const envmap *env, envsampling_mode mode, envsam
 static void texel_of(const envlight *el, vec3 w, int *c, int *r)
 {
     uv2 uv;
-    ck_assert_int_eq(latlong_dir_to_uv(mat4_dir(&el->env->to_env, w), &uv), 0);
+    ck_require(latlong_dir_to_uv(mat4_dir(&el->env->to_env, w), &uv) == 0);
     *c = (int)(uv.u * el->w);
     *r = (int)(uv.v * el->h);
     if (*c >= el->w) *c = el->w - 1;
@@ -320,8 +320,8 @@ START_TEST(test_envlight_translation_and_uniform_scale_sample_as_the_rotation_al
                 continue;
             }
             envlight_sample_result sa, sb;
-            ck_assert(envlight_sample(&a, x1, x2, &sa));
-            ck_assert(envlight_sample(&b, x1, x2, &sb));
+            ck_require(envlight_sample(&a, x1, x2, &sa));
+            ck_require(envlight_sample(&b, x1, x2, &sb));
             vec3 w = sampling_uniform_sphere(x3, rng_uniform(&g)); /* any direction, for the lookups */
             bad += vec3_length(vec3_sub(sa.wi, sb.wi)) > 1e-12 || fabs(sa.pdf / sb.pdf - 1) > 1e-12 ||
                    !same_rgb(sa.L, sb.L) || !(fabs(envlight_pdf(&a, w) - envlight_pdf(&b, w)) <= 1e-12 * envlight_pdf(&a, w)) ||
@@ -471,11 +471,11 @@ START_TEST(test_envlight_sampled_phi_is_unit_and_in_its_column)
             for (int i = 0; i < 20000; i++) {
                 double xi1 = i < 3 ? 0.5 * i : rng_uniform(&g); /* 0, 1/2, 1 and random */
                 envlight_sample_result s;
-                ck_assert(envlight_sample(&el, xi1, rng_uniform(&g), &s));
+                ck_require(envlight_sample(&el, xi1, rng_uniform(&g), &s));
                 double e = fabs(vec3_dot(s.wi, s.wi) - 1);
                 worst = e > worst ? e : worst;
                 uv2 uv;
-                ck_assert_int_eq(latlong_dir_to_uv(s.wi, &uv), 0);
+                ck_require(latlong_dir_to_uv(s.wi, &uv) == 0);
                 double x = uv.u * w; /* in [lit, lit + 1], or at the seam 0 = w for column 0 */
                 int in = (x > lit - EDGE_TOL && x < lit + 1 + EDGE_TOL) || (lit == 0 && x > w - EDGE_TOL);
                 outside += !in;
@@ -504,7 +504,7 @@ START_TEST(test_envlight_sampled_phi_is_unit_and_in_its_column)
             for (int i = 0; i < 20000; i++) {
                 double xi1 = rng_uniform(&g);
                 envlight_sample_result s;
-                ck_assert(envlight_sample(&el, xi1, rng_uniform(&g), &s));
+                ck_require(envlight_sample(&el, xi1, rng_uniform(&g), &s));
                 double phi = atan2(s.wi.y, s.wi.x), want = 2 * M_PI * xi1;
                 if (phi < 0) phi += 2 * M_PI;
                 double e = fabs(phi - want);
@@ -584,7 +584,7 @@ START_TEST(test_envlight_bad_texels_are_counted_dark_and_never_sampled)
             long hit = 0;
             for (int i = 0; i < 50000; i++) {
                 envlight_sample_result s;
-                ck_assert(envlight_sample(&el, rng_uniform(&r), rng_uniform(&r), &s));
+                ck_require(envlight_sample(&el, rng_uniform(&r), rng_uniform(&r), &s));
                 int c, rr;
                 texel_of(&el, s.wi, &c, &rr);
                 hit += (c == 2 && rr == 2) || (c == 9 && rr == 4);
@@ -774,8 +774,8 @@ START_TEST(test_envlight_kappa_and_the_combined_lookup)
             vec3 w = sampling_uniform_sphere(rng_uniform(&g), rng_uniform(&g));
             double pdf;
             rgb L = envlight_radiance_pdf(&el, w, &pdf), L1 = envlight_radiance(&el, w);
-            ck_assert(L.r == L1.r && L.g == L1.g && L.b == L1.b);
-            ck_assert_msg(pdf == envlight_pdf(&el, w), "mode %d: %g vs %g", mode, pdf, envlight_pdf(&el, w));
+            ck_require(L.r == L1.r && L.g == L1.g && L.b == L1.b);
+            ck_require_msg(pdf == envlight_pdf(&el, w), "mode %d: %g vs %g", mode, pdf, envlight_pdf(&el, w));
         }
         envlight_free(&el);
     }
@@ -931,7 +931,7 @@ START_TEST(test_envlight_mediancut_strata_partition_the_map_and_its_power)
             int k, c, r;
             vec3 sd;
             double prob;
-            ck_assert(envlight_mediancut_pick(&el, rng_uniform(&g), rng_uniform(&g), rng_uniform(&g), &k, &sd, &prob));
+            ck_require(envlight_mediancut_pick(&el, rng_uniform(&g), rng_uniform(&g), rng_uniform(&g), &k, &sd, &prob));
             bad += fabs(prob - rgb_avg(el.points[k].power) / avg_sum) > 1e-12;
             texel_of(&el, sd, &c, &r);
             const envlight_point *pt = &el.points[k];
@@ -965,6 +965,54 @@ START_TEST(test_envlight_mediancut_points_lie_inside_their_strata)
             outside += c < pt->c0 || c >= pt->c1 || r < pt->r0 || r >= pt->r1;
         }
         ck_assert_msg(outside == 0, "N = %d: %d points outside their stratum", ns[t], outside);
+        envlight_free(&el);
+    }
+    image_free(&im);
+}
+END_TEST
+
+/* Each point light sits at its stratum's energy centroid, L dOmega weighted (Debevec 2005), in
+ * image coordinates: u = sum e (c + 1/2) / (W sum e), v = sum e (r + 1/2) / (H sum e) with
+ * e = L_avg(c, r) dOmega_r, dOmega_r = (cos(pi r / H) - cos(pi (r + 1) / H)) 2 pi / W computed
+ * here from the texels, then turned by the envmap's rotation.  Catches the texels weighted by L
+ * alone (strata spanning rows of different solid angle: points off by up to 0.06 in uv here). */
+START_TEST(test_envlight_mediancut_points_sit_at_their_strata_energy_centroids)
+{
+    image im;
+    small_sun_map(&im);
+    const int ns[] = {10, 64, 256};
+    const double s = 2; /* the envmap's scale, which cancels in the centroid */
+    mat4 rot = mat4_rotate(vec3_make(0.3, 1, 0.2), 40);
+    for (int t = 0; t < 3; t++) {
+        envmap env = env_of(&im, s, rot);
+        envlight el;
+        build(&el, &env, ENVSAMPLING_MEDIANCUT, ENVSAMPLER_BINARY, ns[t]);
+        int bad = 0, multirow = 0;
+        double worst = 0;
+        for (int k = 0; k < el.n_points; k++) {
+            const envlight_point *pt = &el.points[k];
+            double su = 0, sv = 0, se = 0;
+            for (int r = pt->r0; r < pt->r1; r++) {
+                double om = (cos(M_PI * r / 32) - cos(M_PI * (r + 1) / 32)) * 2 * M_PI / 64;
+                for (int c = pt->c0; c < pt->c1; c++) {
+                    const float *px = image_px(&im, c, r);
+                    double e = s * ((double)px[0] + px[1] + px[2]) / 3 * om;
+                    su += e * (c + 0.5);
+                    sv += e * (r + 0.5);
+                    se += e;
+                }
+            }
+            ck_assert(se > 0);
+            uv2 want = {su / se / 64, sv / se / 32}, got;
+            ck_assert_int_eq(latlong_dir_to_uv(mat4_dir(&el.env->to_env, pt->dir), &got), 0);
+            double du = fabs(got.u - want.u), dv = fabs(got.v - want.v);
+            worst = fmax(worst, fmax(du, dv));
+            bad += !(du < 1e-9 && dv < 1e-9); /* sums in double: ~1e-15 */
+            multirow += pt->r1 - pt->r0 > 1;
+        }
+        ck_assert_msg(multirow > 0, "N = %d: no stratum spans rows: the test cannot fail", ns[t]);
+        ck_assert_msg(bad == 0, "N = %d: %d of %d points off their L dOmega centroid (by up to %g in uv)", ns[t],
+                      bad, el.n_points, worst);
         envlight_free(&el);
     }
     image_free(&im);
@@ -1173,6 +1221,7 @@ Suite *envlight_suite(void)
     tcase_add_test(tc, test_envlight_mediancut_strata_partition_the_map_and_its_power);
     tcase_add_test(tc, test_envlight_mediancut_strata_of_a_constant_map_have_equal_energy);
     tcase_add_test(tc, test_envlight_mediancut_points_lie_inside_their_strata);
+    tcase_add_test(tc, test_envlight_mediancut_points_sit_at_their_strata_energy_centroids);
     tcase_add_test(tc, test_envlight_mediancut_shadow_directions_cover_the_stratum);
     tcase_add_test(tc, test_envlight_mediancut_cuts_polar_strata_across_theta);
     tcase_add_test(tc, test_envlight_sintheta_sample_on_the_pole_edge_succeeds);

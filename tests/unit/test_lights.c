@@ -79,10 +79,10 @@ START_TEST(test_lights_pick_probability_is_proportional_to_power)
     for (int i = 0; i < N; i++) {
         int k;
         double prob;
-        ck_assert(lights_pick(&ls, (i + 0.5) / N, &k, &prob));
-        ck_assert(k >= 0 && k < 5);
+        ck_require(lights_pick(&ls, (i + 0.5) / N, &k, &prob));
+        ck_require(k >= 0 && k < 5);
         count[k]++;
-        ck_assert(prob == lights_pick_prob(&ls, k));
+        ck_require(prob == lights_pick_prob(&ls, k));
     }
     for (int k = 0; k < 5; k++) {
         ck_assert_msg(fabs(lights_pick_prob(&ls, k) - pw[k] / total) < 1e-12, "light %d: %.17g, want %.17g", k,
@@ -101,7 +101,7 @@ START_TEST(test_lights_pick_probability_is_proportional_to_power)
             double prob;
             if (!lights_pick(&ls, (i + 0.5) / N, &k, &prob)) { none++; continue; }
             kept[k]++;
-            ck_assert(prob == lights_pick_prob(&ls, k));
+            ck_require(prob == lights_pick_prob(&ls, k));
         }
         ck_assert_msg(fabs(lights_pick_prob(&ls, 4) - c * pw[4] / total) < 1e-12, "c %g: %g", c, lights_pick_prob(&ls, 4));
         ck_assert_msg(fabs((double)kept[4] / N - c * pw[4] / total) < 2.0 / N, "c %g: env kept %ld times", c, kept[4]);
@@ -121,6 +121,49 @@ START_TEST(test_lights_pick_probability_is_proportional_to_power)
     envlight_free(&el);
     image_free(&im);
     scene_free(&sc);
+}
+END_TEST
+
+/* lights_selection_prob, the probability that one light sample is of light k: under
+ * `lightselection all` (the default) 1 for every light and c for the envmap, whatever their
+ * powers; under `power` the pick probability (c P for the envmap), lights_pick_prob. */
+START_TEST(test_lights_selection_probability_follows_the_selection)
+{
+    for (int mode = 0; mode < 2; mode++) {
+        scene sc;
+        load(&sc);
+        sc.lightselection = mode ? LIGHTSELECTION_POWER : LIGHTSELECTION_ALL;
+        image im;
+        genenv_params gp = genenv_defaults();
+        gp.width = 32;
+        error err = {0};
+        ck_assert_int_eq(genenv_make(GENENV_CONSTANT, &gp, &im, &err), 0);
+        envmap env = latlong_env(&im, 1.0);
+        envlight el;
+        ck_assert_int_eq(envlight_build(&el, &env, ENVSAMPLING_CDF, ENVSAMPLER_BINARY, 0, NULL, &err), 0);
+        lights ls;
+        ck_assert_int_eq(lights_build(&ls, &sc, &el, 3.0, NULL, &err), 0);
+        const double fractions[] = {1.0, 0.3, 0.0};
+        double p_env = lights_pick_prob(&ls, 4); /* P(pick the envmap) at c = 1 */
+        for (int f = 0; f < 3; f++) {
+            lights_set_env_fraction(&ls, fractions[f]);
+            double sum = 0;
+            for (int k = 0; k < ls.n; k++) {
+                double p = lights_selection_prob(&ls, k), want = mode ? lights_pick_prob(&ls, k)
+                                                                   : k == 4 ? fractions[f] : 1.0;
+                ck_assert_msg(p == want, "%s, c %g, light %d: %.17g, want %.17g", mode ? "power" : "all",
+                              fractions[f], k, p, want);
+                sum += p;
+            }
+            double want_sum = mode ? 1 - (1 - fractions[f]) * p_env : 4 + fractions[f];
+            ck_assert_msg(fabs(sum - want_sum) < 1e-12, "%s, c %g: probabilities sum to %.17g", mode ? "power" : "all",
+                          fractions[f], sum);
+        }
+        lights_free(&ls);
+        envlight_free(&el);
+        image_free(&im);
+        scene_free(&sc);
+    }
 }
 END_TEST
 
@@ -176,7 +219,7 @@ START_TEST(test_lights_quad_sample_pdf_matches_lights_quad_pdf)
     enum { N = 40000 };
     for (int i = 0; i < N; i++) {
         light_sample s;
-        ck_assert(lights_sample(&ls, 0, p, ng, rng_uniform(&g), rng_uniform(&g), rng_uniform(&g), 0, &s));
+        ck_require(lights_sample(&ls, 0, p, ng, rng_uniform(&g), rng_uniform(&g), rng_uniform(&g), 0, &s));
         vec3 q = vec3_add(s.shadow.o, s.shadow.d); /* the shadow ray ends at the sampled point */
         double t = vec3_length(vec3_sub(q, p));
         double pq = lights_quad_pdf(&ls, 0, s.wi, t);
@@ -384,10 +427,10 @@ START_TEST(test_lights_intersect_quad_finds_the_nearest_quad_of_many)
             double t0 = 0, t1 = 0;
             int h0 = nearest_quad_by_testing_all(&sc, &r, &k0, &t0);
             int h1 = lights_intersect_quad(&ls, &r, &k1, &t1);
-            ck_assert_int_eq(h1, h0);
+            ck_require(h1 == h0);
             if (h0) {
-                ck_assert_int_eq(k1, k0);
-                ck_assert(t1 == t0);
+                ck_require(k1 == k0);
+                ck_require(t1 == t0);
                 hits++;
             }
         }
@@ -443,6 +486,7 @@ Suite *lights_suite(void)
     TCase *tc = tcase_create("lights");
     tcase_set_timeout(tc, 60); /* generous for sanitizer builds */
     tcase_add_test(tc, test_lights_pick_probability_is_proportional_to_power);
+    tcase_add_test(tc, test_lights_selection_probability_follows_the_selection);
     tcase_add_test(tc, test_lights_pick_probabilities_of_powers_past_the_largest_double);
     tcase_add_test(tc, test_lights_quad_sample_pdf_matches_lights_quad_pdf);
     tcase_add_test(tc, test_lights_quad_emits_on_the_side_of_ac_cross_ab);

@@ -134,6 +134,7 @@ static const bad_case bad_cases[] = {
                             "'pathtracer', got 'foo'"},
     {"nexteventestimation maybe\n", 3, "'maybe'"},
     {"lightstratify yes\n", 3, "'lightstratify' must be 'off' or 'on', got 'yes'"},
+    {"lightselection one\n", 3, "'lightselection' must be 'all' or 'power', got 'one'"},
     {"russianroulette 1\n", 3, "got '1'"},
     {"importancesampling uniform\n", 3, "'uniform'"},
     {"envmiss foo\n", 3, "'envmiss' must be 'envmap' or 'black', got 'foo'"},
@@ -583,6 +584,7 @@ START_TEST(test_defaults_are_the_courses)
     ck_assert_int_eq(sc.spp, 1);
     ck_assert_int_eq(sc.lightsamples, 1);
     ck_assert_int_eq(sc.lightstratify, 0);
+    ck_assert_int_eq(sc.lightselection, LIGHTSELECTION_ALL); /* the course's: every light */
     ck_assert_int_eq(sc.nee, NEE_OFF);
     ck_assert_int_eq(sc.russianroulette, 0);
     ck_assert_int_eq(sc.importancesampling, SAMPLING_HEMISPHERE);
@@ -663,8 +665,10 @@ START_TEST(test_renderer_settings_are_stored)
 {
     scene sc;
     load_ok(HEAD "spp 1048576\nlightsamples 65536\nlightstratify on\nnexteventestimation mis\n"
-                 "russianroulette on\nimportancesampling brdf\ngamma 2.2\nenvmiss black\n",
+                 "russianroulette on\nimportancesampling brdf\ngamma 2.2\nenvmiss black\n"
+                 "lightselection power\n",
             &sc);
+    ck_assert_int_eq(sc.lightselection, LIGHTSELECTION_POWER);
     ck_assert_int_eq(sc.spp, SCENE_MAX_SPP);
     ck_assert_int_eq(sc.lightsamples, SCENE_MAX_LIGHTSAMPLES);
     ck_assert_int_eq(sc.lightstratify, 1);
@@ -675,8 +679,10 @@ START_TEST(test_renderer_settings_are_stored)
     ck_assert_int_eq(sc.envmiss, ENVMISS_BLACK);
     scene_free(&sc);
     load_ok(HEAD "lightstratify on\nlightstratify off\nnexteventestimation on\n"
-                 "russianroulette off\nimportancesampling cosine\nenvmiss envmap\n",
+                 "russianroulette off\nimportancesampling cosine\nenvmiss envmap\n"
+                 "lightselection power\nlightselection all\n",
             &sc);
+    ck_assert_int_eq(sc.lightselection, LIGHTSELECTION_ALL);
     ck_assert_int_eq(sc.lightstratify, 0);
     ck_assert_int_eq(sc.nee, NEE_ON);
     ck_assert_int_eq(sc.russianroulette, 0);

@@ -23,6 +23,19 @@
         return failed || ran == 0 ? EXIT_FAILURE : EXIT_SUCCESS;                  \
     }
 
+/* Assertions for hot loops: ck_require(expr) and ck_require_msg(expr, fmt, ...) fail as
+ * ck_assert and ck_assert_msg do, but a passing one costs nothing: Check records the file and
+ * line of every passing ck_assert (a write() each), which in a loop of a million samples is most
+ * of a test's time. */
+#define ck_require(expr)                                                   \
+    do {                                                                   \
+        if (!(expr)) ck_abort_msg("Assertion '%s' failed", #expr);         \
+    } while (0)
+#define ck_require_msg(expr, ...)                                          \
+    do {                                                                   \
+        if (!(expr)) ck_abort_msg(__VA_ARGS__);                            \
+    } while (0)
+
 /* |a - b| <= tol, with the values in the failure message */
 #define ck_assert_near(a, b, tol) ck_assert_double_eq_tol((double)(a), (double)(b), (double)(tol))
 
