@@ -159,17 +159,19 @@ double bvh_bytes(long n, double *scratch)
     return (double)max_nodes * sizeof(bvh_node) + (double)m * (sizeof(unsigned) + sizeof(bvh_tri));
 }
 
-int bvh_build(bvh *b, const scene *sc, budget *mem, error *err)
+int bvh_build(bvh *b, bvh_prims prims, budget *mem, error *err)
 {
     memset(b, 0, sizeof *b);
+    b->prims_of = prims;
+    const bvh_prims *sc = &b->prims_of;
     clock_t t0 = clock();
     long n = sc->n_spheres + sc->n_triangles;
     b->n_spheres = sc->n_spheres;
     b->n_prims = n;
-    if (n > 0x7fffffffL) return error_set(err, sc->path, 0, "too many primitives (%ld)", n);
+    if (n > 0x7fffffffL) return error_set(err, sc->name, 0, "too many primitives (%ld)", n);
     double scratch, keep = bvh_bytes(n, &scratch);
     double each = (keep + scratch) / (n > 0 ? n : 1);
-    if (budget_charge(mem, keep + scratch, sc->path, 0, err, "the BVH of %ld primitives x %.0f "
+    if (budget_charge(mem, keep + scratch, sc->name, 0, err, "the BVH of %ld primitives x %.0f "
                       "bytes", n, each))
         return -1;
     long max_nodes = n > 0 ? 2 * n - 1 : 1;
@@ -181,14 +183,14 @@ int bvh_build(bvh *b, const scene *sc, budget *mem, error *err)
         free(bp);
         bvh_free(b);
         budget_release(mem, keep + scratch);
-        return error_set(err, sc->path, 0, "out of memory building the BVH (%ld primitives)", n);
+        return error_set(err, sc->name, 0, "out of memory building the BVH (%ld primitives)", n);
     }
     for (long i = 0; i < n; i++) {
         build_prim *p = &bp[i];
         if (i < sc->n_spheres) {
             sphere_bounds(&sc->spheres[i], &p->lo, &p->hi);
         } else {
-            const scene_triangle *t = &sc->triangles[i - sc->n_spheres];
+            const triangle *t = &sc->triangles[i - sc->n_spheres];
             p->lo = vec3_min(t->p[0], vec3_min(t->p[1], t->p[2]));
             p->hi = vec3_max(t->p[0], vec3_max(t->p[1], t->p[2]));
         }
@@ -213,7 +215,7 @@ int bvh_build(bvh *b, const scene *sc, budget *mem, error *err)
     for (long i = 0; i < n; i++) {
         unsigned id = b->prims[i];
         if (id >= (unsigned)sc->n_spheres) {
-            const scene_triangle *t = &sc->triangles[id - sc->n_spheres];
+            const triangle *t = &sc->triangles[id - sc->n_spheres];
             b->tris[i] = (bvh_tri){t->p[0], t->p[1], t->p[2]};
         }
     }
@@ -256,7 +258,7 @@ static inline int box_hit(const bvh_node *nd, vec3 o, vec3 inv, double tmin, dou
 
 /* The primitives prims[first .. first + count) against ray *r: each hit shrinks r->tmax (the
  * closest so far) and records it; any = 1 stops at the first hit (shadow rays). */
-static inline int leaf_hits(const bvh *b, const scene *sc, ray *r, int first, int count, int any,
+static inline int leaf_hits(const bvh *b, ray *r, int first, int count, int any,
                             long *best_i, double *best_t, double *bb1, double *bb2)
 {
     int found = 0;
@@ -264,7 +266,7 @@ static inline int leaf_hits(const bvh *b, const scene *sc, ray *r, int first, in
         unsigned id = b->prims[i];
         double t, b1 = 0, b2 = 0;
         int h;
-        if (id < (unsigned)b->n_spheres) h = sphere_intersect(&sc->spheres[id], r, &t);
+        if (id < (unsigned)b->n_spheres) h = sphere_intersect(&b->prims_of.spheres[id], r, &t);
         else {
             const bvh_tri *tr = &b->tris[i];
             h = triangle_intersect(tr->p0, tr->p1, tr->p2, r, &t, &b1, &b2);
@@ -283,12 +285,12 @@ static inline int leaf_hits(const bvh *b, const scene *sc, ray *r, int first, in
 }
 
 /* Shared traversal.  any = 1: stop at the first hit (shadow rays). */
-static int traverse(const bvh *b, const scene *sc, const ray *r0, int any, long *best_i,
+static int traverse(const bvh *b, const ray *r0, int any, long *best_i,
                     double *best_t, double *bb1, double *bb2)
 {
     ray r = *r0;
     /* no tree (a few primitives): the one leaf's box is all space, so no slab test */
-    if (!b->is_tree) return leaf_hits(b, sc, &r, 0, (int)b->n_prims, any, best_i, best_t, bb1, bb2);
+    if (!b->is_tree) return leaf_hits(b, &r, 0, (int)b->n_prims, any, best_i, best_t, bb1, bb2);
     vec3 inv = vec3_make(1.0 / r.d.x, 1.0 / r.d.y, 1.0 / r.d.z);
     int stack[BVH_MAX_DEPTH];
     int sp = 0, node = 0, found = 0;
@@ -302,7 +304,7 @@ static int traverse(const bvh *b, const scene *sc, const ray *r0, int any, long 
                 else { node = left; stack[sp++] = right; }
                 continue;
             }
-            if (leaf_hits(b, sc, &r, nd->first, nd->count, any, best_i, best_t, bb1, bb2)) {
+            if (leaf_hits(b, &r, nd->first, nd->count, any, best_i, best_t, bb1, bb2)) {
                 if (any) return 1;
                 found = 1;
             }
@@ -313,21 +315,22 @@ static int traverse(const bvh *b, const scene *sc, const ray *r0, int any, long 
     return found;
 }
 
-int bvh_intersect(const bvh *b, const scene *sc, const ray *r, hit *h)
+int bvh_intersect(const bvh *b, const ray *r, hit *h)
 {
+    const bvh_prims *sc = &b->prims_of;
     long id = -1;
     double t = 0, b1 = 0, b2 = 0;
-    if (b->n_prims == 0 || !traverse(b, sc, r, 0, &id, &t, &b1, &b2)) return 0;
+    if (b->n_prims == 0 || !traverse(b, r, 0, &id, &t, &b1, &b2)) return 0;
     h->t = t;
     if (id < b->n_spheres) {
-        const scene_sphere *s = &sc->spheres[id];
+        const sphere *s = &sc->spheres[id];
         sphere_hit(s, r, t, h);
         h->prim = id;
         h->is_sphere = 1;
         h->material = s->material;
         return 1;
     }
-    const scene_triangle *tr = &sc->triangles[id - b->n_spheres];
+    const triangle *tr = &sc->triangles[id - b->n_spheres];
     double b0 = 1 - b1 - b2;
     /* p = b0 p0 + b1 p1 + b2 p2 : the barycentric interpolation of the lecture */
     h->p = vec3_add(vec3_add(vec3_scale(tr->p[0], b0), vec3_scale(tr->p[1], b1)), vec3_scale(tr->p[2], b2));
@@ -347,9 +350,9 @@ int bvh_intersect(const bvh *b, const scene *sc, const ray *r, hit *h)
     return 1;
 }
 
-int bvh_occluded(const bvh *b, const scene *sc, const ray *r)
+int bvh_occluded(const bvh *b, const ray *r)
 {
     long id;
     double t, b1, b2;
-    return b->n_prims > 0 && traverse(b, sc, r, 1, &id, &t, &b1, &b2);
+    return b->n_prims > 0 && traverse(b, r, 1, &id, &t, &b1, &b2);
 }

@@ -144,7 +144,7 @@ static int corner_order(const void *a, const void *b)
 }
 
 /* The unit geometric normal of tr, or -1 for a zero-area triangle. */
-static int face_normal(const scene_triangle *tr, vec3 *n)
+static int face_normal(const triangle *tr, vec3 *n)
 {
     return vec3_unit_direction(vec3_cross(vec3_sub(tr->p[1], tr->p[0]), vec3_sub(tr->p[2], tr->p[0])), n);
 }
@@ -159,7 +159,7 @@ static int weld_corner_normals(const scene *in, vec3 *cn)
     corner_ref *refs = malloc((size_t)(3 * (in->n_triangles > 0 ? in->n_triangles : 1)) * sizeof *refs);
     if (!refs) return -1;
     for (long i = 0; i < in->n_triangles; i++) {
-        const scene_triangle *tr = &in->triangles[i];
+        const triangle *tr = &in->triangles[i];
         vec3 f;
         if (!disp_map(in, tr->material) || tr->has_normals || face_normal(tr, &f)) continue;
         for (int k = 0; k < 3; k++) refs[n++] = (corner_ref){tr->p[k], {0, 0, 0}, i, k};
@@ -168,7 +168,7 @@ static int weld_corner_normals(const scene *in, vec3 *cn)
     for (long a = 0, b; a < n; a = b) {
         vec3 sum = {0, 0, 0};
         for (b = a; b < n && corner_order(&refs[a], &refs[b]) == 0; b++) {
-            const scene_triangle *tr = &in->triangles[refs[b].tri];
+            const triangle *tr = &in->triangles[refs[b].tri];
             int k = refs[b].k;
             vec3 f = {0, 0, 0}; /* face_normal succeeded for every collected corner (above) */
             face_normal(tr, &f);
@@ -178,7 +178,7 @@ static int weld_corner_normals(const scene *in, vec3 *cn)
             sum = vec3_madd(sum, f, angle);
         }
         for (long c = a; c < b; c++) {
-            const scene_triangle *tr = &in->triangles[refs[c].tri];
+            const triangle *tr = &in->triangles[refs[c].tri];
             vec3 u;
             if (vec3_unit_direction(sum, &u)) face_normal(tr, &u); /* cancelled: its own */
             cn[3 * refs[c].tri + refs[c].k] = u;
@@ -308,7 +308,7 @@ int displacemap_apply(const scene *in, long max_tris, budget *mem, scene *out,
         goto fail;
     }
     for (long i = 0; i < in->n_spheres; i++) {
-        const scene_sphere *sp = &in->spheres[i];
+        const sphere *sp = &in->spheres[i];
         const texture *tex = disp_map(in, sp->material);
         if (!tex) {
             out->spheres[out->n_spheres++] = *sp;
@@ -325,7 +325,7 @@ int displacemap_apply(const scene *in, long max_tris, budget *mem, scene *out,
          * points out (glass decides entering or leaving by it) */
         int mirror = mat4_det3(&sp->xf) < 0;
         for (long t = 0; t < m.n_tris; t++) {
-            scene_triangle *o = &out->triangles[out->n_triangles++];
+            triangle *o = &out->triangles[out->n_triangles++];
             memset(o, 0, sizeof *o);
             uv2 sph[3];
             for (int k = 0; k < 3; k++) {
@@ -344,7 +344,7 @@ int displacemap_apply(const scene *in, long max_tris, budget *mem, scene *out,
         st->spheres++;
     }
     for (long i = 0; i < in->n_triangles; i++) {
-        const scene_triangle *tr = &in->triangles[i];
+        const triangle *tr = &in->triangles[i];
         const texture *tex = disp_map(in, tr->material);
         if (!tex) {
             out->triangles[out->n_triangles++] = *tr;
@@ -363,7 +363,7 @@ int displacemap_apply(const scene *in, long max_tris, budget *mem, scene *out,
         int q_known = c.n_q == m.n_verts; /* the callback saw every vertex, in index order */
         long first = out->n_triangles;
         for (long t = 0; t < m.n_tris; t++) {
-            scene_triangle *o = &out->triangles[out->n_triangles++];
+            triangle *o = &out->triangles[out->n_triangles++];
             memset(o, 0, sizeof *o);
             for (int k = 0; k < 3; k++) {
                 long v = m.tris[t].v[k];

@@ -5,22 +5,22 @@
 
 #include "envtex/latlong.h"
 
-void envmap_init(envmap *env, const scene *sc)
+void envmap_init(envmap *env, const convert_env *map, double scale, const mat4 *to_env)
 {
     memset(env, 0, sizeof *env);
-    const scene_envmap *e = &sc->envmap;
-    if (!e->present) return;
-    if (e->kind == CONVERT_CUBE ? e->cube.size == 0 : e->img.w == 0) return;
+    if (!map || (map->kind == CONVERT_CUBE ? !map->cube || map->cube->size == 0
+                                           : !map->img || map->img->w == 0))
+        return;
     env->present = 1;
-    env->kind = e->kind;
-    if (e->kind == CONVERT_CUBE) env->cube = &e->cube;
-    else env->map = &e->img;
-    if (e->kind == CONVERT_LATLONG) env->img = &e->img;
-    if (e->kind == CONVERT_CYLINDRICAL)
-        env->max_height = e->max_height > 0 ? e->max_height
-                                            : convert_cylindrical_height(e->img.w, e->img.h);
-    env->scale = e->scale;
-    env->to_env = e->inv;
+    env->kind = map->kind;
+    if (map->kind == CONVERT_CUBE) env->cube = map->cube;
+    else env->map = map->img;
+    if (map->kind == CONVERT_LATLONG) env->img = map->img;
+    if (map->kind == CONVERT_CYLINDRICAL)
+        env->max_height = map->max_height > 0 ? map->max_height
+                                              : convert_cylindrical_height(map->img->w, map->img->h);
+    env->scale = scale;
+    env->to_env = *to_env;
 }
 
 convert_env envmap_view(const envmap *env)

@@ -44,7 +44,7 @@ int integrator_init(integrator *it, const scene *sc, const bvh *accel, budget *m
     it->env_fraction = 1; /* MIS sets its own below */
     it->sc = sc;
     it->accel = accel;
-    envmap_init(&it->env, sc);
+    scene_environment(sc, &it->env);
     it->maxdepth = sc->maxdepth < 0 ? INTEGRATOR_UNLIMITED_DEPTH : sc->maxdepth;
     if (sc->integrator == INTEGRATOR_RAYTRACER) {
         raytracer_init(&it->rt, sc, accel);
@@ -107,7 +107,7 @@ void integrator_intersect_diff(integrator *it, const ray *r, const ray_diff *rd,
     it->rays++;
     ray rr = *r;
     out->kind = 0;
-    if (bvh_intersect(it->accel, it->sc, &rr, &out->h)) {
+    if (bvh_intersect(it->accel, &rr, &out->h)) {
         out->kind = 1;
         rr.tmax = out->h.t;
     }
@@ -137,7 +137,7 @@ void integrator_intersect_diff(integrator *it, const ray *r, const ray_diff *rd,
 int integrator_occluded(integrator *it, const ray *shadow)
 {
     it->rays++;
-    if (bvh_occluded(it->accel, it->sc, shadow)) return 1;
+    if (bvh_occluded(it->accel, shadow)) return 1;
     /* a quad light is opaque to shadow rays as it is to camera and BRDF rays, which stop at it
      * (either side): otherwise NEE would light what BRDF sampling finds in its shadow.  The
      * shadow ray to a point of light k stops short of k's plane, so k never blocks itself. */

@@ -40,20 +40,16 @@ static int build_quads(lights *ls, const scene *sc, budget *mem, error *err)
     int nq = 0;
     for (int i = 0; i < sc->n_lights; i++) nq += sc->lights[i].kind == LIGHT_QUAD;
     if (nq == 0) return 0;
-    double bytes = (double)nq * (2 * sizeof(scene_triangle) + sizeof *ls->quad_light);
+    double bytes = (double)nq * (2 * sizeof(triangle) + sizeof *ls->quad_light);
     if (budget_charge(mem, bytes, sc->path, 0, err, "%d quad lights as 2 triangles x %zu bytes", nq,
-                      sizeof(scene_triangle)))
+                      sizeof(triangle)))
         return -1;
-    ls->quad_scene = calloc(1, sizeof *ls->quad_scene);
     ls->quad_light = malloc((size_t)nq * sizeof *ls->quad_light);
-    scene_triangle *tris = calloc((size_t)nq * 2, sizeof *tris);
-    if (!ls->quad_scene || !ls->quad_light || !tris) {
-        free(tris);
+    triangle *tris = ls->quad_tris = calloc((size_t)nq * 2, sizeof *tris);
+    if (!ls->quad_light || !tris) {
         budget_release(mem, bytes);
         return error_set(err, sc->path, 0, "out of memory for %d quad lights", nq);
     }
-    memcpy(ls->quad_scene->path, sc->path, sizeof sc->path);
-    ls->quad_scene->triangles = tris;
     for (int i = 0; i < sc->n_lights; i++) {
         const scene_light *l = &sc->lights[i];
         if (l->kind != LIGHT_QUAD) continue;
@@ -61,12 +57,11 @@ static int build_quads(lights *ls, const scene *sc, budget *mem, error *err)
         vec3 a = l->pos, b = vec3_add(l->pos, l->ab), c = vec3_add(b, l->ac), d = vec3_add(l->pos, l->ac);
         int j = ls->n_quads++;
         ls->quad_light[j] = i;
-        scene_triangle *t = &tris[2 * j];
+        triangle *t = &tris[2 * j];
         t[0].p[0] = a, t[0].p[1] = b, t[0].p[2] = c;
         t[1].p[0] = a, t[1].p[1] = c, t[1].p[2] = d;
     }
-    ls->quad_scene->n_triangles = 2L * nq;
-    return bvh_build(&ls->quad_bvh, ls->quad_scene, mem, err);
+    return bvh_build(&ls->quad_bvh, (bvh_prims){NULL, 0, tris, 2L * nq, sc->path}, mem, err);
 }
 
 int lights_build(lights *ls, const scene *sc, const envlight *env, double scene_radius, budget *mem,
@@ -101,13 +96,10 @@ int lights_build(lights *ls, const scene *sc, const envlight *env, double scene_
 void lights_free(lights *ls)
 {
     distrib1d_free(&ls->choose);
-    if (ls->quad_scene) {
-        bvh_free(&ls->quad_bvh); /* safe on a zeroed or failed build */
-        free(ls->quad_scene->triangles);
-        free(ls->quad_scene);
-    }
+    bvh_free(&ls->quad_bvh); /* safe on a zeroed or failed build */
+    free(ls->quad_tris);
     free(ls->quad_light);
-    ls->quad_scene = NULL;
+    ls->quad_tris = NULL;
     ls->quad_light = NULL;
     ls->n_quads = 0;
 }
@@ -218,29 +210,11 @@ int lights_sample(const lights *ls, int k, vec3 p, vec3 ng, double xi1, double x
 
 int lights_intersect_quad(const lights *ls, const ray *r, int *k, double *t_out)
 {
-    if (ls->n_quads == 0) return 0;
-    if (ls->quad_bvh.is_tree) {
-        hit h;
-        if (!bvh_intersect(&ls->quad_bvh, ls->quad_scene, r, &h)) return 0;
-        *k = ls->quad_light[h.prim / 2]; /* triangles 2 j and 2 j + 1 are quad j */
-        *t_out = h.t;
-        return 1;
-    }
-    /* a few quads (the course's one light): a plain loop costs less than the BVH's bookkeeping */
-    int found = 0;
-    ray rr = *r;
-    for (int j = 0; j < ls->n_quads; j++) {
-        const scene_triangle *tr = &ls->quad_scene->triangles[2 * j];
-        double t, b1, b2;
-        if (triangle_intersect(tr[0].p[0], tr[0].p[1], tr[0].p[2], &rr, &t, &b1, &b2) ||
-            triangle_intersect(tr[1].p[0], tr[1].p[1], tr[1].p[2], &rr, &t, &b1, &b2)) {
-            found = 1;
-            *k = ls->quad_light[j];
-            *t_out = t;
-            rr.tmax = t; /* nearest so far */
-        }
-    }
-    return found;
+    hit h;
+    if (ls->n_quads == 0 || !bvh_intersect(&ls->quad_bvh, r, &h)) return 0;
+    *k = ls->quad_light[h.prim / 2]; /* triangles 2 j and 2 j + 1 are quad j */
+    *t_out = h.t;
+    return 1;
 }
 
 rgb lights_quad_radiance(const lights *ls, int k, vec3 d)

@@ -8,7 +8,7 @@ void raytracer_init(raytracer *rt, const scene *sc, const bvh *accel)
 {
     rt->sc = sc;
     rt->accel = accel;
-    envmap_init(&rt->env, sc);
+    scene_environment(sc, &rt->env);
     rt->maxdepth = sc->maxdepth < 0 ? RAYTRACER_UNLIMITED_DEPTH : sc->maxdepth;
     rt->rays = 0;
 }
@@ -57,7 +57,7 @@ static rgb direct_lights(raytracer *rt, const hit *h, const surface *s, vec3 vie
         }
         if (rgb_is_black(c)) continue; /* nothing to shadow: no shadow ray */
         rt->rays++;
-        if (bvh_occluded(rt->accel, rt->sc, &shadow)) continue; /* V = 0 */
+        if (bvh_occluded(rt->accel, &shadow)) continue; /* V = 0 */
         sum = rgb_fma(sum, l->color, rgb_scale(c, 1 / atten));
     }
     return sum;
@@ -75,7 +75,7 @@ static rgb trace(raytracer *rt, ray r, const ray_diff *rd, int depth, double wei
 {
     hit h;
     rt->rays++;
-    if (!bvh_intersect(rt->accel, rt->sc, &r, &h)) return miss(rt, r.d, depth);
+    if (!bvh_intersect(rt->accel, &r, &h)) return miss(rt, r.d, depth);
     const material *m = &rt->sc->materials[h.material];
     vec3 d = vec3_normalize(r.d), view = vec3_neg(d);
     int outside = vec3_dot(d, h.ng) < 0;

@@ -78,7 +78,7 @@ int render_scene(const scene *sc, const render_opts *opts, image *out, render_st
         sc = &displaced;
     }
     bvh accel;
-    if (bvh_build(&accel, sc, opts->mem, err)) {
+    if (bvh_build(&accel, scene_prims(sc), opts->mem, err)) {
         if (has_displaced) displacemap_free(&displaced);
         return -1;
     }

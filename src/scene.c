@@ -363,7 +363,7 @@ static int cmd_sphere(parser *p)
     if (grow(p, (void **)&sc->spheres, &p->cap_spheres, sc->n_spheres + 1, sizeof *sc->spheres,
              "spheres"))
         return -1;
-    scene_sphere *s = &sc->spheres[sc->n_spheres++];
+    sphere *s = &sc->spheres[sc->n_spheres++];
     s->center = vec3_make(v[0], v[1], v[2]);
     s->radius = v[3];
     s->xf = p->xf;
@@ -432,9 +432,9 @@ static int tri_indices(parser *p, long count, const char *list, long idx[3])
 }
 
 /* Swap a triangle's corners 1 and 2 with everything attached to them. */
-static void swap_corners_1_2(scene_triangle *t)
+static void swap_corners_1_2(triangle *t)
 {
-    scene_triangle c = *t;
+    triangle c = *t;
     t->p[1] = c.p[2];
     t->p[2] = c.p[1];
     t->n[1] = c.n[2];
@@ -446,7 +446,7 @@ static void swap_corners_1_2(scene_triangle *t)
 }
 
 /* Store triangle t, whose world corners p[] are the current transform of its object corners. */
-static int add_triangle(parser *p, const scene_triangle *t)
+static int add_triangle(parser *p, const triangle *t)
 {
     scene *sc = p->sc;
     for (int k = 0; k < 3; k++)
@@ -459,7 +459,7 @@ static int add_triangle(parser *p, const scene_triangle *t)
     if (grow(p, (void **)&sc->triangles, &p->cap_tris, sc->n_triangles + 1,
              sizeof *sc->triangles, "triangles"))
         return -1;
-    scene_triangle *d = &sc->triangles[sc->n_triangles++];
+    triangle *d = &sc->triangles[sc->n_triangles++];
     *d = *t;
     d->material = m;
     if (!d->has_st) { /* st = (b1, b2): the barycentric coordinates of the corners as written */
@@ -479,7 +479,7 @@ static int cmd_tri(parser *p)
 {
     long idx[3];
     if (tri_indices(p, p->n_verts, "vertices", idx)) return -1;
-    scene_triangle t;
+    triangle t;
     memset(&t, 0, sizeof t);
     for (int k = 0; k < 3; k++) {
         t.q[k] = p->verts[idx[k]];
@@ -497,7 +497,7 @@ static int cmd_trinormal(parser *p)
     if (tri_indices(p, p->n_vnorms, "vertexnormals", idx)) return -1;
     const mat4 *inv = NULL;
     if (xf_inverse(p, &inv)) return -1;
-    scene_triangle t;
+    triangle t;
     memset(&t, 0, sizeof t);
     /* a corner with a zero normal (cmd_vertexnormal) has no normal to interpolate: the triangle
      * is flat shaded, as an OBJ face with a degenerate normal (cmd_obj) */
@@ -903,7 +903,7 @@ static int cmd_tritex(parser *p)
 {
     long idx[3];
     if (tri_indices(p, p->n_vtex, "textured vertices", idx)) return -1;
-    scene_triangle t;
+    triangle t;
     memset(&t, 0, sizeof t);
     t.has_st = 1;
     for (int k = 0; k < 3; k++) {
@@ -978,7 +978,7 @@ static int cmd_obj(parser *p)
         return error_prefix(p->err, "obj '%s'", p->tok[1]);
     for (long i = 0; i < m.n_tris; i++) {
         const obj_triangle *o = &m.tris[i];
-        scene_triangle t;
+        triangle t;
         memset(&t, 0, sizeof t);
         t.has_st = o->vt[0] >= 0 && o->vt[1] >= 0 && o->vt[2] >= 0;
         t.has_normals = o->vn[0] >= 0 && o->vn[1] >= 0 && o->vn[2] >= 0;
@@ -1804,6 +1804,13 @@ void scene_free(scene *sc)
     cubemap_free(&sc->envmap.cube);
     infile_list_free(&sc->inputs);
     memset(sc, 0, sizeof *sc);
+}
+
+void scene_environment(const scene *sc, envmap *env)
+{
+    const scene_envmap *e = &sc->envmap;
+    convert_env map = {e->kind, &e->img, &e->cube, e->max_height};
+    envmap_init(env, e->present ? &map : NULL, e->scale, &e->inv);
 }
 
 texmapping_kind scene_material_texmapping(const material *m, int is_sphere)

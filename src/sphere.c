@@ -1,7 +1,7 @@
 /* sphere.c - ray-sphere intersection under an affine transform (see include/envtex/sphere.h). */
 #include "envtex/sphere.h"
 
-int sphere_intersect(const scene_sphere *s, const ray *r, double *t_out)
+int sphere_intersect(const sphere *s, const ray *r, double *t_out)
 {
     /* Object-space ray: o' = M^-1 o - c, d' = M^-1 d (not renormalized: t stays the world t);
      * without a transform M^-1 = I: o' = o - c, d' = d, and the matrix products are skipped. */
@@ -33,7 +33,7 @@ int sphere_intersect(const scene_sphere *s, const ray *r, double *t_out)
     return 0;
 }
 
-void sphere_hit(const scene_sphere *s, const ray *r, double t, hit *h)
+void sphere_hit(const sphere *s, const ray *r, double t, hit *h)
 {
     h->t = t;
     if (s->untransformed) {
@@ -52,7 +52,7 @@ void sphere_hit(const scene_sphere *s, const ray *r, double t, hit *h)
     h->bary = (uv2){0, 0}; /* a sphere's (s, t) comes from its texture mapping (texshade.h) */
 }
 
-void sphere_bounds(const scene_sphere *s, vec3 *lo, vec3 *hi)
+void sphere_bounds(const sphere *s, vec3 *lo, vec3 *hi)
 {
     *lo = vec3_make(INFINITY, INFINITY, INFINITY);
     *hi = vec3_neg(*lo);

@@ -42,14 +42,14 @@ static int plane_coords(vec3 e1, vec3 e2, vec3 v, double *a, double *b)
 }
 
 /* The world-space outward normal of the (transformed) sphere through world point P. */
-static vec3 sphere_normal_at(const scene_sphere *sp, vec3 P)
+static vec3 sphere_normal_at(const sphere *sp, vec3 P)
 {
     vec3 local = vec3_sub(mat4_point(&sp->inv, P), sp->center);
     return vec3_normalize(mat4_normal(&sp->inv, local));
 }
 
 /* Interpolated vertex normal of a trinormal triangle at barycentrics (b1, b2). */
-static vec3 tri_normal_at(const scene_triangle *tr, double b1, double b2)
+static vec3 tri_normal_at(const triangle *tr, double b1, double b2)
 {
     double b0 = 1 - b1 - b2;
     vec3 n = vec3_add(vec3_add(vec3_scale(tr->n[0], b0), vec3_scale(tr->n[1], b1)),
@@ -65,13 +65,13 @@ void texshade_differentials(const scene *sc, const hit *h, const ray *r, const r
     if (!s->has_diff) return;
     double sign = s->entering ? 1.0 : -1.0; /* dn of s->n, which is +-ns */
     if (h->is_sphere) {
-        const scene_sphere *sp = &sc->spheres[h->prim];
+        const sphere *sp = &sc->spheres[h->prim];
         /* dn/dx = N(p + dp/dx) - N(p): forward difference over one pixel step */
         s->dndx = vec3_scale(vec3_sub(sphere_normal_at(sp, vec3_add(h->p, s->dpdx)), h->ns), sign);
         s->dndy = vec3_scale(vec3_sub(sphere_normal_at(sp, vec3_add(h->p, s->dpdy)), h->ns), sign);
         return;
     }
-    const scene_triangle *tr = &sc->triangles[h->prim];
+    const triangle *tr = &sc->triangles[h->prim];
     if (!tr->has_normals) return; /* a flat triangle: dn = 0 */
     /* the integrators shade with s->n = s->ng where the interpolated normal faces away from
      * the viewer: that n is the facet's, constant, and a mirror about it has dn = 0 (the vertex
@@ -94,7 +94,7 @@ void texshade_point_at(const scene *sc, const hit *h, const surface *s, texshade
     tp->dst_dx = tp->dst_dy = (uv2){0, 0};
     tp->dq_dx = tp->dq_dy = tp->dq_ds = tp->dq_dt = tp->dp_ds = tp->dp_dt = zero3;
     if (h->is_sphere) {
-        const scene_sphere *sp = &sc->spheres[h->prim];
+        const sphere *sp = &sc->spheres[h->prim];
         tp->mapping = scene_material_texmapping(m, 1);
         if (tp->mapping == TEXMAPPING_UV) tp->mapping = TEXMAPPING_SPHERICAL;
         tp->q = mat4_point(&sp->inv, h->p); /* P_object = M^-1 P */
@@ -109,9 +109,9 @@ void texshade_point_at(const scene *sc, const hit *h, const surface *s, texshade
         }
         return;
     }
-    const scene_triangle *tr = &sc->triangles[h->prim];
+    const triangle *tr = &sc->triangles[h->prim];
     double b1 = h->bary.u, b2 = h->bary.v, b0 = 1 - b1 - b2;
-    /* a displaced sphere's triangles carry its mapping in st (scene_triangle.st_mapped) */
+    /* a displaced sphere's triangles carry its mapping in st (triangle.st_mapped) */
     tp->mapping = tr->st_mapped ? TEXMAPPING_UV : scene_material_texmapping(m, 0);
     /* P_object = b0 q0 + b1 q1 + b2 q2 */
     tp->q = vec3_add(vec3_add(vec3_scale(tr->q[0], b0), vec3_scale(tr->q[1], b1)),
@@ -146,7 +146,7 @@ void texshade_point_at(const scene *sc, const hit *h, const surface *s, texshade
 void texshade_tangents(const scene *sc, const hit *h, texshade_point *tp)
 {
     if (h->is_sphere) {
-        const scene_sphere *sp = &sc->spheres[h->prim];
+        const sphere *sp = &sc->spheres[h->prim];
         double inv_r = sp->radius > 0 ? 1.0 / sp->radius : 0.0;
         vec3 u = vec3_scale(vec3_sub(tp->q, sp->center), inv_r);
         vec3 du_ds, du_dt;
@@ -158,7 +158,7 @@ void texshade_tangents(const scene *sc, const hit *h, texshade_point *tp)
         tp->dp_dt = mat4_dir(&sp->xf, tp->dq_dt);
         return;
     }
-    const scene_triangle *tr = &sc->triangles[h->prim];
+    const triangle *tr = &sc->triangles[h->prim];
     if (tp->mapping == TEXMAPPING_UV) {
         texmapping_triangle_tangents(tr->p, tr->st, &tp->dp_ds, &tp->dp_dt);
         texmapping_triangle_tangents(tr->q, tr->st, &tp->dq_ds, &tp->dq_dt);

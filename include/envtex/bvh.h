@@ -4,8 +4,8 @@
  * cannot gain from (the slab test of an all-space box was 7-11% of such renders' instructions).
  *
  *     bvh b;
- *     if (bvh_build(&b, sc, &mem, &err)) ...
- *     hit h; if (bvh_intersect(&b, sc, &r, &h)) shade(&h);
+ *     if (bvh_build(&b, scene_prims(sc), &mem, &err)) ...   // scene.h
+ *     hit h; if (bvh_intersect(&b, &r, &h)) shade(&h);
  *     bvh_free(&b);
  *
  * The bvh keeps a pointer to nothing in the scene but reads it on every query: pass the same
@@ -17,7 +17,8 @@
 #include "envtex/budget.h"
 #include "envtex/error.h"
 #include "envtex/ray.h"
-#include "envtex/scene.h"
+#include "envtex/sphere.h"
+#include "envtex/triangle.h"
 
 /* With this many primitives or fewer, a linear loop beats a tree (measured: make bench). */
 #define BVH_MIN_PRIMS 8
@@ -35,7 +36,16 @@ typedef struct bvh_node {
 
 typedef struct bvh_tri { vec3 p0, p1, p2; } bvh_tri;
 
+/* The primitives a BVH is built over (borrowed: they must outlive the bvh, unchanged).  Ids:
+ * sphere i is id i, triangle j is id n_spheres + j. */
+typedef struct bvh_prims {
+    const sphere *spheres; long n_spheres;
+    const triangle *triangles; long n_triangles;
+    const char *name;  /* whose primitives, for messages (a scene file; may be NULL) */
+} bvh_prims;
+
 typedef struct bvh {
+    bvh_prims prims_of; /* what it was built over */
     bvh_node *nodes; long n_nodes;
     unsigned *prims;  /* primitive ids in leaf order: id < n_spheres is a sphere, else a triangle */
     bvh_tri *tris;    /* triangle corners in leaf order (cache friendly), parallel to prims */
@@ -46,11 +56,11 @@ typedef struct bvh {
     double build_seconds;
 } bvh;
 
-/* Build b over sc's spheres and triangles, its memory charged to `mem` first (budget.h, bvh_bytes;
+/* Build b over the spheres and triangles of `prims` (borrowed), its memory charged to `mem` first (budget.h, bvh_bytes;
  * NULL: no budget): the tree stays charged, the build's scratch is released.  Returns 0, or -1
  * with *err set (more than 2^31 - 1 primitives, the budget, out of memory) and b holding
  * nothing.  Free with bvh_free, which is safe on a zeroed or failed bvh. */
-int bvh_build(bvh *b, const scene *sc, budget *mem, error *err);
+int bvh_build(bvh *b, bvh_prims prims, budget *mem, error *err);
 
 /* The bytes a BVH of n primitives keeps (nodes, the leaf order, the triangles' corners: about
  * 200 a primitive), and in *scratch (may be NULL) what its build holds only while it runs. */
@@ -60,9 +70,9 @@ double bvh_bytes_per_prim(void);
 void bvh_free(bvh *b);
 
 /* Closest hit with t in (r->tmin, r->tmax): fills *h completely and returns 1, else 0. */
-int bvh_intersect(const bvh *b, const scene *sc, const ray *r, hit *h);
+int bvh_intersect(const bvh *b, const ray *r, hit *h);
 
 /* 1 if anything lies on the ray with t in (r->tmin, r->tmax) (shadow rays; any hit will do). */
-int bvh_occluded(const bvh *b, const scene *sc, const ray *r);
+int bvh_occluded(const bvh *b, const ray *r);
 
 #endif

@@ -38,7 +38,7 @@
  *             edge read the same heights along it and their vertices there stay bit-equal.
  * If the whole scene would exceed max_tris (0: DISPLACEMAP_MAX_TRIS, never more than
  * SCENE_MAX_PRIMS), or more triangles than the memory budget still holds with their BVH
- * (sizeof(scene_triangle) + bvh_bytes_per_prim() each), at those rates, both rates are halved
+ * (sizeof(triangle) + bvh_bytes_per_prim() each), at those rates, both rates are halved
  * together until it fits (down to 2 and 1); if it still does not fit, an error.  The texture
  * is read with the material's filter and no footprint (texture.h's fallback: trilinear and EWA
  * read the full-resolution image bilinearly; nearest reads its nearest texel).

@@ -43,6 +43,16 @@
 #include "envtex/distrib.h"
 #include "envtex/envmap.h"
 
+/* `envsampling MODE [N]`: how the envmap is sampled as a light (envlight.h) */
+typedef enum envsampling_mode {
+    ENVSAMPLING_UNIFORM,      /* uniform directions on the sphere */
+    ENVSAMPLING_CDF,          /* the lecture's 2D CDF in (u = cos theta, v = phi); default */
+    ENVSAMPLING_CDF_SINTHETA, /* PBRT: rows uniform in theta, weights times sin theta */
+    ENVSAMPLING_MEDIANCUT     /* the map reduced to N point lights (median cut) */
+} envsampling_mode;
+/* `envsampler binary|alias`: CDF inversion by binary search or Walker/Vose alias tables */
+typedef enum envsampler_kind { ENVSAMPLER_BINARY, ENVSAMPLER_ALIAS } envsampler_kind;
+
 typedef struct envlight_point {
     vec3 dir;        /* world-space unit direction of the stratum's energy centroid, taken in
                       * image coordinates (c, r) so that it lies inside the stratum */

@@ -6,7 +6,7 @@
  * to the world.  Renders look the same whichever representation holds the environment.
  *
  *     envmap env;
- *     envmap_init(&env, sc);                       // no envmap in the scene: black everywhere
+ *     scene_environment(sc, &env);                 // scene.h; no envmap: black everywhere
  *     rgb L = envmap_radiance(&env, world_dir);    // radiance arriving from direction world_dir
  *                                                  // (travelling along -world_dir), i.e. seen
  *                                                  // looking along world_dir
@@ -17,7 +17,7 @@
 #define ENVTEX_ENVMAP_H
 
 #include "envtex/convert.h"
-#include "envtex/scene.h"
+#include "envtex/transform.h"
 
 typedef struct envmap {
     int present;          /* 0: black */
@@ -32,10 +32,11 @@ typedef struct envmap {
     mat4 to_env;          /* world direction -> envmap-frame direction (inverse of scene xf) */
 } envmap;
 
-/* Take the scene's envmap (borrowed: the scene must outlive *env).  A scene without one, or
- * whose envmap holds no pixels (a parser test's scene), gives present = 0.  A cylindrical map
- * whose scene gave no height gets convert_cylindrical_height. */
-void envmap_init(envmap *env, const scene *sc);
+/* The environment `map` seen through `scale` and to_env (world direction -> envmap frame, the
+ * inverse of the transform at `envmap`); the map is borrowed and must outlive *env.  NULL or a
+ * map without pixels gives present = 0 (black).  A cylindrical map without a height gets
+ * convert_cylindrical_height.  scene_environment (scene.h) calls it with the scene's envmap. */
+void envmap_init(envmap *env, const convert_env *map, double scale, const mat4 *to_env);
 
 /* The representation as convert.h sees it (a view; no scale, no transform). */
 convert_env envmap_view(const envmap *env);

@@ -40,10 +40,10 @@ typedef struct lights {
     double radius;
     double env_fraction;  /* c in [0, 1]: a pick of the envmap is sampled with probability c
                            * (1 unless lights_set_env_fraction; see there) */
-    /* the quad lights as triangles 2 j: (a, a+ab, a+ab+ac) and 2 j + 1: (a, a+ab+ac, a+ac) of
-     * a scene of their own (owned; NULL without quads), with a BVH over them; both triangles
-     * of pair j are quad quad_light[j] (an index into sc->lights) */
-    scene *quad_scene;
+    /* the quad lights as triangles 2 j: (a, a+ab, a+ab+ac) and 2 j + 1: (a, a+ab+ac, a+ac)
+     * (owned; NULL without quads), with a BVH over them; both triangles of pair j are quad
+     * quad_light[j] (an index into sc->lights) */
+    triangle *quad_tris;
     bvh quad_bvh;
     int *quad_light;
     int n_quads;

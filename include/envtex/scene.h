@@ -19,13 +19,18 @@
 #include <stdint.h>
 
 #include "envtex/budget.h"
+#include "envtex/bvh.h"
 #include "envtex/convert.h"
+#include "envtex/envlight.h"
+#include "envtex/envmap.h"
 #include "envtex/error.h"
 #include "envtex/image.h"
 #include "envtex/infile.h"
 #include "envtex/texmapping.h"
 #include "envtex/texture.h"
+#include "envtex/sphere.h"
 #include "envtex/transform.h"
+#include "envtex/triangle.h"
 #include "envtex/vec.h"
 
 /* Limits a scene may not exceed (checked when read, before anything is allocated). */
@@ -65,36 +70,7 @@ typedef struct material {
     texture_filter texfilter;  /* `texfilter`, default TEXFILTER_TRILINEAR */
 } material;
 
-typedef struct scene_sphere {
-    vec3 center;    /* object space, as written */
-    double radius;
-    mat4 xf, inv;   /* object -> world and its inverse (transform current at `sphere`) */
-    int untransformed; /* 1: xf = inv = the identity (no transform at `sphere`, as most are),
-                        * so a ray needs no transform into object space; 0: use xf and inv
-                        * (always correct: a sphere built by hand may leave it 0) */
-    int material;   /* index into scene.materials */
-} scene_sphere;
 
-typedef struct scene_triangle {
-    vec3 p[3];      /* world-space corners, counter-clockwise seen from outside: under a
-                       mirroring transform (det < 0) corners 1 and 2 are stored swapped, with
-                       their n, st and q, so that (p1 - p0) x (p2 - p0) is the outward normal */
-    vec3 n[3];      /* world-space unit vertex normals (trinormal); unused if !has_normals */
-    int has_normals;
-    int material;
-    uv2 st[3];      /* texture coordinates of the corners: given by `tritex` or an OBJ's vt
-                       (has_st = 1), else (0,0), (1,0), (0,1) for the corners as written, so
-                       that st = (b1, b2) of those corners */
-    int has_st;
-    int st_mapped;  /* 1: st already holds the material's point mapping, made where q cannot make
-                       it (a displaced sphere's tessellation, displacemap.h: its mapping sees the
-                       sphere's unit direction, not q); the renderer then interpolates st as for
-                       `uv`.  0 for every triangle of a scene file */
-    vec3 q[3];      /* OBJECT-space corners (the vertices as written, before the transform), for
-                       the point-based mappings and solid textures: P_object = sum b_i q_i.
-                       Corners, not a matrix index, because they need no inverse (a triangle
-                       under `scale 1 1 0` still has an object space) */
-} scene_triangle;
 
 typedef enum light_kind { LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_QUAD } light_kind;
 
@@ -122,15 +98,6 @@ typedef enum light_selection {
 } light_selection;
 typedef enum sampling_kind { SAMPLING_HEMISPHERE, SAMPLING_COSINE, SAMPLING_BRDF } sampling_kind;
 typedef enum envmiss_mode { ENVMISS_ENVMAP, ENVMISS_BLACK } envmiss_mode;
-/* `envsampling MODE [N]`: how the envmap is sampled as a light (envlight.h) */
-typedef enum envsampling_mode {
-    ENVSAMPLING_UNIFORM,      /* uniform directions on the sphere */
-    ENVSAMPLING_CDF,          /* the lecture's 2D CDF in (u = cos theta, v = phi); default */
-    ENVSAMPLING_CDF_SINTHETA, /* PBRT: rows uniform in theta, weights times sin theta */
-    ENVSAMPLING_MEDIANCUT     /* the map reduced to N point lights (median cut) */
-} envsampling_mode;
-/* `envsampler binary|alias`: CDF inversion by binary search or Walker/Vose alias tables */
-typedef enum envsampler_kind { ENVSAMPLER_BINARY, ENVSAMPLER_ALIAS } envsampler_kind;
 #define SCENE_MAX_MEDIANCUT 65536
 
 /* `envmap FILE [SCALE] [latlong|cube|cross|mirrorball|angular|cylindrical|equalarea]` or
@@ -195,8 +162,8 @@ typedef struct scene {
     scene_envmap envmap;
     /* geometry, materials, lights: arrays owned by the scene */
     material *materials; int n_materials;
-    scene_sphere *spheres; long n_spheres;
-    scene_triangle *triangles; long n_triangles;
+    sphere *spheres; long n_spheres;
+    triangle *triangles; long n_triangles;
     scene_light *lights; int n_lights;
     /* textures (envtex): owned, freed by scene_free */
     scene_texture *textures; int n_textures;    /* in file order; material maps point here */
@@ -257,6 +224,16 @@ material scene_default_material(void);
 const char *scene_integrator_name(integrator_kind k);
 /* "uniform", "cdf", "cdf-sintheta" or "mediancut" (static strings), the words of `envsampling`. */
 const char *scene_envsampling_name(envsampling_mode m);
+
+/* The scene's spheres and triangles, as bvh_build takes them (borrowed). */
+static inline bvh_prims scene_prims(const scene *sc)
+{
+    return (bvh_prims){sc->spheres, sc->n_spheres, sc->triangles, sc->n_triangles, sc->path};
+}
+
+/* The scene's envmap as rays see it (envmap.h): borrowed, the scene must outlive *env.  A scene
+ * without one, or whose envmap holds no pixels (a parser test's scene), gives present = 0. */
+void scene_environment(const scene *sc, envmap *env);
 
 /* The texture of a material map reference (0 = none): NULL, or the texture (owned by sc). */
 static inline const texture *scene_map(const scene *sc, int ref)

@@ -13,6 +13,28 @@
 
 #include "envtex/ray.h"
 
+/* A triangle of the scene (`tri`, `trinormal`, `tritex`, an OBJ face), in world space. */
+typedef struct triangle {
+    vec3 p[3];      /* world-space corners, counter-clockwise seen from outside: under a
+                       mirroring transform (det < 0) corners 1 and 2 are stored swapped, with
+                       their n, st and q, so that (p1 - p0) x (p2 - p0) is the outward normal */
+    vec3 n[3];      /* world-space unit vertex normals (trinormal); unused if !has_normals */
+    int has_normals;
+    int material;
+    uv2 st[3];      /* texture coordinates of the corners: given by `tritex` or an OBJ's vt
+                       (has_st = 1), else (0,0), (1,0), (0,1) for the corners as written, so
+                       that st = (b1, b2) of those corners */
+    int has_st;
+    int st_mapped;  /* 1: st already holds the material's point mapping, made where q cannot make
+                       it (a displaced sphere's tessellation, displacemap.h: its mapping sees the
+                       sphere's unit direction, not q); the renderer then interpolates st as for
+                       `uv`.  0 for every triangle of a scene file */
+    vec3 q[3];      /* OBJECT-space corners (the vertices as written, before the transform), for
+                       the point-based mappings and solid textures: P_object = sum b_i q_i.
+                       Corners, not a matrix index, because they need no inverse (a triangle
+                       under `scale 1 1 0` still has an object space) */
+} triangle;
+
 /* Rounding in the barycentric computation is ~1e-16 relative; 1e-12 closes shared-edge cracks
  * for any sane coordinates while widening each triangle by an invisible amount. */
 #define TRIANGLE_EDGE_EPS 1e-12

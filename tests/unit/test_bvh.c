@@ -2,6 +2,7 @@
  * (closest t, which primitive, occlusion), for random scenes of spheres, ellipsoids and
  * triangles, with and without a tree, and for distributions that push the builder to its
  * depth limit. */
+#include "envtex/scene.h"
 #include "envtex/bvh.h"
 
 #include <stdio.h>
@@ -47,7 +48,7 @@ static void scene_alloc(scene *sc, long ns, long nt)
     sc->n_triangles = nt;
 }
 
-static void set_sphere(scene_sphere *s, vec3 c, double r, mat4 xf, int material)
+static void set_sphere(sphere *s, vec3 c, double r, mat4 xf, int material)
 {
     s->center = c;
     s->radius = r;
@@ -74,7 +75,7 @@ static void random_scene(scene *sc, long n, uint64_t seed)
         set_sphere(&sc->spheres[i], i % 4 == 3 ? vec3_make(0, 0, 0) : c, r, xf, (int)(i & 1));
     }
     for (long i = 0; i < nt; i++) {
-        scene_triangle *t = &sc->triangles[i];
+        triangle *t = &sc->triangles[i];
         vec3 c = vec3_make(10 * sym(&g), 10 * sym(&g), 10 * sym(&g));
         double size = 0.2 + 2 * rng_uniform(&g);
         for (int k = 0; k < 3; k++) {
@@ -137,7 +138,7 @@ static void check_against_brute_force(const scene *sc, int n_rays, uint64_t seed
 {
     error err = {0};
     bvh b;
-    EXPECT_INT_EQ(bvh_build(&b, sc, NULL, &err), 0);
+    EXPECT_INT_EQ(bvh_build(&b, scene_prims(sc), NULL, &err), 0);
     rng g;
     rng_seed(&g, seed, 1);
     int hits = 0;
@@ -148,10 +149,10 @@ static void check_against_brute_force(const scene *sc, int n_rays, uint64_t seed
         int want = brute_closest(sc, &r, &tb, &idb);
         hit h;
         memset(&h, 0, sizeof h);
-        int got = bvh_intersect(&b, sc, &r, &h);
+        int got = bvh_intersect(&b, &r, &h);
         EXPECT_MSG(got == want, "ray %d: bvh %s, brute force %s (t = %g)", i, got ? "hit" : "missed",
                       want ? "hit" : "missed", tb);
-        EXPECT_INT_EQ(bvh_occluded(&b, sc, &r), want);
+        EXPECT_INT_EQ(bvh_occluded(&b, &r), want);
         if (!want) continue;
         hits++;
         /* same t bit for bit: the same intersection routine on the same numbers */
@@ -160,7 +161,7 @@ static void check_against_brute_force(const scene *sc, int n_rays, uint64_t seed
         if (id != idb) {
             /* a tie (two triangles through one edge): the bvh's primitive must give the same t */
             double t2 = 0, b1, b2;
-            const scene_triangle *tr = &sc->triangles[h.prim];
+            const triangle *tr = &sc->triangles[h.prim];
             EXPECT_MSG(!h.is_sphere && triangle_intersect(tr->p[0], tr->p[1], tr->p[2], &r, &t2, &b1, &b2) && t2 == tb,
                           "ray %d: bvh hit primitive %ld, brute force %ld", i, id, idb);
         }
@@ -180,7 +181,7 @@ START_TEST(test_bvh_with_3_primitives_builds_no_tree_and_matches_brute_force)
     random_scene(&sc, 3, 41);
     error err = {0};
     bvh b;
-    EXPECT_INT_EQ(bvh_build(&b, &sc, NULL, &err), 0);
+    EXPECT_INT_EQ(bvh_build(&b, scene_prims(&sc), NULL, &err), 0);
     EXPECT_INT_EQ(b.is_tree, 0);
     EXPECT_INT_EQ(b.n_nodes, 1);
     bvh_free(&b);
@@ -195,12 +196,12 @@ START_TEST(test_bvh_is_a_tree_only_above_bvh_min_prims)
     bvh b;
     scene sc;
     random_scene(&sc, BVH_MIN_PRIMS, 42);
-    EXPECT_INT_EQ(bvh_build(&b, &sc, NULL, &err), 0);
+    EXPECT_INT_EQ(bvh_build(&b, scene_prims(&sc), NULL, &err), 0);
     EXPECT_INT_EQ(b.is_tree, 0);
     bvh_free(&b);
     scene_free(&sc);
     random_scene(&sc, BVH_MIN_PRIMS + 1, 42);
-    EXPECT_INT_EQ(bvh_build(&b, &sc, NULL, &err), 0);
+    EXPECT_INT_EQ(bvh_build(&b, scene_prims(&sc), NULL, &err), 0);
     EXPECT_INT_EQ(b.is_tree, 1);
     EXPECT_INT_EQ(b.n_prims, BVH_MIN_PRIMS + 1);
     bvh_free(&b);
@@ -223,12 +224,12 @@ START_TEST(test_bvh_is_charged_to_the_budget_before_it_is_built)
     EXPECT(bvh_bytes_per_prim() * 1000 >= keep + scratch);
     budget mem;
     budget_init(&mem, keep + scratch - 1);
-    EXPECT_INT_EQ(bvh_build(&b, &sc, &mem, &err), -1);
+    EXPECT_INT_EQ(bvh_build(&b, scene_prims(&sc), &mem, &err), -1);
     EXPECT(strcmp(err.file, "s.test") == 0 && strstr(err.msg, "the BVH of 1000 primitives x ") &&
            strstr(err.msg, "beyond the memory budget"));
     EXPECT(mem.used == 0 && b.nodes == NULL);
     budget_init(&mem, keep + scratch);
-    EXPECT_INT_EQ(bvh_build(&b, &sc, &mem, &err), 0);
+    EXPECT_INT_EQ(bvh_build(&b, scene_prims(&sc), &mem, &err), 0);
     EXPECT(mem.used == keep);
     bvh_free(&b);
     scene_free(&sc);
@@ -269,7 +270,7 @@ START_TEST(test_bvh_with_1000_primitives_matches_brute_force)
     random_scene(&sc, 1000, 44);
     error err = {0};
     bvh b;
-    EXPECT_INT_EQ(bvh_build(&b, &sc, NULL, &err), 0);
+    EXPECT_INT_EQ(bvh_build(&b, scene_prims(&sc), NULL, &err), 0);
     EXPECT_INT_EQ(b.is_tree, 1);
     ck_assert_int_le(b.n_nodes, 2 * 1000 - 1);
     ck_assert_int_le(b.depth, BVH_MAX_DEPTH);
@@ -302,7 +303,7 @@ START_TEST(test_bvh_of_only_spheres_or_only_triangles_matches_brute_force)
     sc.n_triangles = 0; /* spheres only */
     check_against_brute_force(&sc, 1500, 45);
     sc.n_triangles = nt;
-    scene_sphere *sp = sc.spheres;
+    sphere *sp = sc.spheres;
     long ns = sc.n_spheres;
     sc.spheres = NULL; /* triangles only */
     sc.n_spheres = 0;
@@ -321,7 +322,7 @@ START_TEST(test_bvh_of_coincident_primitives_matches_brute_force)
     scene_alloc(&sc, 40, 40);
     for (int i = 0; i < 40; i++) {
         set_sphere(&sc.spheres[i], vec3_make(1, 2, 3), 1 + 0.001 * i, mat4_identity(), 0);
-        sc.triangles[i] = (scene_triangle){.p = {{-5, -5, 0}, {5, -5, 0}, {0, 5, 0.01 * i}}, .material = 1};
+        sc.triangles[i] = (triangle){.p = {{-5, -5, 0}, {5, -5, 0}, {0, 5, 0.01 * i}}, .material = 1};
     }
     check_against_brute_force(&sc, 3000, 47);
     scene_free(&sc);
@@ -339,7 +340,7 @@ START_TEST(test_bvh_of_a_geometric_series_stays_within_the_depth_limit)
         set_sphere(&sc.spheres[k], vec3_make(ldexp(1, -k), 0, 0), ldexp(0.1, -k), mat4_identity(), 0);
     error err = {0};
     bvh b;
-    EXPECT_INT_EQ(bvh_build(&b, &sc, NULL, &err), 0);
+    EXPECT_INT_EQ(bvh_build(&b, scene_prims(&sc), NULL, &err), 0);
     ck_assert_int_le(b.depth, BVH_MAX_DEPTH);
     rng g;
     rng_seed(&g, 48, 0);
@@ -353,10 +354,10 @@ START_TEST(test_bvh_of_a_geometric_series_stays_within_the_depth_limit)
         int want = brute_closest(&sc, &r, &tb, &idb);
         hit h;
         EXPECT_INT_EQ(want, 1);
-        EXPECT_INT_EQ(bvh_intersect(&b, &sc, &r, &h), 1);
+        EXPECT_INT_EQ(bvh_intersect(&b, &r, &h), 1);
         EXPECT(h.t == tb);
         EXPECT_INT_EQ(h.prim, idb);
-        EXPECT_INT_EQ(bvh_occluded(&b, &sc, &r), 1);
+        EXPECT_INT_EQ(bvh_occluded(&b, &r), 1);
     }
     bvh_free(&b);
     scene_free(&sc);
@@ -369,12 +370,12 @@ START_TEST(test_bvh_of_an_empty_scene_never_hits)
     scene_alloc(&sc, 0, 0);
     error err = {0};
     bvh b;
-    EXPECT_INT_EQ(bvh_build(&b, &sc, NULL, &err), 0);
+    EXPECT_INT_EQ(bvh_build(&b, scene_prims(&sc), NULL, &err), 0);
     EXPECT_INT_EQ(b.is_tree, 0);
     ray r = {vec3_make(0, 0, 0), vec3_make(0, 0, 1), 0.0, INFINITY};
     hit h;
-    EXPECT_INT_EQ(bvh_intersect(&b, &sc, &r, &h), 0);
-    EXPECT_INT_EQ(bvh_occluded(&b, &sc, &r), 0);
+    EXPECT_INT_EQ(bvh_intersect(&b, &r, &h), 0);
+    EXPECT_INT_EQ(bvh_occluded(&b, &r), 0);
     bvh_free(&b);
     scene_free(&sc);
 }
@@ -384,14 +385,14 @@ START_TEST(test_bvh_triangle_hit_fills_barycentrics_and_normals)
 {
     scene sc;
     scene_alloc(&sc, 0, 1);
-    scene_triangle *t = &sc.triangles[0];
-    *t = (scene_triangle){.p = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, .material = 1};
+    triangle *t = &sc.triangles[0];
+    *t = (triangle){.p = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, .material = 1};
     error err = {0};
     bvh b;
-    EXPECT_INT_EQ(bvh_build(&b, &sc, NULL, &err), 0);
+    EXPECT_INT_EQ(bvh_build(&b, scene_prims(&sc), NULL, &err), 0);
     ray r = {vec3_make(0.25, 0.5, 3), vec3_make(0, 0, -1), 0.0, INFINITY};
     hit h;
-    EXPECT_INT_EQ(bvh_intersect(&b, &sc, &r, &h), 1);
+    EXPECT_INT_EQ(bvh_intersect(&b, &r, &h), 1);
     EXPECT_NEAR(h.bary.u, 0.25, 1e-15);
     EXPECT_NEAR(h.bary.v, 0.5, 1e-15);
     EXPECT_NEAR(h.ng.z, 1, 1e-15); /* counter-clockwise seen from +z: normal +z */
@@ -404,7 +405,7 @@ START_TEST(test_bvh_triangle_hit_fills_barycentrics_and_normals)
     t->has_normals = 1;
     t->n[0] = t->n[1] = t->n[2] = vec3_make(0, 0, -1);
     t->n[1] = vec3_normalize(vec3_make(1, 0, -1));
-    EXPECT_INT_EQ(bvh_intersect(&b, &sc, &r, &h), 1);
+    EXPECT_INT_EQ(bvh_intersect(&b, &r, &h), 1);
     vec3 want = vec3_normalize(vec3_add(vec3_scale(vec3_make(0, 0, -1), 0.75),
                                         vec3_scale(vec3_normalize(vec3_make(1, 0, -1)), 0.25)));
     EXPECT_NEAR(h.ns.x, want.x, 1e-15);
@@ -426,11 +427,11 @@ START_TEST(test_bvh_agrees_with_brute_force_on_rays_through_a_silhouette_edge)
     scene_alloc(&sc, 0, n);
     for (int k = 0; k < n; k++) {
         double th = 0.5 * M_PI * (k + 0.5) / n;
-        sc.triangles[k] = (scene_triangle){.p = {{-5.1, 0, 0}, {4.7, 0, 0}, {0.3, 5 * cos(th), 5 * sin(th)}}};
+        sc.triangles[k] = (triangle){.p = {{-5.1, 0, 0}, {4.7, 0, 0}, {0.3, 5 * cos(th), 5 * sin(th)}}};
     }
     error err = {0};
     bvh b;
-    ck_assert_int_eq(bvh_build(&b, &sc, NULL, &err), 0);
+    ck_assert_int_eq(bvh_build(&b, scene_prims(&sc), NULL, &err), 0);
     ck_assert_int_eq(b.is_tree, 1);
     rng g;
     rng_seed(&g, 49, 0);
@@ -442,8 +443,8 @@ START_TEST(test_bvh_agrees_with_brute_force_on_rays_through_a_silhouette_edge)
         long idb = -1;
         int want = brute_closest(&sc, &r, &tb, &idb);
         hit h;
-        EXPECT_MSG(bvh_intersect(&b, &sc, &r, &h) == want, "ray %d: the bvh missed the spine", k);
-        EXPECT_INT_EQ(bvh_occluded(&b, &sc, &r), want);
+        EXPECT_MSG(bvh_intersect(&b, &r, &h) == want, "ray %d: the bvh missed the spine", k);
+        EXPECT_INT_EQ(bvh_occluded(&b, &r), want);
         if (want) EXPECT(h.t == tb);
     }
     bvh_free(&b);

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "envtex/envmap.h"
+#include "envtex/scene.h"
 #include "envtex/genenv.h"
 #include "envtex/imageio.h"
 #include "envtex/latlong.h"
@@ -447,8 +448,8 @@ START_TEST(test_an_envmap_in_a_cube_map_sees_what_its_latlong_map_sees)
     ck_assert_int_eq(mat4_inverse(a.envmap.xf, &a.envmap.inv), 0);
     b.envmap.inv = a.envmap.inv;
     envmap ea, eb;
-    envmap_init(&ea, &a);
-    envmap_init(&eb, &b);
+    scene_environment(&a, &ea);
+    scene_environment(&b, &eb);
     ck_assert_int_eq(eb.present, 1);
     ck_assert_int_eq(eb.kind, CONVERT_CUBE);
     ck_assert_ptr_null(eb.img);
@@ -499,7 +500,7 @@ START_TEST(test_a_cylindrical_envmap_gets_its_default_height_and_black_caps)
     sc.envmap.scale = 1;
     sc.envmap.xf = sc.envmap.inv = mat4_identity();
     envmap env;
-    envmap_init(&env, &sc);
+    scene_environment(&sc, &env);
     ck_assert_near(env.max_height, M_PI / 2, 1e-15);
     ck_assert_ptr_null(env.img); /* not a lat-long map: envlight must convert it first */
     ck_assert_ptr_eq(env.map, &sc.envmap.img);

@@ -80,7 +80,7 @@ START_TEST(test_displaced_triangle_moves_along_its_normal_and_keeps_object_corne
     ck_assert_int_eq(out.n_triangles, n * n);
     for (long i = 0; i < out.n_triangles; i++)
         for (int k = 0; k < 3; k++) {
-            const scene_triangle *t = &out.triangles[i];
+            const triangle *t = &out.triangles[i];
             ck_assert(fabs(t->p[k].z - 3.1) < 1e-12);   /* z = 3 + 0.2 * 0.5 along +z */
             ck_assert(fabs(t->q[k].z) < 1e-12);         /* object space: before translate */
             ck_assert(fabs(t->q[k].x - t->p[k].x) < 1e-12 && fabs(t->q[k].y - t->p[k].y) < 1e-12);
@@ -111,7 +111,7 @@ START_TEST(test_triangles_without_normals_that_share_an_edge_are_displaced_witho
         for (long b = n * n; b < 2 * n * n; b++) /* the second's */
             for (int i = 0; i < 3; i++)
                 for (int j = 0; j < 3; j++) {
-                    const scene_triangle *ta = &out.triangles[a], *tb = &out.triangles[b];
+                    const triangle *ta = &out.triangles[a], *tb = &out.triangles[b];
                     if (!(vec3_length(vec3_sub(ta->q[i], tb->q[j])) < 1e-12)) continue;
                     shared++; /* the same point of the ridge before displacement */
                     ck_assert_msg(vec3_length(vec3_sub(ta->p[i], tb->p[j])) < 1e-12,
@@ -152,7 +152,7 @@ START_TEST(test_normals_on_the_edge_between_two_patches_are_shared_not_one_sided
         for (long b = n * n; b < 2 * n * n; b++)
             for (int i = 0; i < 3; i++)
                 for (int j = 0; j < 3; j++) {
-                    const scene_triangle *ta = &out.triangles[a], *tb = &out.triangles[b];
+                    const triangle *ta = &out.triangles[a], *tb = &out.triangles[b];
                     if (!(vec3_length(vec3_sub(ta->p[i], tb->p[j])) == 0)) continue;
                     shared++;
                     worst = fmax(worst, vec3_angle(ta->n[i], tb->n[j]));
@@ -207,7 +207,7 @@ START_TEST(test_patches_with_a_solid_texture_share_their_edge_bit_for_bit)
             for (long b = n; b < 2 * n; b++)
                 for (int i = 0; i < 3; i++)
                     for (int j = 0; j < 3; j++) {
-                        const scene_triangle *ta = &out.triangles[a], *tb = &out.triangles[b];
+                        const triangle *ta = &out.triangles[a], *tb = &out.triangles[b];
                         double d = vec3_length(vec3_sub(ta->p[i], tb->p[j]));
                         if (d == 0) {
                             equal++;
@@ -242,7 +242,7 @@ START_TEST(test_a_displaced_sphere_under_a_mirror_keeps_its_triangles_facing_out
         vec3 c = mat4_point(&sc.spheres[0].xf, sc.spheres[0].center);
         long inward = 0;
         for (long i = 0; i < out.n_triangles; i++) {
-            const scene_triangle *t = &out.triangles[i];
+            const triangle *t = &out.triangles[i];
             vec3 ng = vec3_cross(vec3_sub(t->p[1], t->p[0]), vec3_sub(t->p[2], t->p[0]));
             vec3 mid = vec3_scale(vec3_add(vec3_add(t->p[0], t->p[1]), t->p[2]), 1.0 / 3);
             inward += vec3_dot(ng, vec3_sub(mid, c)) < 0;
@@ -279,10 +279,10 @@ static uv2 st_seen_from_above(const scene *sc, double x, double z)
 {
     bvh b;
     error err = {0};
-    ck_assert_msg(bvh_build(&b, sc, NULL, &err) == 0, "%s", err.msg);
+    ck_assert_msg(bvh_build(&b, scene_prims(sc), NULL, &err) == 0, "%s", err.msg);
     ray r = {vec3_make(x, 10, z), vec3_make(0, -1, 0), 0, INFINITY};
     hit h;
-    ck_assert(bvh_intersect(&b, sc, &r, &h));
+    ck_assert(bvh_intersect(&b, &r, &h));
     surface s;
     memset(&s, 0, sizeof s); /* no differentials */
     texshade_point tp;
@@ -544,7 +544,7 @@ START_TEST(test_heights_under_a_planar_mapping_read_the_documented_point)
     double lo = 1e9, hi = -1e9;
     for (long i = 0; i < out.n_triangles; i++)
         for (int k = 0; k < 3; k++) {
-            const scene_triangle *t = &out.triangles[i];
+            const triangle *t = &out.triangles[i];
             texture_query tq = {0};
             tq.filter = m->texfilter;
             if (t->st_mapped) { /* the sphere's: c + (R + SCALE h) u */
@@ -581,7 +581,7 @@ START_TEST(test_the_memory_budget_lowers_the_rates_until_the_triangles_fit)
     scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX("0.5")
                     "displacementmap h 0.2\nsphere 0 0 0 1\n");
     snprintf(sc.path, sizeof sc.path, "d.test");
-    double per_tri = sizeof(scene_triangle) + bvh_bytes_per_prim();
+    double per_tri = sizeof(triangle) + bvh_bytes_per_prim();
     budget mem;
     budget_init(&mem, 9100 * per_tri); /* rate 96 makes 36480 triangles, 48 makes 9024 */
     scene out;
@@ -590,7 +590,7 @@ START_TEST(test_the_memory_budget_lowers_the_rates_until_the_triangles_fit)
     ck_assert_msg(displacemap_apply(&sc, 0, &mem, &out, &st, &err) == 0, "%s", err.msg);
     ck_assert_int_eq(st.sphere_rate, 48);
     ck_assert_int_eq(out.n_triangles, 4 * 48 * 47);
-    ck_assert(mem.used == 9024.0 * sizeof(scene_triangle));
+    ck_assert(mem.used == 9024.0 * sizeof(triangle));
     displacemap_free(&out);
     budget_init(&mem, 10 * per_tri); /* rate 2 makes 8 */
     ck_assert_int_eq(displacemap_apply(&sc, 0, &mem, &out, &st, &err), 0);

@@ -1,6 +1,7 @@
 /* test_envmap.c - the environment rays see when they leave the scene: the scene's `envmap`
  * transform (envmap frame -> world) and scale are applied, and no envmap means black. */
 #include "envtex/envmap.h"
+#include "envtex/scene.h"
 
 #include <string.h>
 
@@ -33,7 +34,7 @@ START_TEST(test_envmap_absent_is_black)
     scene sc;
     memset(&sc, 0, sizeof sc);
     envmap env;
-    envmap_init(&env, &sc);
+    scene_environment(&sc, &env);
     ck_assert_int_eq(env.present, 0);
     ck_assert(rgb_is_black(envmap_radiance(&env, vec3_make(0, 0, 1))));
     ck_assert(rgb_is_black(envmap_radiance(&env, vec3_make(1, -2, 0.5))));
@@ -41,7 +42,7 @@ START_TEST(test_envmap_absent_is_black)
     sc.envmap.present = 1;
     sc.envmap.scale = 1;
     sc.envmap.xf = sc.envmap.inv = mat4_identity();
-    envmap_init(&env, &sc);
+    scene_environment(&sc, &env);
     ck_assert_int_eq(env.present, 0);
     ck_assert(rgb_is_black(envmap_radiance(&env, vec3_make(0, 0, 1))));
 }
@@ -52,7 +53,7 @@ START_TEST(test_envmap_identity_transform_is_the_latlong_lookup)
     scene sc;
     env_scene(&sc, GENENV_SKY, mat4_identity(), 1);
     envmap env;
-    envmap_init(&env, &sc);
+    scene_environment(&sc, &env);
     ck_assert_int_eq(env.present, 1);
     const vec3 dirs[] = {{0, 0, 1}, {0, 0, -1}, {1, 0, 0}, {0.3, -0.8, 0.2}, {-1, -1, -1}};
     for (unsigned i = 0; i < sizeof dirs / sizeof dirs[0]; i++) {
@@ -73,8 +74,8 @@ START_TEST(test_envmap_scale_multiplies_the_radiance)
     env_scene(&a, GENENV_AXES, mat4_identity(), 1);
     env_scene(&b, GENENV_AXES, mat4_identity(), 2.5);
     envmap ea, eb;
-    envmap_init(&ea, &a);
-    envmap_init(&eb, &b);
+    scene_environment(&a, &ea);
+    scene_environment(&b, &eb);
     vec3 d = vec3_make(0.2, 0.5, -0.7);
     assert_rgb_near(envmap_radiance(&eb, d), rgb_scale(envmap_radiance(&ea, d), 2.5), 1e-15);
     image_free(&a.envmap.img);
@@ -94,8 +95,8 @@ START_TEST(test_envmap_scale_multiplies_every_representation)
         a.envmap.kind = b.envmap.kind = kinds[k];
         a.envmap.max_height = b.envmap.max_height = 1;
         envmap ea, eb;
-        envmap_init(&ea, &a);
-        envmap_init(&eb, &b);
+        scene_environment(&a, &ea);
+        scene_environment(&b, &eb);
         vec3 d = vec3_normalize(vec3_make(0.2, 0.5, 0.3));
         rgb la = envmap_radiance(&ea, d);
         ck_assert_msg(la.g > 0, "kind %d: black", (int)kinds[k]);
@@ -112,7 +113,7 @@ START_TEST(test_envmap_rotate_x_minus_90_puts_the_zenith_at_world_plus_y)
     scene sc;
     env_scene(&sc, GENENV_AXES, mat4_rotate(vec3_make(1, 0, 0), -90), 1);
     envmap env;
-    envmap_init(&env, &sc);
+    scene_environment(&sc, &env);
     /* axes map: colour = (d_env + 1) / 2, so the colour names the envmap-frame direction */
     rgb up = envmap_radiance(&env, vec3_make(0, 1, 0));
     /* (the nearest row centre is half a texel, pi / 64, from the pole: colours within 0.03) */
@@ -139,7 +140,7 @@ START_TEST(test_envmap_rotation_about_z_turns_the_map)
     scene sc;
     env_scene(&sc, GENENV_AXES, mat4_rotate(vec3_make(0, 0, 1), 90), 3);
     envmap env;
-    envmap_init(&env, &sc);
+    scene_environment(&sc, &env);
     assert_rgb_near(envmap_radiance(&env, vec3_make(0, 1, 0)), rgb_scale(rgb_make(1, 0.5, 0.5), 3), 0.03);
     assert_rgb_near(envmap_radiance(&env, vec3_make(-1, 0, 0)), rgb_scale(rgb_make(0.5, 1, 0.5), 3), 0.03);
     image_free(&sc.envmap.img);

@@ -99,7 +99,7 @@ typedef struct rig { bvh b; integrator it; } rig;
 static void rig_init(rig *r, const scene *sc)
 {
     error err = {0};
-    if (bvh_build(&r->b, sc, NULL, &err)) ck_abort_msg("bvh: %s", err.msg);
+    if (bvh_build(&r->b, scene_prims(sc), NULL, &err)) ck_abort_msg("bvh: %s", err.msg);
     if (integrator_init(&r->it, sc, &r->b, NULL, &err)) ck_abort_msg("integrator: %s", err.msg);
 }
 

@@ -470,7 +470,7 @@ START_TEST(test_lights_quads_get_a_bvh_and_other_lights_none)
     ck_assert_int_eq(lights_build(&ls, &sc, NULL, 3, NULL, &err), 0);
     ck_assert_int_eq(ls.n, 2);
     ck_assert_int_eq(ls.n_quads, 0);
-    ck_assert_ptr_null(ls.quad_scene);
+    ck_assert_ptr_null(ls.quad_tris);
     int k;
     double t;
     ray r = {vec3_make(0, 0, 0), vec3_make(0, 1, 0), 0, INFINITY};

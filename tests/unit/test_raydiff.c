@@ -314,7 +314,7 @@ static const char *plane_scene =
 static int find_hit(const scene *sc, const ray *r, hit *h)
 {
     for (long i = 0; i < sc->n_triangles; i++) {
-        const scene_triangle *tr = &sc->triangles[i];
+        const triangle *tr = &sc->triangles[i];
         vec3 e1 = vec3_sub(tr->p[1], tr->p[0]), e2 = vec3_sub(tr->p[2], tr->p[0]);
         vec3 pv = vec3_cross(r->d, e2);
         double det = vec3_dot(e1, pv);
@@ -422,7 +422,7 @@ START_TEST(test_a_mirror_falling_back_to_the_geometric_normal_reflects_the_footp
     scene sc;
     error err = {0};
     ck_assert_msg(scene_load_string(text, NULL, NULL, &sc, &err) == 0, "%s", err.msg);
-    const scene_triangle *tr = &sc.triangles[0];
+    const triangle *tr = &sc.triangles[0];
     ck_assert(tr->has_normals);
     camera c;
     camera_init(&c, sc.eye, sc.center, sc.up, sc.fovy, sc.width, sc.height);

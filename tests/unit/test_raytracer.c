@@ -44,7 +44,7 @@ typedef struct fixture {
 static void fixture_start(fixture *f)
 {
     error err = {0};
-    ck_assert_int_eq(bvh_build(&f->accel, &f->sc, NULL, &err), 0);
+    ck_assert_int_eq(bvh_build(&f->accel, scene_prims(&f->sc), NULL, &err), 0);
     raytracer_init(&f->rt, &f->sc, &f->accel);
     camera_init(&f->cam, f->sc.eye, f->sc.center, f->sc.up, f->sc.fovy, f->sc.width, f->sc.height);
 }

@@ -113,7 +113,7 @@ START_TEST(test_render_spp_1_traces_through_pixel_centres)
     ck_assert_mem_eq(img.px, img2.px, sizeof(float) * 3 * 24 * 16);
     bvh accel;
     error err = {0};
-    ck_assert_int_eq(bvh_build(&accel, &sc, NULL, &err), 0);
+    ck_assert_int_eq(bvh_build(&accel, scene_prims(&sc), NULL, &err), 0);
     raytracer rt;
     raytracer_init(&rt, &sc, &accel);
     camera cam;
@@ -294,7 +294,7 @@ START_TEST(test_render_replays_as_documented_mean_variance_and_differential_scal
         ck_assert_msg(render_scene(&sc, &o, &img, &st, &err) == 0, "%s", err.msg);
         bvh accel;
         integrator it;
-        ck_assert_int_eq(bvh_build(&accel, &sc, NULL, &err), 0);
+        ck_assert_int_eq(bvh_build(&accel, scene_prims(&sc), NULL, &err), 0);
         ck_assert_int_eq(integrator_init(&it, &sc, &accel, NULL, &err), 0);
         camera cam;
         camera_init(&cam, sc.eye, sc.center, sc.up, sc.fovy, sc.width, sc.height);

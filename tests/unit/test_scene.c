@@ -782,12 +782,12 @@ START_TEST(test_translate_then_rotate_rotates_the_object_first)
     load_ok(HEAD "translate 1 0 0\nrotate 0 0 1 90\nsphere 0 0 0 1\n"
                  "vertex 1 0 0\nvertex 0 1 0\nvertex 0 0 1\ntri 0 1 2\n",
             &sc);
-    const scene_sphere *s = &sc.spheres[0];
+    const sphere *s = &sc.spheres[0];
     assert_vec_near(s->center, 0, 0, 0);
     ck_assert_double_eq(s->radius, 1);
     assert_vec_near(mat4_point(&s->xf, vec3_make(1, 0, 0)), 1, 1, 0);
     assert_vec_near(mat4_point(&s->inv, vec3_make(1, 1, 0)), 1, 0, 0);
-    const scene_triangle *t = &sc.triangles[0];
+    const triangle *t = &sc.triangles[0];
     ck_assert_int_eq(t->has_normals, 0);
     assert_vec_near(t->p[0], 1, 1, 0);
     assert_vec_near(t->p[1], 0, 0, 0);
@@ -890,7 +890,7 @@ START_TEST(test_a_scaled_sphere_keeps_an_ellipsoid_matrix_and_its_inverse)
 {
     scene sc;
     load_ok(HEAD "scale 2 1 0.5\nsphere 1 0 0 3\n", &sc);
-    const scene_sphere *s = &sc.spheres[0];
+    const sphere *s = &sc.spheres[0];
     assert_vec_near(s->center, 1, 0, 0); /* object space, as written */
     ck_assert_double_eq(s->radius, 3);
     mat4 id = mat4_mul(s->xf, s->inv);
@@ -907,7 +907,7 @@ START_TEST(test_trinormal_transforms_normals_by_the_inverse_transpose)
     load_ok(HEAD "vertexnormal 0 0 0 1 1 0\nvertexnormal 1 0 0 0 0 3\nvertexnormal 0 1 0 0 0 1\n"
                  "scale 2 1 1\ntrinormal 0 1 2\n",
             &sc);
-    const scene_triangle *t = &sc.triangles[0];
+    const triangle *t = &sc.triangles[0];
     ck_assert_int_eq(t->has_normals, 1);
     assert_vec_near(t->p[1], 2, 0, 0);
     /* (M^-1)^T (1,1,0) = (0.5, 1, 0), normalised; a plain M would give (2, 1, 0) */
@@ -1402,7 +1402,7 @@ START_TEST(test_a_100k_triangle_mesh_parses_with_one_material)
     load_ok(text, &sc);
     ck_assert_int_eq(sc.n_triangles, 2L * (N - 1) * (N - 1));
     ck_assert_int_eq(sc.n_materials, 1);
-    const scene_triangle *last = &sc.triangles[sc.n_triangles - 1];
+    const triangle *last = &sc.triangles[sc.n_triangles - 1];
     assert_vec_near(last->p[0], N - 2, N - 2, 0);
     assert_vec_near(last->p[2], N - 2, N - 1, 0);
     scene_free(&sc);
@@ -1432,7 +1432,7 @@ START_TEST(test_tritex_keeps_object_corners_world_corners_and_st)
                  "translate 0 0 -3\ntritex 0 1 2\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
                  "tri 0 1 2\n", &sc);
     ck_assert_int_eq(sc.n_triangles, 2);
-    const scene_triangle *t = &sc.triangles[0];
+    const triangle *t = &sc.triangles[0];
     ck_assert_int_eq(t->has_st, 1);
     ck_assert_double_eq(t->st[1].u, 2);
     ck_assert_double_eq(t->st[2].v, 0.5);
@@ -1481,7 +1481,7 @@ START_TEST(test_a_mirroring_transform_keeps_triangles_counter_clockwise_from_out
         const double st[3][2] = {{0.1, 0.2}, {0.3, 0.4}, {0.5, 0.6}};
         const vec3 nobj[3] = {{1, 0, 1}, {0, 1, 1}, {0, 0, 1}};
         for (int i = 0; i < 3; i++) {
-            const scene_triangle *t = &sc.triangles[i];
+            const triangle *t = &sc.triangles[i];
             vec3 ng = vec3_normalize(vec3_cross(vec3_sub(t->p[1], t->p[0]), vec3_sub(t->p[2], t->p[0])));
             ck_assert_msg(vec3_dot(ng, out) > 1 - 1e-12, "transform %d, triangle %d: normal (%g %g %g), "
                           "outward (%g %g %g)", x, i, ng.x, ng.y, ng.z, out.x, out.y, out.z);
@@ -1652,7 +1652,7 @@ START_TEST(test_a_scene_file_is_read_across_its_chunks_as_one_text)
     ck_assert_int_eq(from_string.n_spheres, 3);
     const double want[3][4] = {{1, 2, 3, 0.5}, {4, 5, 6, 0.25}, {7, 8, 9, 1.75}};
     for (int k = 0; k < 3; k++) {
-        const scene_sphere *a = &from_file.spheres[k], *b = &from_string.spheres[k];
+        const sphere *a = &from_file.spheres[k], *b = &from_string.spheres[k];
         assert_vec_near(a->center, want[k][0], want[k][1], want[k][2]);
         ck_assert_double_eq(a->radius, want[k][3]);
         assert_vec_near(b->center, want[k][0], want[k][1], want[k][2]);
@@ -1767,7 +1767,7 @@ START_TEST(test_obj_meshes_load_under_the_transform_and_material)
     ck_assert_int_eq(sc.n_triangles, 3);
     ck_assert_int_eq(sc.n_materials, 1);
     ck_assert_double_eq(sc.materials[0].diffuse.r, 1);
-    const scene_triangle *t = &sc.triangles[1]; /* the fan's second: corners 1, 3, 4 */
+    const triangle *t = &sc.triangles[1]; /* the fan's second: corners 1, 3, 4 */
     assert_vec_near(t->p[1], 2, 2, 0);
     assert_vec_near(t->q[1], 1, 1, 0);
     ck_assert_int_eq(t->has_st, 1);

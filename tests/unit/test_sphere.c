@@ -1,6 +1,7 @@
 /* test_sphere.c - ray-sphere intersection under affine transforms: inside / outside / tangent
  * rays, rays leaving the surface, ellipsoid normals (inverse transpose), the (tmin, tmax)
  * interval, precision far from the origin, and NaN rays. */
+#include "envtex/scene.h"
 #include "envtex/sphere.h"
 
 #include <string.h>
@@ -18,9 +19,9 @@
         if (!(fabs(a_ - b_) <= t_)) \
             ck_abort_msg("%s == %.17g, %s == %.17g, tolerance %g", #a, a_, #b, b_, t_); } while (0)
 
-static scene_sphere make_sphere(vec3 c, double r, mat4 xf)
+static sphere make_sphere(vec3 c, double r, mat4 xf)
 {
-    scene_sphere s;
+    sphere s;
     memset(&s, 0, sizeof s);
     s.center = c;
     s.radius = r;
@@ -29,7 +30,7 @@ static scene_sphere make_sphere(vec3 c, double r, mat4 xf)
     return s;
 }
 
-static scene_sphere unit_sphere(void) { return make_sphere(vec3_make(0, 0, 0), 1, mat4_identity()); }
+static sphere unit_sphere(void) { return make_sphere(vec3_make(0, 0, 0), 1, mat4_identity()); }
 
 static ray make_ray(vec3 o, vec3 d) { return (ray){o, d, 0.0, INFINITY}; }
 
@@ -50,7 +51,7 @@ static void assert_vec_near(vec3 a, vec3 b, double tol)
 
 START_TEST(test_sphere_ray_from_outside_hits_the_near_side)
 {
-    scene_sphere s = unit_sphere();
+    sphere s = unit_sphere();
     ray r = make_ray(vec3_make(0, 0, 5), vec3_make(0, 0, -1));
     double t;
     EXPECT_INT_EQ(sphere_intersect(&s, &r, &t), 1);
@@ -73,7 +74,7 @@ END_TEST
 
 START_TEST(test_sphere_ray_from_inside_hits_the_far_root)
 {
-    scene_sphere s = make_sphere(vec3_make(1, 2, 3), 2, mat4_identity());
+    sphere s = make_sphere(vec3_make(1, 2, 3), 2, mat4_identity());
     double t;
     ray r = make_ray(vec3_make(1, 2, 3), vec3_make(0, 1, 0)); /* from the centre: b = 0 */
     EXPECT_INT_EQ(sphere_intersect(&s, &r, &t), 1);
@@ -92,7 +93,7 @@ END_TEST
 
 START_TEST(test_sphere_tangent_and_grazing_rays)
 {
-    scene_sphere s = unit_sphere();
+    sphere s = unit_sphere();
     double t = -1;
     /* exactly tangent: a double root; a hit at t = 5 or a miss are both acceptable */
     ray r = make_ray(vec3_make(-5, 1, 0), vec3_make(1, 0, 0));
@@ -115,7 +116,7 @@ START_TEST(test_sphere_ray_leaving_the_surface_outward_does_not_hit_it_again)
     /* a unit sphere, an ellipsoid, and a sphere far from the origin */
     mat4 ell = mat4_mul(mat4_translate(vec3_make(3, -1, 2)),
                         mat4_mul(mat4_rotate(vec3_make(1, 1, 0), 30), mat4_scale(vec3_make(2, 1, 0.5))));
-    scene_sphere ss[3] = {unit_sphere(), make_sphere(vec3_make(0, 0, 0), 1, ell),
+    sphere ss[3] = {unit_sphere(), make_sphere(vec3_make(0, 0, 0), 1, ell),
                           make_sphere(vec3_make(1e4, 0, 0), 10, mat4_identity())};
     for (int k = 0; k < 3; k++)
         for (int i = 0; i < 20000; i++) {
@@ -149,7 +150,7 @@ START_TEST(test_sphere_ray_leaving_the_unit_sphere_inward_crosses_the_chord)
 {
     rng g;
     rng_seed(&g, 22, 0);
-    scene_sphere s = unit_sphere();
+    sphere s = unit_sphere();
     for (int i = 0; i < 20000; i++) {
         vec3 p = random_unit(&g), d = random_unit(&g);
         if (vec3_dot(d, p) > -0.01) continue;
@@ -167,7 +168,7 @@ START_TEST(test_sphere_ellipsoid_normal_is_the_analytic_one)
     const double a = 2, b = 0.5, c = 3;
     vec3 off = vec3_make(1, -2, 0.5);
     mat4 xf = mat4_mul(mat4_translate(off), mat4_scale(vec3_make(a, b, c)));
-    scene_sphere s = make_sphere(vec3_make(0, 0, 0), 1, xf);
+    sphere s = make_sphere(vec3_make(0, 0, 0), 1, xf);
     rng g;
     rng_seed(&g, 23, 0);
     int hits = 0;
@@ -193,7 +194,7 @@ END_TEST
 
 START_TEST(test_sphere_hit_respects_tmin_and_tmax)
 {
-    scene_sphere s = unit_sphere();
+    sphere s = unit_sphere();
     ray r = make_ray(vec3_make(0, 0, 5), vec3_make(0, 0, -1));
     double t = 0;
     r.tmax = 3.9;
@@ -242,7 +243,7 @@ START_TEST(test_sphere_far_from_the_origin_keeps_precision)
     rng_seed(&g, 24, 0);
     vec3 c = vec3_make(1e6, 3e5, -2e5);
     /* centre in the object coordinates, and centre by a translation: both must be precise */
-    scene_sphere ss[2] = {make_sphere(c, 1, mat4_identity()),
+    sphere ss[2] = {make_sphere(c, 1, mat4_identity()),
                           make_sphere(vec3_make(0, 0, 0), 1, mat4_translate(c))};
     for (int k = 0; k < 2; k++)
         for (int i = 0; i < 5000; i++) {
@@ -261,7 +262,7 @@ END_TEST
 
 START_TEST(test_sphere_nan_or_zero_ray_misses_without_crashing)
 {
-    scene_sphere s = unit_sphere();
+    sphere s = unit_sphere();
     double t = 123;
     ray r = make_ray(vec3_make(0, 0, 5), vec3_make(NAN, 0, -1));
     EXPECT_INT_EQ(sphere_intersect(&s, &r, &t), 0);
@@ -293,8 +294,8 @@ START_TEST(test_sphere_untransformed_fast_path_gives_the_general_paths_t)
 {
     rng g;
     rng_seed(&g, 5, 0);
-    scene_sphere general = make_sphere(vec3_make(0.5, -2, 3), 1.5, mat4_identity());
-    scene_sphere fast = general;
+    sphere general = make_sphere(vec3_make(0.5, -2, 3), 1.5, mat4_identity());
+    sphere fast = general;
     fast.untransformed = 1;
     int hits = 0;
     for (int i = 0; i < 20000; i++) {
@@ -346,7 +347,7 @@ START_TEST(test_sphere_bounds_contain_the_transformed_surface)
 {
     mat4 xf = mat4_mul(mat4_translate(vec3_make(5, 0, -3)),
                        mat4_mul(mat4_rotate(vec3_make(1, 2, 3), 40), mat4_scale(vec3_make(3, 1, 0.2))));
-    scene_sphere s = make_sphere(vec3_make(0.5, 0, 0), 2, xf);
+    sphere s = make_sphere(vec3_make(0.5, 0, 0), 2, xf);
     vec3 lo, hi;
     sphere_bounds(&s, &lo, &hi);
     rng g;
@@ -357,7 +358,7 @@ START_TEST(test_sphere_bounds_contain_the_transformed_surface)
         EXPECT(p.x <= hi.x && p.y <= hi.y && p.z <= hi.z);
     }
     /* and for an untransformed sphere they are tight */
-    scene_sphere u = make_sphere(vec3_make(1, 2, 3), 0.5, mat4_identity());
+    sphere u = make_sphere(vec3_make(1, 2, 3), 0.5, mat4_identity());
     sphere_bounds(&u, &lo, &hi);
     assert_vec_near(lo, vec3_make(0.5, 1.5, 2.5), 0);
     assert_vec_near(hi, vec3_make(1.5, 2.5, 3.5), 0);

@@ -31,7 +31,7 @@ static void rig_load(rig *r, const char *text)
     error err = {0};
     if (scene_load_string(text, "texshade.test", &o, &r->sc, &err))
         ck_abort_msg("scene: line %d: %s", err.line, err.msg);
-    if (bvh_build(&r->b, &r->sc, NULL, &err)) ck_abort_msg("bvh: %s", err.msg);
+    if (bvh_build(&r->b, scene_prims(&r->sc), NULL, &err)) ck_abort_msg("bvh: %s", err.msg);
     if (integrator_init(&r->it, &r->sc, &r->b, NULL, &err)) ck_abort_msg("integrator: %s", err.msg);
     camera_init(&r->cam, r->sc.eye, r->sc.center, r->sc.up, r->sc.fovy, r->sc.width, r->sc.height);
 }

@@ -1,5 +1,6 @@
 /* test_triangle.c - Moller-Trumbore: barycentrics, inclusive edges and vertices, no cracks
  * along a shared edge, parallel and degenerate cases, two-sided hits, the (tmin, tmax) interval. */
+#include "envtex/scene.h"
 #include "envtex/triangle.h"
 
 #include "envtex/rng.h"
