@@ -43,12 +43,16 @@ CHECK_LIBS = $(shell pkg-config --libs check)
 ET_CFLAGS = -std=c11 -D_POSIX_C_SOURCE=200809L -ffp-contract=off -Wall -Wextra -Iinclude -MMD -MP
 ALL_CFLAGS = $(ET_CFLAGS) $(PKG_CFLAGS) $(CFLAGS)
 
-LIB_SRC = $(filter-out src/main.c,$(wildcard src/*.c))
+# src/LAYER/MODULE.c (README: the layers); the command line, src/cli/, links the library
+LIB_SRC = $(filter-out src/cli/%,$(wildcard src/*/*.c))
 LIB_OBJ = $(LIB_SRC:src/%.c=$(BUILD)/obj/%.o)
-UNIT_SRC = $(wildcard tests/unit/test_*.c)
-UNIT_BIN = $(UNIT_SRC:tests/unit/%.c=$(BUILD)/tests/%)
-TOOL_SRC = $(wildcard tests/tools/*.c)
-TOOL_BIN = $(TOOL_SRC:tests/tools/%.c=$(BUILD)/tools/%)
+CLI_SRC = $(wildcard src/cli/*.c)
+CLI_OBJ = $(CLI_SRC:src/%.c=$(BUILD)/obj/%.o)
+# tests/unit/LAYER/test_MODULE.c -> $(BUILD)/tests/test_MODULE (tests/steps names them so)
+UNIT_SRC = $(wildcard tests/unit/*/test_*.c)
+UNIT_BIN = $(addprefix $(BUILD)/tests/,$(basename $(notdir $(UNIT_SRC))))
+TOOL_SRC = $(wildcard tools/programs/*.c)
+TOOL_BIN = $(TOOL_SRC:tools/programs/%.c=$(BUILD)/tools/%)
 
 # Check's per-test time limit (4 s) times this: the big-table tests need slack on a loaded
 # machine, and much more under the sanitizers.
@@ -61,7 +65,7 @@ all: envtex
 envtex: $(BUILD)/envtex
 	@ln -sf $(BUILD)/envtex envtex
 
-$(BUILD)/envtex: $(BUILD)/obj/main.o $(BUILD)/libenvtex.a
+$(BUILD)/envtex: $(CLI_OBJ) $(BUILD)/libenvtex.a
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(PKG_LIBS)
 
 $(BUILD)/libenvtex.a: $(LIB_OBJ)
@@ -83,12 +87,13 @@ $(BUILD)/obj/%.o: src/%.c $(BUILD)/flags
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) -c -o $@ $<
 
-$(BUILD)/tests/%: tests/unit/%.c $(BUILD)/libenvtex.a
+.SECONDEXPANSION:
+$(BUILD)/tests/%: $$(wildcard tests/unit/*/%.c) $(BUILD)/libenvtex.a
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) $(CHECK_CFLAGS) -Itests/unit -o $@ $< $(BUILD)/libenvtex.a \
 		$(LDFLAGS) $(CHECK_LIBS) $(PKG_LIBS)
 
-$(BUILD)/tools/%: tests/tools/%.c $(BUILD)/libenvtex.a
+$(BUILD)/tools/%: tools/programs/%.c $(BUILD)/libenvtex.a
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) -o $@ $< $(BUILD)/libenvtex.a $(LDFLAGS) $(PKG_LIBS)
 
@@ -111,7 +116,7 @@ update-golden: $(BUILD)/envtex $(TOOL_BIN)
 
 # assignment starter kits (docs/teaching.md)
 starter:
-	@BUILD=$(BUILD) STEPS="$(STEPS)" tests/starter/make-starter
+	@BUILD=$(BUILD) STEPS="$(STEPS)" tools/starter/make-starter
 
 starter-check:
 	+@BUILD=$(BUILD) tests/starter/check
@@ -120,7 +125,7 @@ docs-images: $(BUILD)/envtex
 	@BUILD=$(BUILD) ENVTEX=$(BUILD)/envtex docs/make-images.sh
 
 bench: $(BUILD)/envtex $(TOOL_BIN)
-	@BUILD=$(BUILD) ENVTEX=$(BUILD)/envtex tests/bench/run
+	@BUILD=$(BUILD) ENVTEX=$(BUILD)/envtex tools/bench/run
 
 # ---- the quick start -----------------------------------------------------------------------
 DEB_PACKAGES = build-essential pkg-config libpng-dev libopenexr-dev check
@@ -151,7 +156,7 @@ run: deps
 clean:
 	rm -rf build build-asan build-o3 build-clang envtex out
 
--include $(LIB_OBJ:.o=.d) $(BUILD)/obj/main.d
+-include $(LIB_OBJ:.o=.d) $(CLI_OBJ:.o=.d)
 
 # ---- hostile input (docs/robustness.md) ----------------------------------------------------
 # Fuzz targets: tests/fuzz/fuzz_NAME.c, one per parser.  `make test` builds each with the

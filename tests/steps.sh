@@ -1,5 +1,5 @@
 # tests/steps.sh - the one reader of tests/steps (sourced by tests/run, tests/starter/check,
-# tests/starter/make-starter and tests/docs/run-tests).  A line of tests/steps reads
+# tools/starter/make-starter and tests/docs/run-tests).  A line of tests/steps reads
 #     step: test test +test ...
 # where a test marked +name runs the step's code but passes with its stub.  Each function reads
 # tests/steps of the working folder and prints one word per line.

@@ -8,8 +8,8 @@
 #ifndef ENVTEX_FUZZ_IMAGE_H
 #define ENVTEX_FUZZ_IMAGE_H
 
-#include "envtex/budget.h"
-#include "envtex/image.h"
+#include "envtex/core/budget.h"
+#include "envtex/core/image.h"
 #include "fuzz.h"
 
 /* On success: a non-empty image within the limits, every pixel readable.  On failure: -1, an

@@ -3,7 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "envtex/obj.h"
+#include "envtex/io/obj.h"
 #include "fuzz.h"
 
 /* Each record kind capped lower than OBJ_MAX_ELEMS so a long input cannot eat memory. */

@@ -26,7 +26,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "envtex/vec.h"
+#include "envtex/core/vec.h"
 
 #define SPH_MAX_BINS 4096
 #define SPH_MAX_BREAKS 1024

@@ -12,8 +12,8 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
-#include "envtex/fileio.h"
-#include "envtex/imageio.h"
+#include "envtex/io/fileio.h"
+#include "envtex/io/imageio.h"
 #include "unit.h"
 
 static char dir[64];

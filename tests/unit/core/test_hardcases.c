@@ -1,0 +1,564 @@
+/* test_hardcases.c - the numerical hard cases of docs/robustness.md, through the public APIs:
+ * envmaps with NaN / Inf / negative texels, 1 x 1 and 8192 x 4096 maps at the poles and the
+ * seam; rays through shared triangle edges and vertices (no cracks), grazing rays, degenerate
+ * triangles; reflection and refraction far from the origin (no acne); a camera inside a sphere;
+ * textures of 1 x 1 and 1 x N texels read far outside [0, 1] and with zero and whole-texture
+ * footprints; noise at |x| = 1e6; tone mapping of Inf and NaN.  Each test names the bug it would catch.  Other modules' own
+ * tests hold their own hard cases; this file collects the ones that cross modules. */
+#include <math.h>
+#include <string.h>
+
+#include "envtex/envmaps/genenv.h"
+#include "envtex/envmaps/latlong.h"
+#include "envtex/textures/mipmap.h"
+#include "envtex/textures/perlin.h"
+#include "envtex/render/render.h"
+#include "envtex/scene/scene.h"
+#include "envtex/textures/texlookup.h"
+#include "envtex/io/tonemap.h"
+#include "envtex/geometry/triangle.h"
+#include "unit.h"
+
+#define PI 3.14159265358979323846
+
+/* ---- helpers ------------------------------------------------------------------------------- */
+
+static void load(scene *sc, const char *text)
+{
+    scene_load_opts o = scene_load_defaults();
+    o.load_images = 0;
+    error err = {0};
+    if (scene_load_string(text, "hardcases.test", &o, sc, &err))
+        ck_abort_msg("scene: line %d: %s", err.line, err.msg);
+}
+
+/* The scene's envmap becomes a genenv sky (envmap frame = world frame, scale 1). */
+static void set_sky(scene *sc)
+{
+    genenv_params p = genenv_defaults();
+    p.width = 64;
+    error err = {0};
+    image_free(&sc->envmap.img);
+    ck_assert_int_eq(genenv_make(GENENV_SKY, &p, &sc->envmap.img, &err), 0);
+    sc->envmap.present = 1;
+    sc->envmap.scale = 1;
+    sc->envmap.xf = sc->envmap.inv = mat4_identity();
+}
+
+static void render(const scene *sc, image *out, render_stats *st)
+{
+    render_opts o = render_defaults();
+    o.spp = 1;
+    error err = {0};
+    if (render_scene(sc, &o, out, st, &err)) ck_abort_msg("render: %s", err.msg);
+}
+
+static long count_nonfinite(const image *im)
+{
+    long n = 0;
+    for (int y = 0; y < im->h; y++)
+        for (int x = 0; x < im->w; x++)
+            if (!rgb_is_finite(image_get(im, x, y))) n++;
+    return n;
+}
+
+/* Direction of the centre of texel (c, r) of a W x H lat-long map (latlong.h). */
+static vec3 texel_dir(int c, int r, int w, int h)
+{
+    double th = PI * (r + 0.5) / h, ph = 2 * PI * (c + 0.5) / w;
+    return vec3_make(sin(th) * cos(ph), sin(th) * sin(ph), cos(th));
+}
+
+/* ---- envmaps ------------------------------------------------------------------------------- */
+
+/* A NaN, a +Inf and a negative texel in a constant map: lookups two texels or more away see
+ * only the constant (catches a lookup that reads outside its 2 x 2 footprint, or a wrap bug
+ * that lands on the bad texels), and the nearest lookup returns each bad texel as it is (the
+ * lookup does not hide bad data; envlight and the renderer's NaN count report it). */
+START_TEST(test_bad_texels_stay_local_and_are_returned_as_they_are)
+{
+    image m = {0};
+    error err = {0};
+    ck_assert_int_eq(image_alloc(&m, 32, 16, &err), 0);
+    for (size_t i = 0; i < (size_t)32 * 16 * 3; i++) m.px[i] = 0.5f;
+    image_px(&m, 10, 8)[0] = NAN;
+    image_px(&m, 11, 8)[1] = INFINITY;
+    image_px(&m, 12, 8)[2] = -2.0f;
+    int bad = 0;
+    for (int r = 0; r < 16; r++)
+        for (int c = 0; c < 32; c++) {
+            if (r >= 6 && r <= 10 && c >= 8 && c <= 14) continue;
+            rgb v = latlong_lookup_bilinear(&m, texel_dir(c, r, 32, 16));
+            if (fabs(v.r - 0.5) > 1e-6 || fabs(v.g - 0.5) > 1e-6 || fabs(v.b - 0.5) > 1e-6) bad++;
+        }
+    ck_assert_int_eq(bad, 0);
+    ck_assert(isnan(latlong_lookup_nearest(&m, texel_dir(10, 8, 32, 16)).r));
+    ck_assert(isinf(latlong_lookup_nearest(&m, texel_dir(11, 8, 32, 16)).g));
+    ck_assert(latlong_lookup_nearest(&m, texel_dir(12, 8, 32, 16)).b == -2.0);
+    image_free(&m);
+}
+END_TEST
+
+/* A 1 x 1 map is one colour in every direction, poles and seam included, for both lookups
+ * (catches a bilinear footprint that needs two texels, or a division by W - 1 or H - 1). */
+START_TEST(test_one_by_one_map_is_constant_everywhere)
+{
+    image m = {0};
+    error err = {0};
+    ck_assert_int_eq(image_alloc(&m, 1, 1, &err), 0);
+    image_set(&m, 0, 0, rgb_make(0.25, 2.0, 8.0));
+    const vec3 dirs[] = {{0, 0, 1}, {0, 0, -1}, {1, 0, 0}, {1, -1e-300, 0}, {-1, 0, 0},
+                         {1e-300, 0, 1}, {0.3, -0.4, 0.5}, {-1e-9, -1e-9, -1}};
+    for (size_t i = 0; i < sizeof dirs / sizeof dirs[0]; i++) {
+        rgb b = latlong_lookup_bilinear(&m, dirs[i]), n = latlong_lookup_nearest(&m, dirs[i]);
+        ck_assert_msg(b.r == 0.25 && b.g == 2.0 && b.b == 8.0, "bilinear dir %zu: %g %g %g", i, b.r, b.g, b.b);
+        ck_assert_msg(n.r == 0.25 && n.g == 2.0 && n.b == 8.0, "nearest dir %zu", i);
+    }
+    image_free(&m);
+}
+END_TEST
+
+/* An 8192 x 4096 map (allocated zero-filled, so only the texels written here cost memory):
+ * every pole-row and seam-column texel is found by the direction of its centre; the poles
+ * themselves and directions a hair either side of the seam (phi = 0 and phi -> 2 pi, where
+ * u rounds to 1) give the pole / seam values, never a texel out of range (AddressSanitizer) or
+ * a blend with the wrong side.  Catches float precision loss in u, v at this resolution and
+ * an off-by-one at the wrap. */
+START_TEST(test_8192_map_poles_and_seam_are_exact)
+{
+    const int w = 8192, h = 4096;
+    image m = {0};
+    error err = {0};
+    ck_assert_int_eq(image_alloc(&m, w, h, &err), 0);
+    for (int c = 0; c < w; c++) {
+        image_set(&m, c, 0, rgb_make(1, 0, 0));     /* zenith row: red */
+        image_set(&m, c, h - 1, rgb_make(0, 0, 1)); /* nadir row: blue */
+    }
+    for (int r = 1; r < h - 1; r++) {
+        image_set(&m, 0, r, rgb_make(0, 1, 0));     /* first column: green */
+        image_set(&m, w - 1, r, rgb_make(0, 1, 0)); /* last column: green too */
+    }
+    uv2 uv;
+    int bad = 0;
+    for (int c = 0; c < w; c += 7) { /* pole rows, by their texel centres */
+        rgb a = latlong_lookup_nearest(&m, texel_dir(c, 0, w, h));
+        rgb b = latlong_lookup_nearest(&m, texel_dir(c, h - 1, w, h));
+        if (a.r != 1 || b.b != 1) bad++;
+    }
+    for (int r = 1; r < h - 1; r += 5) { /* seam columns */
+        rgb a = latlong_lookup_nearest(&m, texel_dir(0, r, w, h));
+        rgb b = latlong_lookup_nearest(&m, texel_dir(w - 1, r, w, h));
+        rgb across = latlong_lookup_bilinear(&m, vec3_make(sin(PI * (r + 0.5) / h), -1e-300, cos(PI * (r + 0.5) / h)));
+        if (a.g != 1 || b.g != 1 || fabs(across.g - 1) > 1e-6) bad++;
+    }
+    ck_assert_int_eq(bad, 0);
+    ck_assert_near(latlong_lookup_bilinear(&m, vec3_make(0, 0, 1)).r, 1, 1e-6);
+    ck_assert_near(latlong_lookup_bilinear(&m, vec3_make(0, 0, -1)).b, 1, 1e-6);
+    ck_assert_near(latlong_lookup_bilinear(&m, vec3_make(1e-300, -1e-300, 1)).r, 1, 1e-6);
+    /* u in [0, 1) even where phi = 2 pi - tiny rounds to 2 pi */
+    const vec3 seam[] = {{1, -1e-300, 0}, {1, -1e-17, 0}, {1, -1e-16, 1}, {1, 0, 0}, {1, -0.0, 0}};
+    for (size_t i = 0; i < sizeof seam / sizeof seam[0]; i++) {
+        ck_assert_int_eq(latlong_dir_to_uv(seam[i], &uv), 0);
+        ck_assert_msg(uv.u >= 0 && uv.u < 1, "seam dir %zu: u = %.17g", i, uv.u);
+        ck_assert_msg(uv.v >= 0 && uv.v <= 1, "seam dir %zu: v = %.17g", i, uv.v);
+    }
+    image_free(&m);
+}
+END_TEST
+
+/* ---- triangles ----------------------------------------------------------------------------- */
+
+/* A fan of 7 triangles around a centre vertex at awkward (non-binary) coordinates.  Rays along
+ * -z are swept across every shared edge, in steps of a few ulps around the edge line, and
+ * through the centre vertex and every rim vertex: each ray hits at least one triangle (catches
+ * a strict inside test, or an edge function whose rounding differs between the two triangles
+ * of an edge, which leaves pinholes). */
+START_TEST(test_rays_across_shared_edges_and_vertices_never_fall_through)
+{
+    enum { N = 7 };
+    vec3 centre = vec3_make(0.1, 1.0 / 3.0, 0.7);
+    vec3 rim[N];
+    for (int k = 0; k < N; k++) {
+        double a = 2 * PI * k / N + 0.1;
+        rim[k] = vec3_make(centre.x + 1.3 * cos(a), centre.y + 0.9 * sin(a), 0.7 + 0.01 * k);
+    }
+    long rays = 0, misses = 0;
+    for (int k = 0; k < N; k++) {
+        vec3 a = centre, b = rim[k];
+        vec3 side = vec3_make(-(b.y - a.y), b.x - a.x, 0); /* across the edge, in the xy plane */
+        double len = vec3_length(side);
+        side = vec3_scale(side, 1 / len);
+        for (int i = 1; i < 40; i++) {
+            double s = i / 40.0 + 1e-3 * i; /* along the edge, not at a vertex */
+            vec3 on = vec3_add(a, vec3_scale(vec3_sub(b, a), s < 1 ? s : 0.999));
+            for (int j = -8; j <= 8; j++) {
+                double off = j * 1e-15 * (1 + fabs(on.x) + fabs(on.y));
+                ray r = {vec3_make(on.x + off * side.x, on.y + off * side.y, 5), vec3_make(0, 0, -1), 0, INFINITY};
+                int hits = 0;
+                for (int q = 0; q < N; q++) {
+                    double t, b1, b2;
+                    hits += triangle_intersect(centre, rim[q], rim[(q + 1) % N], &r, &t, &b1, &b2);
+                }
+                rays++;
+                if (!hits) misses++;
+            }
+        }
+    }
+    for (int k = 0; k <= N; k++) { /* through the vertices, from a few slanted directions */
+        vec3 v = k < N ? rim[k] : centre;
+        if (k < N) v = vec3_add(vec3_scale(v, 0.999), vec3_scale(centre, 0.001)); /* rim: just inside */
+        for (int j = 0; j < 8; j++) {
+            vec3 d = vec3_make(0.3 * cos(j), 0.3 * sin(j), -1);
+            ray r = {vec3_sub(v, vec3_scale(d, 3)), d, 0, INFINITY};
+            int hits = 0;
+            for (int q = 0; q < N; q++) {
+                double t, b1, b2;
+                hits += triangle_intersect(centre, rim[q], rim[(q + 1) % N], &r, &t, &b1, &b2);
+            }
+            rays++;
+            if (!hits) misses++;
+        }
+    }
+    ck_assert_msg(misses == 0, "%ld of %ld rays fell through the fan", misses, rays);
+}
+END_TEST
+
+/* The same through the whole pipeline: a quad of two triangles whose diagonal runs through
+ * pixel centres fills the view; every pixel is the quad's colour (a crack shows the black
+ * background). */
+START_TEST(test_rendered_quad_diagonal_has_no_crack)
+{
+    scene sc;
+    load(&sc, "size 33 33\n"
+              "camera 0 0 3  0 0 0  0 1 0  30\n"
+              "ambient 1 1 1\n"
+              "vertex -2 -2 0\nvertex 2 -2 0\nvertex 2 2 0\nvertex -2 2 0\n"
+              "tri 0 1 2\ntri 0 2 3\n");
+    image img = {0};
+    render_stats st;
+    render(&sc, &img, &st);
+    long black = 0;
+    for (int y = 0; y < img.h; y++)
+        for (int x = 0; x < img.w; x++)
+            if (image_get(&img, x, y).r < 0.5) black++;
+    ck_assert_msg(black == 0, "%ld pixels see through the diagonal", black);
+    image_free(&img);
+    scene_free(&sc);
+}
+END_TEST
+
+/* Grazing rays (direction nearly in the plane) either miss or hit at a finite t on the plane;
+ * rays exactly in the plane never hit; degenerate triangles (collinear corners, a repeated
+ * corner, a needle) are never hit (catches NaN t or barycentrics from a zero determinant). */
+START_TEST(test_grazing_rays_and_degenerate_triangles_give_no_garbage)
+{
+    vec3 p0 = vec3_make(0, 0, 0), p1 = vec3_make(1, 0, 0), p2 = vec3_make(0, 1, 0);
+    int bad = 0;
+    for (int k = 0; k < 60; k++) {
+        double dz = -pow(10.0, -k * 0.3); /* from -1 down to -1e-18: ever closer to grazing */
+        ray r = {vec3_make(-0.5, 0.25, -dz * 0.5), vec3_make(1, 0.01, dz), 0, INFINITY};
+        double t, b1, b2;
+        if (triangle_intersect(p0, p1, p2, &r, &t, &b1, &b2)) {
+            vec3 p = vec3_madd(r.o, r.d, t);
+            if (!isfinite(t) || !isfinite(b1) || !isfinite(b2) || fabs(p.z) > 1e-9 || b1 < -1e-9 || b2 < -1e-9)
+                bad++;
+        }
+    }
+    ck_assert_int_eq(bad, 0);
+    double t, b1, b2;
+    ray inplane = {vec3_make(-1, 0.2, 0), vec3_make(1, 0, 0), 0, INFINITY};
+    ck_assert_int_eq(triangle_intersect(p0, p1, p2, &inplane, &t, &b1, &b2), 0);
+    ray down = {vec3_make(0.2, 0.2, 1), vec3_make(0, 0, -1), 0, INFINITY};
+    ck_assert_int_eq(triangle_intersect(p0, vec3_make(1, 1, 0), vec3_make(2, 2, 0), &down, &t, &b1, &b2), 0);
+    ck_assert_int_eq(triangle_intersect(p0, p0, p2, &down, &t, &b1, &b2), 0);
+    ck_assert_int_eq(triangle_intersect(p0, vec3_make(1, 1e-300, 0), vec3_make(2, 0, 0), &down, &t, &b1, &b2), 0);
+    /* and in a render: degenerate triangles in front of a sphere leave no NaN */
+    scene sc;
+    load(&sc, "size 16 16\ncamera 0 0 4  0 0 0  0 1 0  45\nambient 0.5 0.5 0.5\n"
+              "vertex 0 0 1\nvertex 1 1 1\nvertex 2 2 1\nvertex 0.1 0.2 1\n"
+              "tri 0 1 2\ntri 0 0 1\ntri 3 3 3\nsphere 0 0 0 1\n");
+    image img = {0};
+    render_stats st;
+    render(&sc, &img, &st);
+    ck_assert_int_eq(count_nonfinite(&img), 0);
+    ck_assert_int_eq(st.nonfinite_pixels, 0);
+    ck_assert_near(image_get(&img, 8, 8).r, 0.5, 1e-6); /* the sphere, seen through the slivers */
+    image_free(&img);
+    scene_free(&sc);
+}
+END_TEST
+
+/* ---- textures and noise -------------------------------------------------------------------- */
+
+/* Coordinates far outside [0, 1], negative, NaN and infinite, in every wrap mode, on a 1 x 1 and
+ * a 1 x 5 texture: the 1 x 1 returns its texel exactly; the 1 x 5 (a column: only t matters)
+ * returns a blend of its texels, within their range and finite (catches an int overflow of
+ * floor(s W) at 1e9, a negative modulo, a NaN index, a division by W - 1 = 0). */
+START_TEST(test_tiny_textures_read_far_outside_stay_inside_their_texels)
+{
+    image one = {0}, col = {0};
+    error err = {0};
+    ck_assert_int_eq(image_alloc(&one, 1, 1, &err), 0);
+    ck_assert_int_eq(image_alloc(&col, 1, 5, &err), 0);
+    image_set(&one, 0, 0, rgb_make(0.25, 0.5, 0.75));
+    for (int j = 0; j < 5; j++) image_set(&col, 0, j, rgb_gray(1 + j)); /* 1 .. 5 */
+    const double far[] = {0.5, -0.5, 1e6 + 0.3, -1e6 - 0.3, 1e9 + 0.7, -1e9 - 0.7, 3e15, -3e15,
+                          1e300, -1e300, NAN, INFINITY, -INFINITY, 1.0, -0.0};
+    const wrap_mode wraps[] = {WRAP_REPEAT, WRAP_CLAMP, WRAP_MIRROR};
+    int n = sizeof far / sizeof far[0], bad = 0;
+    for (int w = 0; w < 3; w++)
+        for (int a = 0; a < n; a++)
+            for (int b = 0; b < n; b++) {
+                uv2 st = {far[a], far[b]};
+                rgb p = texlookup_nearest(&one, st, wraps[w]), q = texlookup_bilinear(&one, st, wraps[w]);
+                if (p.r != 0.25 || p.b != 0.75 || fabs(q.r - 0.25) > 1e-12 || fabs(q.b - 0.75) > 1e-12) bad++;
+                rgb c = texlookup_nearest(&col, st, wraps[w]), d = texlookup_bilinear(&col, st, wraps[w]);
+                if (!(c.r >= 1 && c.r <= 5) || !(d.r >= 1 - 1e-12 && d.r <= 5 + 1e-12)) bad++;
+            }
+    ck_assert_int_eq(bad, 0);
+    image_free(&one);
+    image_free(&col);
+}
+END_TEST
+
+/* Footprints of zero and of the whole texture, for trilinear and EWA: zero is the bilinear
+ * lookup of the base; the whole texture (and beyond, and non-finite) is its mean, here of an
+ * 8 x 8 checkerboard of 0 and 1, i.e. 0.5 (catches a log2(0) level, a level index past the top
+ * of the pyramid, a NaN footprint that reaches an index). */
+START_TEST(test_zero_and_whole_texture_footprints_give_bilinear_and_mean)
+{
+    image im = {0};
+    error err = {0};
+    ck_assert_int_eq(image_alloc(&im, 8, 8, &err), 0);
+    for (int y = 0; y < 8; y++)
+        for (int x = 0; x < 8; x++) image_set(&im, x, y, rgb_gray((x + y) & 1));
+    mipmap m;
+    ck_assert_int_eq(mipmap_build(&m, &im, WRAP_REPEAT, &err), 0);
+    uv2 st = {0.3, 0.7}, zero = {0, 0};
+    rgb bl = texlookup_bilinear(&im, st, WRAP_REPEAT);
+    ck_assert_near(mipmap_lookup_trilinear(&m, st, 0).r, bl.r, 1e-6); 
+    ck_assert_near(mipmap_lookup_ewa(&m, st, zero, zero).r, bl.r, 1e-12);
+    const double whole[] = {1, 2, 1e6, INFINITY};
+    for (size_t i = 0; i < sizeof whole / sizeof whole[0]; i++) {
+        ck_assert_near(mipmap_lookup_trilinear(&m, st, whole[i]).r, 0.5, 1e-6);
+        uv2 dx = {whole[i], 0}, dy = {0, whole[i]};
+        ck_assert_near(mipmap_lookup_ewa(&m, st, dx, dy).r, 0.5, 1e-6);
+    }
+    uv2 nan2 = {NAN, NAN};
+    ck_assert_near(mipmap_lookup_ewa(&m, st, nan2, nan2).r, 0.5, 1e-6);
+    mipmap_free(&m);
+    image_free(&im);
+}
+END_TEST
+
+/* Improved noise at |x| = 1e6 and at negative coordinates: 0 at every lattice point, within
+ * PERLIN_NOISE_BOUND and finite between them, and fbm with the most octaves stays finite
+ * (catches an int conversion of floor(x) that overflows or rounds the wrong way below zero,
+ * and a fraction computed as x - (int)x, which is wrong for negatives). */
+START_TEST(test_noise_far_away_and_negative_is_bounded_and_zero_on_the_lattice)
+{
+    const double base[] = {1e6, -1e6, -1.0, -37.0, 123456.0, -987654.0};
+    int bad = 0;
+    for (size_t i = 0; i < sizeof base / sizeof base[0]; i++) {
+        double x = base[i];
+        if (perlin_noise(x, -x, x) != 0.0) bad++;
+        for (int k = 1; k < 50; k++) {
+            double f = k / 50.0;
+            double n = perlin_noise(x + f, x - f * 0.7, -x + f * 0.3);
+            if (!isfinite(n) || fabs(n) > PERLIN_NOISE_BOUND) bad++;
+        }
+        double fbm = perlin_fbm(vec3_make(x + 0.1, x, -x), PERLIN_MAX_OCTAVES, 2.0, 0.5);
+        if (!isfinite(fbm) || fabs(fbm) > 2 * PERLIN_NOISE_BOUND) bad++;
+    }
+    ck_assert_int_eq(bad, 0);
+    /* continuity across the negative lattice point x = -1: no jump from a wrong floor */
+    ck_assert_near(perlin_noise(-1 - 1e-9, 0.3, 0.6), perlin_noise(-1 + 1e-9, 0.3, 0.6), 1e-6);
+}
+END_TEST
+
+/* ---- self-intersection --------------------------------------------------------------------- */
+
+/* The scene at the origin and the same scene moved by (D, D, D): the images agree (at most 1%
+ * of the pixels, all on silhouettes, differ by more than 0.02).  Acne - a reflected or
+ * refracted ray that hits its own surface because the offset does not grow with the hit
+ * point's magnitude - makes the far copy speckled or black.  Materials: a mirror and glass. */
+static void check_far_from_origin(const char *material, double far)
+{
+    char a[1024], b[1024];
+    const char *fmt = "size 48 48\n"
+                      "camera %.17g %.17g %.17g  %.17g %.17g %.17g  0 0 1  40\n"
+                      "maxdepth 6\nambient 0 0 0\n%s\n"
+                      "sphere %.17g %.17g %.17g 1\n";
+    double o = 0;
+    snprintf(a, sizeof a, fmt, o, o - 4, o + 0.5, o, o, o, material, o, o, o);
+    o = far;
+    snprintf(b, sizeof b, fmt, o, o - 4, o + 0.5, o, o, o, material, o, o, o);
+    scene sa, sb;
+    load(&sa, a);
+    load(&sb, b);
+    set_sky(&sa);
+    set_sky(&sb);
+    image ia = {0}, ib = {0};
+    render_stats st;
+    render(&sa, &ia, &st);
+    render(&sb, &ib, &st);
+    long differ = 0;
+    for (int y = 0; y < ia.h; y++)
+        for (int x = 0; x < ia.w; x++) {
+            rgb p = image_get(&ia, x, y), q = image_get(&ib, x, y);
+            if (!rgb_is_finite(q) || fabs(p.r - q.r) > 0.02 || fabs(p.g - q.g) > 0.02 || fabs(p.b - q.b) > 0.02)
+                differ++;
+        }
+    ck_assert_msg(differ <= ia.w * ia.h / 100, "%s at %g: %ld of %d pixels differ", material, far,
+                  differ, ia.w * ia.h);
+    image_free(&ia);
+    image_free(&ib);
+    scene_free(&sa);
+    scene_free(&sb);
+}
+
+START_TEST(test_mirror_far_from_origin_has_no_acne) { check_far_from_origin("brdf mirror\nspecular 1 1 1", 1e5); }
+END_TEST
+
+START_TEST(test_glass_far_from_origin_has_no_acne) { check_far_from_origin("brdf glass\nspecular 1 1 1\nior 1.5", 1e5); }
+END_TEST
+
+/* ---- camera inside a sphere ---------------------------------------------------------------- */
+
+/* Every primary ray starts inside the sphere and hits its inside: every pixel is the ambient
+ * colour, none is the background and none is NaN (catches a sphere test that only takes the
+ * near root, or a normal flip that divides by zero). */
+START_TEST(test_camera_inside_a_sphere_sees_its_inside_everywhere)
+{
+    scene sc;
+    load(&sc, "size 24 16\ncamera 0.1 0.2 0.3  1 0 0  0 0 1  120\nambient 0.3 0.6 0.9\nsphere 0 0 0 2\n");
+    image img = {0};
+    render_stats st;
+    render(&sc, &img, &st);
+    long wrong = 0;
+    for (int y = 0; y < img.h; y++)
+        for (int x = 0; x < img.w; x++) {
+            rgb c = image_get(&img, x, y);
+            if (fabs(c.r - 0.3) > 1e-6 || fabs(c.g - 0.6) > 1e-6 || fabs(c.b - 0.9) > 1e-6) wrong++; /* float pixels */
+        }
+    ck_assert_int_eq(wrong, 0);
+    ck_assert_int_eq(st.nonfinite_pixels, 0);
+    image_free(&img);
+    scene_free(&sc);
+}
+END_TEST
+
+/* ---- NaN and Inf are reported ------------------------------------------------------------ */
+
+/* tonemap_image counts each pixel with a NaN or Inf channel once, encodes NaN as 0 and +Inf as
+ * full white (documented in tonemap.c), and leaves the finite pixels around them untouched. */
+START_TEST(test_tonemap_reports_nan_and_inf_pixels_and_encodes_them_fixed)
+{
+    image im = {0};
+    error err = {0};
+    ck_assert_int_eq(image_alloc(&im, 4, 1, &err), 0);
+    image_set(&im, 0, 0, rgb_make(0.5, 0.5, 0.5));
+    image_set(&im, 1, 0, rgb_make(NAN, 0.5, 0.5));
+    image_set(&im, 2, 0, rgb_make(INFINITY, -INFINITY, 0.5));
+    image_set(&im, 3, 0, rgb_make(0.5, 0.5, 0.5));
+    tonemap_params tm = tonemap_defaults();
+    uint8_t out[12];
+    memset(out, 0xAB, sizeof out);
+    ck_assert_int_eq(tonemap_image(&tm, &im, out), 2);
+    ck_assert_int_eq(out[3], 0);   /* NaN -> 0 */
+    ck_assert_int_eq(out[6], 255); /* +Inf -> 1 */
+    ck_assert_int_eq(out[7], 0);   /* -Inf -> 0 */
+    ck_assert_int_eq(out[0], out[9]);
+    ck_assert_int_eq(out[4], out[0]); /* the finite channel of a NaN pixel is encoded normally */
+    image_free(&im);
+}
+END_TEST
+
+/* A mirror sphere reflecting an envmap with NaN texels makes NaN pixels; the renderer's count
+ * equals the number actually in the image (catches a count that is never incremented, which
+ * would let NaN reach files unreported). */
+START_TEST(test_render_counts_the_nan_pixels_it_makes)
+{
+    scene sc;
+    load(&sc, "size 32 32\ncamera 0 -4 0  0 0 0  0 0 1  40\nbrdf mirror\nspecular 1 1 1\nambient 0 0 0\nsphere 0 0 0 1\n");
+    set_sky(&sc);
+    image *m = &sc.envmap.img;
+    for (int y = 0; y < m->h; y++)
+        for (int x = 0; x < m->w; x += 4) image_px(m, x, y)[1] = NAN;
+    image img = {0};
+    render_stats st;
+    render(&sc, &img, &st);
+    long n = count_nonfinite(&img);
+    ck_assert_int_gt(n, 0);
+    ck_assert_int_eq(st.nonfinite_pixels, n);
+    image_free(&img);
+    scene_free(&sc);
+}
+END_TEST
+
+/* Radiance that a double holds but a float cannot (emission 1e39 > FLT_MAX) is Inf in the
+ * stored image, and the count says so; likewise the variance image's own count.  Catches a
+ * count taken on the double before the store (it reported 0 while files held Inf). */
+START_TEST(test_render_counts_pixels_that_overflow_the_float_image)
+{
+    scene sc;
+    load(&sc, "size 16 16\ncamera 0 0 4 0 0 0 0 1 0 45\nambient 0 0 0\nemission 1e39 1e39 1e39\nsphere 0 0 0 1\n");
+    image img = {0};
+    render_stats st;
+    render(&sc, &img, &st);
+    long n = count_nonfinite(&img);
+    ck_assert_int_gt(n, 0);
+    ck_assert_int_eq(st.nonfinite_pixels, n);
+    ck_assert_int_eq(st.nonfinite_variance, 0); /* no variance image asked for */
+    image_free(&img);
+    scene_free(&sc);
+    /* a finite image whose variance overflows: 4 samples of a pixel on the sphere's edge, each
+     * 0 or 1e20: s^2 / 4 ~ 1e39 > FLT_MAX */
+    load(&sc, "size 16 16\ncamera 0 0 4 0 0 0 0 1 0 45\nambient 0 0 0\nemission 1e20 1e20 1e20\nsphere 0 0 0 1\n");
+    render_opts o = render_defaults();
+    o.spp = 4;
+    image var = {0};
+    o.variance = &var;
+    error err = {0};
+    if (render_scene(&sc, &o, &img, &st, &err)) ck_abort_msg("render: %s", err.msg);
+    ck_assert_int_eq(st.nonfinite_pixels, count_nonfinite(&img));
+    long nv = count_nonfinite(&var);
+    ck_assert_int_gt(nv, 0);
+    ck_assert_int_eq(st.nonfinite_variance, nv);
+    image_free(&img);
+    image_free(&var);
+    scene_free(&sc);
+}
+END_TEST
+
+Suite *hardcases_suite(void)
+{
+    Suite *s = suite_create("hardcases");
+    TCase *env = tcase_create("envmaps");
+    tcase_add_test(env, test_bad_texels_stay_local_and_are_returned_as_they_are);
+    tcase_add_test(env, test_one_by_one_map_is_constant_everywhere);
+    tcase_add_test(env, test_8192_map_poles_and_seam_are_exact);
+    suite_add_tcase(s, env);
+    TCase *geo = tcase_create("geometry");
+    tcase_add_test(geo, test_rays_across_shared_edges_and_vertices_never_fall_through);
+    tcase_add_test(geo, test_rendered_quad_diagonal_has_no_crack);
+    tcase_add_test(geo, test_grazing_rays_and_degenerate_triangles_give_no_garbage);
+    tcase_add_test(geo, test_mirror_far_from_origin_has_no_acne);
+    tcase_add_test(geo, test_glass_far_from_origin_has_no_acne);
+    tcase_add_test(geo, test_camera_inside_a_sphere_sees_its_inside_everywhere);
+    tcase_set_timeout(geo, 30);
+    suite_add_tcase(s, geo);
+    TCase *tex = tcase_create("textures and noise");
+    tcase_add_test(tex, test_tiny_textures_read_far_outside_stay_inside_their_texels);
+    tcase_add_test(tex, test_zero_and_whole_texture_footprints_give_bilinear_and_mean);
+    tcase_add_test(tex, test_noise_far_away_and_negative_is_bounded_and_zero_on_the_lattice);
+    suite_add_tcase(s, tex);
+    TCase *rep = tcase_create("reporting");
+    tcase_add_test(rep, test_tonemap_reports_nan_and_inf_pixels_and_encodes_them_fixed);
+    tcase_add_test(rep, test_render_counts_the_nan_pixels_it_makes);
+    tcase_add_test(rep, test_render_counts_pixels_that_overflow_the_float_image);
+    suite_add_tcase(s, rep);
+    return s;
+}
+
+UNIT_MAIN(hardcases_suite)
