@@ -43,7 +43,10 @@ CHECK_LIBS = $(shell pkg-config --libs check)
 ET_CFLAGS = -std=c11 -D_POSIX_C_SOURCE=200809L -ffp-contract=off -Wall -Wextra -Iinclude -MMD -MP
 ALL_CFLAGS = $(ET_CFLAGS) $(PKG_CFLAGS) $(CFLAGS)
 
-LIB_SRC = $(filter-out src/main.c,$(wildcard src/*.c))
+# The command line: main.c and one src/cmd_NAME.c per subcommand that has its own file.
+CLI_SRC = src/main.c $(wildcard src/cmd_*.c)
+CLI_OBJ = $(CLI_SRC:src/%.c=$(BUILD)/obj/%.o)
+LIB_SRC = $(filter-out $(CLI_SRC),$(wildcard src/*.c))
 LIB_OBJ = $(LIB_SRC:src/%.c=$(BUILD)/obj/%.o)
 UNIT_SRC = $(wildcard tests/unit/test_*.c)
 UNIT_BIN = $(UNIT_SRC:tests/unit/%.c=$(BUILD)/tests/%)
@@ -61,7 +64,7 @@ all: envtex
 envtex: $(BUILD)/envtex
 	@ln -sf $(BUILD)/envtex envtex
 
-$(BUILD)/envtex: $(BUILD)/obj/main.o $(BUILD)/libenvtex.a
+$(BUILD)/envtex: $(CLI_OBJ) $(BUILD)/libenvtex.a
 	$(CC) $(CFLAGS) $(LDFLAGS) -o $@ $^ $(PKG_LIBS)
 
 $(BUILD)/libenvtex.a: $(LIB_OBJ)
@@ -151,7 +154,7 @@ run: deps
 clean:
 	rm -rf build build-asan build-o3 build-clang envtex out
 
--include $(LIB_OBJ:.o=.d) $(BUILD)/obj/main.d
+-include $(LIB_OBJ:.o=.d) $(CLI_OBJ:.o=.d)
 
 # ---- hostile input (docs/robustness.md) ----------------------------------------------------
 # Fuzz targets: tests/fuzz/fuzz_NAME.c, one per parser.  `make test` builds each with the

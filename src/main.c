@@ -12,6 +12,8 @@
  *   envtex convert IN OUT --to KIND [--from KIND] [--width W] [--samples K]
  *   envtex gen-env KIND OUT [--width W] [--value V] [--sun-ratio R] [--sun-radius DEG]
  *                           [--sun-elevation DEG] [--sun-azimuth DEG]
+ *   envtex prefilter IN --sh9 | IN OUT --irradiance [--method sh9|exact] | IN OUT --phong S
+ *                           [--width W] [--from KIND]      (src/cmd_prefilter.c)
  *   envtex noise X Y Z              Perlin's improved noise at (X, Y, Z), 9 significant digits
  */
 #include <errno.h>
@@ -45,7 +47,12 @@ static const char *usage_text =
     "                      [--from KIND] [--width W] [--samples K]   (cube: OUT_px.exr ... OUT_nz.exr)\n"
     "       envtex gen-env constant|sky|sun|axes OUT [--width W] [--value V] [--sun-ratio R]\n"
     "                      [--sun-radius DEG] [--sun-elevation DEG] [--sun-azimuth DEG]\n"
+    "       envtex prefilter IN --sh9 [--from KIND]       (9 lines: l m R G B)\n"
+    "       envtex prefilter IN OUT --irradiance [--method sh9|exact] [--width W] [--from KIND]\n"
+    "       envtex prefilter IN OUT --phong S [--width W] [--from KIND]\n"
     "       envtex noise X Y Z                   (Perlin's improved noise, 9 significant digits)\n";
+
+int cmd_prefilter(int argc, char **argv); /* src/cmd_prefilter.c */
 
 static int fail(const error *err)
 {
@@ -713,5 +720,6 @@ int main(int argc, char **argv)
     if (!strcmp(cmd, "gen-env")) return cmd_gen_env(argc - 2, argv + 2);
     if (!strcmp(cmd, "convert")) return cmd_convert(argc - 2, argv + 2);
     if (!strcmp(cmd, "noise")) return cmd_noise(argc - 2, argv + 2);
+    if (!strcmp(cmd, "prefilter")) return cmd_prefilter(argc - 2, argv + 2);
     return cmd_render(argc - 1, argv + 1); /* envtex SCENE [options] */
 }
