@@ -7,6 +7,7 @@
 #include "envtex/analyticdirect.h"
 #include "envtex/direct.h"
 #include "envtex/pathtracer.h"
+#include "envtex/prefiltered.h"
 #include "envtex/sphere.h"
 #include "envtex/texshade.h"
 
@@ -53,6 +54,10 @@ int integrator_init(integrator *it, const scene *sc, const bvh *accel, error *er
         raytracer_init(&it->rt, sc, accel);
         return 0;
     }
+    if (sc->integrator == INTEGRATOR_PREFILTERED) { /* the ray tracer, shading from the maps */
+        raytracer_init(&it->rt, sc, accel);
+        return prefiltered_init(&it->pf, &it->rt, err);
+    }
     clock_t t0 = clock();
     int samples_lights = sc->integrator == INTEGRATOR_DIRECT ||
                          (sc->integrator == INTEGRATOR_PATHTRACER && sc->nee != NEE_OFF);
@@ -96,6 +101,8 @@ void integrator_free(integrator *it)
     if (it->has_envlight) envlight_free(&it->el);
     if (it->has_lights) lights_free(&it->ls);
     it->has_envlight = it->has_lights = 0;
+    prefiltered_free(it->pf);
+    it->pf = NULL;
 }
 
 rgb integrator_radiance(integrator *it, ray r, rng *g) { return integrator_radiance_diff(it, r, NULL, g); }
@@ -103,7 +110,8 @@ rgb integrator_radiance(integrator *it, ray r, rng *g) { return integrator_radia
 rgb integrator_radiance_diff(integrator *it, ray r, const ray_diff *rd, rng *g)
 {
     switch (it->sc->integrator) {
-    case INTEGRATOR_RAYTRACER: return raytracer_trace_diff(&it->rt, r, rd);
+    case INTEGRATOR_RAYTRACER:
+    case INTEGRATOR_PREFILTERED: return raytracer_trace_diff(&it->rt, r, rd);
     case INTEGRATOR_ANALYTICDIRECT: return analyticdirect_radiance_diff(it, r, rd, g);
     case INTEGRATOR_DIRECT: return direct_radiance_diff(it, r, rd, g);
     default: return pathtracer_radiance_diff(it, r, rd, g);

@@ -109,7 +109,8 @@ typedef enum integrator_kind {
     INTEGRATOR_RAYTRACER,
     INTEGRATOR_ANALYTICDIRECT,
     INTEGRATOR_DIRECT,
-    INTEGRATOR_PATHTRACER
+    INTEGRATOR_PATHTRACER,
+    INTEGRATOR_PREFILTERED /* prefiltered.h: illumination maps instead of integrals */
 } integrator_kind;
 
 typedef enum nee_mode { NEE_OFF, NEE_ON, NEE_MIS } nee_mode;
@@ -122,6 +123,8 @@ typedef enum envsampling_mode {
     ENVSAMPLING_CDF_SINTHETA, /* PBRT: rows uniform in theta, weights times sin theta */
     ENVSAMPLING_MEDIANCUT     /* the map reduced to N point lights (median cut) */
 } envsampling_mode;
+/* `prefilter exact|sh9`: how `integrator prefiltered` makes its irradiance map (prefilter.h) */
+typedef enum irradiance_method { IRRADIANCE_EXACT, IRRADIANCE_SH9 } irradiance_method;
 /* `envsampler binary|alias`: CDF inversion by binary search or Walker/Vose alias tables */
 typedef enum envsampler_kind { ENVSAMPLER_BINARY, ENVSAMPLER_ALIAS } envsampler_kind;
 #define SCENE_MAX_MEDIANCUT 65536
@@ -183,6 +186,7 @@ typedef struct scene {
     int mediancut_lights;      /* N of `envsampling mediancut N`, default 64 */
     envsampler_kind envsampler; /* default ENVSAMPLER_BINARY */
     double envsamplefraction;  /* `envsamplefraction F` in [0, 1]; -1 = auto (lights.h) */
+    irradiance_method prefilter; /* `prefilter exact|sh9`, default exact */
     scene_envmap envmap;
     /* geometry, materials, lights: arrays owned by the scene */
     material *materials; int n_materials;
@@ -233,7 +237,8 @@ void scene_free(scene *sc);
 /* Default material state (ambient 0.2, all else 0, shininess 0, phong, roughness 0, ior 1.5). */
 material scene_default_material(void);
 
-/* "raytracer", "analyticdirect", "direct" or "pathtracer" (static strings), as in the file. */
+/* "raytracer", "analyticdirect", "direct", "pathtracer" or "prefiltered" (static strings), as
+ * in the file. */
 const char *scene_integrator_name(integrator_kind k);
 /* "uniform", "cdf", "cdf-sintheta" or "mediancut" (static strings), the words of `envsampling`. */
 const char *scene_envsampling_name(envsampling_mode m);

@@ -694,8 +694,9 @@ END_TEST
 START_TEST(test_every_integrator_name_round_trips)
 {
     static const integrator_kind kinds[] = {INTEGRATOR_RAYTRACER, INTEGRATOR_ANALYTICDIRECT,
-                                            INTEGRATOR_DIRECT, INTEGRATOR_PATHTRACER};
-    for (int i = 0; i < 4; i++) {
+                                            INTEGRATOR_DIRECT, INTEGRATOR_PATHTRACER,
+                                            INTEGRATOR_PREFILTERED};
+    for (int i = 0; i < 5; i++) {
         char text[256];
         snprintf(text, sizeof text, HEAD "integrator %s\n", scene_integrator_name(kinds[i]));
         scene sc;
