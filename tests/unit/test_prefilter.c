@@ -285,6 +285,35 @@ START_TEST(test_one_bright_texel_gives_its_clamped_cosine)
 }
 END_TEST
 
+/* One texel is a point source: its coefficients are L dOmega Y_lm(w_t), and by the addition
+ * theorem SH9 gives L dOmega (A_0 / 4 pi + 3 A_1 / 4 pi x + 5 A_2 / 4 pi P_2(x)), x = n . w_t:
+ * 1/4 + x/2 + 5 (3 x^2 - 1) / 32, the clamped cosine's bands 0-2, worst at the terminator
+ * (x = 0: 3/32 = 9.4% of the peak, R&H's bound) and 6.25% at x = +-1. */
+START_TEST(test_sh9_of_one_bright_texel_is_the_clamped_cosines_first_three_bands)
+{
+    const int w = 64, h = 32, tc = 10, tr = 20;
+    convert_map m;
+    error err = {0};
+    memset(&m, 0, sizeof m);
+    ck_assert_int_eq(image_alloc(&m.img, w, h, &err), 0);
+    image_set(&m.img, tc, tr, rgb_gray(100));
+    vec3 wt = latlong_uv_to_dir((uv2){(tc + 0.5) / w, (tr + 0.5) / h});
+    double lw = 100 * latlong_texel_solid_angle(tr, w, h);
+    prefilter_sh9 sh = project(&m);
+    double worst = 0;
+    for (int i = 0; i <= 200; i++) {
+        double x = -1 + i / 100.0, y = sqrt(fmax(0, 1 - x * x));
+        vec3 t = vec3_normalize(vec3_cross(wt, vec3_make(0, 0, 1))); /* any direction across wt */
+        vec3 n = vec3_add(vec3_scale(wt, x), vec3_scale(t, y));
+        double e = prefilter_sh9_irradiance(&sh, n).g / lw;
+        EXPECT_NEAR(e, 0.25 + x / 2 + 5 * (3 * x * x - 1) / 32, 1e-12);
+        worst = fmax(worst, fabs(e - fmax(0, x)));
+    }
+    EXPECT_NEAR(worst, 3.0 / 32, 1e-12);
+    convert_map_free(&m);
+}
+END_TEST
+
 START_TEST(test_the_arc_sums_equal_the_plain_sum)
 {
     /* widths that divide, do not divide, and are odd; lat-long, equal-area, cylindrical */
@@ -531,6 +560,7 @@ Suite *prefilter_suite(void)
     tcase_add_test(tc, test_the_quadratic_form_is_the_sum_of_the_A_l_terms);
     tcase_add_test(tc, test_a_constant_map_gives_E_over_pi_of_one_by_sh9_and_exactly);
     tcase_add_test(tc, test_one_bright_texel_gives_its_clamped_cosine);
+    tcase_add_test(tc, test_sh9_of_one_bright_texel_is_the_clamped_cosines_first_three_bands);
     tcase_add_test(tc, test_the_arc_sums_equal_the_plain_sum);
     tcase_add_test(tc, test_sh9_irradiance_equals_the_exact_one_on_a_map_of_bands_0_to_2);
     tcase_add_test(tc, test_a_constant_map_gives_a_phong_map_of_one);

@@ -129,8 +129,9 @@ static const bad_case bad_cases[] = {
     {"maxdepth 1001\n", 3, "'1001'"},
     {"lightsamples 0\n", 3, "'lightsamples' argument 1 must be in [1, 65536], got '0'"},
     {"lightsamples 65537\n", 3, "'65537'"},
-    {"integrator foo\n", 3, "'integrator' must be 'raytracer', 'analyticdirect', 'direct' or "
-                            "'pathtracer', got 'foo'"},
+    {"integrator foo\n", 3, "'integrator' must be 'raytracer', 'analyticdirect', 'direct', "
+                            "'pathtracer' or 'prefiltered', got 'foo'"},
+    {"prefilter sh8\n", 3, "'prefilter' must be 'exact' or 'sh9', got 'sh8'"},
     {"nexteventestimation maybe\n", 3, "'maybe'"},
     {"lightstratify yes\n", 3, "'lightstratify' must be 'off' or 'on', got 'yes'"},
     {"russianroulette 1\n", 3, "got '1'"},
