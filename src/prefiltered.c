@@ -145,7 +145,8 @@ rgb prefiltered_shade(void *ctx, const material *m, const surface *s, vec3 view,
     if (k >= 0 && !rgb_is_black(s->ks)) {
         vec3 r = vec3_reflect(vec3_neg(view), s->n); /* the mirror direction of the view */
         rgb L = latlong_lookup_bilinear(&pf->phong[k], envmap_to_frame(pf->env, r));
-        c = rgb_fma(c, s->ks, rgb_scale(L, pf->env->scale)); /* ks phong_S(r) */
+        double cos_r = fmax(0.0, vec3_dot(r, s->n)); /* the course lobe's cosine, at its axis */
+        c = rgb_fma(c, s->ks, rgb_scale(L, pf->env->scale * cos_r)); /* ks (n.r) phong_S(r) */
     }
     return c;
 }

@@ -4,14 +4,18 @@
  * (raytracer.h: a mirror adds ks x its reflected ray, glass its Fresnel-weighted reflected and
  * refracted rays, a ray that leaves sees the envmap); at any other hit
  *
- *     I = emission + kd x irr(n) + ks x phong_S(r)        (brdf phong; S its shininess)
+ *     I = emission + kd x irr(n) + ks x (n . r) phong_S(r)     (brdf phong; S its shininess)
  *
  * irr(n) = E(n) / pi, the irradiance map, at the shading normal n; phong_S(r) the Phong-lobe map
  * of exponent S (prefilter.h) at r, the mirror direction of the view; both turned into the
- * envmap frame (envmap_to_frame), looked up bilinearly and times the envmap's scale.  The maps
+ * envmap frame (envmap_to_frame), looked up bilinearly and times the envmap's scale.  The
+ * cosine is the course BRDF's: f = ks (S + 2) / (2 pi) (r . wi)^S meets n . wi in the rendering
+ * equation, and n . wi = (n . r)(r . wi) + (a part across r), so the glossy term is ks (n . r)
+ * times the normalized lobe of exponent S + 1 over L (for which the map of S stands), plus a
+ * part that vanishes where L is symmetric about r, less what the horizon cuts off.  The maps
  * see the environment alone: no shadows and no light from other objects, the classic
- * approximation, exact for a lone convex object under the irradiance map (the Phong map drops
- * the course BRDF's cosine and horizon: docs/illumination-maps.md).  Point, directional and quad
+ * approximation, exact for a lone convex object under the irradiance map (docs/
+ * illumination-maps.md measures the glossy term's error).  Point, directional and quad
  * lights are ignored (the scene warns), `ambient` too; mirror and glass have no diffuse term,
  * as in the path tracer; `brdf ggx` is refused.  With `envmiss black`, or no envmap, the maps
  * are black.

@@ -1,5 +1,5 @@
 /* test_prefiltered.c - `integrator prefiltered` (prefiltered.h) and its scene commands: a diffuse
- * or Phong sphere in a constant environment is (kd + ks) L with either irradiance method;
+ * or Phong sphere in a constant environment is (kd + ks n.r) L with either irradiance method;
  * mirrors and glass are the ray tracer's to the bit; the maps follow the envmap's transform;
  * lights are warned about, GGX and a non-rotation refused; one Phong map per shininess. */
 #include "envtex/prefiltered.h"
@@ -149,16 +149,52 @@ START_TEST(test_a_diffuse_or_phong_sphere_in_a_constant_environment_is_kd_plus_k
             set_env(&sc, GENENV_CONSTANT, 512, 2);
             image im;
             render_ok(&sc, &im);
-            /* the centre pixels see the sphere: (kd + ks) L, ambient ignored; a corner the
-             * environment itself */
+            /* the centre pixels see the sphere head on: (kd + ks (n . r)) L with n . r ~ 1,
+             * ambient ignored; a corner the environment itself */
             rgb c = image_get(&im, 12, 12), k = phong ? rgb_make(0.5, 0.6, 0.7) : rgb_make(0.6, 0.4, 0.2);
-            ck_assert_double_eq_tol(c.r, 2 * k.r, 2e-3);
-            ck_assert_double_eq_tol(c.g, 2 * k.g, 2e-3);
-            ck_assert_double_eq_tol(c.b, 2 * k.b, 2e-3);
+            /* (pixel 12's centre is half a pixel off the axis: n . r = 0.998) */
+            ck_assert_double_eq_tol(c.r, 2 * k.r, 5e-3);
+            ck_assert_double_eq_tol(c.g, 2 * k.g, 5e-3);
+            ck_assert_double_eq_tol(c.b, 2 * k.b, 5e-3);
             ck_assert_double_eq_tol(image_get(&im, 0, 0).g, 2, 1e-6);
             image_free(&im);
             scene_free(&sc);
         }
+}
+END_TEST
+
+START_TEST(test_a_phong_lobe_is_ks_times_the_cosine_at_its_axis_times_its_map)
+{
+    scene sc;
+    load_ok(&sc, HEAD "integrator prefiltered\nspecular 0.5 0.25 1\nshininess 40\nsphere 0 0 0 1\n");
+    set_env(&sc, GENENV_CONSTANT, 512, 2);
+    rig r;
+    error err = {0};
+    ck_assert_int_eq(rig_init(&r, &sc, &err), 0);
+    surface s;
+    memset(&s, 0, sizeof s);
+    brdf_surface_from_material(&s, &sc.materials[0]);
+    s.n = s.ng = vec3_make(0, 0, 1);
+    const double angles[] = {0, 30, 60, 85};
+    for (int i = 0; i < 4; i++) {
+        double a = angles[i] * M_PI / 180; /* the view's angle from n, which r makes too */
+        vec3 view = vec3_make(sin(a), 0, cos(a));
+        int reflect = 1;
+        rgb c = prefiltered_shade(r.it.pf, &sc.materials[0], &s, view, &reflect);
+        ck_assert_int_eq(reflect, 0); /* the lobe replaces the mirror bounce */
+        /* a constant map's Phong map is 1: ks (n . r) L */
+        ck_assert_double_eq_tol(c.r, 0.5 * cos(a) * 2, 2e-3);
+        ck_assert_double_eq_tol(c.b, 1.0 * cos(a) * 2, 2e-3);
+    }
+    /* a mirror or glass surface: emission only, the ray tracer bounces */
+    s.kind = BRDF_MIRROR;
+    s.emission = rgb_gray(0.125);
+    int reflect = 1;
+    rgb c = prefiltered_shade(r.it.pf, &sc.materials[0], &s, vec3_make(0, 0, 1), &reflect);
+    ck_assert_int_eq(reflect, 1);
+    ck_assert_double_eq(c.g, 0.125);
+    rig_free(&r);
+    scene_free(&sc);
 }
 END_TEST
 
@@ -327,6 +363,7 @@ Suite *prefiltered_suite(void)
     tcase_add_test(tc, test_the_scene_chooses_the_integrator_and_the_irradiance_method);
     tcase_add_test(tc, test_lights_in_a_prefiltered_scene_are_warned_about_at_the_first);
     tcase_add_test(tc, test_a_diffuse_or_phong_sphere_in_a_constant_environment_is_kd_plus_ks_times_L);
+    tcase_add_test(tc, test_a_phong_lobe_is_ks_times_the_cosine_at_its_axis_times_its_map);
     tcase_add_test(tc, test_mirrors_and_glass_are_the_ray_tracers_to_the_bit);
     tcase_add_test(tc, test_the_maps_follow_the_envmaps_transform);
     tcase_add_test(tc, test_ggx_and_an_envmap_that_is_not_turned_are_refused);
