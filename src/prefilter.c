@@ -458,7 +458,7 @@ static void arcs_row(const rows *rw, int r, const double *pre, const double *tr,
                     S[q] = p1[x] - p0[x] + pw[x] - pre[x]; /* [k0, k1) and [0, wrap) */
                 }
                 double v = a * S[0] + b * (cpn[j] * S[1] + spn[j] * S[2]);
-                if (v > 0) e[ch] += v * rw->omega[r]; /* (rounding can leave a -1e-17) */
+                if (v > 0) e[ch] += v * rw->omega[r]; /* (rounding can leave a tiny negative) */
             }
         }
     }

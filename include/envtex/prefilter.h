@@ -46,7 +46,7 @@
  * prefilter_phong): a map of rows costs a few multiply-adds a visit, a list of texels (cube,
  * mirror ball, angular) a dot product and a test as well. */
 #define PREFILTER_MAX_ROW_WORK 2e10
-#define PREFILTER_MAX_LIST_WORK 5e9
+#define PREFILTER_MAX_LIST_WORK 3e9
 /* prefilter_phong leaves out the texels where r . w <= c, c chosen so that what they could add
  * is at most this fraction of the map's mean radiance (see prefilter_phong). */
 #define PREFILTER_PHONG_DROP 1e-12
