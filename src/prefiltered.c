@@ -127,6 +127,8 @@ rgb prefiltered_irradiance(const prefiltered *pf, vec3 n)
         vec3 u;
         if (vec3_unit_direction(ne, &u)) return rgb_gray(0);
         e = rgb_scale(prefilter_sh9_quadratic_eval(&pf->q, u), 1.0 / M_PI); /* E(n) / pi */
+        /* nine coefficients ring below 0 behind a bright source: light is never negative */
+        e = rgb_make(fmax(e.r, 0.0), fmax(e.g, 0.0), fmax(e.b, 0.0));
     } else {
         if (!pf->irradiance.px) return rgb_gray(0); /* no material asked for it */
         e = latlong_lookup_bilinear(&pf->irradiance, ne);

@@ -67,7 +67,9 @@ void prefiltered_free(prefiltered *pf);
  * ctx is the prefiltered. */
 rgb prefiltered_shade(void *ctx, const material *m, const surface *s, vec3 view, int *reflect);
 
-/* E(n) / pi times the envmap's scale at world normal n (any non-zero length). */
+/* E(n) / pi times the envmap's scale at world normal n (any non-zero length); under sh9 each
+ * channel at least 0 (the quadratic form rings below 0 behind a bright source; the maps of
+ * prefilter.h keep its values). */
 rgb prefiltered_irradiance(const prefiltered *pf, vec3 n);
 
 #endif

@@ -262,6 +262,32 @@ START_TEST(test_the_maps_follow_the_envmaps_transform)
 }
 END_TEST
 
+/* One bright texel at the zenith: SH9 gives L dOmega (1/4 + x/2 + 5 (3x^2 - 1) / 32), below 0
+ * around x = -0.53 (test_prefilter); the integrator's light is not. */
+START_TEST(test_sh9_irradiance_is_never_negative_behind_a_point_source)
+{
+    scene sc;
+    load_ok(&sc, HEAD "integrator prefiltered\nprefilter sh9\ndiffuse 1 1 1\nsphere 0 0 0 1\n");
+    error err = {0};
+    ck_assert_int_eq(image_alloc(&sc.envmap.img, 64, 32, &err), 0);
+    image_set(&sc.envmap.img, 0, 0, rgb_gray(1000));
+    sc.envmap.present = 1;
+    rig r;
+    ck_assert_int_eq(rig_init(&r, &sc, &err), 0);
+    vec3 w = latlong_uv_to_dir((uv2){0.5 / 64, 0.5 / 32});
+    double lw = 1000 * latlong_texel_solid_angle(0, 64, 32);
+    for (int i = 0; i <= 20; i++) {
+        double x = -1 + i / 10.0; /* n . w */
+        vec3 t = vec3_normalize(vec3_cross(w, vec3_make(1, 0, 0)));
+        vec3 n = vec3_add(vec3_scale(w, x), vec3_scale(t, sqrt(fmax(0, 1 - x * x))));
+        double want = lw * fmax(0, 0.25 + x / 2 + 5 * (3 * x * x - 1) / 32) / M_PI;
+        ck_assert_double_eq_tol(prefiltered_irradiance(r.it.pf, n).g, want, 1e-9 + 1e-9 * want);
+    }
+    rig_free(&r);
+    scene_free(&sc);
+}
+END_TEST
+
 START_TEST(test_ggx_and_an_envmap_that_is_not_turned_are_refused)
 {
     scene sc;
@@ -366,6 +392,7 @@ Suite *prefiltered_suite(void)
     tcase_add_test(tc, test_a_phong_lobe_is_ks_times_the_cosine_at_its_axis_times_its_map);
     tcase_add_test(tc, test_mirrors_and_glass_are_the_ray_tracers_to_the_bit);
     tcase_add_test(tc, test_the_maps_follow_the_envmaps_transform);
+    tcase_add_test(tc, test_sh9_irradiance_is_never_negative_behind_a_point_source);
     tcase_add_test(tc, test_ggx_and_an_envmap_that_is_not_turned_are_refused);
     tcase_add_test(tc, test_without_the_envmaps_light_only_emission_and_mirrors_remain);
     tcase_add_test(tc, test_one_phong_map_per_distinct_shininess);
