@@ -13,6 +13,8 @@
  *   (render, compare, tonemap and convert also take --memory-budget SIZE: budget.h)
  *   envtex gen-env KIND OUT [--width W] [--value V] [--sun-ratio R] [--sun-radius DEG]
  *                           [--sun-elevation DEG] [--sun-azimuth DEG]
+ *   envtex prefilter IN --sh9 | IN OUT --irradiance [--method sh9|exact] | IN OUT --phong S
+ *                           [--width W] [--from KIND]
  *   envtex noise X Y Z              Perlin's improved noise at (X, Y, Z), 9 significant digits
  */
 #include <stdio.h>
@@ -33,6 +35,9 @@ static const char *usage_text =
     "       default 2G; 'none': only the hard limits)\n"
     "       envtex gen-env constant|sky|sun|axes OUT [--width W] [--value V] [--sun-ratio R]\n"
     "                      [--sun-radius DEG] [--sun-elevation DEG] [--sun-azimuth DEG]\n"
+    "       envtex prefilter IN --sh9 [--from KIND]       (9 lines: l m R G B)\n"
+    "       envtex prefilter IN OUT --irradiance [--method sh9|exact] [--width W] [--from KIND]\n"
+    "       envtex prefilter IN OUT --phong S [--width W] [--from KIND]\n"
     "       envtex noise X Y Z                   (Perlin's improved noise, 9 significant digits)\n";
 
 int main(int argc, char **argv)
@@ -51,6 +56,7 @@ int main(int argc, char **argv)
     if (!strcmp(cmd, "tonemap")) return cmd_tonemap(argc - 2, argv + 2);
     if (!strcmp(cmd, "gen-env")) return cmd_gen_env(argc - 2, argv + 2);
     if (!strcmp(cmd, "convert")) return cmd_convert(argc - 2, argv + 2);
+    if (!strcmp(cmd, "prefilter")) return cmd_prefilter(argc - 2, argv + 2);
     if (!strcmp(cmd, "noise")) return cmd_noise(argc - 2, argv + 2);
     return cmd_render(argc - 1, argv + 1); /* envtex SCENE [options] */
 }

@@ -593,3 +593,5 @@ int envlight_mediancut_pick(const envlight *el, double xi, double xi1, double xi
     *prob = pmf;
     return pmf > 0;
 }
+
+int envlight_transform_is_conformal(const mat4 *m) { return transform_is_conformal(m); }

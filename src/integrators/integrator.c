@@ -5,6 +5,7 @@
 #include <time.h>
 
 #include "envtex/geometry/sphere.h"
+#include "envtex/integrators/prefiltered.h"
 #include "envtex/integrators/texshade.h"
 
 /* Radius of a sphere around the scene's geometry and lights: the "R" that converts a distant
@@ -49,6 +50,10 @@ int integrator_init(integrator *it, const scene *sc, const bvh *accel, budget *m
     if (sc->integrator == INTEGRATOR_RAYTRACER) {
         raytracer_init(&it->rt, sc, accel);
         return 0;
+    }
+    if (sc->integrator == INTEGRATOR_PREFILTERED) { /* the ray tracer, shading from the maps */
+        raytracer_init(&it->rt, sc, accel);
+        return prefiltered_init(&it->pf, &it->rt, err);
     }
     clock_t t0 = clock();
     int samples_lights = sc->integrator == INTEGRATOR_DIRECT ||
@@ -95,6 +100,8 @@ void integrator_free(integrator *it)
     if (it->has_envlight) envlight_free(&it->el);
     if (it->has_lights) lights_free(&it->ls);
     it->has_envlight = it->has_lights = 0;
+    prefiltered_free(it->pf);
+    it->pf = NULL;
 }
 
 void integrator_intersect(integrator *it, const ray *r, scene_hit *out)

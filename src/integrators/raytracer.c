@@ -11,6 +11,8 @@ void raytracer_init(raytracer *rt, const scene *sc, const bvh *accel)
     scene_environment(sc, &rt->env);
     rt->maxdepth = sc->maxdepth < 0 ? RAYTRACER_UNLIMITED_DEPTH : sc->maxdepth;
     rt->rays = 0;
+    rt->shade = NULL;
+    rt->shade_ctx = NULL;
 }
 
 static rgb trace(raytracer *rt, ray r, const ray_diff *rd, int depth, double weight);
@@ -91,8 +93,15 @@ static rgb trace(raytracer *rt, ray r, const ray_diff *rd, int depth, double wei
     vec3 n = s.n;
 
     /* I = A + E + lights (E: `emission` or its light map) */
-    rgb c = rgb_add(m->ambient, s.emission);
-    c = rgb_add(c, direct_lights(rt, &h, &s, view, m->brdf == BRDF_PHONG || m->brdf == BRDF_GGX));
+    int reflect = 1;
+    rgb c;
+    if (rt->shade) {
+        c = rt->shade(rt->shade_ctx, m, &s, view, &reflect); /* prefiltered.h */
+    } else {
+        c = rgb_add(m->ambient, s.emission);
+        int highlight = m->brdf == BRDF_PHONG || m->brdf == BRDF_GGX;
+        c = rgb_add(c, direct_lights(rt, &h, &s, view, highlight));
+    }
     if (depth >= rt->maxdepth) return c;
     ray_diff next;
 
@@ -114,7 +123,7 @@ static rgb trace(raytracer *rt, ray r, const ray_diff *rd, int depth, double wei
         return c;
     }
     double ks = rgb_max(s.ks);
-    if (ks > 0 && weight * ks > RAYTRACER_MIN_WEIGHT) {
+    if (reflect && ks > 0 && weight * ks > RAYTRACER_MIN_WEIGHT) {
         /* Color += reflectivity * Color of reflected ray (ks: `specular` or its map) */
         vec3 refl = vec3_reflect(d, n);
         texshade_delta_diff(&s, rd, view, refl, &next);

@@ -19,7 +19,8 @@ rgb render_radiance(integrator *it, ray r, rng *g) { return render_radiance_diff
 rgb render_radiance_diff(integrator *it, ray r, const ray_diff *rd, rng *g)
 {
     switch (it->sc->integrator) {
-    case INTEGRATOR_RAYTRACER: return raytracer_trace_diff(&it->rt, r, rd);
+    case INTEGRATOR_RAYTRACER:
+    case INTEGRATOR_PREFILTERED: return raytracer_trace_diff(&it->rt, r, rd); /* its own shade */
     case INTEGRATOR_ANALYTICDIRECT: return analyticdirect_radiance_diff(it, r, rd, g);
     case INTEGRATOR_DIRECT: return direct_radiance_diff(it, r, rd, g);
     default: return pathtracer_radiance_diff(it, r, rd, g);

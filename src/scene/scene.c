@@ -631,10 +631,21 @@ static int cmd_shininess(parser *p) { return arg_nonneg(p, 1, 0, &p->mat.shinine
 static int cmd_integrator(parser *p)
 {
     /* in the order of integrator_kind */
-    static const char *const w[] = {"raytracer", "analyticdirect", "direct", "pathtracer"};
+    static const char *const w[] = {"raytracer", "analyticdirect", "direct", "pathtracer",
+                                    "prefiltered"};
     int k = 0;
-    if (arg_word(p, w, 4, &k)) return -1;
+    if (arg_word(p, w, 5, &k)) return -1;
     p->sc->integrator = (integrator_kind)k;
+    return 0;
+}
+
+/* `prefilter exact|sh9`: the irradiance map of `integrator prefiltered` */
+static int cmd_prefilter(parser *p)
+{
+    static const char *const w[] = {"exact", "sh9"}; /* irradiance_method order */
+    int k = 0;
+    if (arg_word(p, w, 2, &k)) return -1;
+    p->sc->prefilter = (irradiance_method)k;
     return 0;
 }
 
@@ -1247,6 +1258,7 @@ static const command commands[] = {
     {"envsampling", cmd_envsampling, 1, 2},
     {"envsampler", cmd_envsampler, 1, 1},
     {"envsamplefraction", cmd_envsamplefraction, 1, 1},
+    {"prefilter", cmd_prefilter, 1, 1},
 };
 
 /* The forms of a command whose handler checks its own argument counts, for a count outside
@@ -1561,6 +1573,14 @@ static int finish(parser *p)
                 "lights (no path can hit one): they light nothing; use 'nexteventestimation on' or 'mis'");
         p->line = 0;
     }
+    if ((p->first_quad_line || p->first_delta_line) && sc->integrator == INTEGRATOR_PREFILTERED) {
+        int a = p->first_quad_line, b = p->first_delta_line; /* the first light of either kind */
+        p->line = a && (!b || a < b) ? a : b;
+        warn(p, "the 'prefiltered' integrator lights with the envmap's prefiltered maps only: "
+                "point, directional and quad lights are ignored (use 'integrator direct' or "
+                "'pathtracer')");
+        p->line = 0;
+    }
     if (p->opts->load_images && load_textures(p)) return -1;
     if (sc->envmap.present && p->opts->load_images && load_envmap(p)) return -1;
     return 0;
@@ -1832,6 +1852,7 @@ const char *scene_integrator_name(integrator_kind k)
     case INTEGRATOR_ANALYTICDIRECT: return "analyticdirect";
     case INTEGRATOR_DIRECT: return "direct";
     case INTEGRATOR_PATHTRACER: return "pathtracer";
+    case INTEGRATOR_PREFILTERED: return "prefiltered";
     }
     return "unknown";
 }

@@ -159,4 +159,10 @@ double envlight_mis_fraction(const envlight *el, double light_cost, double *rel_
 int envlight_mediancut_pick(const envlight *el, double xi, double xi1, double xi2, int *k,
                             vec3 *shadow_dir, double *prob);
 
+/* 1 if the linear part A (upper 3 x 3) of m turns directions without distorting them,
+ * A A^T = s^2 I within a tolerance: a rotation, possibly times a uniform scale or a mirror, what
+ * the sampling modes ask of env->to_env (and `integrator prefiltered`, whose maps live in the
+ * envmap frame). */
+int envlight_transform_is_conformal(const mat4 *m);
+
 #endif

@@ -46,7 +46,8 @@ typedef struct integrator {
     lights ls;
     int has_lights;     /* ls built */
     int maxdepth;       /* resolved: -1 becomes INTEGRATOR_UNLIMITED_DEPTH */
-    raytracer rt;       /* integrator raytracer */
+    raytracer rt;       /* integrator raytracer (and prefiltered, which shades its hits) */
+    struct prefiltered *pf; /* integrator prefiltered: its maps (prefiltered.h) */
     long long rays;     /* rays traced by the sampling integrators */
     double build_seconds;
     double env_fraction;  /* the envmap's sampling fraction in use (lights.h), 1 if not MIS */

@@ -30,12 +30,22 @@
  * even under a sun of radiance 1e6, so it is not traced (Hall & Greenberg's adaptive depth). */
 #define RAYTRACER_MIN_WEIGHT 1e-9
 
+/* Local shading in place of the Whitted terms A + E + lights at a hit whose normal-facing
+ * surface is s (brdf.h), seen from direction view: returns that radiance, and sets *reflect to
+ * 0 when a non-glass surface's ks is no mirror to recurse into.  `integrator prefiltered` sets
+ * it (prefiltered.h); mirror and glass bounces stay the ray tracer's. */
+struct surface;
+typedef rgb (*raytracer_shade_fn)(void *ctx, const material *m, const struct surface *s, vec3 view,
+                                  int *reflect);
+
 typedef struct raytracer {
     const scene *sc;
     const bvh *accel;
     envmap env;
     int maxdepth;        /* resolved: -1 becomes RAYTRACER_UNLIMITED_DEPTH */
     long long rays;      /* rays traced, shadow rays included */
+    raytracer_shade_fn shade; /* NULL (raytracer_init): the Whitted terms */
+    void *shade_ctx;
 } raytracer;
 
 void raytracer_init(raytracer *rt, const scene *sc, const bvh *accel);

@@ -22,6 +22,7 @@
 #include "envtex/geometry/bvh.h"
 #include "envtex/envmaps/convert.h"
 #include "envtex/envlight/envlight.h"
+#include "envtex/envlight/prefilter.h"
 #include "envtex/reflection/envmap.h"
 #include "envtex/core/error.h"
 #include "envtex/core/image.h"
@@ -87,7 +88,8 @@ typedef enum integrator_kind {
     INTEGRATOR_RAYTRACER,
     INTEGRATOR_ANALYTICDIRECT,
     INTEGRATOR_DIRECT,
-    INTEGRATOR_PATHTRACER
+    INTEGRATOR_PATHTRACER,
+    INTEGRATOR_PREFILTERED /* prefiltered.h: illumination maps instead of integrals */
 } integrator_kind;
 
 typedef enum nee_mode { NEE_OFF, NEE_ON, NEE_MIS } nee_mode;
@@ -159,6 +161,7 @@ typedef struct scene {
     int mediancut_lights;      /* N of `envsampling mediancut N`, default 64 */
     envsampler_kind envsampler; /* default ENVSAMPLER_BINARY */
     double envsamplefraction;  /* `envsamplefraction F` in [0, 1]; -1 = auto (lights.h) */
+    irradiance_method prefilter; /* `prefilter exact|sh9`, default exact */
     scene_envmap envmap;
     /* geometry, materials, lights: arrays owned by the scene */
     material *materials; int n_materials;
@@ -220,7 +223,8 @@ void scene_free(scene *sc);
 /* Default material state (ambient 0.2, all else 0, shininess 0, phong, roughness 0, ior 1.5). */
 material scene_default_material(void);
 
-/* "raytracer", "analyticdirect", "direct" or "pathtracer" (static strings), as in the file. */
+/* "raytracer", "analyticdirect", "direct", "pathtracer" or "prefiltered" (static strings), as
+ * in the file. */
 const char *scene_integrator_name(integrator_kind k);
 /* "uniform", "cdf", "cdf-sintheta" or "mediancut" (static strings), the words of `envsampling`. */
 const char *scene_envsampling_name(envsampling_mode m);

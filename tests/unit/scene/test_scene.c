@@ -130,8 +130,9 @@ static const bad_case bad_cases[] = {
     {"maxdepth 1001\n", 3, "'1001'"},
     {"lightsamples 0\n", 3, "'lightsamples' argument 1 must be in [1, 65536], got '0'"},
     {"lightsamples 65537\n", 3, "'65537'"},
-    {"integrator foo\n", 3, "'integrator' must be 'raytracer', 'analyticdirect', 'direct' or "
-                            "'pathtracer', got 'foo'"},
+    {"integrator foo\n", 3, "'integrator' must be 'raytracer', 'analyticdirect', 'direct', "
+                            "'pathtracer' or 'prefiltered', got 'foo'"},
+    {"prefilter sh8\n", 3, "'prefilter' must be 'exact' or 'sh9', got 'sh8'"},
     {"nexteventestimation maybe\n", 3, "'maybe'"},
     {"lightstratify yes\n", 3, "'lightstratify' must be 'off' or 'on', got 'yes'"},
     {"lightselection one\n", 3, "'lightselection' must be 'all' or 'power', got 'one'"},
@@ -701,8 +702,9 @@ END_TEST
 START_TEST(test_every_integrator_name_round_trips)
 {
     static const integrator_kind kinds[] = {INTEGRATOR_RAYTRACER, INTEGRATOR_ANALYTICDIRECT,
-                                            INTEGRATOR_DIRECT, INTEGRATOR_PATHTRACER};
-    for (int i = 0; i < 4; i++) {
+                                            INTEGRATOR_DIRECT, INTEGRATOR_PATHTRACER,
+                                            INTEGRATOR_PREFILTERED};
+    for (int i = 0; i < 5; i++) {
         char text[256];
         snprintf(text, sizeof text, HEAD "integrator %s\n", scene_integrator_name(kinds[i]));
         scene sc;
