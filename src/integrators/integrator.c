@@ -53,7 +53,7 @@ int integrator_init(integrator *it, const scene *sc, const bvh *accel, budget *m
     }
     if (sc->integrator == INTEGRATOR_PREFILTERED) { /* the ray tracer, shading from the maps */
         raytracer_init(&it->rt, sc, accel);
-        return prefiltered_init(&it->pf, &it->rt, err);
+        return prefiltered_init(&it->pf, &it->rt, mem, err);
     }
     clock_t t0 = clock();
     int samples_lights = sc->integrator == INTEGRATOR_DIRECT ||

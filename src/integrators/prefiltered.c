@@ -41,10 +41,38 @@ static int check_scene(const scene *sc, const envmap *env, error *err)
     return 0;
 }
 
+/* Charge a w x w/2 map of RGB floats to the run's budget before making it. */
+static int charge_map(prefiltered *pf, const scene *sc, int w, const char *what, error *err)
+{
+    double bytes = (double)w * (w / 2) * 3 * sizeof(float);
+    if (budget_charge(pf->mem, bytes, sc->path, 0, err, "%s map of %d x %d texels", what, w, w / 2))
+        return -1;
+    pf->charged += bytes;
+    return 0;
+}
+
+/* The distinct shininesses of the materials with a lobe, counted up to `most` + 1. */
+static int count_exponents(const scene *sc, int most)
+{
+    int n = 0;
+    for (int i = 0; i < sc->n_materials && n <= most; i++) {
+        const material *m = &sc->materials[i];
+        int seen = !has_lobe(m);
+        for (int j = 0; j < i && !seen; j++)
+            seen = has_lobe(&sc->materials[j]) && sc->materials[j].shininess == m->shininess;
+        n += !seen;
+    }
+    return n;
+}
+
 /* One Phong map per distinct shininess; phong_of[i] names material i's. */
 static int build_phong(prefiltered *pf, const scene *sc, const convert_env *view, error *err)
 {
     int n = sc->n_materials;
+    if (pf->lit && count_exponents(sc, PREFILTERED_MAX_PHONG_MAPS) > PREFILTERED_MAX_PHONG_MAPS)
+        return error_set(err, sc->path, 0, "the 'prefiltered' integrator makes one Phong map per "
+                         "distinct shininess, at most %d: this scene has more (round the "
+                         "exponents to fewer values)", PREFILTERED_MAX_PHONG_MAPS);
     pf->phong_of = malloc((size_t)(n > 0 ? n : 1) * sizeof *pf->phong_of);
     pf->phong_s = malloc((size_t)(n > 0 ? n : 1) * sizeof *pf->phong_s);
     pf->phong = calloc((size_t)(n > 0 ? n : 1), sizeof *pf->phong);
@@ -58,6 +86,7 @@ static int build_phong(prefiltered *pf, const scene *sc, const convert_env *view
         while (k < pf->n_phong && pf->phong_s[k] != m->shininess) k++;
         if (k == pf->n_phong) { /* a new exponent: its map */
             double s = m->shininess;
+            if (charge_map(pf, sc, prefilter_phong_width(s), "a Phong", err)) return -1;
             if (prefilter_phong(view, s, prefilter_phong_width(s), &pf->phong[k], err))
                 return error_prefix(err, "%s: the Phong map of shininess %g", sc->path, s);
             pf->phong_s[k] = s;
@@ -78,13 +107,14 @@ static int build(prefiltered *pf, const scene *sc, error *err)
         if (prefilter_sh9_project(&view, &sh, err)) return error_prefix(err, "%s", sc->path);
         prefilter_sh9_matrix(&sh, &pf->q);
     } else if (pf->lit && diffuse) {
+        if (charge_map(pf, sc, PREFILTERED_IRRADIANCE_WIDTH, "an irradiance", err)) return -1;
         if (prefilter_irradiance_exact(&view, PREFILTERED_IRRADIANCE_WIDTH, &pf->irradiance, err))
             return error_prefix(err, "%s: the irradiance map", sc->path);
     }
     return build_phong(pf, sc, &view, err);
 }
 
-int prefiltered_init(prefiltered **out, raytracer *rt, error *err)
+int prefiltered_init(prefiltered **out, raytracer *rt, budget *mem, error *err)
 {
     const scene *sc = rt->sc;
     *out = NULL;
@@ -92,6 +122,7 @@ int prefiltered_init(prefiltered **out, raytracer *rt, error *err)
     prefiltered *pf = calloc(1, sizeof *pf);
     if (!pf) return error_set(err, sc->path, 0, "out of memory");
     pf->env = &rt->env;
+    pf->mem = mem;
     pf->materials = sc->materials;
     pf->lit = rt->env.present && sc->envmiss == ENVMISS_ENVMAP;
     pf->method = sc->prefilter;
@@ -110,6 +141,7 @@ int prefiltered_init(prefiltered **out, raytracer *rt, error *err)
 void prefiltered_free(prefiltered *pf)
 {
     if (!pf) return;
+    budget_release(pf->mem, pf->charged);
     image_free(&pf->irradiance);
     for (int k = 0; k < pf->n_phong; k++) image_free(&pf->phong[k]);
     free(pf->phong);

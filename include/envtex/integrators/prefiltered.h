@@ -25,18 +25,21 @@
  * each n (`prefilter sh9`); one Phong map per distinct shininess of a Phong material with a
  * specular part, prefilter_phong_width(S) wide.
  *
- *     (integrator.c) raytracer_init(&it->rt, sc, accel); prefiltered_init(&it->pf, &it->rt, &err);
+ *     (integrator.c) raytracer_init(&it->rt, sc, accel); prefiltered_init(&it->pf, &it->rt, mem, &err);
  *     rgb L = raytracer_trace(&it->rt, camera_ray(&cam, x, y));  ...  prefiltered_free(it->pf);
  */
 #ifndef ENVTEX_PREFILTERED_H
 #define ENVTEX_PREFILTERED_H
 
+#include "envtex/core/budget.h"
 #include "envtex/integrators/brdf.h"
 #include "envtex/envlight/prefilter.h"
 #include "envtex/integrators/raytracer.h"
 
 /* The irradiance map's width under `prefilter exact` (E is smooth: docs/illumination-maps.md). */
 #define PREFILTERED_IRRADIANCE_WIDTH 128
+/* At most this many distinct Phong exponents a scene (one map each, each up to a few seconds). */
+#define PREFILTERED_MAX_PHONG_MAPS 16
 
 typedef struct prefiltered {
     const envmap *env;         /* the ray tracer's (its transform and scale) */
@@ -50,14 +53,18 @@ typedef struct prefiltered {
     image *phong;              /* their maps */
     int *phong_of;             /* per material of the scene: its map, or -1 */
     double build_seconds;      /* CPU time of building the maps */
+    budget *mem;               /* the run's budget, charged `charged` bytes for the maps */
+    double charged;
 } prefiltered;
 
 /* Build the maps for rt's scene and environment and make rt shade with them (rt->shade).
  * *out is allocated (free with prefiltered_free).  Fails, with nothing allocated and the
  * message naming the scene (the `envmap` line for its transform): a `brdf ggx` material, an
  * envmap transform that is not a rotation (times a uniform scale), a shininess over
- * PREFILTER_MAX_SHININESS, a map too costly to make (prefilter.h), out of memory. */
-int prefiltered_init(prefiltered **out, raytracer *rt, error *err);
+ * PREFILTER_MAX_SHININESS, more than PREFILTERED_MAX_PHONG_MAPS distinct shininesses, a map too
+ * costly to make (prefilter.h), maps over the budget `mem` (charged until prefiltered_free),
+ * out of memory. */
+int prefiltered_init(prefiltered **out, raytracer *rt, budget *mem, error *err);
 
 /* Free the maps (NULL is fine). */
 void prefiltered_free(prefiltered *pf);
