@@ -46,6 +46,8 @@ static int world_to_texel(const envlight *el, vec3 wi, int *c, int *r, double *s
     return 0;
 }
 
+rgb envlight_texel(const envlight *el, int c, int r) { return texel(el, c, r); }
+
 rgb envlight_radiance(const envlight *el, vec3 wi)
 {
     int c, r;
@@ -53,140 +55,17 @@ rgb envlight_radiance(const envlight *el, vec3 wi)
     return texel(el, c, r);
 }
 
-/* ---- median cut (Debevec 2005): strata of equal energy ------------------------------------ */
-
-typedef struct region { int c0, c1, r0, r1; double energy; } region;
-
-/* energy of columns [c0,c1) x rows [r0,r1) from the summed-area table S ((w+1) x (h+1)) */
-static double sat_sum(const double *S, int h, int c0, int c1, int r0, int r1)
-{
-    int H = h + 1;
-    return S[c1 * H + r1] - S[c0 * H + r1] - S[c1 * H + r0] + S[c0 * H + r0];
-}
-
-/* Split region g in two halves of (about) equal energy across its longer side, measured in
- * angle: the phi side is shortened by sin theta at the region's middle.  0 if it cannot split. */
-static int split_region(const envlight *el, const double *S, const region *g, region *a, region *b)
-{
-    int cw = g->c1 - g->c0, rh = g->r1 - g->r0;
-    if (cw < 2 && rh < 2) return 0;
-    double mid_theta = M_PI * 0.5 * (g->r0 + g->r1) / el->h;
-    double phi_len = cw * 2 * M_PI / el->w * sin(mid_theta), theta_len = rh * M_PI / el->h;
-    int by_cols = rh < 2 || (cw >= 2 && phi_len >= theta_len);
-    *a = *b = *g;
-    double half = 0.5 * g->energy;
-    if (by_cols) {
-        int lo = g->c0 + 1, hi = g->c1 - 1; /* first cut k with energy of [c0, k) >= half */
-        while (lo < hi) {
-            int m = lo + (hi - lo) / 2;
-            if (sat_sum(S, el->h, g->c0, m, g->r0, g->r1) >= half) hi = m;
-            else lo = m + 1;
-        }
-        a->c1 = b->c0 = lo;
-    } else {
-        int lo = g->r0 + 1, hi = g->r1 - 1;
-        while (lo < hi) {
-            int m = lo + (hi - lo) / 2;
-            if (sat_sum(S, el->h, g->c0, g->c1, g->r0, m) >= half) hi = m;
-            else lo = m + 1;
-        }
-        a->r1 = b->r0 = lo;
-    }
-    a->energy = sat_sum(S, el->h, a->c0, a->c1, a->r0, a->r1);
-    b->energy = sat_sum(S, el->h, b->c0, b->c1, b->r0, b->r1);
-    return 1;
-}
-
-/* max-heap of regions by energy */
-static void heap_push(region *hp, int *n, region g)
-{
-    int i = (*n)++;
-    hp[i] = g;
-    while (i > 0 && hp[(i - 1) / 2].energy < hp[i].energy) {
-        region t = hp[i]; hp[i] = hp[(i - 1) / 2]; hp[(i - 1) / 2] = t;
-        i = (i - 1) / 2;
-    }
-}
-
-static region heap_pop(region *hp, int *n)
-{
-    region top = hp[0];
-    hp[0] = hp[--*n];
-    int i = 0;
-    for (;;) {
-        int l = 2 * i + 1, r = l + 1, m = i;
-        if (l < *n && hp[l].energy > hp[m].energy) m = l;
-        if (r < *n && hp[r].energy > hp[m].energy) m = r;
-        if (m == i) break;
-        region t = hp[i]; hp[i] = hp[m]; hp[m] = t;
-        i = m;
-    }
-    return top;
-}
-
+/* median cut's point lights (mediancut.h), their directions turned to the world */
 static int build_mediancut(envlight *el, const double *energy, int n_lights, error *err)
 {
-    int w = el->w, h = el->h, H = h + 1;
-    int status = -1;
-    double *S = calloc((size_t)(w + 1) * (size_t)H, sizeof *S);
-    region *heap = malloc((size_t)n_lights * sizeof *heap), *done = malloc((size_t)n_lights * sizeof *done);
-    double *wts = malloc((size_t)n_lights * sizeof *wts);
-    if (!S || !heap || !done || !wts) {
-        error_set(err, NULL, 0, "out of memory for median cut of a %d x %d map", w, h);
-        goto cleanup;
-    }
-    /* summed-area table: S[c][r] = energy of columns [0,c) x rows [0,r) */
-    for (int c = 0; c < w; c++)
-        for (int r = 0; r < h; r++)
-            S[(c + 1) * H + r + 1] = energy[(size_t)c * h + r] + S[c * H + r + 1] + S[(c + 1) * H + r] - S[c * H + r];
-    int n_heap = 0, n_done = 0;
-    heap_push(heap, &n_heap, (region){0, w, 0, h, sat_sum(S, h, 0, w, 0, h)});
-    /* split the most energetic region until there are n_lights (or nothing splits) */
-    while (n_heap > 0 && n_heap + n_done < n_lights) {
-        region g = heap_pop(heap, &n_heap), a, b;
-        if (g.energy <= 0 || !split_region(el, S, &g, &a, &b)) { done[n_done++] = g; continue; }
-        heap_push(heap, &n_heap, a);
-        heap_push(heap, &n_heap, b);
-    }
-    while (n_heap > 0) done[n_done++] = heap_pop(heap, &n_heap);
-    el->points = calloc((size_t)n_done, sizeof *el->points);
-    if (!el->points) { error_set(err, NULL, 0, "out of memory for %d median-cut lights", n_done); goto cleanup; }
+    mediancut_map m = {el->map, el->env->scale, energy, el->row_omega};
+    if (mediancut_build(&m, n_lights, &el->points, &el->n_points, &el->point_choice, err))
+        return -1;
     mat4 to_world;
     if (mat4_inverse(el->env->to_env, &to_world)) to_world = mat4_identity();
-    for (int k = 0; k < n_done; k++) {
-        const region *g = &done[k];
-        envlight_point *pt = &el->points[k];
-        /* the energy centroid in image coordinates (Debevec 2005): a weighted mean of texel
-         * centres, so it lies inside the stratum (the mean 3D direction of a stratum wide in
-         * phi near a pole lies poleward of it, outside) */
-        double sx = 0, sy = 0, se = 0;
-        rgb power = rgb_gray(0);
-        for (int c = g->c0; c < g->c1; c++)
-            for (int r = g->r0; r < g->r1; r++) {
-                double om = texel_omega(el, r);
-                rgb L = texel(el, c, r);
-                power = rgb_madd(power, L, om); /* power = sum of L dOmega over the stratum */
-                double e = rgb_avg(L) * om;
-                sx += e * (c + 0.5);
-                sy += e * (r + 0.5);
-                se += e;
-            }
-        uv2 uv = {0.5 * (g->c0 + g->c1) / w, 0.5 * (g->r0 + g->r1) / h}; /* a black stratum: its centre */
-        if (se > 0) uv = (uv2){sx / se / w, sy / se / h};
-        pt->dir = vec3_normalize(mat4_dir(&to_world, latlong_uv_to_dir(uv)));
-        pt->power = power;
-        pt->c0 = g->c0; pt->c1 = g->c1; pt->r0 = g->r0; pt->r1 = g->r1;
-        wts[k] = rgb_avg(power);
-    }
-    el->n_points = n_done;
-    if (distrib1d_init(&el->point_choice, wts, n_done, err)) goto cleanup;
-    status = 0;
-cleanup:
-    free(S);
-    free(heap);
-    free(done);
-    free(wts);
-    return status;
+    for (int k = 0; k < el->n_points; k++)
+        el->points[k].dir = vec3_normalize(mat4_dir(&to_world, el->points[k].dir));
+    return 0;
 }
 
 /* A A^T = s^2 I within ENVLIGHT_CONFORMAL_TOL, s^2 = trace(A A^T) / 3 > 0, for the linear part A
@@ -298,7 +177,7 @@ static int build_tables(envlight *el, const envmap *env, envsampling_mode mode,
         if (!status && sampler == ENVSAMPLER_ALIAS) status = distrib2d_alias_build(&el->table, err);
     } else if (el->mode == ENVSAMPLING_MEDIANCUT) {
         if (el->fell_back) for (size_t i = 0; i < (size_t)w * h; i++) energy[i] = 1; /* equal strata */
-        status = build_mediancut(el, energy, mediancut_n > 0 ? mediancut_n : 64, err);
+        status = build_mediancut(el, energy, mediancut_n > 0 ? mediancut_n : MEDIANCUT_DEFAULT_LIGHTS, err);
     }
     free(energy);
     if (status) envlight_free(el);
@@ -332,10 +211,9 @@ static double build_bytes(const envmap *env, envsampling_mode mode, envsampler_k
     if (cdf) {
         *tables = distrib2d_bytes(*w, *h, sampler == ENVSAMPLER_ALIAS);
     } else { /* median cut: the summed-area table and the regions; the points and their choice */
-        int n = n_lights > 0 ? n_lights : 64;
-        *scratch += (double)(*w + 1) * (*h + 1) * sizeof(double) +
-                    (double)n * (2 * sizeof(region) + sizeof(double));
-        *tables = (double)n * (sizeof(envlight_point) + 2 * sizeof(double));
+        int n = n_lights > 0 ? n_lights : MEDIANCUT_DEFAULT_LIGHTS;
+        *scratch += mediancut_scratch_bytes(*w, *h, n);
+        *tables = mediancut_bytes(n);
     }
     return keep + *tables;
 }
@@ -504,91 +382,14 @@ int envlight_sample_stratified(const envlight *el, double xi1, double xi2,
     return point_in_texel(el, c, r, pmf, rc, rr, out);
 }
 
-/* ---- how often MIS should sample the map (lights.h, envsamplefraction auto) --------------- */
-
-/* The fractions c tried, and the normals the model averages over (a Fibonacci sphere). */
-static const double mis_fractions[] = {0, 1.0 / 32, 1.0 / 16, 1.0 / 8, 0.25, 0.5, 0.75, 1};
-#define MIS_MODEL_NORMALS 64
-
-double envlight_mis_fraction(const envlight *el, double light_cost, double *rel_var_out)
-{
-    enum { NC = sizeof mis_fractions / sizeof mis_fractions[0] };
-    _Static_assert(NC == ENVLIGHT_MIS_FRACTIONS, "envlight.h promises ENVLIGHT_MIS_FRACTIONS values");
-    if (rel_var_out)
-        for (int i = 0; i < NC; i++) rel_var_out[i] = 0;
-    int cdf = el->mode == ENVSAMPLING_CDF || el->mode == ENVSAMPLING_CDF_SINTHETA;
-    if (el->fell_back || !(el->power > 0) || !cdf) return 1;
-    /* the map reduced to at most ENVLIGHT_MIS_GRID_W x _H cells (energy and solid angle summed, so
-     * each cell holds the mean radiance of its texels) */
-    int gw = el->w < ENVLIGHT_MIS_GRID_W ? el->w : ENVLIGHT_MIS_GRID_W;
-    int gh = el->h < ENVLIGHT_MIS_GRID_H ? el->h : ENVLIGHT_MIS_GRID_H;
-    enum { CELLS = ENVLIGHT_MIS_GRID_W * ENVLIGHT_MIS_GRID_H };
-    double energy[CELLS] = {0}, omega[CELLS] = {0};
-    for (int r = 0; r < el->h; r++) {
-        int gr = (int)((long long)r * gh / el->h);
-        double om = texel_omega(el, r);
-        for (int c = 0; c < el->w; c++) {
-            int k = gr * gw + (int)((long long)c * gw / el->w);
-            energy[k] += rgb_avg(texel(el, c, r)) * om;
-            omega[k] += om;
-        }
-    }
-    vec3 dir[CELLS];
-    for (int gr = 0; gr < gh; gr++)
-        for (int gc = 0; gc < gw; gc++) /* the cell's centre, in the envmap frame */
-            dir[gr * gw + gc] = latlong_uv_to_dir((uv2){(gc + 0.5) / gw, (gr + 0.5) / gh});
-    double cost[NC] = {0};
-    int counted = 0;
-    for (int n = 0; n < MIS_MODEL_NORMALS; n++) {
-        /* a diffuse surface of albedo 1 facing normal nrm: g = L cos+ / pi */
-        vec3 nrm = sampling_uniform_sphere((n + 0.5) / MIS_MODEL_NORMALS, fmod(n * 0.6180339887498949, 1.0));
-        double I = 0, S[NC] = {0};
-        for (int k = 0; k < gw * gh; k++) {
-            double cs = vec3_dot(nrm, dir[k]);
-            if (!(cs > 0) || !(omega[k] > 0)) continue;
-            double L = energy[k] / omega[k], g = L * cs / M_PI;
-            /* cosine sampling; the cdf's pdf L / |L| (PBRT's, nearly) */
-            double pb = cs / M_PI, pl = L / el->power;
-            I += g * omega[k];
-            for (int i = 0; i < NC; i++) {
-                double c = mis_fractions[i], pm = (pb + c * pl) / (1 + c); /* the mixture */
-                S[i] += g * g / pm * omega[k]; /* second moment: integral of g^2 / p_m */
-            }
-        }
-        if (!(I > 0)) continue;
-        counted++;
-        for (int i = 0; i < NC; i++) {
-            /* relative variance of 1 + c samples of the mixture: (S / I^2 - 1) / (1 + c) */
-            double rv = fmax(0.0, S[i] / (I * I) - 1) / (1 + mis_fractions[i]);
-            cost[i] += rv;
-        }
-    }
-    if (!counted) return 1;
-    int best = NC - 1;
-    for (int i = 0; i < NC; i++) {
-        cost[i] /= counted;
-        if (rel_var_out) rel_var_out[i] = cost[i];
-        cost[i] *= 1 + light_cost * mis_fractions[i]; /* variance x time: the inefficiency */
-    }
-    /* a smaller fraction must win by more than rounding (1e-9 relative, far above the ~1e-15
-     * of these sums, far below any real difference): on a tie the larger c, more light samples */
-    for (int i = NC - 1; i >= 0; i--)
-        if (cost[i] < cost[best] * (1 - 1e-9)) best = i;
-    return mis_fractions[best];
-}
-
-int envlight_mediancut_pick(const envlight *el, double xi, double xi1, double xi2, int *k, vec3 *shadow_dir,
-                            double *prob)
+int envlight_mediancut_pick(const envlight *el, double xi, double xi1, double xi2, int *k,
+                            vec3 *shadow_dir, double *prob)
 {
     if (el->n_points == 0) return 0;
     double pmf;
-    int i = distrib1d_sample(&el->point_choice, xi, &pmf, NULL);
-    const envlight_point *pt = &el->points[i];
-    /* jitter inside the stratum, uniform in (cos theta, phi): for the shadow ray only */
-    double u0 = el->cos_edge[pt->r0], u1 = el->cos_edge[pt->r1];
-    double cos_t = u0 + xi1 * (u1 - u0), sin_t = sqrt(fmax(0.0, 1 - cos_t * cos_t));
-    double phi = 2 * M_PI * (pt->c0 + xi2 * (pt->c1 - pt->c0)) / el->w;
-    *shadow_dir = frame_to_world(el, vec3_make(sin_t * cos(phi), sin_t * sin(phi), cos_t));
+    int i = distrib1d_sample(&el->point_choice, xi, &pmf, NULL); /* a light by its power */
+    vec3 d = mediancut_jitter(&el->points[i], el->w, el->cos_edge, xi1, xi2);
+    *shadow_dir = frame_to_world(el, d);
     *k = i;
     *prob = pmf;
     return pmf > 0;

@@ -41,6 +41,7 @@
 
 #include "envtex/core/budget.h"
 #include "envtex/envlight/distrib.h"
+#include "envtex/envlight/mediancut.h"
 #include "envtex/reflection/envmap.h"
 
 /* `envsampling MODE [N]`: how the envmap is sampled as a light (envlight.h) */
@@ -52,13 +53,6 @@ typedef enum envsampling_mode {
 } envsampling_mode;
 /* `envsampler binary|alias`: CDF inversion by binary search or Walker/Vose alias tables */
 typedef enum envsampler_kind { ENVSAMPLER_BINARY, ENVSAMPLER_ALIAS } envsampler_kind;
-
-typedef struct envlight_point {
-    vec3 dir;        /* world-space unit direction of the stratum's energy centroid, taken in
-                      * image coordinates (c, r) so that it lies inside the stratum */
-    rgb power;       /* integral of L over the stratum (W/m^2 of irradiance at normal incidence) */
-    int c0, c1, r0, r1; /* the stratum: columns [c0, c1), rows [r0, r1) */
-} envlight_point;
 
 typedef struct envlight {
     const envmap *env;
@@ -80,7 +74,7 @@ typedef struct envlight {
     int identity;        /* the envmap transform is the identity: skip the matrix per sample */
     mat4 to_world;       /* envmap frame -> world: the transpose of env->to_env, whose linear part is
                           * a rotation times s (its translation is no matter); normalize after it */
-    envlight_point *points; int n_points; /* mediancut */
+    mediancut_point *points; int n_points; /* mediancut: world directions */
     distrib1d point_choice; /* mediancut: choose a point light by power */
     double build_seconds;
 } envlight;
@@ -104,10 +98,14 @@ int envlight_build(envlight *el, const envmap *env, envsampling_mode mode, envsa
  * another representation is still resampled to lat-long, which the lookups read), so power,
  * kappa, n_bad and fell_back stay 0 (a 1024 x 512 map's pass was 15% of the instructions of a
  * small 1-spp render).  envlight_radiance and uniform sampling work as after
- * envlight_build; whatever needs the power (lights_build, envlight_mis_fraction) must not be
+ * envlight_build; whatever needs the power (lights_build, misfraction_choose) must not be
  * given it. */
 int envlight_build_lookup(envlight *el, const envmap *env, budget *mem, error *err);
 void envlight_free(envlight *el);
+
+/* Texel (c, r) of the lat-long map as the light sees it: scaled, bad channels as 0;
+ * c in [0, w), r in [0, h). */
+rgb envlight_texel(const envlight *el, int c, int r);
 
 /* Radiance arriving from world direction wi as the sampling integrators see it: the texel's
  * value (piecewise constant), scaled, bad texels as 0. */
@@ -135,24 +133,6 @@ double envlight_pdf(const envlight *el, vec3 wi);
 /* envlight_radiance(wi) and, in *pdf, envlight_pdf(wi), from one direction-to-texel lookup (what
  * MIS needs when a BRDF ray leaves the scene). */
 rgb envlight_radiance_pdf(const envlight *el, vec3 wi, double *pdf);
-
-/* How often MIS should sample this map: the fraction c of its picks (lights.h) that minimizes
- * variance x time for a model surface, c in {0, 1/32, 1/16, 1/8, 1/4, 1/2, 3/4, 1}.
- * The model: diffuse surfaces (albedo 1) facing 64 normals spread over the sphere, lit by the
- * map reduced to at most ENVLIGHT_MIS_GRID_W x _H cells of mean radiance; per vertex one cosine
- * (BRDF) sample plus, with probability c, one cdf light sample, combined as 1 + c samples of the
- * mixture p_m = (p_brdf + c p_light) / (1 + c) (what the balance heuristic approaches):
- *     relative variance V(c) = (integral g^2 / p_m / I^2 - 1) / (1 + c),  g = L cos+ / pi,
- * averaged over the normals, and time per vertex 1 + light_cost c (a light sample costs
- * light_cost of a BRDF sample's ray and shading).  A constant map gives c = 0 (cosine sampling
- * has no variance there); a sun gives c = 1 (V grows like 1/c).  For the cdf modes
- * (cdf-sintheta's pdf is modelled as the cdf's); uniform and median cut return 1.
- * rel_var_out, if given, receives V for each c (ENVLIGHT_MIS_FRACTIONS values).  Reads every
- * texel once, allocates nothing. */
-#define ENVLIGHT_MIS_GRID_W 64
-#define ENVLIGHT_MIS_GRID_H 32
-#define ENVLIGHT_MIS_FRACTIONS 8
-double envlight_mis_fraction(const envlight *el, double light_cost, double *rel_var_out);
 
 /* mediancut: pick point light k with probability power_avg(k) / sum (xi in [0,1)); the shadow
  * direction is jittered inside its stratum with (xi1, xi2).  *prob = the pick probability. */
