@@ -306,15 +306,19 @@ fail:
     return rc;
 }
 
-double distrib2d_bytes(int n_outer, int n_inner, int alias)
+double distrib2d_bytes(int n_outer, int n_inner)
 {
-    double cells = (double)n_outer * n_inner;
     double conditional = (double)n_outer * (n_inner + 1) * sizeof(double);
     /* the marginal's cdf, and the column sums it is built from */
     double marginal = (double)(n_outer + 1) * sizeof(double) + (double)n_outer * sizeof(double);
-    if (!alias) return conditional + marginal;
+    return conditional + marginal;
+}
+
+double distrib2d_alias_bytes(int n_outer, int n_inner)
+{
+    double cells = (double)n_outer * n_inner;
     /* the cells of every column and of the marginal, and one column's scratch (q, small, large) */
-    return conditional + marginal + (cells + n_outer) * sizeof(distrib_alias) +
+    return (cells + n_outer) * sizeof(distrib_alias) +
            (double)(n_inner > n_outer ? n_inner : n_outer) * (sizeof(double) + 2 * sizeof(int));
 }
 

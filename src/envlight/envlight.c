@@ -19,8 +19,9 @@
  * refuses a scale of 1 + 1e-6 along one axis, which would move a sample by ~1e-6 radians. */
 #define ENVLIGHT_CONFORMAL_TOL 1e-6
 
-/* A texel as the light sees it: NaN, Inf and negative channels are 0, then scaled. */
-static inline double clean(float v) { return v > 0 && v <= FLT_MAX ? (double)v : 0.0; } /* NaN fails both */
+/* A texel as the light sees it: NaN, Inf and negative channels are 0 (NaN fails both tests),
+ * then scaled. */
+static inline double clean(float v) { return v > 0 && v <= FLT_MAX ? (double)v : 0.0; }
 
 static inline rgb texel(const envlight *el, int c, int r)
 {
@@ -87,29 +88,26 @@ static int transform_is_conformal(const mat4 *m)
     return 1;
 }
 
-/* envlight_build, and with measure = 0 (mode uniform) envlight_build_lookup: no pass over the
- * texels at all. */
-static int build_tables(envlight *el, const envmap *env, envsampling_mode mode,
-                        envsampler_kind sampler, int mediancut_n, int measure, error *err)
+/* What every light needs, envlight_build's and envlight_build_lookup's: the lat-long map (another
+ * representation resampled to it), its frame, and each row's edges and solid angle. */
+static int build_rows(envlight *el, const envmap *env, envsampling_mode mode,
+                      envsampler_kind sampler, error *err)
 {
     memset(el, 0, sizeof *el);
     el->env = env;
     el->mode = mode;
     el->sampler = sampler;
     if (!env->present) return error_set(err, NULL, 0, "no environment map to sample");
-    /* Directions see only the linear part A of to_env (the upper 3 x 3: mat4_dir drops the
-     * translation, the envmap being at infinity).  The tables live in the map's frame and a
-     * sampled direction d goes back to the world as A^T d / |A^T d|, which is A^-1 d up to its
-     * length, with the pdf unchanged, exactly when A A^T = s^2 I: a rotation, possibly times a
-     * uniform scale s or a mirror.  Anything else (a non-uniform scale, a shear) would distort
-     * the pdf, so the table modes refuse it.  Uniform sampling draws in the world and only looks
-     * the map up, like the background: any transform. */
+    /* Directions see only the linear part A of to_env (mat4_dir drops the translation, the
+     * envmap being at infinity).  A sampled direction d goes back to the world as A^T d / |A^T d|,
+     * which is A^-1 d up to its length with the pdf unchanged exactly when A A^T = s^2 I.
+     * Uniform sampling draws in the world and only looks the map up: any transform. */
     mat4 m = env->to_env;
     if (mode != ENVSAMPLING_UNIFORM && !transform_is_conformal(&m))
-        return error_set(err, NULL, 0, "the envmap's transform is not a rotation (nor a rotation times a uniform "
-                         "scale), so it cannot be sampled as a light (put only 'rotate' before 'envmap', or use "
-                         "'envsampling uniform')");
-    clock_t t0 = clock();
+        return error_set(err, NULL, 0,
+                         "the envmap's transform is not a rotation (nor a rotation times a uniform "
+                         "scale), so it cannot be sampled as a light (put only 'rotate' before "
+                         "'envmap', or use 'envsampling uniform')");
     el->map = env->img;
     if (!el->map) { /* another representation: resample it to lat-long once (no-op otherwise) */
         if (envmap_to_latlong(env, 0, 0, &el->converted, err))
@@ -130,45 +128,60 @@ static int build_tables(envlight *el, const envmap *env, envsampling_mode mode,
     /* row r spans theta in [pi r / h, pi (r + 1) / h]: u = cos theta from 1 down to -1 */
     for (int r = 0; r <= h; r++) el->cos_edge[r] = r == 0 ? 1.0 : r == h ? -1.0 : cos(M_PI * r / h);
     for (int r = 0; r < h; r++) {
-        /* STEP(cdf): the exact solid angle of a texel of row r, in the lecture's u = cos theta, v = phi where d(omega) = du dv: (cos theta_top - cos theta_bottom) (2 pi / w), with cos_edge[r] = cos theta_top (slide 22); it weights each texel's probability and the map's power |L| */
+        /* STEP(cdf): the exact solid angle of a texel of row r, in the lecture's u = cos theta,
+         * v = phi where d(omega) = du dv: (cos theta_top - cos theta_bottom) (2 pi / w), with
+         * cos_edge[r] = cos theta_top (slide 22); it weights each texel's probability and the
+         * map's power |L| */
         /* STUB: el->row_omega[r] = 4 * M_PI / ((double)w * h); */
         el->row_omega[r] = (el->cos_edge[r] - el->cos_edge[r + 1]) * 2 * M_PI / w;
         /* END STEP(cdf) */
     }
-    if (!measure) {
-        el->build_seconds = (double)(clock() - t0) / CLOCKS_PER_SEC;
-        return 0;
-    }
-    /* energy of each texel, column-major (outer = column = phi, inner = row = u): the pmf of
-     * the lecture's cdf mode.  p(c, r) = L_avg(c, r) dOmega_r / |L|.  Uniform sampling needs
-     * only the power (lights.h chooses among lights by it) and kappa: no array. */
-    double *energy = NULL;
-    if (mode != ENVSAMPLING_UNIFORM) {
-        energy = malloc((size_t)w * (size_t)h * sizeof *energy);
-        if (!energy) {
-            envlight_free(el);
-            return error_set(err, NULL, 0, "out of memory for the sampling table of a %d x %d map", w, h);
-        }
-    }
+    return 0;
+}
+
+/* One pass over the texels: n_bad, the power |L| = sum L_avg dOmega and kappa, and, if energy
+ * is given, each texel's weight for `mode` (column-major, outer = column = phi, inner = row):
+ * the cdf's L_avg dOmega_r, so that p(c, r) = L_avg(c, r) dOmega_r / |L|, or PBRT's
+ * L_avg sin(theta at the row centre) for cdf-sintheta (rows uniform in theta). */
+static void measure_texels(envlight *el, envsampling_mode mode, double *energy)
+{
+    int w = el->w, h = el->h;
     double power = 0, second = 0;
     for (int r = 0; r < h; r++) {
         double om = texel_omega(el, r);
-        /* PBRT's weights: L sin(theta at the row centre) (rows uniform in theta) */
         double sin_c = sin(M_PI * (r + 0.5) / h);
         for (int c = 0; c < w; c++) {
             const float *p = image_px(el->map, c, r);
             for (int k = 0; k < 3; k++) el->n_bad += !(isfinite(p[k]) && p[k] >= 0);
             double L = rgb_avg(texel(el, c, r));
-            power += L * om; /* |L| = sum L_avg dOmega, in double */
+            power += L * om;      /* |L| = sum L_avg dOmega, in double */
             second += L * L * om; /* sum L_avg^2 dOmega, for kappa */
-            if (energy) energy[(size_t)c * h + r] = L * (mode == ENVSAMPLING_CDF_SINTHETA ? sin_c : om);
+            if (energy)
+                energy[(size_t)c * h + r] = L * (mode == ENVSAMPLING_CDF_SINTHETA ? sin_c : om);
         }
     }
     el->power = power;
     /* kappa = E[L^2] / E[L]^2 over uniform directions = (second / 4 pi) / (power / 4 pi)^2 */
     el->kappa = power > 0 ? 4 * M_PI * second / (power * power) : 1.0;
-    int status = 0;
-    if (!(power > 0)) {
+}
+
+/* After build_rows: measure the map and build the tables `mode` samples by (a black map falls
+ * back: cdf to uniform, median cut to equal strata).  On failure *el is freed. */
+static int build_sampling(envlight *el, envsampling_mode mode, envsampler_kind sampler,
+                          int mediancut_n, error *err)
+{
+    int w = el->w, h = el->h, status = 0;
+    double *energy = NULL; /* uniform sampling needs only the power and kappa: no array */
+    if (mode != ENVSAMPLING_UNIFORM) {
+        energy = malloc((size_t)w * (size_t)h * sizeof *energy);
+        if (!energy) {
+            envlight_free(el);
+            return error_set(err, NULL, 0,
+                             "out of memory for the sampling table of a %d x %d map", w, h);
+        }
+    }
+    measure_texels(el, mode, energy);
+    if (!(el->power > 0)) {
         el->fell_back = 1; /* all black: nothing to importance sample */
         el->mode = mode == ENVSAMPLING_MEDIANCUT ? ENVSAMPLING_MEDIANCUT : ENVSAMPLING_UNIFORM;
     }
@@ -176,21 +189,19 @@ static int build_tables(envlight *el, const envmap *env, envsampling_mode mode,
         status = distrib2d_init(&el->table, energy, w, h, err);
         if (!status && sampler == ENVSAMPLER_ALIAS) status = distrib2d_alias_build(&el->table, err);
     } else if (el->mode == ENVSAMPLING_MEDIANCUT) {
-        if (el->fell_back) for (size_t i = 0; i < (size_t)w * h; i++) energy[i] = 1; /* equal strata */
-        status = build_mediancut(el, energy, mediancut_n > 0 ? mediancut_n : MEDIANCUT_DEFAULT_LIGHTS, err);
+        if (el->fell_back)
+            for (size_t i = 0; i < (size_t)w * h; i++) energy[i] = 1; /* equal strata */
+        int n = mediancut_n > 0 ? mediancut_n : MEDIANCUT_DEFAULT_LIGHTS;
+        status = build_mediancut(el, energy, n, err);
     }
     free(energy);
     if (status) envlight_free(el);
-    el->build_seconds = (double)(clock() - t0) / CLOCKS_PER_SEC;
     return status;
 }
 
-/* The bytes build_tables keeps for env in `mode` (*tables of them for the sampling tables
- * alone), and in *scratch the most it holds only while building: the energy of every texel and
- * median cut's summed-area table.  *w, *h: the lat-long map it samples. */
-static double build_bytes(const envmap *env, envsampling_mode mode, envsampler_kind sampler,
-                          int n_lights, int measure, int *w, int *h, double *tables,
-                          double *scratch)
+/* The bytes build_rows keeps for env: a map in another representation resampled to lat-long,
+ * and the rows' tables.  *w, *h: the lat-long map it samples. */
+static double lookup_bytes(const envmap *env, int *w, int *h)
 {
     double keep = 0;
     if (env->img) {
@@ -202,14 +213,22 @@ static double build_bytes(const envmap *env, envsampling_mode mode, envsampler_k
         *h = *w / 2 > 1 ? *w / 2 : 1;
         keep += (double)*w * *h * IMAGE_TEXEL_BYTES;
     }
-    double texels = (double)*w * *h;
-    int cdf = mode == ENVSAMPLING_CDF || mode == ENVSAMPLING_CDF_SINTHETA;
-    keep += (2.0 * *h + 1) * sizeof(double); /* cos_edge, row_omega */
+    return keep + (2.0 * *h + 1) * sizeof(double); /* cos_edge, row_omega */
+}
+
+/* The bytes envlight_build keeps for env in `mode` (*tables of them for the sampling tables
+ * alone), and in *scratch the most it holds only while building: the energy of every texel and
+ * median cut's summed-area table. */
+static double sampling_bytes(const envmap *env, envsampling_mode mode, envsampler_kind sampler,
+                             int n_lights, int *w, int *h, double *tables, double *scratch)
+{
+    double keep = lookup_bytes(env, w, h);
     *tables = *scratch = 0;
-    if (!measure || mode == ENVSAMPLING_UNIFORM) return keep;
-    *scratch = texels * sizeof(double); /* the energy of each texel */
-    if (cdf) {
-        *tables = distrib2d_bytes(*w, *h, sampler == ENVSAMPLER_ALIAS);
+    if (mode == ENVSAMPLING_UNIFORM) return keep;
+    *scratch = (double)*w * *h * sizeof(double); /* the energy of each texel */
+    if (mode == ENVSAMPLING_CDF || mode == ENVSAMPLING_CDF_SINTHETA) {
+        *tables = distrib2d_bytes(*w, *h);
+        if (sampler == ENVSAMPLER_ALIAS) *tables += distrib2d_alias_bytes(*w, *h);
     } else { /* median cut: the summed-area table and the regions; the points and their choice */
         int n = n_lights > 0 ? n_lights : MEDIANCUT_DEFAULT_LIGHTS;
         *scratch += mediancut_scratch_bytes(*w, *h, n);
@@ -218,35 +237,41 @@ static double build_bytes(const envmap *env, envsampling_mode mode, envsampler_k
     return keep + *tables;
 }
 
-/* build_tables, its memory charged to the budget first */
-static int build(envlight *el, const envmap *env, envsampling_mode mode, envsampler_kind sampler,
-                 int mediancut_n, int measure, budget *mem, error *err)
+int envlight_build(envlight *el, const envmap *env, envsampling_mode mode, envsampler_kind sampler,
+                   int mediancut_n, budget *mem, error *err)
 {
     memset(el, 0, sizeof *el);
     if (!env->present) return error_set(err, NULL, 0, "no environment map to sample");
     int w, h;
     double tables, scratch;
-    double keep = build_bytes(env, mode, sampler, mediancut_n, measure, &w, &h, &tables, &scratch);
-    const char *what = measure && mode != ENVSAMPLING_UNIFORM ? "sampling tables" : "lookup tables";
+    double keep = sampling_bytes(env, mode, sampler, mediancut_n, &w, &h, &tables, &scratch);
+    const char *what = mode != ENVSAMPLING_UNIFORM ? "sampling tables" : "lookup tables";
     if (budget_charge(mem, keep + scratch, NULL, 0, err, "%s for a %d x %d lat-long map", what, w,
                       h))
         return -1;
-    int rc = build_tables(el, env, mode, sampler, mediancut_n, measure, err);
+    clock_t t0 = clock();
+    int rc = build_rows(el, env, mode, sampler, err);
+    if (!rc) rc = build_sampling(el, mode, sampler, mediancut_n, err);
+    el->build_seconds = (double)(clock() - t0) / CLOCKS_PER_SEC;
     /* a black map falls back to uniform directions: its cdf tables were never built */
     double unused = rc ? keep : el->fell_back && el->mode == ENVSAMPLING_UNIFORM ? tables : 0;
     budget_release(mem, scratch + unused);
     return rc;
 }
 
-int envlight_build(envlight *el, const envmap *env, envsampling_mode mode, envsampler_kind sampler,
-                   int mediancut_n, budget *mem, error *err)
-{
-    return build(el, env, mode, sampler, mediancut_n, 1, mem, err);
-}
-
 int envlight_build_lookup(envlight *el, const envmap *env, budget *mem, error *err)
 {
-    return build(el, env, ENVSAMPLING_UNIFORM, ENVSAMPLER_BINARY, 0, 0, mem, err);
+    memset(el, 0, sizeof *el);
+    if (!env->present) return error_set(err, NULL, 0, "no environment map to sample");
+    int w, h;
+    double keep = lookup_bytes(env, &w, &h);
+    if (budget_charge(mem, keep, NULL, 0, err, "lookup tables for a %d x %d lat-long map", w, h))
+        return -1;
+    clock_t t0 = clock();
+    int rc = build_rows(el, env, ENVSAMPLING_UNIFORM, ENVSAMPLER_BINARY, err);
+    el->build_seconds = (double)(clock() - t0) / CLOCKS_PER_SEC;
+    budget_release(mem, rc ? keep : 0);
+    return rc;
 }
 
 void envlight_free(envlight *el)
@@ -263,12 +288,21 @@ void envlight_free(envlight *el)
     el->n_points = 0;
 }
 
-/* The cdf mode's pdf of texel (c, r): p(omega) = p(c,r) / dOmega_r with p(c,r) = L_avg dOmega_r / |L|,
- * so p(omega) = L_avg(c, r) / |L|, "the pdf cancels the light".  Computed from the texel (one
- * read, which the caller needs for L anyway) rather than as the table's pmf / dOmega: the same
- * number up to the CDF's rounding (~1e-16 / p relative, distrib.h), used alike by sampling and
- * lookup so that they agree to the last bit. */
-static inline double cdf_pdf(const envlight *el, int c, int r) { return rgb_avg(texel(el, c, r)) / el->power; }
+/* The cdf mode's pdf of texel (c, r): p(omega) = p(c, r) / dOmega_r with
+ * p(c, r) = L_avg dOmega_r / |L|, so p(omega) = L_avg(c, r) / |L|, "the pdf cancels the light".
+ * Computed from the texel rather than as the table's pmf / dOmega (the same number up to the
+ * CDF's rounding, distrib.h), alike by sampling and lookup so that they agree to the last bit. */
+static inline double cdf_pdf(const envlight *el, int c, int r)
+{
+    return rgb_avg(texel(el, c, r)) / el->power;
+}
+
+/* cdf-sintheta's density of a direction at sin theta in a texel of probability pmf:
+ * p(omega) = p(theta, phi) / sin theta, p(theta, phi) = p(c, r) W H / (2 pi^2) */
+static inline double sintheta_pdf(const envlight *el, double pmf, double sin_t)
+{
+    return pmf * el->w * el->h / (2 * M_PI * M_PI * sin_t);
+}
 
 /* envmap frame -> world for sampled directions: A^T d / |A^T d|, which is A^-1 d / |A^-1 d| for
  * the linear part A of to_env, A A^T = s^2 I (envlight_build; the inverse of a rotation is its
@@ -289,8 +323,7 @@ double envlight_pdf(const envlight *el, vec3 wi)
         return cdf_pdf(el, c, r);
     case ENVSAMPLING_CDF_SINTHETA:
         if (world_to_texel(el, wi, &c, &r, &sin_t) || !(sin_t > 0)) return 0;
-        /* p(omega) = p(theta, phi) / sin theta, p(theta, phi) = p(c,r) W H / (2 pi^2) */
-        return distrib2d_pmf(&el->table, c, r) * el->w * el->h / (2 * M_PI * M_PI * sin_t);
+        return sintheta_pdf(el, distrib2d_pmf(&el->table, c, r), sin_t);
     default: return 0; /* median cut has no density */
     }
 }
@@ -305,9 +338,13 @@ rgb envlight_radiance_pdf(const envlight *el, vec3 wi, double *pdf)
     if (!el->env->present || world_to_texel(el, wi, &c, &r, want_sin)) return rgb_gray(0);
     switch (el->mode) {
     case ENVSAMPLING_UNIFORM: *pdf = 1 / (4 * M_PI); break;
-    case ENVSAMPLING_CDF: { rgb L = texel(el, c, r); *pdf = rgb_avg(L) / el->power; return L; } /* cdf_pdf */
+    case ENVSAMPLING_CDF: {
+        rgb L = texel(el, c, r); /* one read for L and cdf_pdf */
+        *pdf = rgb_avg(L) / el->power;
+        return L;
+    }
     case ENVSAMPLING_CDF_SINTHETA:
-        if (sin_t > 0) *pdf = distrib2d_pmf(&el->table, c, r) * el->w * el->h / (2 * M_PI * M_PI * sin_t);
+        if (sin_t > 0) *pdf = sintheta_pdf(el, distrib2d_pmf(&el->table, c, r), sin_t);
         break;
     default: break; /* median cut: no density */
     }
@@ -334,20 +371,17 @@ static int point_in_texel_sintheta(const envlight *el, int c, int r, double pmf,
     double sin_t = sin(theta);
     out->wi = frame_to_world(el, vec3_make(sin_t * cos(phi), sin_t * sin(phi), cos(theta)));
     out->L = texel(el, c, r);
-    /* p(omega) = p(c,r) W H / (2 pi^2 sin theta) */
-    out->pdf = sin_t > 0 ? pmf * el->w * el->h / (2 * M_PI * M_PI * sin_t) : 0;
+    out->pdf = sin_t > 0 ? sintheta_pdf(el, pmf, sin_t) : 0;
     return out->pdf > 0;
 }
 
 /* The lecture's point in the chosen texel (c, r): uniform in u = cos theta and in phi, where
  * d(omega) = du dphi, so pdf(omega) = p(c, r) / dOmega_r = L_avg(c, r) / |L|: the pdf cancels
  * the light.  (rc, rr) are the samples remapped to [0, 1) inside the cell. */
-static int point_in_texel(const envlight *el, int c, int r, double pmf, double rc, double rr,
+static int point_in_texel(const envlight *el, int c, int r, double rc, double rr,
                           envlight_sample_result *out)
 {
-    if (el->mode == ENVSAMPLING_CDF_SINTHETA)
-        return point_in_texel_sintheta(el, c, r, pmf, rc, rr, out);
-    double phi = 2 * M_PI * (c + rc) / el->w;                     /* v = phi */
+    double phi = 2 * M_PI * (c + rc) / el->w;                                 /* v = phi */
     double u = el->cos_edge[r] + rr * (el->cos_edge[r + 1] - el->cos_edge[r]); /* u = cos theta */
     double sin_t = sqrt(fmax(0.0, 1 - u * u));
     out->wi = frame_to_world(el, vec3_make(sin_t * cos(phi), sin_t * sin(phi), u));
@@ -368,7 +402,9 @@ int envlight_sample(const envlight *el, double xi1, double xi2, envlight_sample_
         distrib2d_sample_alias(&el->table, xi1, xi2, &c, &r, &pmf, &rc, &rr);
     else
         distrib2d_sample(&el->table, xi1, xi2, &c, &r, &pmf, &rc, &rr);
-    return point_in_texel(el, c, r, pmf, rc, rr, out);
+    if (el->mode == ENVSAMPLING_CDF_SINTHETA)
+        return point_in_texel_sintheta(el, c, r, pmf, rc, rr, out);
+    return point_in_texel(el, c, r, rc, rr, out);
 }
 
 int envlight_sample_stratified(const envlight *el, double xi1, double xi2,
@@ -379,7 +415,9 @@ int envlight_sample_stratified(const envlight *el, double xi1, double xi2,
     int c, r;
     double pmf, rc, rr;
     distrib2d_sample(&el->table, xi1, xi2, &c, &r, &pmf, &rc, &rr); /* inversion keeps strata */
-    return point_in_texel(el, c, r, pmf, rc, rr, out);
+    if (el->mode == ENVSAMPLING_CDF_SINTHETA)
+        return point_in_texel_sintheta(el, c, r, pmf, rc, rr, out);
+    return point_in_texel(el, c, r, rc, rr, out);
 }
 
 int envlight_mediancut_pick(const envlight *el, double xi, double xi1, double xi2, int *k,

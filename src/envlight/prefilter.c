@@ -328,8 +328,24 @@ static double pow_s(double t, double s, long si)
 
 static long whole_exponent(double s) { return s == floor(s) && s <= 2147483647.0 ? (long)s : -1; }
 
-/* The plain sums of prefilter_irradiance_brute (phong = 0) and prefilter_phong_brute. */
-static int brute(const convert_env *env, int phong, double s, int width, image *out, error *err)
+/* The kernels of the plain sums, at cos_t = n . w > 0: max(0, n . w) / pi for irradiance (s is
+ * not used), (S + 1) / (2 pi) (r . w)^S for the Phong lobe of exponent s. */
+typedef double (*brute_kernel)(double cos_t, double s);
+static double cosine_kernel(double cos_t, double s)
+{
+    (void)s;
+    return cos_t / M_PI;
+}
+
+static double phong_kernel(double cos_t, double s)
+{
+    return (s + 1.0) / (2.0 * M_PI) * pow(cos_t, s);
+}
+
+/* The plain sums of prefilter_irradiance_brute and prefilter_phong_brute: every output texel
+ * against every input texel, weighted by kernel. */
+static int brute(const convert_env *env, brute_kernel kernel, double s, int width, image *out,
+                 error *err)
 {
     texel_list tl;
     if (alloc_map(width, out, err)) return -1;
@@ -345,8 +361,7 @@ static int brute(const convert_env *env, int phong, double s, int width, image *
                 const double *d = tl.d + 3 * t, *lw = tl.lw + 3 * t;
                 double cos_t = n.x * d[0] + n.y * d[1] + n.z * d[2]; /* n . w */
                 if (!(cos_t > 0)) continue;
-                /* the kernel: (S + 1) / (2 pi) (r . w)^S, or max(0, n . w) / pi */
-                double k = phong ? (s + 1.0) / (2.0 * M_PI) * pow(cos_t, s) : cos_t / M_PI;
+                double k = kernel(cos_t, s);
                 for (int ch = 0; ch < 3; ch++) e[ch] += lw[ch] * k;
             }
             image_set(out, c, r, rgb_make(e[0], e[1], e[2]));
@@ -357,7 +372,7 @@ static int brute(const convert_env *env, int phong, double s, int width, image *
 
 int prefilter_irradiance_brute(const convert_env *env, int width, image *out, error *err)
 {
-    return brute(env, 0, 0, width, out, err);
+    return brute(env, cosine_kernel, 0, width, out, err);
 }
 
 static int check_shininess(double s, error *err)
@@ -372,7 +387,7 @@ int prefilter_phong_brute(const convert_env *env, double s, int width, image *ou
 {
     memset(out, 0, sizeof *out);
     if (check_shininess(s, err)) return -1;
-    return brute(env, 1, s, width, out, err);
+    return brute(env, phong_kernel, s, width, out, err);
 }
 
 /* ---- the fast exact sums over a map of rows ------------------------------------------------ */

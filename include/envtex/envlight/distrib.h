@@ -137,10 +137,11 @@ typedef struct distrib2d {
 int distrib2d_init(distrib2d *d, const double *w, int n_outer, int n_inner, error *err);
 int distrib2d_init_float(distrib2d *d, const float *w, int n_outer, int n_inner, error *err);
 
-/* The most bytes distrib2d_init (alias = 0), then distrib2d_alias_build too (alias = 1), hold for
- * an n_outer x n_inner grid (about 8 bytes a cell, 16 with the alias tables), for a memory
- * budget charged before the tables are built (budget.h). */
-double distrib2d_bytes(int n_outer, int n_inner, int alias);
+/* The most bytes distrib2d_init holds for an n_outer x n_inner grid (about 8 a cell), and the
+ * most distrib2d_alias_build adds to them (about 8 a cell), for a memory budget charged before
+ * the tables are built (budget.h). */
+double distrib2d_bytes(int n_outer, int n_inner);
+double distrib2d_alias_bytes(int n_outer, int n_inner);
 
 /* Add alias tables for the marginal and every conditional (8 bytes a cell) so
  * distrib2d_sample_alias works.  -1 only if memory runs out.  Calling it twice is harmless. */
