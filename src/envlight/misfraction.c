@@ -10,7 +10,10 @@
 /* The fractions c tried, and the normals the model averages over (a Fibonacci sphere). */
 static const double fractions[] = {0, 1.0 / 32, 1.0 / 16, 1.0 / 8, 0.25, 0.5, 0.75, 1};
 #define MODEL_NORMALS 64
-enum { NC = sizeof fractions / sizeof fractions[0], CELLS = MISFRACTION_GRID_W * MISFRACTION_GRID_H };
+enum {
+    NC = sizeof fractions / sizeof fractions[0],
+    CELLS = MISFRACTION_GRID_W * MISFRACTION_GRID_H
+};
 _Static_assert(NC == MISFRACTION_COUNT, "misfraction.h promises MISFRACTION_COUNT values");
 
 /* The map reduced to gw x gh cells (energy and solid angle summed, so each cell holds the mean

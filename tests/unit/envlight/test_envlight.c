@@ -31,9 +31,11 @@
 #define PDF_REL_TOL 1e-5    /* a sample's pdf against envlight_pdf (issue 4) */
 #define CANCEL_REL_TOL 1e-9 /* pdf |L| = L_avg: one division and a sum in double */
 
-/* ---- the maps --------------------------------------------------------------------------------- */
+/* ---- the maps ---------------------------------------------------------------------------------
+ */
 enum { M_ONE_HOT, M_CONSTANT, M_1X1, M_3X2, M_SUN, M_POLES, M_COUNT };
-static const char *const map_name[M_COUNT] = {"one-hot", "constant", "1 x 1", "3 x 2", "sun 10^6", "pole rows"};
+static const char *const map_name[M_COUNT] = {"one-hot", "constant", "1 x 1",
+                                              "3 x 2",   "sun 10^6", "pole rows"};
 
 static void fill(image *im, int w, int h)
 {
@@ -43,7 +45,8 @@ static void fill(image *im, int w, int h)
 
 static void set_gray(image *im, int c, int r, double v) { image_set(im, c, r, rgb_gray(v)); }
 
-/* A 64 x 32 sun map, the sun 10^3 times the sky: the small map of the rotation and median-cut tests. */
+/* A 64 x 32 sun map, the sun 10^3 times the sky: the small map of the rotation and median-cut
+ * tests. */
 static void small_sun_map(image *im)
 {
     genenv_params gp = genenv_defaults();
@@ -105,10 +108,12 @@ static envmap env_of(const image *im, double scale, mat4 to_env)
     return e;
 }
 
-static void build(envlight *el, const envmap *env, envsampling_mode mode, envsampler_kind sampler, int n)
+static void build(envlight *el, const envmap *env, envsampling_mode mode, envsampler_kind sampler,
+                  int n)
 {
     error err = {0};
-    if (envlight_build(el, env, mode, sampler, n, NULL, &err)) ck_abort_msg("envlight_build: %s", err.msg);
+    if (envlight_build(el, env, mode, sampler, n, NULL, &err))
+        ck_abort_msg("envlight_build: %s", err.msg);
 }
 
 /* the texel of world direction w: what envlight.c must agree with */
@@ -148,14 +153,16 @@ static int lit_or_on_lit_edge(const envlight *el, const image *im, vec3 w)
     return 0;
 }
 
-/* ---- chi-square of every mode ------------------------------------------------------------------ */
+/* ---- chi-square of every mode ------------------------------------------------------------------
+ */
 enum { C_UNIFORM, C_CDF_BINARY, C_CDF_ALIAS, C_SIN_BINARY, C_SIN_ALIAS, C_COUNT };
-static const envsampling_mode cfg_mode[C_COUNT] = {ENVSAMPLING_UNIFORM, ENVSAMPLING_CDF, ENVSAMPLING_CDF,
-                                                   ENVSAMPLING_CDF_SINTHETA, ENVSAMPLING_CDF_SINTHETA};
-static const envsampler_kind cfg_sampler[C_COUNT] = {ENVSAMPLER_BINARY, ENVSAMPLER_BINARY, ENVSAMPLER_ALIAS,
-                                                     ENVSAMPLER_BINARY, ENVSAMPLER_ALIAS};
-static const char *const cfg_name[C_COUNT] = {"uniform", "cdf binary", "cdf alias", "cdf-sintheta binary",
-                                              "cdf-sintheta alias"};
+static const envsampling_mode cfg_mode[C_COUNT] = {ENVSAMPLING_UNIFORM, ENVSAMPLING_CDF,
+                                                   ENVSAMPLING_CDF, ENVSAMPLING_CDF_SINTHETA,
+                                                   ENVSAMPLING_CDF_SINTHETA};
+static const envsampler_kind cfg_sampler[C_COUNT] = {
+    ENVSAMPLER_BINARY, ENVSAMPLER_BINARY, ENVSAMPLER_ALIAS, ENVSAMPLER_BINARY, ENVSAMPLER_ALIAS};
+static const char *const cfg_name[C_COUNT] = {"uniform", "cdf binary", "cdf alias",
+                                              "cdf-sintheta binary", "cdf-sintheta alias"};
 #define N_ROTATED 4
 #define N_CHISQ_TESTS (M_COUNT * C_COUNT + N_ROTATED)
 
@@ -207,8 +214,8 @@ static void check_chisq(const envlight *el, const char *what, uint64_t seed)
     ck_assert_msg(pdf_bad == 0, "%s: %ld samples' pdf differs from envlight_pdf", what, pdf_bad);
     ck_assert_msg(L_bad == 0, "%s: %ld samples' L differs from envlight_radiance", what, L_bad);
     chisq_result res = chisq_test(obs, prob, nb, N_SAMPLES);
-    ck_assert_msg(chisq_accept(&res, N_CHISQ_TESTS), "%s: X^2 = %g, dof %d, p = %g, stray %ld", what, res.stat,
-                  res.dof, res.p, res.stray);
+    ck_assert_msg(chisq_accept(&res, N_CHISQ_TESTS), "%s: X^2 = %g, dof %d, p = %g, stray %ld",
+                  what, res.stat, res.dof, res.p, res.stray);
 }
 
 START_TEST(test_envlight_every_mode_fits_its_pdf_on_every_map)
@@ -292,13 +299,14 @@ START_TEST(test_envlight_translation_and_uniform_scale_sample_as_the_rotation_al
     small_sun_map(&im);
     mat4 rot = mat4_rotate(vec3_make(0.3, 1, 0.2), 40);
     /* envmap frame -> world: translate(1, -2, 3) rotate scale(2.5); to_env is its inverse */
-    mat4 xf = mat4_mul(mat4_translate(vec3_make(1, -2, 3)), mat4_mul(rot, mat4_scale(vec3_make(2.5, 2.5, 2.5))));
+    mat4 xf = mat4_mul(mat4_translate(vec3_make(1, -2, 3)),
+                       mat4_mul(rot, mat4_scale(vec3_make(2.5, 2.5, 2.5))));
     mat4 inv_rot, inv_xf;
     ck_assert_int_eq(mat4_inverse(rot, &inv_rot), 0);
     ck_assert_int_eq(mat4_inverse(xf, &inv_xf), 0);
     envmap er = env_of(&im, 1, inv_rot), ex = env_of(&im, 1, inv_xf);
-    const envsampling_mode modes[] = {ENVSAMPLING_CDF, ENVSAMPLING_CDF_SINTHETA, ENVSAMPLING_MEDIANCUT,
-                                      ENVSAMPLING_UNIFORM};
+    const envsampling_mode modes[] = {ENVSAMPLING_CDF, ENVSAMPLING_CDF_SINTHETA,
+                                      ENVSAMPLING_MEDIANCUT, ENVSAMPLING_UNIFORM};
     long bad = 0;
     for (int m = 0; m < 4; m++) {
         envlight a, b;
@@ -321,10 +329,13 @@ START_TEST(test_envlight_translation_and_uniform_scale_sample_as_the_rotation_al
             envlight_sample_result sa, sb;
             ck_require(envlight_sample(&a, x1, x2, &sa));
             ck_require(envlight_sample(&b, x1, x2, &sb));
-            vec3 w = sampling_uniform_sphere(x3, rng_uniform(&g)); /* any direction, for the lookups */
-            bad += vec3_length(vec3_sub(sa.wi, sb.wi)) > 1e-12 || fabs(sa.pdf / sb.pdf - 1) > 1e-12 ||
-                   !same_rgb(sa.L, sb.L) || !(fabs(envlight_pdf(&a, w) - envlight_pdf(&b, w)) <= 1e-12 * envlight_pdf(&a, w)) ||
-                   !same_rgb(envlight_radiance(&a, w), envlight_radiance(&b, w));
+            vec3 w =
+                sampling_uniform_sphere(x3, rng_uniform(&g)); /* any direction, for the lookups */
+            bad +=
+                vec3_length(vec3_sub(sa.wi, sb.wi)) > 1e-12 || fabs(sa.pdf / sb.pdf - 1) > 1e-12 ||
+                !same_rgb(sa.L, sb.L) ||
+                !(fabs(envlight_pdf(&a, w) - envlight_pdf(&b, w)) <= 1e-12 * envlight_pdf(&a, w)) ||
+                !same_rgb(envlight_radiance(&a, w), envlight_radiance(&b, w));
         }
         envlight_free(&a);
         envlight_free(&b);
@@ -355,13 +366,15 @@ START_TEST(test_envlight_non_rotation_transform_is_refused)
 {
     image im;
     make_map(M_CONSTANT, &im);
-    mat4 bad[3] = {mat4_scale(vec3_make(2, 1, 1)), mat4_mul(mat4_rotate(vec3_make(0, 0, 1), 30), mat4_scale(vec3_make(1, 1, 0.5))),
+    mat4 bad[3] = {mat4_scale(vec3_make(2, 1, 1)),
+                   mat4_mul(mat4_rotate(vec3_make(0, 0, 1), 30), mat4_scale(vec3_make(1, 1, 0.5))),
                    mat4_scale(vec3_make(1e-4, 1e-4, 2e-4))};
     for (int i = 0; i < 3; i++) {
         envmap env = env_of(&im, 1, bad[i]);
         envlight el;
         error err = {0};
-        ck_assert_int_eq(envlight_build(&el, &env, ENVSAMPLING_CDF, ENVSAMPLER_BINARY, 0, NULL, &err), -1);
+        ck_assert_int_eq(
+            envlight_build(&el, &env, ENVSAMPLING_CDF, ENVSAMPLER_BINARY, 0, NULL, &err), -1);
         ck_assert_msg(strstr(err.msg, "rotation") != NULL, "message: %s", err.msg);
         envlight_free(&el); /* safe after a failure */
     }
@@ -369,7 +382,8 @@ START_TEST(test_envlight_non_rotation_transform_is_refused)
 }
 END_TEST
 
-/* ---- numerics ----------------------------------------------------------------------------------- */
+/* ---- numerics -----------------------------------------------------------------------------------
+ */
 
 /* an all-black map falls back to uniform sampling (fell_back = 1), in every mode */
 START_TEST(test_envlight_all_black_map_falls_back_to_uniform)
@@ -409,7 +423,8 @@ START_TEST(test_envlight_zero_texels_and_edge_xi_are_never_sampled)
     rng_seed(&r, 17, 0);
     for (int y = 0; y < 12; y++)
         for (int x = 0; x < 24; x++) {
-            int zero_line = y == 0 || y == 5 || y == 11 || x == 0 || x == 7 || x == 23 || rng_uniform(&r) < 0.2;
+            int zero_line =
+                y == 0 || y == 5 || y == 11 || x == 0 || x == 7 || x == 23 || rng_uniform(&r) < 0.2;
             set_gray(&im, x, y, zero_line ? 0 : 0.1 + rng_uniform(&r));
         }
     envmap env = env_of(&im, 1, mat4_identity());
@@ -436,7 +451,8 @@ START_TEST(test_envlight_zero_texels_and_edge_xi_are_never_sampled)
                     continue;
                 }
                 bad += !lit_or_on_lit_edge(&el, &im, s.wi);
-                bad += !(s.pdf > 0) || !isfinite(s.pdf) || rgb_is_black(s.L) || !vec3_is_finite(s.wi);
+                bad +=
+                    !(s.pdf > 0) || !isfinite(s.pdf) || rgb_is_black(s.L) || !vec3_is_finite(s.wi);
             }
         }
         envlight_free(&el);
@@ -476,7 +492,8 @@ START_TEST(test_envlight_sampled_phi_is_unit_and_in_its_column)
                 uv2 uv;
                 ck_require(latlong_dir_to_uv(s.wi, &uv) == 0);
                 double x = uv.u * w; /* in [lit, lit + 1], or at the seam 0 = w for column 0 */
-                int in = (x > lit - EDGE_TOL && x < lit + 1 + EDGE_TOL) || (lit == 0 && x > w - EDGE_TOL);
+                int in = (x > lit - EDGE_TOL && x < lit + 1 + EDGE_TOL) ||
+                         (lit == 0 && x > w - EDGE_TOL);
                 outside += !in;
             }
             envlight_free(&el);
@@ -541,7 +558,8 @@ START_TEST(test_envlight_last_column_at_xi_one_stays_in_its_column)
                 uv2 uv;
                 ck_assert_int_eq(latlong_dir_to_uv(s.wi, &uv), 0);
                 double x = uv.u * w; /* in [w - 1, w], or 0 at the seam */
-                bad += !(fabs(vec3_dot(s.wi, s.wi) - 1) <= UNIT_TOL) || !(x > w - 1 - EDGE_TOL || x < EDGE_TOL);
+                bad += !(fabs(vec3_dot(s.wi, s.wi) - 1) <= UNIT_TOL) ||
+                       !(x > w - 1 - EDGE_TOL || x < EDGE_TOL);
             }
             envlight_free(&el);
         }
@@ -575,8 +593,10 @@ START_TEST(test_envlight_bad_texels_are_counted_dark_and_never_sampled)
         /* power: 128 texels of 0.7 minus the two dark ones and a third of the half-dark one */
         double want = 0;
         for (int y = 0; y < 8; y++)
-            for (int x = 0; x < 16; x++) want += texel_avg(&im, x, y) * latlong_texel_solid_angle(y, 16, 8);
-        ck_assert_msg(fabs(el.power - want) < 1e-9 * want, "power %.12g, want %.12g", el.power, want);
+            for (int x = 0; x < 16; x++)
+                want += texel_avg(&im, x, y) * latlong_texel_solid_angle(y, 16, 8);
+        ck_assert_msg(fabs(el.power - want) < 1e-9 * want, "power %.12g, want %.12g", el.power,
+                      want);
         if (cfg != C_UNIFORM) {
             rng r;
             rng_seed(&r, 23, (uint64_t)cfg);
@@ -649,7 +669,8 @@ START_TEST(test_envlight_large_table_is_normalized)
         power += row * om;
     }
     ck_assert_msg(fabs(sum - 1) < 1e-6, "pmf sums to 1 + %g", sum - 1);
-    ck_assert_msg(fabs(el.power - power) < 1e-9 * power, "power %.15g, want %.15g", el.power, power);
+    ck_assert_msg(fabs(el.power - power) < 1e-9 * power, "power %.15g, want %.15g", el.power,
+                  power);
     envlight_free(&el);
     image_free(&im);
 }
@@ -667,12 +688,14 @@ START_TEST(test_envlight_cdf_pdf_is_radiance_over_power)
     build(&es, &env, ENVSAMPLING_CDF_SINTHETA, ENVSAMPLER_BINARY, 0);
     double wsum = 0; /* sum of L_avg sin(theta_centre): the sin-theta table's total */
     for (int r = 0; r < im.h; r++)
-        for (int c = 0; c < im.w; c++) wsum += 2.5 * texel_avg(&im, c, r) * sin(M_PI * (r + 0.5) / im.h);
+        for (int c = 0; c < im.w; c++)
+            wsum += 2.5 * texel_avg(&im, c, r) * sin(M_PI * (r + 0.5) / im.h);
     rng g;
     rng_seed(&g, 29, 0);
     long bad = 0, bad_sin = 0;
     for (int i = 0; i < 20000; i++) {
-        double z = 1 - 2 * rng_uniform(&g), ph = 2 * M_PI * rng_uniform(&g), st = sqrt(fmax(0, 1 - z * z));
+        double z = 1 - 2 * rng_uniform(&g), ph = 2 * M_PI * rng_uniform(&g),
+               st = sqrt(fmax(0, 1 - z * z));
         vec3 w = vec3_make(st * cos(ph), st * sin(ph), z);
         double La = rgb_avg(envlight_radiance(&el, w)), p = envlight_pdf(&el, w) * el.power;
         bad += !(fabs(p - La) <= CANCEL_REL_TOL * La) && !(La == 0 && p == 0);
@@ -680,8 +703,8 @@ START_TEST(test_envlight_cdf_pdf_is_radiance_over_power)
         texel_of(&es, w, &c, &r);
         vec3 d = mat4_dir(&env.to_env, w);
         double sin_t = sqrt(d.x * d.x + d.y * d.y) / vec3_length(d);
-        double want = 2.5 * texel_avg(&im, c, r) * sin(M_PI * (r + 0.5) / im.h) / wsum * im.w * im.h /
-                      (2 * M_PI * M_PI * sin_t);
+        double want = 2.5 * texel_avg(&im, c, r) * sin(M_PI * (r + 0.5) / im.h) / wsum * im.w *
+                      im.h / (2 * M_PI * M_PI * sin_t);
         double got = envlight_pdf(&es, w);
         bad_sin += !(fabs(got - want) <= 1e-6 * want) && !(want == 0 && got == 0);
     }
@@ -727,7 +750,8 @@ START_TEST(test_envlight_kappa_and_the_combined_lookup)
             double pdf;
             rgb L = envlight_radiance_pdf(&el, w, &pdf), L1 = envlight_radiance(&el, w);
             ck_require(L.r == L1.r && L.g == L1.g && L.b == L1.b);
-            ck_require_msg(pdf == envlight_pdf(&el, w), "mode %d: %g vs %g", mode, pdf, envlight_pdf(&el, w));
+            ck_require_msg(pdf == envlight_pdf(&el, w), "mode %d: %g vs %g", mode, pdf,
+                           envlight_pdf(&el, w));
         }
         envlight_free(&el);
     }
@@ -766,8 +790,8 @@ START_TEST(test_envlight_radiance_is_the_scaled_texel)
         envlight_sample_result sa, sb;
         double x1 = (j + 0.25) / 200, x2 = (j * 0.414214) - floor(j * 0.414214);
         ck_assert(envlight_sample(&el, x1, x2, &sa) && envlight_sample(&lk, x1, x2, &sb));
-        ck_assert(same_rgb(sa.L, sb.L) && sa.pdf == sb.pdf && sa.wi.x == sb.wi.x && sa.wi.y == sb.wi.y &&
-                  sa.wi.z == sb.wi.z);
+        ck_assert(same_rgb(sa.L, sb.L) && sa.pdf == sb.pdf && sa.wi.x == sb.wi.x &&
+                  sa.wi.y == sb.wi.y && sa.wi.z == sb.wi.z);
     }
     envlight_free(&lk);
     envlight_free(&el);
@@ -829,13 +853,15 @@ START_TEST(test_envlight_south_pole_reads_the_last_row)
         for (int k = 0; k < 2; k++) {
             double want = image_px(&im, 0, k * (H - 1))[1]; /* phi = 0 at the poles: column 0 */
             rgb L = envlight_radiance(&el, pole[k]);
-            ck_assert_msg(L.g == want, "pole %d: L = %g, want the texel of row %d, %g", k, L.g, k * (H - 1), want);
+            ck_assert_msg(L.g == want, "pole %d: L = %g, want the texel of row %d, %g", k, L.g,
+                          k * (H - 1), want);
             double pdf;
             L = envlight_radiance_pdf(&el, pole[k], &pdf);
             ck_assert(L.g == want);
             double want_pdf = modes[m] == ENVSAMPLING_CDF ? want / el.power : 1 / (4 * M_PI);
             double got = envlight_pdf(&el, pole[k]);
-            ck_assert_msg(fabs(got - want_pdf) <= 1e-12 * want_pdf && fabs(pdf - want_pdf) <= 1e-12 * want_pdf,
+            ck_assert_msg(fabs(got - want_pdf) <= 1e-12 * want_pdf &&
+                              fabs(pdf - want_pdf) <= 1e-12 * want_pdf,
                           "pole %d: pdf %g and %g, want %g", k, got, pdf, want_pdf);
         }
         envlight_free(&el);
@@ -849,8 +875,10 @@ END_TEST
  * directions, keeps no cdf table charged. */
 START_TEST(test_envlight_tables_are_charged_before_they_are_built)
 {
-    const envsampling_mode modes[4] = {ENVSAMPLING_UNIFORM, ENVSAMPLING_CDF, ENVSAMPLING_CDF, ENVSAMPLING_MEDIANCUT};
-    const envsampler_kind samplers[4] = {ENVSAMPLER_BINARY, ENVSAMPLER_BINARY, ENVSAMPLER_ALIAS, ENVSAMPLER_BINARY};
+    const envsampling_mode modes[4] = {ENVSAMPLING_UNIFORM, ENVSAMPLING_CDF, ENVSAMPLING_CDF,
+                                       ENVSAMPLING_MEDIANCUT};
+    const envsampler_kind samplers[4] = {ENVSAMPLER_BINARY, ENVSAMPLER_BINARY, ENVSAMPLER_ALIAS,
+                                         ENVSAMPLER_BINARY};
     image im = {0}, black = {0};
     make_map(M_ONE_HOT, &im);
     fill(&black, 16, 8);
@@ -863,13 +891,16 @@ START_TEST(test_envlight_tables_are_charged_before_they_are_built)
         budget_init(&mem, 1e9);
         ck_assert_int_eq(envlight_build(&el, &env, modes[k], samplers[k], 4, &mem, &err), 0);
         double used = mem.used, peak = mem.peak;
-        ck_assert_msg(used > 0 && (k == 0 || peak > used), "mode %d: used %g, peak %g", k, used, peak);
+        ck_assert_msg(used > 0 && (k == 0 || peak > used), "mode %d: used %g, peak %g", k, used,
+                      peak);
         if (k == 1) kept_cdf = used;
-        if (k == 2) ck_assert(used > kept_cdf + 16 * 8 * sizeof(distrib_alias)); /* the alias cells */
+        if (k == 2)
+            ck_assert(used > kept_cdf + 16 * 8 * sizeof(distrib_alias)); /* the alias cells */
         envlight_free(&el);
         budget_init(&mem, peak - 1);
         ck_assert_int_eq(envlight_build(&el, &env, modes[k], samplers[k], 4, &mem, &err), -1);
-        ck_assert_msg(strstr(err.msg, "for a 16 x 8 lat-long map = ") && strstr(err.msg, "beyond the memory budget"),
+        ck_assert_msg(strstr(err.msg, "for a 16 x 8 lat-long map = ") &&
+                          strstr(err.msg, "beyond the memory budget"),
                       "%s", err.msg);
         ck_assert(mem.used == 0);
     }
@@ -877,7 +908,8 @@ START_TEST(test_envlight_tables_are_charged_before_they_are_built)
     envlight el;
     budget mem;
     budget_init(&mem, 1e9);
-    ck_assert_int_eq(envlight_build(&el, &dark, ENVSAMPLING_CDF, ENVSAMPLER_BINARY, 0, &mem, &err), 0);
+    ck_assert_int_eq(envlight_build(&el, &dark, ENVSAMPLING_CDF, ENVSAMPLER_BINARY, 0, &mem, &err),
+                     0);
     ck_assert(el.fell_back && mem.used < kept_cdf - distrib2d_bytes(16, 8) / 2);
     envlight_free(&el);
     image_free(&im);
@@ -890,7 +922,8 @@ Suite *envlight_suite(void)
     Suite *s = suite_create("envlight");
     TCase *tc = tcase_create("chisq");
     tcase_set_timeout(tc, 60); /* generous for sanitizer builds */
-    tcase_add_loop_test(tc, test_envlight_every_mode_fits_its_pdf_on_every_map, 0, M_COUNT * C_COUNT);
+    tcase_add_loop_test(tc, test_envlight_every_mode_fits_its_pdf_on_every_map, 0,
+                        M_COUNT * C_COUNT);
     tcase_add_loop_test(tc, test_envlight_rotated_map_fits_its_pdf, 0, N_ROTATED);
     suite_add_tcase(s, tc);
     tc = tcase_create("numerics");

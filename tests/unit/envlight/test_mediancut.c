@@ -78,7 +78,8 @@ START_TEST(test_mediancut_strata_partition_the_map_and_its_power)
     double want[3] = {0, 0, 0};
     for (int r = 0; r < 32; r++)
         for (int c = 0; c < 64; c++)
-            for (int k = 0; k < 3; k++) want[k] += 2.0 * image_px(&im, c, r)[k] * latlong_texel_solid_angle(r, 64, 32);
+            for (int k = 0; k < 3; k++)
+                want[k] += 2.0 * image_px(&im, c, r)[k] * latlong_texel_solid_angle(r, 64, 32);
     for (int t = 0; t < 3; t++) {
         envlight el;
         build(&el, &env, ns[t]);
@@ -96,7 +97,8 @@ START_TEST(test_mediancut_strata_partition_the_map_and_its_power)
         }
         int miscovered = 0;
         for (int i = 0; i < 64 * 32; i++) miscovered += cover[i] != 1;
-        ck_assert_msg(miscovered == 0, "N = %d: %d texels not covered exactly once", ns[t], miscovered);
+        ck_assert_msg(miscovered == 0, "N = %d: %d texels not covered exactly once", ns[t],
+                      miscovered);
         ck_assert(fabs(got[0] - want[0]) < POWER_REL_TOL * want[0]);
         ck_assert(fabs(got[1] - want[1]) < POWER_REL_TOL * want[1]);
         ck_assert(fabs(got[2] - want[2]) < POWER_REL_TOL * want[2]);
@@ -108,7 +110,8 @@ START_TEST(test_mediancut_strata_partition_the_map_and_its_power)
             int k, c, r;
             vec3 sd;
             double prob;
-            ck_require(envlight_mediancut_pick(&el, rng_uniform(&g), rng_uniform(&g), rng_uniform(&g), &k, &sd, &prob));
+            ck_require(envlight_mediancut_pick(&el, rng_uniform(&g), rng_uniform(&g),
+                                               rng_uniform(&g), &k, &sd, &prob));
             bad += fabs(prob - rgb_avg(el.points[k].power) / avg_sum) > 1e-12;
             texel_of(&el, sd, &c, &r);
             const mediancut_point *pt = &el.points[k];
@@ -188,8 +191,9 @@ START_TEST(test_mediancut_points_sit_at_their_strata_energy_centroids)
             multirow += pt->r1 - pt->r0 > 1;
         }
         ck_assert_msg(multirow > 0, "N = %d: no stratum spans rows: the test cannot fail", ns[t]);
-        ck_assert_msg(bad == 0, "N = %d: %d of %d points off their L dOmega centroid (by up to %g in uv)", ns[t],
-                      bad, el.n_points, worst);
+        ck_assert_msg(bad == 0,
+                      "N = %d: %d of %d points off their L dOmega centroid (by up to %g in uv)",
+                      ns[t], bad, el.n_points, worst);
         envlight_free(&el);
     }
     image_free(&im);
@@ -245,7 +249,8 @@ START_TEST(test_mediancut_strata_of_a_constant_map_have_equal_energy)
      * with 16 strata of ~512 texels each stays within 15% of the mean (measured: -14%, +9%;
      * a split of the longer side by area, ignoring energy, would be off by 2x) */
     double mean = 4 * M_PI / 16;
-    ck_assert_msg(lo > 0.85 * mean && hi < 1.15 * mean, "strata energies from %g to %g (mean %g)", lo, hi, mean);
+    ck_assert_msg(lo > 0.85 * mean && hi < 1.15 * mean, "strata energies from %g to %g (mean %g)",
+                  lo, hi, mean);
     envlight_free(&el);
     image_free(&im);
 }
@@ -269,7 +274,8 @@ START_TEST(test_mediancut_cuts_polar_strata_across_theta)
         set_gray(&im, c, 1, 1.0);
     }
     envmap env = env_of(&im, 1, mat4_identity());
-    const int ns[2] = {12, 24}; /* 12: 4 dark strata, 8 lit; 24: the one-row strata cut across phi */
+    const int ns[2] = {12,
+                       24}; /* 12: 4 dark strata, 8 lit; 24: the one-row strata cut across phi */
     for (int t = 0; t < 2; t++) {
         envlight el;
         build(&el, &env, ns[t]);
@@ -282,7 +288,8 @@ START_TEST(test_mediancut_cuts_polar_strata_across_theta)
             tall += pt->r1 - pt->r0 != 1;
         }
         ck_assert_int_ge(lit, ns[t] - 4); /* lit strata are cut before dark ones (energy ~0) */
-        ck_assert_msg(tall == 0, "N = %d: %d of the %d lit strata are more than one row tall", ns[t], tall, lit);
+        ck_assert_msg(tall == 0, "N = %d: %d of the %d lit strata are more than one row tall",
+                      ns[t], tall, lit);
         envlight_free(&el);
     }
     image_free(&im);

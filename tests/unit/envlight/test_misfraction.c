@@ -46,7 +46,8 @@ static void build(envlight *el, const envmap *env, envsampling_mode mode, envsam
  *             = 8 (1 + c) / c int_0^1 x^2 / (4x / c + 1) dx,
  * which is 1 at c = 0 (no variance), 1.402347 at c = 1 (V = 0.201174) and 1.227977 at
  * c = 1/2 (V = 0.151985).  The generated sky gets c = 0 (cosine sampling already follows it,
- * and light samples below the horizon are wasted), the sun map c = 1, and V falls with c under the sun (V ~ 1/c there). */
+ * and light samples below the horizon are wasted), the sun map c = 1, and V falls with c under the
+ * sun (V ~ 1/c there). */
 START_TEST(test_misfraction_model_meets_its_closed_forms)
 {
     image im;
@@ -69,14 +70,16 @@ START_TEST(test_misfraction_model_meets_its_closed_forms)
     ck_assert_int_eq(genenv_make(GENENV_SKY, &p, &im, &err), 0);
     env = env_of(&im, 1, mat4_identity());
     build(&el, &env, ENVSAMPLING_CDF, ENVSAMPLER_ALIAS, 0);
-    ck_assert_msg(misfraction_choose(&el, 0.6, v) == 0, "sky: c %g", misfraction_choose(&el, 0.6, NULL));
+    ck_assert_msg(misfraction_choose(&el, 0.6, v) == 0, "sky: c %g",
+                  misfraction_choose(&el, 0.6, NULL));
     envlight_free(&el);
     image_free(&im);
     sun_map(&im);
     env = env_of(&im, 2, mat4_rotate(vec3_make(1, 0, 0), -90));
     build(&el, &env, ENVSAMPLING_CDF, ENVSAMPLER_ALIAS, 0);
     ck_assert(misfraction_choose(&el, 0.6, v) == 1);
-    for (int i = 1; i < MISFRACTION_COUNT; i++) ck_assert_msg(v[i] < v[i - 1], "sun: V[%d] %g >= V[%d] %g", i, v[i], i - 1, v[i - 1]);
+    for (int i = 1; i < MISFRACTION_COUNT; i++)
+        ck_assert_msg(v[i] < v[i - 1], "sun: V[%d] %g >= V[%d] %g", i, v[i], i - 1, v[i - 1]);
     ck_assert_msg(v[0] > 10 * v[7], "sun: cosine sampling alone V %g, with c = 1 %g", v[0], v[7]);
     envlight_free(&el);
     build(&el, &env, ENVSAMPLING_UNIFORM, ENVSAMPLER_ALIAS, 0);
@@ -92,7 +95,8 @@ END_TEST
  * smaller c.  Checked against the V it reports, so the model itself is not under test here. */
 START_TEST(test_misfraction_minimizes_variance_times_time)
 {
-    static const double fractions[MISFRACTION_COUNT] = {0, 1.0 / 32, 1.0 / 16, 1.0 / 8, 0.25, 0.5, 0.75, 1};
+    static const double fractions[MISFRACTION_COUNT] = {0,    1.0 / 32, 1.0 / 16, 1.0 / 8,
+                                                        0.25, 0.5,      0.75,     1};
     const double costs[] = {0, 0.6, 100, 1e4};
     image im;
     sun_map(&im);
@@ -107,8 +111,9 @@ START_TEST(test_misfraction_minimizes_variance_times_time)
             best = fmin(best, cost);
             if (fractions[i] == c) got_cost = cost;
         }
-        ck_assert_msg(got_cost <= best * (1 + 1e-9), "light_cost %g: c = %g costs %g, the least is %g", costs[k], c,
-                      got_cost, best);
+        ck_assert_msg(got_cost <= best * (1 + 1e-9),
+                      "light_cost %g: c = %g costs %g, the least is %g", costs[k], c, got_cost,
+                      best);
         ck_assert_msg(costs[k] < 100 ? c == 1 : c < 1, "light_cost %g: c = %g", costs[k], c);
     }
     envlight_free(&el);
