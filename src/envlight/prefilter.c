@@ -336,19 +336,11 @@ static double pow_s(double t, double s, long si)
 
 static long whole_exponent(double s) { return s == floor(s) && s <= 2147483647.0 ? (long)s : -1; }
 
-/* The kernels of the plain sums, at cos_t = n . w > 0: max(0, n . w) / pi for irradiance (s is
+/* The kernels of the plain sums, at t = n . w > 0: max(0, n . w) / pi for irradiance (s is
  * not used), (S + 1) / (2 pi) (r . w)^S for the Phong lobe of exponent s. */
 typedef double (*brute_kernel)(double cos_t, double s);
-static double cosine_kernel(double cos_t, double s)
-{
-    (void)s;
-    return cos_t / M_PI;
-}
-
-static double phong_kernel(double cos_t, double s)
-{
-    return (s + 1.0) / (2.0 * M_PI) * pow(cos_t, s);
-}
+static double cosine_kernel(double t, double s) { return (void)s, t / M_PI; }
+static double phong_kernel(double t, double s) { return (s + 1.0) / (2.0 * M_PI) * pow(t, s); }
 
 /* The plain sums of prefilter_irradiance_brute and prefilter_phong_brute: every output texel
  * against every input texel, weighted by kernel. */
