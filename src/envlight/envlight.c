@@ -1,6 +1,6 @@
-/* envlight.c - the environment as a light: numerical-CDF importance sampling in
- * (u = cos theta, v = phi), PBRT's sin-theta variant, uniform sampling and median cut
- * (see include/envtex/envlight/envlight.h). */
+/* envlight.c - the environment as a light: the lecture's CDF sampling in (u = cos theta,
+ * v = phi), PBRT's sin-theta variant and uniform sampling; median cut's point lights come from
+ * mediancut.c (see include/envtex/envlight/envlight.h). */
 #include "envtex/envlight/envlight.h"
 
 #include <float.h>
