@@ -36,8 +36,11 @@ static double weight_at(const double *wd, const float *wf, size_t k, int *n_bad)
 static void cdf_from_weights(double *cdf, const double *wd, const float *wf, size_t off, int n,
                              int *n_bad, double *sum)
 {
-    /* STEP(cdf): the numerical CDF: running sums S_j of the weights in double, cdf[j] = S_j / S_n, cdf[n] = 1 exactly, uniform j / n if the sum is 0 (slides 22-23) */
-    /* STUB: (void)weight_at; (void)wd; (void)wf; (void)off; (void)n_bad; for (int j = 0; j <= n; j++) cdf[j] = (double)j / (double)n; *sum = 1.0; */
+    /* STEP(cdf): the numerical CDF: running sums S_j of the weights in double, cdf[j] = S_j / S_n,
+     * cdf[n] = 1 exactly, uniform j / n if the sum is 0 (slides 22-23) */
+    /* STUB: (void)weight_at; (void)wd; (void)wf; (void)off; (void)n_bad;
+     * for (int j = 0; j <= n; j++) cdf[j] = (double)j / (double)n;
+     * *sum = 1.0; */
     double s = 0.0;
     cdf[0] = 0.0;
     for (int j = 0; j < n; j++) {
@@ -60,7 +63,8 @@ static void cdf_from_weights(double *cdf, const double *wd, const float *wf, siz
  * because i is the first, so cdf[i + 1] - cdf[i] > 0: zero-width bins are never returned. */
 static int cdf_search(const double *cdf, int n, double x)
 {
-    /* STEP(cdf): invert the CDF by binary search: the first bin i with cdf[i + 1] > x (slides 22-23) */
+    /* STEP(cdf): invert the CDF by binary search: the first bin i with cdf[i + 1] > x (slides
+     * 22-23) */
     /* STUB: (void)cdf; (void)n; (void)x; return 0; */
     int lo = 0, count = n;
     while (count > 0) {
@@ -106,7 +110,7 @@ static void alias_build_table(const double *cdf, int n, distrib_alias *t, double
         t[s].alias = l;
         /* l gives what the stored threshold hands it, 1 - prob (exact in double), not 1 - q_s:
          * so each float rounding stays in its own cell instead of adding up on l over many
-         * donors (10^6 of them put l off by 1.7%); q_l >= 1 so it stays >= prob >= 0 */
+         * donors (docs/design-notes.md); q_l >= 1 so it stays >= prob >= 0 */
         q[l] -= 1.0 - (double)prob;
         if (q[l] < 1.0) {
             nl--;
@@ -306,15 +310,19 @@ fail:
     return rc;
 }
 
-double distrib2d_bytes(int n_outer, int n_inner, int alias)
+double distrib2d_bytes(int n_outer, int n_inner)
 {
-    double cells = (double)n_outer * n_inner;
     double conditional = (double)n_outer * (n_inner + 1) * sizeof(double);
     /* the marginal's cdf, and the column sums it is built from */
     double marginal = (double)(n_outer + 1) * sizeof(double) + (double)n_outer * sizeof(double);
-    if (!alias) return conditional + marginal;
+    return conditional + marginal;
+}
+
+double distrib2d_alias_bytes(int n_outer, int n_inner)
+{
+    double cells = (double)n_outer * n_inner;
     /* the cells of every column and of the marginal, and one column's scratch (q, small, large) */
-    return conditional + marginal + (cells + n_outer) * sizeof(distrib_alias) +
+    return (cells + n_outer) * sizeof(distrib_alias) +
            (double)(n_inner > n_outer ? n_inner : n_outer) * (sizeof(double) + 2 * sizeof(int));
 }
 

@@ -163,7 +163,10 @@ static int list_build(const convert_env *env, texel_list *tl, error *err)
 
 void prefilter_sh9_basis(vec3 d, double y[PREFILTER_SH9])
 {
-    /* STEP(sh9): R&H's real basis at the unit direction d = (x, y, z), +z up (prefilter.h): Y00 = 1 / (2 sqrt pi), Y1m = sqrt(3 / 4 pi) (y, z, x), Y2-2 = sqrt(15 / 4 pi) xy, Y2-1 = sqrt(15 / 4 pi) yz, Y20 = sqrt(5 / 16 pi) (3 z^2 - 1), Y21 = sqrt(15 / 4 pi) xz, Y22 = sqrt(15 / 16 pi) (x^2 - y^2), in that order (the SH_K constants above) */
+    /* STEP(sh9): R&H's real basis at the unit direction d = (x, y, z), +z up (prefilter.h):
+     * Y00 = 1 / (2 sqrt pi), Y1m = sqrt(3 / 4 pi) (y, z, x), Y2-2 = sqrt(15 / 4 pi) xy,
+     * Y2-1 = sqrt(15 / 4 pi) yz, Y20 = sqrt(5 / 16 pi) (3 z^2 - 1), Y21 = sqrt(15 / 4 pi) xz,
+     * Y22 = sqrt(15 / 16 pi) (x^2 - y^2), in that order (the SH_K constants above) */
     /* STUB: (void)d; for (int k = 0; k < PREFILTER_SH9; k++) y[k] = 0; */
     double x = d.x, yy = d.y, z = d.z;
     y[0] = SH_K0;                       /* Y00 */
@@ -181,7 +184,8 @@ void prefilter_sh9_basis(vec3 d, double y[PREFILTER_SH9])
 /* L_lm += L Y_lm(w) dOmega, one texel (row sums in acc, in double) */
 static void project_texel(double acc[PREFILTER_SH9][3], const float *L, vec3 w, double omega)
 {
-    /* STEP(sh9): the projection L_lm = sum over texels of L Y_lm(w) dOmega: add this texel's share to each of the 9 coefficients, per channel (slide 44; prefilter.h) */
+    /* STEP(sh9): the projection L_lm = sum over texels of L Y_lm(w) dOmega: add this texel's share
+     * to each of the 9 coefficients, per channel (slide 44; prefilter.h) */
     /* STUB: (void)acc; (void)L; (void)w; (void)omega; */
     double y[PREFILTER_SH9];
     prefilter_sh9_basis(w, y);
@@ -235,7 +239,8 @@ int prefilter_sh9_project(const convert_env *env, prefilter_sh9 *out, error *err
 
 rgb prefilter_sh9_irradiance(const prefilter_sh9 *sh, vec3 n)
 {
-    /* STEP(sh9): R&H's irradiance E(n) = sum over the 9 (l, m) of A_l L_lm Y_lm(n), A_0 = pi, A_1 = 2 pi / 3, A_2 = pi / 4, per channel (prefilter.h) */
+    /* STEP(sh9): R&H's irradiance E(n) = sum over the 9 (l, m) of A_l L_lm Y_lm(n),
+     * A_0 = pi, A_1 = 2 pi / 3, A_2 = pi / 4, per channel (prefilter.h) */
     /* STUB: (void)sh; (void)n; return rgb_gray(0); */
     static const double A[3] = {M_PI, 2.0 * M_PI / 3.0, M_PI / 4.0}; /* A_l, l = 0, 1, 2 */
     double y[PREFILTER_SH9], e[3] = {0, 0, 0};
@@ -248,7 +253,10 @@ rgb prefilter_sh9_irradiance(const prefilter_sh9 *sh, vec3 n)
 
 void prefilter_sh9_matrix(const prefilter_sh9 *sh, prefilter_sh9_quadratic *q)
 {
-    /* STEP(sh9): R&H's eq. 12, E(n) = (x, y, z, 1) M (x, y, z, 1)^T, with c1 = A2 k2 / 2, c2 = A1 k1 / 2, c3 = 3 A2 k20, c4 = A0 k0, c5 = A2 k20 (prefilter.h; k the basis's constants): M = [c1 L22, c1 L2-2, c1 L21, c2 L11; c1 L2-2, -c1 L22, c1 L2-1, c2 L1-1; c1 L21, c1 L2-1, c3 L20, c2 L10; c2 L11, c2 L1-1, c2 L10, c4 L00 - c5 L20] */
+    /* STEP(sh9): R&H's eq. 12, E(n) = (x, y, z, 1) M (x, y, z, 1)^T, with c1 = A2 k2 / 2,
+     * c2 = A1 k1 / 2, c3 = 3 A2 k20, c4 = A0 k0, c5 = A2 k20 (prefilter.h; k the basis's
+     * constants): M = [c1 L22, c1 L2-2, c1 L21, c2 L11;  c1 L2-2, -c1 L22, c1 L2-1, c2 L1-1;
+     * c1 L21, c1 L2-1, c3 L20, c2 L10;  c2 L11, c2 L1-1, c2 L10, c4 L00 - c5 L20] */
     /* STUB: (void)sh; memset(q, 0, sizeof *q); */
     const double c1 = M_PI / 4.0 * SH_K2 / 2.0, c2 = 2.0 * M_PI / 3.0 * SH_K1 / 2.0;
     const double c3 = 3.0 * M_PI / 4.0 * SH_K20, c4 = M_PI * SH_K0, c5 = M_PI / 4.0 * SH_K20;
@@ -328,8 +336,16 @@ static double pow_s(double t, double s, long si)
 
 static long whole_exponent(double s) { return s == floor(s) && s <= 2147483647.0 ? (long)s : -1; }
 
-/* The plain sums of prefilter_irradiance_brute (phong = 0) and prefilter_phong_brute. */
-static int brute(const convert_env *env, int phong, double s, int width, image *out, error *err)
+/* The kernels of the plain sums, at t = n . w > 0: max(0, n . w) / pi for irradiance (s is
+ * not used), (S + 1) / (2 pi) (r . w)^S for the Phong lobe of exponent s. */
+typedef double (*brute_kernel)(double cos_t, double s);
+static double cosine_kernel(double t, double s) { return (void)s, t / M_PI; }
+static double phong_kernel(double t, double s) { return (s + 1.0) / (2.0 * M_PI) * pow(t, s); }
+
+/* The plain sums of prefilter_irradiance_brute and prefilter_phong_brute: every output texel
+ * against every input texel, weighted by kernel. */
+static int brute(const convert_env *env, brute_kernel kernel, double s, int width, image *out,
+                 error *err)
 {
     texel_list tl;
     if (alloc_map(width, out, err)) return -1;
@@ -345,8 +361,7 @@ static int brute(const convert_env *env, int phong, double s, int width, image *
                 const double *d = tl.d + 3 * t, *lw = tl.lw + 3 * t;
                 double cos_t = n.x * d[0] + n.y * d[1] + n.z * d[2]; /* n . w */
                 if (!(cos_t > 0)) continue;
-                /* the kernel: (S + 1) / (2 pi) (r . w)^S, or max(0, n . w) / pi */
-                double k = phong ? (s + 1.0) / (2.0 * M_PI) * pow(cos_t, s) : cos_t / M_PI;
+                double k = kernel(cos_t, s);
                 for (int ch = 0; ch < 3; ch++) e[ch] += lw[ch] * k;
             }
             image_set(out, c, r, rgb_make(e[0], e[1], e[2]));
@@ -357,7 +372,7 @@ static int brute(const convert_env *env, int phong, double s, int width, image *
 
 int prefilter_irradiance_brute(const convert_env *env, int width, image *out, error *err)
 {
-    return brute(env, 0, 0, width, out, err);
+    return brute(env, cosine_kernel, 0, width, out, err);
 }
 
 static int check_shininess(double s, error *err)
@@ -372,7 +387,7 @@ int prefilter_phong_brute(const convert_env *env, double s, int width, image *ou
 {
     memset(out, 0, sizeof *out);
     if (check_shininess(s, err)) return -1;
-    return brute(env, 1, s, width, out, err);
+    return brute(env, phong_kernel, s, width, out, err);
 }
 
 /* ---- the fast exact sums over a map of rows ------------------------------------------------ */

@@ -4,6 +4,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "envtex/envlight/misfraction.h"
 #include "envtex/geometry/sphere.h"
 #include "envtex/integrators/prefiltered.h"
 #include "envtex/integrators/texshade.h"
@@ -83,9 +84,9 @@ int integrator_init(integrator *it, const scene *sc, const bvh *accel, budget *m
     if (sc->integrator == INTEGRATOR_PATHTRACER && sc->nee == NEE_MIS && lights_env_index(&it->ls) >= 0 &&
         it->el.mode != ENVSAMPLING_MEDIANCUT) {
         /* MIS: sample the envmap at a fraction of its picks (lights.h); auto: the fraction that
-         * minimizes variance x time for diffuse surfaces under this map (envlight.h) */
+         * minimizes variance x time for diffuse surfaces under this map (misfraction.h) */
         double c = sc->envsamplefraction >= 0 ? sc->envsamplefraction
-                                              : envlight_mis_fraction(&it->el, INTEGRATOR_MIS_LIGHT_COST, NULL);
+                                              : misfraction_choose(&it->el, INTEGRATOR_MIS_LIGHT_COST, NULL);
         lights_set_env_fraction(&it->ls, c);
         it->env_fraction = it->ls.env_fraction;
     }

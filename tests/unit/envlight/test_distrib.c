@@ -16,7 +16,8 @@
 #include "chisq.h"
 #include "unit.h"
 
-#define N_SAMPLES 200000L  /* per chi-square test: ~0.02 s, and a 5% error in a 10% bin is 7 sigma */
+#define N_SAMPLES 200000L /* per chi-square test: ~0.02 s, and a 5% error in a 10% bin is 7 sigma  \
+                           */
 #define PMF_REL_TOL 1e-12  /* pmf agreement: the maths is exact up to a few roundings of double */
 #define REM_BUCKETS_1D 4   /* each bin's remapped value is tested in 4 sub-bins ... */
 #define REM_BUCKETS_2D 2   /* ... and each cell's (rem_outer, rem_inner) in 2 x 2 */
@@ -228,7 +229,8 @@ START_TEST(test_chisq_rejects_samples_from_a_slightly_different_distribution)
     double prob[T1_MAX];
     for (int i = 0; i < n; i++) prob[i] = distrib1d_pmf(&wrong, i);
     pcg32 rng = pcg32_seeded(1);
-    for (long s = 0; s < N_SAMPLES; s++) obs[distrib1d_sample(&d, pcg32_double(&rng), NULL, NULL)]++;
+    for (long s = 0; s < N_SAMPLES; s++)
+        obs[distrib1d_sample(&d, pcg32_double(&rng), NULL, NULL)]++;
     chisq_result r = chisq_test(obs, prob, n, N_SAMPLES);
     ck_assert_msg(!chisq_accept(&r, N_CHISQ_TESTS), "accepted: X^2 = %g, p = %g", r.stat, r.p);
     distrib1d_free(&d);
@@ -403,7 +405,8 @@ START_TEST(test_distrib1d_alias_table_samples_its_pmf_with_a_million_donors)
         double pmf = distrib1d_pmf(&d, i), rel = fabs(got[i] / n - pmf) / pmf;
         if (rel > worst) worst = rel, at = i;
     }
-    ck_assert_msg(worst < 1e-6, "bin %d is sampled with probability %.3g relative off its pmf", at, worst);
+    ck_assert_msg(worst < 1e-6, "bin %d is sampled with probability %.3g relative off its pmf", at,
+                  worst);
     distrib1d_free(&d);
     free(w);
     free(got);

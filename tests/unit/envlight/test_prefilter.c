@@ -49,7 +49,8 @@ static void make_map(convert_map *m, convert_kind kind, int w, env_fn f, const v
             vec3 d;
             if (kind == CONVERT_LATLONG) d = latlong_uv_to_dir(uv);
             else if (kind == CONVERT_EQUALAREA) d = equalarea_uv_to_dir(uv);
-            else if (kind == CONVERT_CYLINDRICAL) ck_assert_int_eq(cylindrical_uv_to_dir(uv, m->max_height, &d), 0);
+            else if (kind == CONVERT_CYLINDRICAL)
+                ck_assert_int_eq(cylindrical_uv_to_dir(uv, m->max_height, &d), 0);
             else if (mirrorball_uv_to_dir(uv, &d)) d = vec3_make(-1, 0, 0); /* past the rim: -x */
             image_set(&m->img, c, r, f(d, ctx));
         }
@@ -91,7 +92,8 @@ static void random_map(convert_map *m, int w, int h, uint64_t seed)
     for (int r = 0; r < h; r++)
         for (int c = 0; c < w; c++) {
             double sun = rng_uniform(&g) < 0.01 ? 1000 : 1; /* a few bright texels */
-            image_set(&m->img, c, r, rgb_make(sun * rng_uniform(&g), rng_uniform(&g), 0.5 * rng_uniform(&g)));
+            image_set(&m->img, c, r,
+                      rgb_make(sun * rng_uniform(&g), rng_uniform(&g), 0.5 * rng_uniform(&g)));
         }
 }
 
@@ -122,9 +124,15 @@ START_TEST(test_sh9_basis_is_ramamoorthi_and_hanrahans_real_basis)
         vec3 d = dirs[i];
         double x = d.x, y = d.y, z = d.z, Y[PREFILTER_SH9];
         prefilter_sh9_basis(d, Y);
-        const double want[PREFILTER_SH9] = {0.282095, 0.488603 * y, 0.488603 * z, 0.488603 * x,
-                                            1.092548 * x * y, 1.092548 * y * z, 0.315392 * (3 * z * z - 1),
-                                            1.092548 * x * z, 0.546274 * (x * x - y * y)};
+        const double want[PREFILTER_SH9] = {0.282095,
+                                            0.488603 * y,
+                                            0.488603 * z,
+                                            0.488603 * x,
+                                            1.092548 * x * y,
+                                            1.092548 * y * z,
+                                            0.315392 * (3 * z * z - 1),
+                                            1.092548 * x * z,
+                                            0.546274 * (x * x - y * y)};
         for (int k = 0; k < PREFILTER_SH9; k++) EXPECT_NEAR(Y[k], want[k], 1e-6);
         EXPECT_NEAR(Y[0], 0.5 / sqrt(M_PI), 1e-16);
         EXPECT_NEAR(Y[6], sqrt(5 / (16 * M_PI)) * (3 * z * z - 1), 1e-15);
@@ -154,7 +162,8 @@ START_TEST(test_a_map_that_is_one_basis_function_gives_that_coefficient_alone)
         make_map(&m, CONVERT_LATLONG, 256, basis_fn, w);
         prefilter_sh9 sh = project(&m);
         for (int k = 0; k < PREFILTER_SH9; k++)
-            for (int ch = 0; ch < 3; ch++) EXPECT_NEAR(sh.L[k][ch], w[k][ch], SH_DISCRETE_TOL * fabs(w[j][ch]));
+            for (int ch = 0; ch < 3; ch++)
+                EXPECT_NEAR(sh.L[k][ch], w[k][ch], SH_DISCRETE_TOL * fabs(w[j][ch]));
         convert_map_free(&m);
     }
 }
@@ -184,7 +193,8 @@ END_TEST
 
 START_TEST(test_a_constant_map_has_L00_two_sqrt_pi_and_nothing_else)
 {
-    const convert_kind kinds[] = {CONVERT_LATLONG, CONVERT_EQUALAREA, CONVERT_CUBE, CONVERT_MIRRORBALL};
+    const convert_kind kinds[] = {CONVERT_LATLONG, CONVERT_EQUALAREA, CONVERT_CUBE,
+                                  CONVERT_MIRRORBALL};
     double one = 1;
     for (int i = 0; i < 4; i++) {
         convert_map m;
@@ -194,7 +204,8 @@ START_TEST(test_a_constant_map_has_L00_two_sqrt_pi_and_nothing_else)
          * this is exact but for rounding, whatever the representation (mirror ball: its rim
          * texels, pulled onto the rim, too) */
         EXPECT_NEAR(sh.L[0][1], 2 * sqrt(M_PI), 1e-6);
-        for (int k = 1; k < 4; k++) EXPECT_NEAR(sh.L[k][0], 0, kinds[i] == CONVERT_MIRRORBALL ? 0.02 : 1e-12);
+        for (int k = 1; k < 4; k++)
+            EXPECT_NEAR(sh.L[k][0], 0, kinds[i] == CONVERT_MIRRORBALL ? 0.02 : 1e-12);
         convert_map_free(&m);
     }
 }
@@ -212,7 +223,8 @@ START_TEST(test_the_quadratic_form_is_the_sum_of_the_A_l_terms)
     prefilter_sh9_quadratic q;
     prefilter_sh9_matrix(&sh, &q);
     for (int i = 0; i < 200; i++) {
-        vec3 n = vec3_normalize(vec3_make(rng_uniform(&g) - 0.5, rng_uniform(&g) - 0.5, rng_uniform(&g) - 0.5));
+        vec3 n = vec3_normalize(
+            vec3_make(rng_uniform(&g) - 0.5, rng_uniform(&g) - 0.5, rng_uniform(&g) - 0.5));
         rgb a = prefilter_sh9_irradiance(&sh, n), b = prefilter_sh9_quadratic_eval(&q, n);
         EXPECT_NEAR(a.r, b.r, 1e-14);
         EXPECT_NEAR(a.g, b.g, 1e-14);
@@ -275,7 +287,8 @@ START_TEST(test_one_bright_texel_gives_its_clamped_cosine)
     for (int r = 0; r < e.h; r++)
         for (int c = 0; c < e.w; c++) {
             vec3 n = latlong_uv_to_dir((uv2){(c + 0.5) / e.w, (r + 0.5) / e.h});
-            double want = 1000 * om * fmax(0, vec3_dot(n, wt)) / M_PI; /* L dOmega max(0, n.w) / pi */
+            double want =
+                1000 * om * fmax(0, vec3_dot(n, wt)) / M_PI; /* L dOmega max(0, n.w) / pi */
             EXPECT_NEAR(image_px(&e, c, r)[0], want, 1e-6 * want + 1e-12);
             EXPECT_NEAR(image_px(&e, c, r)[1], want / 100, 1e-6 * want / 100 + 1e-12);
             EXPECT_NEAR(image_px(&e, c, r)[2], 0, 0);
@@ -324,15 +337,17 @@ START_TEST(test_the_arc_sums_equal_the_plain_sum)
             convert_map m;
             random_map(&m, sizes[s][0], sizes[s][1], 11 + s);
             m.kind = kinds[k];
-            if (m.kind == CONVERT_CYLINDRICAL) m.max_height = convert_cylindrical_height(m.img.w, m.img.h);
+            if (m.kind == CONVERT_CYLINDRICAL)
+                m.max_height = convert_cylindrical_height(m.img.w, m.img.h);
             convert_env env = convert_view(&m);
             image a = {0}, b = {0};
             error err = {0};
             ck_assert_int_eq(prefilter_irradiance_arcs(&env, 16, &a, &err), 0);
             ck_assert_int_eq(prefilter_irradiance_brute(&env, 16, &b, &err), 0);
             double d = max_diff(&a, &b), top = map_max(&b);
-            ck_assert_msg(d <= 1e-6 * top, "%dx%d %s: arcs differ from the plain sum by %g (max %g)",
-                          sizes[s][0], sizes[s][1], convert_kind_name(kinds[k]), d, top);
+            ck_assert_msg(d <= 1e-6 * top,
+                          "%dx%d %s: arcs differ from the plain sum by %g (max %g)", sizes[s][0],
+                          sizes[s][1], convert_kind_name(kinds[k]), d, top);
             image_free(&a);
             image_free(&b);
             convert_map_free(&m);
@@ -475,7 +490,8 @@ START_TEST(test_exact_maps_of_cube_and_mirror_ball_inputs_agree_with_lat_long)
 {
     /* one smooth environment in three representations: the exact maps agree to the inputs'
      * own discretisation (the texel lists are summed by the plain sum) */
-    double w[PREFILTER_SH9][3] = {{3, 3, 3}, {0.5, 0, 0}, {0, 0.7, 0}, {0, 0, 0.4}, {0.3, 0.3, 0.3}};
+    double w[PREFILTER_SH9][3] = {
+        {3, 3, 3}, {0.5, 0, 0}, {0, 0.7, 0}, {0, 0, 0.4}, {0.3, 0.3, 0.3}};
     const convert_kind kinds[] = {CONVERT_CUBE, CONVERT_MIRRORBALL, CONVERT_LATLONG};
     const int widths[] = {48, 256, 256};
     image maps[3][2];
@@ -491,8 +507,8 @@ START_TEST(test_exact_maps_of_cube_and_mirror_ball_inputs_agree_with_lat_long)
     for (int i = 0; i < 2; i++)
         for (int j = 0; j < 2; j++) {
             double d = max_diff(&maps[i][j], &maps[2][j]), top = map_max(&maps[2][j]);
-            ck_assert_msg(d <= 0.01 * top, "%s, %s: %g of the peak from lat-long", convert_kind_name(kinds[i]),
-                          j ? "phong" : "irradiance", d / top);
+            ck_assert_msg(d <= 0.01 * top, "%s, %s: %g of the peak from lat-long",
+                          convert_kind_name(kinds[i]), j ? "phong" : "irradiance", d / top);
         }
     for (int i = 0; i < 3; i++) image_free(&maps[i][0]), image_free(&maps[i][1]);
 }
@@ -555,7 +571,8 @@ Suite *prefilter_suite(void)
     tcase_set_timeout(tc, 60);
     tcase_add_test(tc, test_sh9_basis_is_ramamoorthi_and_hanrahans_real_basis);
     tcase_add_test(tc, test_a_map_that_is_one_basis_function_gives_that_coefficient_alone);
-    tcase_add_test(tc, test_sh9_of_a_combination_of_basis_functions_recovers_it_in_every_representation);
+    tcase_add_test(
+        tc, test_sh9_of_a_combination_of_basis_functions_recovers_it_in_every_representation);
     tcase_add_test(tc, test_a_constant_map_has_L00_two_sqrt_pi_and_nothing_else);
     tcase_add_test(tc, test_the_quadratic_form_is_the_sum_of_the_A_l_terms);
     tcase_add_test(tc, test_a_constant_map_gives_E_over_pi_of_one_by_sh9_and_exactly);
