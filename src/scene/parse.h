@@ -148,4 +148,21 @@ int parse_relative_path(parser *p, const char *file, char *dst, size_t size);
  * meshes) and give its memory back to the budget. */
 void parse_free(parser *p);
 
+/* ---- assets.c: the files a scene names --------------------------------------------------- */
+
+/* The mesh of the OBJ file `path` (its token p->tok[1] as written), parsed on its first `obj`
+ * line and kept in p->objs for the next ones that name the same file, however spelled; the
+ * file is added to the scene's inputs.  *out is owned by the parser (parse_free). */
+int assets_obj_mesh(parser *p, const char *path, const obj_mesh **out);
+
+/* Read each image texture's file (once per distinct file, however many textures name it),
+ * then build the mip pyramids the materials' filters need, one per file and wrap mode (the
+ * materials' maps are pointed at the texture that owns it).  Errors are reported at the
+ * `texture` line with the reader's reason. */
+int assets_load_textures(parser *p);
+
+/* Read the envmap image(s), clean their texels and settle the representation (named, or
+ * detected from the shape; a cross is split into faces); errors at the `envmap` line. */
+int assets_load_envmap(parser *p);
+
 #endif
