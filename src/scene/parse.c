@@ -1,5 +1,6 @@
 /* parse.c - the scene parser's helpers: messages, arguments, the transform stack, the
- * material and the arrays every command adds to (parse.h). */
+ * material and the arrays every command adds to; the command tables' dispatch, line by line, and
+ * the checks at the end (parse.h). */
 #include "parse.h"
 
 #include <errno.h>
@@ -295,6 +296,126 @@ int parse_relative_path(parser *p, const char *file, char *dst, size_t size)
     if (w < 0 || (size_t)w >= size)
         return parse_fail(p, "'%s' path '%s%s' is longer than %zu bytes", p->tok[0], base, file,
                           size - 1);
+    return 0;
+}
+
+/* ---- lines ------------------------------------------------------------------------------- */
+
+static int is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+
+/* Split the NUL-terminated line in place; a token starting with '#' ends the line. */
+static void tokenize(parser *p, char *s)
+{
+    p->ntok = 0;
+    for (;;) {
+        while (is_space(*s)) s++;
+        if (*s == '\0' || *s == '#') return;
+        if (p->ntok < MAX_TOKENS) p->tok[p->ntok] = s;
+        p->ntok++;
+        while (*s && !is_space(*s)) s++;
+        if (*s == '\0') return;
+        *s++ = '\0';
+    }
+}
+
+/* The command called `name` in the tables, or NULL. */
+static const parse_command *find_command(const char *name)
+{
+    static const parse_command *const tables[] = {commands_course, commands_texture,
+                                                  commands_envtex};
+    for (size_t t = 0; t < sizeof tables / sizeof tables[0]; t++)
+        for (const parse_command *c = tables[t]; c->name; c++)
+            if (strcmp(name, c->name) == 0) return c;
+    return NULL;
+}
+
+int parse_run_line(parser *p, char *line)
+{
+    tokenize(p, line);
+    if (p->ntok == 0) return 0;
+    const char *name = p->tok[0];
+    const parse_command *c = find_command(name);
+    if (!c) {
+        if (p->strict) return parse_fail(p, "unknown command '%s'", name);
+        parse_warn(p, "unknown command '%s' (ignored)", name);
+        return 0;
+    }
+    if (strcmp(c->name, "size") == 0) {
+        p->seen_size = 1;
+    } else if (!p->seen_size && !p->warned_order) {
+        p->warned_order = 1;
+        parse_warn(p, "'%s' comes before 'size' (the course puts 'size' first)", name);
+    }
+    int nargs = p->ntok - 1;
+    if (nargs < c->min_args || nargs > c->max_args) {
+        if (c->forms)
+            return parse_fail(p, "'%s' takes %s, got %d argument%s", name, c->forms, nargs,
+                              nargs == 1 ? "" : "s");
+        char takes[64];
+        if (c->min_args == c->max_args)
+            snprintf(takes, sizeof takes, "%d argument%s", c->min_args,
+                     c->min_args == 1 ? "" : "s");
+        else
+            snprintf(takes, sizeof takes, "%d or %d arguments", c->min_args, c->max_args);
+        if (nargs > c->max_args)
+            return parse_fail(p, "'%s' takes %s, got %d (from '%s' on)", name, takes, nargs,
+                              p->tok[c->max_args + 1]);
+        return parse_fail(p, "'%s' takes %s, got %d", name, takes, nargs);
+    }
+    return c->run(p);
+}
+
+int parse_finish(parser *p)
+{
+    scene *sc = p->sc;
+    p->line = 0;
+    if (!p->seen_size) return error_set(p->err, p->name, 0, "no 'size' command");
+    if (!sc->has_camera) return error_set(p->err, p->name, 0, "no 'camera' command");
+    long long samples = (long long)sc->width * sc->height * sc->spp;
+    if (samples > SCENE_MAX_CAMERA_SAMPLES)
+        return error_set(
+            p->err, p->name, 0,
+            "size %d x %d at spp %d asks for %lld camera samples, over the limit of 2^34",
+            sc->width, sc->height, sc->spp, samples);
+    if (p->depth > 0)
+        parse_warn(p, "%d 'pushTransform' without 'popTransform' at the end of the file", p->depth);
+    if (p->first_quad_line &&
+        sc->integrator == INTEGRATOR_RAYTRACER) { /* hw1's renderer with hw2's light */
+        p->line = p->first_quad_line;
+        parse_warn(
+            p,
+            "the 'raytracer' integrator ignores quad lights (they neither light, show nor block): "
+            "use 'integrator analyticdirect', 'direct' or 'pathtracer'");
+        p->line = 0;
+    }
+    if (p->first_delta_line &&
+        sc->integrator == INTEGRATOR_ANALYTICDIRECT) { /* hw2's renderer with hw1's lights */
+        p->line = p->first_delta_line;
+        parse_warn(
+            p,
+            "the 'analyticdirect' integrator lights with quad lights only: point and directional "
+            "lights are ignored (use 'integrator direct' or 'pathtracer', which sample them)");
+        p->line = 0;
+    }
+    if (p->first_delta_line && sc->integrator == INTEGRATOR_PATHTRACER && sc->nee == NEE_OFF) {
+        p->line = p->first_delta_line; /* a path never hits a point: only NEE reaches one */
+        parse_warn(
+            p, "with 'nexteventestimation off' the path tracer never reaches point or directional "
+               "lights (no path can hit one): they light nothing; use 'nexteventestimation on' or "
+               "'mis'");
+        p->line = 0;
+    }
+    if ((p->first_quad_line || p->first_delta_line) && sc->integrator == INTEGRATOR_PREFILTERED) {
+        int a = p->first_quad_line, b = p->first_delta_line; /* the first light of either kind */
+        p->line = a && (!b || a < b) ? a : b;
+        parse_warn(p,
+                   "the 'prefiltered' integrator lights with the envmap's prefiltered maps only: "
+                   "point, directional and quad lights are ignored (use 'integrator direct' or "
+                   "'pathtracer')");
+        p->line = 0;
+    }
+    if (p->load_images && assets_load_textures(p)) return -1;
+    if (sc->envmap.present && p->load_images && assets_load_envmap(p)) return -1;
     return 0;
 }
 

@@ -148,6 +148,34 @@ int parse_relative_path(parser *p, const char *file, char *dst, size_t size);
  * meshes) and give its memory back to the budget. */
 void parse_free(parser *p);
 
+/* ---- parse.c: the commands, line by line ------------------------------------------------- */
+
+/* A command: its keyword, its handler (0, or -1 with *p->err set), the argument counts
+ * parse_run_line checks before calling it, and for a handler that checks its own counts, its
+ * forms for the message ("'%s' takes FORMS, got N arguments"), else NULL. */
+typedef struct parse_command {
+    const char *name;
+    int (*run)(parser *p);
+    int min_args, max_args;
+    const char *forms;
+} parse_command;
+
+/* The command tables, each ended by an entry with name NULL: the CSE 167/168 commands
+ * (commands_course.c), envtex's texture commands (commands_texture.c) and envtex's own
+ * (commands_envtex.c).  parse_run_line looks a keyword up in this order. */
+extern const parse_command commands_course[];
+extern const parse_command commands_texture[];
+extern const parse_command commands_envtex[];
+
+/* Split `line` (NUL-terminated, modified in place; a token starting with '#' ends it) into
+ * p->tok and run its command: unknown commands are warnings (errors when opts->strict), and a
+ * command before `size` is warned about once. */
+int parse_run_line(parser *p, char *line);
+
+/* After the last line: the checks that need the whole file, the warnings about lights the
+ * integrator ignores, then the images (assets.c) unless opts->load_images is 0. */
+int parse_finish(parser *p);
+
 /* ---- assets.c: the files a scene names --------------------------------------------------- */
 
 /* The mesh of the OBJ file `path` (its token p->tok[1] as written), parsed on its first `obj`
