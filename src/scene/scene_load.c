@@ -1,26 +1,17 @@
-/* scene_load.c - the CSE 167/168 `.test` scene parser plus envtex's commands (see
- * include/envtex/scene/scene.h and docs/scene-format.md).
- *
- * One pass, line by line.  Each line is copied into a fixed buffer, split into white-space
- * separated tokens, and handed to the command's handler through a table.  Handlers check their
- * arguments completely before they change the scene, so every error names the line and the
- * token that is wrong.  Arrays grow by doubling, so a 100k-triangle mesh costs O(n).
- */
-#include "envtex/scene/scene.h"
+/* scene_load.c - scene_load and scene_load_string (scene_load.h): the lines of a file or a
+ * string, one at a time, through the parser (parse.h). */
+#include "envtex/scene/scene_load.h"
+
 #include <assert.h>
 #include <errno.h>
-#include <float.h>
-#include <stdarg.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
 #include "parse.h"
 
-/* the words of `envsampling`, in envsampling_mode order (scene_envsampling_name too) */
-static const char *const envsampling_words[] = {"uniform", "cdf", "cdf-sintheta", "mediancut"};
-#define N_ENVSAMPLING_WORDS ((int)(sizeof envsampling_words / sizeof envsampling_words[0]))
-
+/* The scene before its first line: the course's defaults (docs/scene-format.md). */
 static void scene_init(scene *sc)
 {
     memset(sc, 0, sizeof *sc);
@@ -117,7 +108,7 @@ static void parser_init(parser *p, scene *sc, const scene_load_opts *opts, const
     p->mat = scene_default_material();
     p->atten[0] = 1.0; /* attenuation 1 0 0: no fall-off */
     p->max_prims = opts->max_prims > 0 && opts->max_prims < SCENE_MAX_PRIMS ? opts->max_prims
-                                                                           : SCENE_MAX_PRIMS;
+                                                                            : SCENE_MAX_PRIMS;
 }
 
 /* The scene's path (sc->path) and the folder its relative file names are read from (p->base),
@@ -179,25 +170,12 @@ done:
     return rc;
 }
 
-/* ---- public ----------------------------------------------------------------------------- */
-
 scene_load_opts scene_load_defaults(void)
 {
     scene_load_opts o;
     memset(&o, 0, sizeof o);
     o.load_images = 1;
     return o;
-}
-
-material scene_default_material(void)
-{
-    material m;
-    memset(&m, 0, sizeof m);
-    m.ambient = rgb_gray(0.2);
-    m.brdf = BRDF_PHONG;
-    m.ior = 1.5;
-    m.texfilter = TEXFILTER_TRILINEAR; /* no maps (0), default mapping */
-    return m;
 }
 
 int scene_load_string(const char *text, const char *name, const scene_load_opts *opts, scene *out,
@@ -236,52 +214,4 @@ int scene_load(const char *path, const scene_load_opts *opts, scene *out, error 
     free(chunk);
     fclose(f);
     return rc;
-}
-
-void scene_free(scene *sc)
-{
-    if (!sc) return;
-    free(sc->materials);
-    free(sc->spheres);
-    free(sc->triangles);
-    free(sc->lights);
-    for (int i = 0; i < sc->n_textures; i++) texture_free(&sc->textures[i].tex);
-    free(sc->textures);
-    for (int i = 0; i < sc->n_texture_images; i++) image_free(&sc->texture_images[i]);
-    free(sc->texture_images);
-    image_free(&sc->envmap.img);
-    cubemap_free(&sc->envmap.cube);
-    infile_list_free(&sc->inputs);
-    memset(sc, 0, sizeof *sc);
-}
-
-void scene_environment(const scene *sc, envmap *env)
-{
-    const scene_envmap *e = &sc->envmap;
-    convert_env map = {e->kind, &e->img, &e->cube, e->max_height};
-    envmap_init(env, e->present ? &map : NULL, e->scale, &e->inv);
-}
-
-texmapping_kind scene_material_texmapping(const material *m, int is_sphere)
-{
-    if (!m->texmapping_given) return is_sphere ? TEXMAPPING_SPHERICAL : TEXMAPPING_UV;
-    if (is_sphere && m->texmapping == TEXMAPPING_UV) return TEXMAPPING_SPHERICAL;
-    return m->texmapping;
-}
-
-const char *scene_envsampling_name(envsampling_mode m)
-{
-    return (int)m >= 0 && (int)m < N_ENVSAMPLING_WORDS ? envsampling_words[m] : "unknown";
-}
-
-const char *scene_integrator_name(integrator_kind k)
-{
-    switch (k) {
-    case INTEGRATOR_RAYTRACER: return "raytracer";
-    case INTEGRATOR_ANALYTICDIRECT: return "analyticdirect";
-    case INTEGRATOR_DIRECT: return "direct";
-    case INTEGRATOR_PATHTRACER: return "pathtracer";
-    case INTEGRATOR_PREFILTERED: return "prefiltered";
-    }
-    return "unknown";
 }

@@ -9,6 +9,7 @@
 #include "envtex/geometry/bvh.h"
 #include "envtex/io/pfm.h"
 #include "envtex/integrators/texshade.h"
+#include "envtex/scene/scene_load.h"
 #include "unit.h"
 
 static scene load(const char *text)

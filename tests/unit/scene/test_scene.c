@@ -10,6 +10,7 @@
 
 #include "envtex/io/imageio.h"
 #include "envtex/scene/scene.h"
+#include "envtex/scene/scene_load.h"
 #include "unit.h"
 
 /* Two lines every valid scene needs; a bad command placed after them is on line 3. */
