@@ -35,7 +35,7 @@ int assets_obj_mesh(parser *p, const char *path, const obj_mesh **out)
     }
     if (p->n_objs == p->cap_objs) {
         int cap = p->cap_objs > 0 ? 2 * p->cap_objs : 4;
-        struct parsed_obj *objs = realloc(p->objs, (size_t)cap * sizeof *objs);
+        parsed_obj *objs = realloc(p->objs, (size_t)cap * sizeof *objs);
         if (!objs) {
             budget_release(p->mem, m.bytes);
             obj_free(&m);
@@ -44,7 +44,7 @@ int assets_obj_mesh(parser *p, const char *path, const obj_mesh **out)
         p->objs = objs;
         p->cap_objs = cap;
     }
-    p->objs[p->n_objs] = (struct parsed_obj){id, m};
+    p->objs[p->n_objs] = (parsed_obj){id, m};
     *out = &p->objs[p->n_objs++].mesh;
     return 0;
 }

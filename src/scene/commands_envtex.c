@@ -107,7 +107,7 @@ static int envmap_file(parser *p, int i, char *dst, size_t size, char *token, si
     return 0;
 }
 
-/* 1 if token i reads as a number (finite or not: arg_nonneg then names what is wrong). */
+/* 1 if token i reads as a number (finite or not: parse_arg_nonneg then names what is wrong). */
 static int token_is_number(const parser *p, int i)
 {
     char *end;

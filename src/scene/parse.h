@@ -55,7 +55,7 @@ typedef struct parser {
     int inv_state; /* 0 not computed, 1 valid, -1 singular */
     mat4 *stack;   /* saved transforms (pushTransform) */
     int depth, stack_cap;
-    int first_quad_line;  /* the first `quadLight`, for the raytracer's warning (finish) */
+    int first_quad_line;  /* the first `quadLight`, for the raytracer's warning (parse_finish) */
     int first_delta_line; /* the first `point` or `directional`, for analyticdirect's */
     /* material and light state */
     material mat;
@@ -73,7 +73,7 @@ typedef struct parser {
     long cap_textures;
     /* bookkeeping */
     long max_prims;   /* SCENE_MAX_PRIMS unless the options lower it */
-    parsed_obj *objs; /* each OBJ file read so far, parsed once (cmd_obj) */
+    parsed_obj *objs; /* each OBJ file read so far, parsed once (assets_obj_mesh) */
     int n_objs, cap_objs;
     int *tex_index;   /* texture names: slots of indices into sc->textures, -1 empty */
     size_t tex_slots; /* a power of two, or 0 */
