@@ -50,11 +50,16 @@ static int cmd_ior(parser *p)
 
 static int cmd_envsampling(parser *p)
 {
-    const char *words[ENVSAMPLING_MEDIANCUT + 1]; /* in envsampling_mode order */
-    for (int i = 0; i <= ENVSAMPLING_MEDIANCUT; i++)
-        words[i] = scene_envsampling_name((envsampling_mode)i);
+    /* the words in envsampling_mode order, from their one home (scene.c), up to "unknown" */
+    const char *words[16];
+    int n_words = 0;
+    while (n_words < 16) {
+        words[n_words] = scene_envsampling_name((envsampling_mode)n_words);
+        if (strcmp(words[n_words], "unknown") == 0) break;
+        n_words++;
+    }
     int k = 0;
-    if (parse_arg_word(p, words, ENVSAMPLING_MEDIANCUT + 1, &k)) return -1;
+    if (parse_arg_word(p, words, n_words, &k)) return -1;
     if (k != ENVSAMPLING_MEDIANCUT && p->ntok > 2)
         return parse_fail(p, "'envsampling %s' takes no count (only 'mediancut N' does)", words[k]);
     if (p->ntok > 2) {
