@@ -14,6 +14,7 @@
 #include "envtex/render/compare.h"
 #include "envtex/render/render.h"
 #include "envtex/scene/scene.h"
+#include "envtex/scene/scene_load.h"
 
 /* Scene warnings are kept until the scene has loaded: a scene that fails prints only its error
  * (one line), a scene that loads prints its warnings before rendering. */

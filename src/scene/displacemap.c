@@ -146,7 +146,8 @@ static int corner_order(const void *a, const void *b)
 /* The unit geometric normal of tr, or -1 for a zero-area triangle. */
 static int face_normal(const triangle *tr, vec3 *n)
 {
-    return vec3_unit_direction(vec3_cross(vec3_sub(tr->p[1], tr->p[0]), vec3_sub(tr->p[2], tr->p[0])), n);
+    vec3 e1 = vec3_sub(tr->p[1], tr->p[0]), e2 = vec3_sub(tr->p[2], tr->p[0]);
+    return vec3_unit_direction(vec3_cross(e1, e2), n);
 }
 
 /* cn[3 i + k] = the welded normal of corner k of triangle i, for every displaced triangle i
@@ -156,7 +157,8 @@ static int face_normal(const triangle *tr, vec3 *n)
 static int weld_corner_normals(const scene *in, vec3 *cn)
 {
     long n = 0;
-    corner_ref *refs = malloc((size_t)(3 * (in->n_triangles > 0 ? in->n_triangles : 1)) * sizeof *refs);
+    size_t n_corners = (size_t)(3 * (in->n_triangles > 0 ? in->n_triangles : 1));
+    corner_ref *refs = malloc(n_corners * sizeof *refs);
     if (!refs) return -1;
     for (long i = 0; i < in->n_triangles; i++) {
         const triangle *tr = &in->triangles[i];
@@ -227,7 +229,8 @@ static int seam_collect(const displace_mesh *m, const vec3 *nv, long first, int 
     for (long t = 0; t < m->n_tris; t++)
         for (int k = 0; k < 3; k++) {
             long v = m->tris[t].v[k];
-            if (valence[v] < 6 && seam_push(sl, (corner_ref){m->p[v], nv[v], first + t, k})) return -1;
+            if (valence[v] < 6 && seam_push(sl, (corner_ref){m->p[v], nv[v], first + t, k}))
+                return -1;
         }
     return 0;
 }
@@ -256,37 +259,197 @@ void displacemap_free(scene *out)
     memset(out, 0, sizeof *out);
 }
 
+/* The rates for scene `in`: both halved together from the defaults (down to 2 and 1) until the
+ * triangles fit *cap, the smallest of max_tris (0: DISPLACEMAP_MAX_TRIS), SCENE_MAX_PRIMS and
+ * what the memory budget still holds at per_tri bytes a triangle (*by_memory: that one).
+ * Returns the triangle count at those rates, over *cap if nothing fits. */
+static long choose_rates(const scene *in, long max_tris, const budget *mem, double per_tri,
+                         int *srate, int *trate, long *cap, int *by_memory)
+{
+    *cap = max_tris > 0 ? max_tris : DISPLACEMAP_MAX_TRIS;
+    if (*cap > SCENE_MAX_PRIMS) *cap = SCENE_MAX_PRIMS;
+    /* and no more triangles than the memory budget holds with their BVH: the rates come down */
+    *by_memory = mem && (mem->limit - mem->used) / per_tri < (double)*cap;
+    if (*by_memory) *cap = (long)((mem->limit - mem->used) / per_tri);
+    *srate = DISPLACEMAP_SPHERE_RATE;
+    *trate = DISPLACEMAP_TRIANGLE_RATE;
+    long total = count_tris(in, *srate, *trate);
+    while (total > *cap && (*srate > 2 || *trate > 1)) {
+        *srate = *srate / 2 < 2 ? 2 : *srate / 2;
+        *trate = *trate / 2 < 1 ? 1 : *trate / 2;
+        total = count_tris(in, *srate, *trate);
+    }
+    return total;
+}
+
+/* What one displacement works with besides its output: per vertex of a triangle's patch its
+ * object point q, its normal before displacement and its valence (patch_verts of each); the
+ * welded corner normals cn (3 per input triangle); the patch being made; the border corners. */
+typedef struct work {
+    vec3 *qv, *nv;
+    int *valence;
+    long patch_verts;
+    vec3 *cn;
+    displace_mesh m;
+    seam_list seams;
+    long total; /* triangles of the result, for messages */
+} work;
+
+/* Allocate *w (zeroed by the caller) for scene `in` at triangle rate trate and weld the corner
+ * normals; 0, or -1 out of memory (work_free frees what was allocated). */
+static int work_alloc(work *w, const scene *in, int trate)
+{
+    size_t patch_verts = (size_t)(trate + 1) * (size_t)(trate + 2) / 2;
+    w->patch_verts = (long)patch_verts;
+    w->qv = malloc(patch_verts * sizeof *w->qv);
+    w->nv = malloc(patch_verts * sizeof *w->nv);
+    w->valence = malloc(patch_verts * sizeof *w->valence);
+    w->cn = malloc((size_t)(3 * (in->n_triangles > 0 ? in->n_triangles : 1)) * sizeof *w->cn);
+    if (!w->qv || !w->nv || !w->valence || !w->cn) return -1;
+    return weld_corner_normals(in, w->cn);
+}
+
+static void work_free(work *w)
+{
+    displace_mesh_free(&w->m);
+    free(w->qv);
+    free(w->nv);
+    free(w->valence);
+    free(w->cn);
+    free(w->seams.at);
+}
+
+/* Sphere sp, whose material mt has displacement map tex, as srate's triangles appended to out
+ * (m: the scratch mesh, freed again). */
+static int displace_one_sphere(const sphere *sp, const texture *tex, const material *mt,
+                               int srate, displace_mesh *m, scene *out, error *err)
+{
+    height_ctx c = {tex, mt, scene_material_texmapping(mt, 1), sp->center, sp->radius,
+                    NULL, NULL, 0, 0};
+    if (c.mapping == TEXMAPPING_UV) c.mapping = TEXMAPPING_SPHERICAL;
+    /* SCALE object units along the unit sphere's normal: SCALE / R in its units */
+    double scale = sp->radius > 0 ? mt->displacement_scale / sp->radius : 0.0;
+    if (displace_sphere(srate, sphere_height, &c, scale, 0, m, err)) return -1;
+    /* a mirroring transform (det < 0) turns the corners clockwise seen from outside: take
+     * them in the order 0, 2, 1, as the parser does for triangles (parse_add_triangle), so
+     * that e1 x e2 points out (glass decides entering or leaving by it) */
+    int mirror = mat4_det3(&sp->xf) < 0;
+    for (long t = 0; t < m->n_tris; t++) {
+        triangle *o = &out->triangles[out->n_triangles++];
+        memset(o, 0, sizeof *o);
+        uv2 sph[3];
+        for (int k = 0; k < 3; k++) {
+            int kk = mirror && k ? 3 - k : k; /* 0, 1, 2 or 0, 2, 1 */
+            long v = m->tris[t].v[kk];
+            sph[k] = m->tris[t].st[kk];
+            o->q[k] = vec3_madd(sp->center, m->p[v], sp->radius); /* c + R p */
+            o->p[k] = mat4_point(&sp->xf, o->q[k]);
+            o->n[k] = vec3_normalize(mat4_normal(&sp->inv, m->n[v]));
+        }
+        sphere_corner_st(c.mapping, sph, o->st);
+        o->has_normals = o->has_st = o->st_mapped = 1;
+        o->material = sp->material;
+    }
+    displace_mesh_free(m);
+    return 0;
+}
+
+/* Every sphere of `in` into out: displaced ones as triangles, the others as they are. */
+static int displace_spheres(const scene *in, int srate, work *w, scene *out,
+                            displacemap_stats *st, error *err)
+{
+    for (long i = 0; i < in->n_spheres; i++) {
+        const sphere *sp = &in->spheres[i];
+        const texture *tex = disp_map(in, sp->material);
+        if (!tex) {
+            out->spheres[out->n_spheres++] = *sp;
+            continue;
+        }
+        if (displace_one_sphere(sp, tex, &in->materials[sp->material], srate, &w->m, out, err))
+            return -1;
+        st->spheres++;
+    }
+    return 0;
+}
+
+/* Triangle i of `in`, whose material has displacement map tex, as trate's patch appended to
+ * out, its border corners collected into w->seams. */
+static int displace_one_triangle(const scene *in, long i, const texture *tex, int trate,
+                                 work *w, scene *out, error *err)
+{
+    const triangle *tr = &in->triangles[i];
+    const material *mt = &in->materials[tr->material];
+    height_ctx c = {tex, mt, scene_material_texmapping(mt, 0), {0, 0, 0}, 0,
+                    w->qv, w->nv, 0, w->patch_verts};
+    /* along its vertex normals, or the welded corner normals (no cracks); NULL for a
+     * zero-area triangle without normals, which displace_triangle refuses */
+    vec3 fn;
+    const vec3 *normals = tr->has_normals ? tr->n : face_normal(tr, &fn) ? NULL : &w->cn[3 * i];
+    if (displace_triangle(tr->p, tr->q, normals, tr->st, trate, triangle_height, &c,
+                          mt->displacement_scale, 0, &w->m, err))
+        return -1;
+    const displace_mesh *m = &w->m;
+    int q_known = c.n_q == m->n_verts; /* the callback saw every vertex, in index order */
+    long first = out->n_triangles;
+    for (long t = 0; t < m->n_tris; t++) {
+        triangle *o = &out->triangles[out->n_triangles++];
+        memset(o, 0, sizeof *o);
+        for (int k = 0; k < 3; k++) {
+            long v = m->tris[t].v[k];
+            o->p[k] = m->p[v];
+            o->n[k] = m->n[v];
+            o->st[k] = m->tris[t].st[k];
+            o->q[k] = q_known ? w->qv[v] : tr->q[0];
+        }
+        o->has_normals = o->has_st = 1;
+        o->material = tr->material;
+    }
+    if (q_known && seam_collect(m, w->nv, first, w->valence, &w->seams))
+        return error_set(err, in->path, 0,
+                         "out of memory for the normals of %ld displaced triangles", w->total);
+    displace_mesh_free(&w->m);
+    return 0;
+}
+
+/* Every triangle of `in` into out: displaced ones as patches, the others as they are. */
+static int displace_triangles(const scene *in, int trate, work *w, scene *out,
+                              displacemap_stats *st, error *err)
+{
+    for (long i = 0; i < in->n_triangles; i++) {
+        const triangle *tr = &in->triangles[i];
+        const texture *tex = disp_map(in, tr->material);
+        if (!tex) {
+            out->triangles[out->n_triangles++] = *tr;
+            continue;
+        }
+        if (displace_one_triangle(in, i, tex, trate, w, out, err)) return -1;
+        st->triangles++;
+    }
+    return 0;
+}
+
 int displacemap_apply(const scene *in, long max_tris, budget *mem, scene *out,
                       displacemap_stats *st, error *err)
 {
     displacemap_stats dummy;
     if (!st) st = &dummy;
     memset(st, 0, sizeof *st);
-    long budget = max_tris > 0 ? max_tris : DISPLACEMAP_MAX_TRIS;
-    if (budget > SCENE_MAX_PRIMS) budget = SCENE_MAX_PRIMS;
-    /* and no more triangles than the memory budget holds with their BVH: the rates come down */
     double per_tri = (double)sizeof *out->triangles + bvh_bytes_per_prim();
-    int by_memory = mem && (mem->limit - mem->used) / per_tri < (double)budget;
-    if (by_memory) budget = (long)((mem->limit - mem->used) / per_tri);
-    int srate = DISPLACEMAP_SPHERE_RATE, trate = DISPLACEMAP_TRIANGLE_RATE;
-    long total = count_tris(in, srate, trate);
-    while (total > budget && (srate > 2 || trate > 1)) {
-        srate = srate / 2 < 2 ? 2 : srate / 2;
-        trate = trate / 2 < 1 ? 1 : trate / 2;
-        total = count_tris(in, srate, trate);
-    }
+    int srate, trate, by_memory;
+    long cap;
+    long total = choose_rates(in, max_tris, mem, per_tri, &srate, &trate, &cap, &by_memory);
     *out = *in; /* shallow: shares materials, textures, lights, envmap */
     out->spheres = NULL;
     out->triangles = NULL;
     out->n_spheres = out->n_triangles = 0;
-    if (total > budget && by_memory) /* more than the budget holds: the charge names it */
+    if (total > cap && by_memory) /* more than the budget holds: the charge names it */
         return budget_charge(mem, total * per_tri, in->path, 0, err, "even at the lowest rates, "
                              "displacement mapping's %ld triangles and their BVH x %.0f bytes",
                              total, per_tri);
-    if (total > budget)
+    if (total > cap)
         return error_set(err, in->path, 0,
                          "displacement mapping needs %ld triangles even at the lowest rates, "
-                         "more than the limit %ld", total, budget);
+                         "more than the limit %ld", total, cap);
     double bytes = (double)total * sizeof *out->triangles; /* fits: the BVH is charged when built */
     if (budget_charge(mem, bytes, in->path, 0, err, "displacement mapping's %ld triangles x %zu "
                       "bytes", total, sizeof *out->triangles))
@@ -295,109 +458,25 @@ int displacemap_apply(const scene *in, long max_tris, budget *mem, scene *out,
     st->triangle_rate = trate;
     out->spheres = malloc((size_t)(in->n_spheres > 0 ? in->n_spheres : 1) * sizeof *out->spheres);
     out->triangles = malloc((size_t)(total > 0 ? total : 1) * sizeof *out->triangles);
-    size_t patch_verts = (size_t)(trate + 1) * (size_t)(trate + 2) / 2;
-    vec3 *qv = malloc(patch_verts * sizeof *qv), *nv = malloc(patch_verts * sizeof *nv);
-    int *valence = malloc(patch_verts * sizeof *valence);
-    vec3 *cn = malloc((size_t)(3 * (in->n_triangles > 0 ? in->n_triangles : 1)) * sizeof *cn);
-    seam_list seams = {NULL, 0, 0};
-    displace_mesh m;
-    memset(&m, 0, sizeof m);
-    if (!out->spheres || !out->triangles || !qv || !nv || !valence || !cn ||
-        weld_corner_normals(in, cn)) {
+    work w;
+    memset(&w, 0, sizeof w);
+    w.total = total;
+    int rc = -1;
+    if (!out->spheres || !out->triangles || work_alloc(&w, in, trate)) {
         error_set(err, in->path, 0, "out of memory for %ld displaced triangles", total);
-        goto fail;
+        goto done;
     }
-    for (long i = 0; i < in->n_spheres; i++) {
-        const sphere *sp = &in->spheres[i];
-        const texture *tex = disp_map(in, sp->material);
-        if (!tex) {
-            out->spheres[out->n_spheres++] = *sp;
-            continue;
-        }
-        const material *mt = &in->materials[sp->material];
-        height_ctx c = {tex, mt, scene_material_texmapping(mt, 1), sp->center, sp->radius, NULL, NULL, 0, 0};
-        if (c.mapping == TEXMAPPING_UV) c.mapping = TEXMAPPING_SPHERICAL;
-        /* SCALE object units along the unit sphere's normal: SCALE / R in its units */
-        double scale = sp->radius > 0 ? mt->displacement_scale / sp->radius : 0.0;
-        if (displace_sphere(srate, sphere_height, &c, scale, 0, &m, err)) goto fail;
-        /* a mirroring transform (det < 0) turns the corners clockwise seen from outside: take
-         * them in the order 0, 2, 1, as scene.h does for parsed triangles, so that e1 x e2
-         * points out (glass decides entering or leaving by it) */
-        int mirror = mat4_det3(&sp->xf) < 0;
-        for (long t = 0; t < m.n_tris; t++) {
-            triangle *o = &out->triangles[out->n_triangles++];
-            memset(o, 0, sizeof *o);
-            uv2 sph[3];
-            for (int k = 0; k < 3; k++) {
-                int kk = mirror && k ? 3 - k : k; /* 0, 1, 2 or 0, 2, 1 */
-                long v = m.tris[t].v[kk];
-                sph[k] = m.tris[t].st[kk];
-                o->q[k] = vec3_madd(sp->center, m.p[v], sp->radius); /* c + R p */
-                o->p[k] = mat4_point(&sp->xf, o->q[k]);
-                o->n[k] = vec3_normalize(mat4_normal(&sp->inv, m.n[v]));
-            }
-            sphere_corner_st(c.mapping, sph, o->st);
-            o->has_normals = o->has_st = o->st_mapped = 1;
-            o->material = sp->material;
-        }
-        displace_mesh_free(&m);
-        st->spheres++;
-    }
-    for (long i = 0; i < in->n_triangles; i++) {
-        const triangle *tr = &in->triangles[i];
-        const texture *tex = disp_map(in, tr->material);
-        if (!tex) {
-            out->triangles[out->n_triangles++] = *tr;
-            continue;
-        }
-        const material *mt = &in->materials[tr->material];
-        long cap = (long)(trate + 1) * (trate + 2) / 2;
-        height_ctx c = {tex, mt, scene_material_texmapping(mt, 0), {0, 0, 0}, 0, qv, nv, 0, cap};
-        /* along its vertex normals, or the welded corner normals (no cracks); NULL for a
-         * zero-area triangle without normals, which displace_triangle refuses */
-        vec3 fn;
-        const vec3 *normals = tr->has_normals ? tr->n : face_normal(tr, &fn) ? NULL : &cn[3 * i];
-        if (displace_triangle(tr->p, tr->q, normals, tr->st, trate,
-                              triangle_height, &c, mt->displacement_scale, 0, &m, err))
-            goto fail;
-        int q_known = c.n_q == m.n_verts; /* the callback saw every vertex, in index order */
-        long first = out->n_triangles;
-        for (long t = 0; t < m.n_tris; t++) {
-            triangle *o = &out->triangles[out->n_triangles++];
-            memset(o, 0, sizeof *o);
-            for (int k = 0; k < 3; k++) {
-                long v = m.tris[t].v[k];
-                o->p[k] = m.p[v];
-                o->n[k] = m.n[v];
-                o->st[k] = m.tris[t].st[k];
-                o->q[k] = q_known ? qv[v] : tr->q[0];
-            }
-            o->has_normals = o->has_st = 1;
-            o->material = tr->material;
-        }
-        if (q_known && seam_collect(&m, nv, first, valence, &seams)) {
-            error_set(err, in->path, 0, "out of memory for the normals of %ld displaced triangles", total);
-            goto fail;
-        }
-        displace_mesh_free(&m);
-        st->triangles++;
-    }
-    seam_weld(&seams, out);
+    if (displace_spheres(in, srate, &w, out, st, err) ||
+        displace_triangles(in, trate, &w, out, st, err))
+        goto done;
+    seam_weld(&w.seams, out);
     st->new_triangles = out->n_triangles;
-    free(qv);
-    free(nv);
-    free(valence);
-    free(cn);
-    free(seams.at);
-    return 0;
-fail:
-    budget_release(mem, bytes);
-    displace_mesh_free(&m);
-    free(qv);
-    free(nv);
-    free(valence);
-    free(cn);
-    free(seams.at);
-    displacemap_free(out);
-    return -1;
+    rc = 0;
+done:
+    work_free(&w);
+    if (rc) {
+        budget_release(mem, bytes);
+        displacemap_free(out);
+    }
+    return rc;
 }

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "envtex/scene/scene.h"
+#include "envtex/scene/scene_load.h"
 #include "fuzz.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)

@@ -14,6 +14,7 @@
 #include "envtex/textures/perlin.h"
 #include "envtex/render/render.h"
 #include "envtex/scene/scene.h"
+#include "envtex/scene/scene_load.h"
 #include "envtex/textures/texlookup.h"
 #include "envtex/io/tonemap.h"
 #include "envtex/geometry/triangle.h"

@@ -9,6 +9,7 @@
 #include "envtex/io/pfm.h"
 #include "envtex/geometry/raydiff.h"
 #include "envtex/integrators/texshade.h"
+#include "envtex/scene/scene_load.h"
 #include "unit.h"
 
 /* Central-difference step in pixels: the truncation error is ~h^2 times the third derivative,

@@ -28,6 +28,7 @@
 #include "envtex/envmaps/latlong.h"
 #include "envtex/render/render.h"
 #include "envtex/core/sampling.h"
+#include "envtex/scene/scene_load.h"
 #include "sphchisq.h"
 #include "unit.h"
 

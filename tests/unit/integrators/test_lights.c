@@ -10,6 +10,7 @@
 #include "envtex/envmaps/genenv.h"
 #include "envtex/core/rng.h"
 #include "envtex/geometry/triangle.h"
+#include "envtex/scene/scene_load.h"
 #include "unit.h"
 
 #define PDF_REL_TOL 1e-6 /* the shadow ray starts 1e-9 off the surface: t is known to ~1e-9 */

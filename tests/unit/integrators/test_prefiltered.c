@@ -11,6 +11,7 @@
 #include "envtex/integrators/integrator.h"
 #include "envtex/envmaps/latlong.h"
 #include "envtex/render/render.h"
+#include "envtex/scene/scene_load.h"
 #include "unit.h"
 
 #define HEAD "size 24 24\ncamera 0 0 4 0 0 0 0 1 0 30\n"

@@ -8,6 +8,7 @@
 #include "envtex/geometry/camera.h"
 #include "envtex/envmaps/genenv.h"
 #include "envtex/geometry/sphere.h"
+#include "envtex/scene/scene_load.h"
 #include "unit.h"
 
 /* Parse `text` (no images are read). */

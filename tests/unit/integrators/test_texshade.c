@@ -12,6 +12,7 @@
 #include "envtex/reflection/fresnel.h"
 #include "envtex/integrators/integrator.h"
 #include "envtex/geometry/raydiff.h"
+#include "envtex/scene/scene_load.h"
 #include "unit.h"
 
 #define STEP 1e-3       /* the differential's scale: a thousandth of a pixel */

@@ -10,6 +10,7 @@
 #include "envtex/integrators/integrator.h"
 #include "envtex/core/rng.h"
 #include "envtex/integrators/raytracer.h"
+#include "envtex/scene/scene_load.h"
 #include "unit.h"
 
 static void load(scene *sc, const char *text)

@@ -9,6 +9,7 @@
 #include "envtex/geometry/bvh.h"
 #include "envtex/io/pfm.h"
 #include "envtex/integrators/texshade.h"
+#include "envtex/scene/scene_load.h"
 #include "unit.h"
 
 static scene load(const char *text)
@@ -51,7 +52,8 @@ START_TEST(test_displaced_sphere_vertices_lie_at_radius_plus_scale_times_height)
             /* radius 2 + 0.2 * 0.5 around the centre (1, 0, 0), in world and object space */
             double r = vec3_length(vec3_sub(out.triangles[i].p[k], vec3_make(1, 0, 0)));
             ck_assert_msg(fabs(r - 2.1) < 1e-12, "vertex at radius %g, want 2.1", r);
-            ck_assert(fabs(vec3_length(vec3_sub(out.triangles[i].q[k], vec3_make(1, 0, 0))) - 2.1) < 1e-12);
+            ck_assert(fabs(vec3_length(vec3_sub(out.triangles[i].q[k], vec3_make(1, 0, 0))) - 2.1) <
+                      1e-12);
             ck_assert(out.triangles[i].has_normals && out.triangles[i].has_st);
             /* a uniformly displaced sphere is still a sphere: normals radial */
             vec3 radial = vec3_normalize(vec3_sub(out.triangles[i].p[k], vec3_make(1, 0, 0)));
@@ -126,7 +128,8 @@ START_TEST(test_triangles_without_normals_that_share_an_edge_are_displaced_witho
         for (int k = 0; k < 3; k++)
             if (vec3_length(vec3_sub(out.triangles[t].q[k], vec3_make(-1, 0, 0))) < 1e-12)
                 ck_assert(vec3_length(vec3_sub(out.triangles[t].p[k],
-                                               vec3_make(-1 - 0.1 / sqrt(2), 0, 0.1 / sqrt(2)))) < 1e-12);
+                                               vec3_make(-1 - 0.1 / sqrt(2), 0, 0.1 / sqrt(2)))) <
+                          1e-12);
     displacemap_free(&out);
     scene_free(&sc);
 }
@@ -216,9 +219,11 @@ START_TEST(test_patches_with_a_solid_texture_share_their_edge_bit_for_bit)
                             near++;
                         }
                     }
-        ck_assert_msg(near == 0, "map %d: %ld edge corners within 1e-9 but not equal (%ld equal)", k, near, equal);
+        ck_assert_msg(near == 0, "map %d: %ld edge corners within 1e-9 but not equal (%ld equal)",
+                      k, near, equal);
         ck_assert_msg(equal > st.triangle_rate, "map %d: only %ld shared corners", k, equal);
-        ck_assert_msg(worst < 1e-9, "map %d: normals on the edge differ by %g degrees", k, worst * 180 / M_PI);
+        ck_assert_msg(worst < 1e-9, "map %d: normals on the edge differ by %g degrees", k,
+                      worst * 180 / M_PI);
         displacemap_free(&out);
         scene_free(&sc);
     }
@@ -230,7 +235,8 @@ END_TEST
  * centre, else glass would refract its index the wrong way round. */
 START_TEST(test_a_displaced_sphere_under_a_mirror_keeps_its_triangles_facing_out)
 {
-    static const char *const xf[] = {"", "scale -1 1 1\n", "scale -1 -1 -1\n", "rotate 0 1 0 30\nscale 1 -2 1\n"};
+    static const char *const xf[] = {"", "scale -1 1 1\n", "scale -1 -1 -1\n",
+                                     "rotate 0 1 0 30\nscale 1 -2 1\n"};
     for (int k = 0; k < 4; k++) {
         char text[512];
         snprintf(text, sizeof text, "size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX("0.5")
@@ -247,7 +253,8 @@ START_TEST(test_a_displaced_sphere_under_a_mirror_keeps_its_triangles_facing_out
             vec3 mid = vec3_scale(vec3_add(vec3_add(t->p[0], t->p[1]), t->p[2]), 1.0 / 3);
             inward += vec3_dot(ng, vec3_sub(mid, c)) < 0;
         }
-        ck_assert_msg(inward == 0, "transform %d: %ld of %ld triangles face the centre", k, inward, out.n_triangles);
+        ck_assert_msg(inward == 0, "transform %d: %ld of %ld triangles face the centre", k, inward,
+                      out.n_triangles);
         displacemap_free(&out);
         scene_free(&sc);
     }
@@ -362,9 +369,9 @@ END_TEST
  * without normals used for it too. */
 START_TEST(test_a_triangle_with_vertex_normals_moves_along_them)
 {
-    scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX("0.5")
-                    "displacementmap h 0.2\nvertexnormal 0 0 0  0 0 1\nvertexnormal 1 0 0  0.6 0 0.8\n"
-                    "vertexnormal 0 1 0  0 0.6 0.8\ntrinormal 0 1 2\n");
+    scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX(
+        "0.5") "displacementmap h 0.2\nvertexnormal 0 0 0  0 0 1\nvertexnormal 1 0 0  0.6 0 0.8\n"
+               "vertexnormal 0 1 0  0 0.6 0.8\ntrinormal 0 1 2\n");
     scene out;
     displacemap_stats st;
     error err = {0};
@@ -373,8 +380,8 @@ START_TEST(test_a_triangle_with_vertex_normals_moves_along_them)
     for (long i = 0; i < out.n_triangles; i++)
         for (int k = 0; k < 3; k++) {
             vec3 q = out.triangles[i].q[k]; /* the point before displacement: b1 = x, b2 = y */
-            vec3 n = vec3_normalize(vec3_add(vec3_add(vec3_scale(n0, 1 - q.x - q.y), vec3_scale(n1, q.x)),
-                                             vec3_scale(n2, q.y)));
+            vec3 n = vec3_normalize(vec3_add(
+                vec3_add(vec3_scale(n0, 1 - q.x - q.y), vec3_scale(n1, q.x)), vec3_scale(n2, q.y)));
             vec3 want = vec3_madd(q, n, 0.1); /* 0.2 * 0.5 */
             ck_assert_msg(vec3_length(vec3_sub(out.triangles[i].p[k], want)) < 1e-12,
                           "(%g %g %g) went to (%g %g %g)", q.x, q.y, q.z, out.triangles[i].p[k].x,
@@ -391,11 +398,11 @@ END_TEST
  * is welded.  Catches the border corners grouped by position alone. */
 START_TEST(test_a_hard_edge_between_patches_stays_hard)
 {
-    scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX("0")
-                    "displacementmap h 0.2\n"
-                    "vertexnormal -1 0 0  -1 0 1\nvertexnormal 0 0 1  -1 0 1\nvertexnormal 0 1 1  -1 0 1\n"
-                    "vertexnormal 0 0 1  1 0 1\nvertexnormal 1 0 0  1 0 1\nvertexnormal 0 1 1  1 0 1\n"
-                    "trinormal 0 1 2\ntrinormal 3 4 5\n");
+    scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX(
+        "0") "displacementmap h 0.2\n"
+             "vertexnormal -1 0 0  -1 0 1\nvertexnormal 0 0 1  -1 0 1\nvertexnormal 0 1 1  -1 0 1\n"
+             "vertexnormal 0 0 1  1 0 1\nvertexnormal 1 0 0  1 0 1\nvertexnormal 0 1 1  1 0 1\n"
+             "trinormal 0 1 2\ntrinormal 3 4 5\n");
     scene out;
     displacemap_stats st;
     error err = {0};
@@ -405,9 +412,10 @@ START_TEST(test_a_hard_edge_between_patches_stays_hard)
     vec3 left = vec3_normalize(vec3_make(-1, 0, 1)), right = vec3_normalize(vec3_make(1, 0, 1));
     for (long i = 0; i < out.n_triangles; i++)
         for (int k = 0; k < 3; k++)
-            ck_assert_msg(vec3_length(vec3_sub(out.triangles[i].n[k], i < n * n ? left : right)) < 1e-12,
-                          "triangle %ld corner %d: normal (%g %g %g)", i, k, out.triangles[i].n[k].x,
-                          out.triangles[i].n[k].y, out.triangles[i].n[k].z);
+            ck_assert_msg(
+                vec3_length(vec3_sub(out.triangles[i].n[k], i < n * n ? left : right)) < 1e-12,
+                "triangle %ld corner %d: normal (%g %g %g)", i, k, out.triangles[i].n[k].x,
+                out.triangles[i].n[k].y, out.triangles[i].n[k].z);
     displacemap_free(&out);
     scene_free(&sc);
 }
@@ -469,7 +477,8 @@ START_TEST(test_a_displaced_sphere_under_a_scale_has_the_ellipsoids_normals)
         for (int k = 0; k < 3; k++) {
             vec3 q = out.triangles[i].q[k];
             vec3 want = vec3_normalize(vec3_make(q.x, 2 * q.y, q.z));
-            ck_assert_msg(vec3_dot(out.triangles[i].n[k], want) > 0.999, "at (%g %g %g)", q.x, q.y, q.z);
+            ck_assert_msg(vec3_dot(out.triangles[i].n[k], want) > 0.999, "at (%g %g %g)", q.x, q.y,
+                          q.z);
         }
     displacemap_free(&out);
     scene_free(&sc);
@@ -528,12 +537,15 @@ START_TEST(test_heights_under_a_planar_mapping_read_the_documented_point)
     ck_assert_int_eq(image_alloc(&img, 4, 4, &err), 0);
     for (int y = 0; y < 4; y++)
         for (int x = 0; x < 4; x++)
-            for (int c = 0; c < 3; c++) img.px[3 * (4 * y + x) + c] = (float)(0.1 + 0.2 * x + 0.1 * y * (x % 3));
+            for (int c = 0; c < 3; c++)
+                img.px[3 * (4 * y + x) + c] = (float)(0.1 + 0.2 * x + 0.1 * y * (x % 3));
     ck_assert_int_eq(pfm_write(path, &img, &err), 0);
     image_free(&img);
-    snprintf(text, sizeof text, "size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\ntexture h %s\n"
+    snprintf(text, sizeof text,
+             "size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\ntexture h %s\n"
              "texfilter bilinear\ntexmapping planar\ndisplacementmap h 0.3\nsphere 1 -2 0.5 1.5\n"
-             "translate 0 0 4\nvertex 0.2 0.3 0\nvertex 1.7 0.1 0\nvertex 0.4 1.2 0\ntri 0 1 2\n", path);
+             "translate 0 0 4\nvertex 0.2 0.3 0\nvertex 1.7 0.1 0\nvertex 0.4 1.2 0\ntri 0 1 2\n",
+             path);
     scene sc = load(text), out;
     displacemap_stats st;
     ck_assert_msg(displacemap_apply(&sc, 3000, NULL, &out, &st, &err) == 0, "%s", err.msg);
@@ -551,15 +563,15 @@ START_TEST(test_heights_under_a_planar_mapping_read_the_documented_point)
                 vec3 d = vec3_sub(t->q[k], c);
                 tq.st = texmapping_point(TEXMAPPING_PLANAR, vec3_normalize(d));
                 double h = texture_eval_scalar(tex, &tq);
-                ck_assert_msg(fabs(vec3_length(d) - (1.5 + 0.3 * h)) < 1e-9, "sphere: radius %g, want %g",
-                              vec3_length(d), 1.5 + 0.3 * h);
+                ck_assert_msg(fabs(vec3_length(d) - (1.5 + 0.3 * h)) < 1e-9,
+                              "sphere: radius %g, want %g", vec3_length(d), 1.5 + 0.3 * h);
                 spheres++;
             } else { /* the triangle's: up from z = 4 by SCALE h */
                 tq.st = texmapping_point(TEXMAPPING_PLANAR, t->q[k]);
                 tq.p = t->q[k];
                 double h = texture_eval_scalar(tex, &tq);
-                ck_assert_msg(fabs(t->p[k].z - (4 + 0.3 * h)) < 1e-9, "triangle: z %g, want %g", t->p[k].z,
-                              4 + 0.3 * h);
+                ck_assert_msg(fabs(t->p[k].z - (4 + 0.3 * h)) < 1e-9, "triangle: z %g, want %g",
+                              t->p[k].z, 4 + 0.3 * h);
                 lo = fmin(lo, h);
                 hi = fmax(hi, h);
                 tris++;
@@ -599,8 +611,11 @@ START_TEST(test_the_memory_budget_lowers_the_rates_until_the_triangles_fit)
     budget_init(&mem, 7 * per_tri);
     ck_assert_int_eq(displacemap_apply(&sc, 0, &mem, &out, &st, &err), -1);
     ck_assert_str_eq(err.file, "d.test");
-    ck_assert_msg(strstr(err.msg, "even at the lowest rates, displacement mapping's 8 triangles and their BVH x ") &&
-                  strstr(err.msg, "beyond the memory budget"), "%s", err.msg);
+    ck_assert_msg(
+        strstr(err.msg,
+               "even at the lowest rates, displacement mapping's 8 triangles and their BVH x ") &&
+            strstr(err.msg, "beyond the memory budget"),
+        "%s", err.msg);
     ck_assert(mem.used == 0 && out.triangles == NULL);
     scene_free(&sc);
 }
@@ -610,12 +625,14 @@ Suite *displacemap_suite(void)
 {
     Suite *s = suite_create("displacemap");
     TCase *tc = tcase_create("core");
-    tcase_set_timeout(tc, 60); /* it renders displaced spheres: Check's default (4 s, times CK_TIMEOUT_MULTIPLIER) timed out twice on a loaded machine */
+    tcase_set_timeout(tc, 60); /* it renders displaced spheres: Check's default (4 s, times
+                                  CK_TIMEOUT_MULTIPLIER) timed out twice on a loaded machine */
     tcase_add_test(tc, test_scenes_without_displacement_need_none);
     tcase_add_test(tc, test_the_memory_budget_lowers_the_rates_until_the_triangles_fit);
     tcase_add_test(tc, test_displaced_sphere_vertices_lie_at_radius_plus_scale_times_height);
     tcase_add_test(tc, test_displaced_triangle_moves_along_its_normal_and_keeps_object_corners);
-    tcase_add_test(tc, test_triangles_without_normals_that_share_an_edge_are_displaced_without_a_crack);
+    tcase_add_test(tc,
+                   test_triangles_without_normals_that_share_an_edge_are_displaced_without_a_crack);
     tcase_add_test(tc, test_normals_on_the_edge_between_two_patches_are_shared_not_one_sided);
     tcase_add_test(tc, test_patches_with_a_solid_texture_share_their_edge_bit_for_bit);
     tcase_add_test(tc, test_a_displaced_sphere_under_a_mirror_keeps_its_triangles_facing_out);
@@ -624,7 +641,8 @@ Suite *displacemap_suite(void)
     tcase_add_test(tc, test_the_budget_counts_the_whole_scene_exactly);
     tcase_add_test(tc, test_a_triangle_with_vertex_normals_moves_along_them);
     tcase_add_test(tc, test_a_hard_edge_between_patches_stays_hard);
-    tcase_add_test(tc, test_a_corner_without_normals_moves_along_the_angle_weighted_mean_of_displaced_faces);
+    tcase_add_test(
+        tc, test_a_corner_without_normals_moves_along_the_angle_weighted_mean_of_displaced_faces);
     tcase_add_test(tc, test_a_displaced_sphere_under_a_scale_has_the_ellipsoids_normals);
     tcase_add_test(tc, test_a_displaced_spheres_solid_texture_sees_the_object_point);
     tcase_add_test(tc, test_heights_under_a_planar_mapping_read_the_documented_point);

@@ -10,6 +10,7 @@
 
 #include "envtex/io/imageio.h"
 #include "envtex/scene/scene.h"
+#include "envtex/scene/scene_load.h"
 #include "unit.h"
 
 /* Two lines every valid scene needs; a bad command placed after them is on line 3. */
@@ -76,7 +77,8 @@ static void load_file_fails(const char *path, int line, const char *what)
     ck_assert_int_eq(scene_load(path, NULL, &sc, &err), -1);
     ck_assert_str_eq(err.file, path);
     ck_assert_msg(err.line == line, "error at line %d, expected %d: %s", err.line, line, err.msg);
-    ck_assert_msg(strstr(err.msg, what) != NULL, "message '%s' does not contain \"%s\"", err.msg, what);
+    ck_assert_msg(strstr(err.msg, what) != NULL, "message '%s' does not contain \"%s\"", err.msg,
+                  what);
 }
 
 static void assert_vec_near(vec3 a, double x, double y, double z)
@@ -113,8 +115,9 @@ static const bad_case bad_cases[] = {
     {"envmap cube a b c d e f 1 x x x x x x x\n", 3,
      "'envmap' takes FILE [SCALE] [REPRESENTATION] or cube PX NX PY NY PZ NZ [SCALE], got 15 "
      "arguments"},
-    {"envmap a.exr 1 c\n", 3, "'envmap' representation must be 'latlong', 'cube', 'cross', "
-                              "'mirrorball', 'angular', 'cylindrical' or 'equalarea', got 'c'"},
+    {"envmap a.exr 1 c\n", 3,
+     "'envmap' representation must be 'latlong', 'cube', 'cross', "
+     "'mirrorball', 'angular', 'cylindrical' or 'equalarea', got 'c'"},
     {"quadLight 0 0 0 1 0 0 0 1 0 1 1\n", 3, "'quadLight' takes 12 arguments, got 11"},
     /* image size */
     {"size 0 10\n", 3, "'0'"},
@@ -130,8 +133,9 @@ static const bad_case bad_cases[] = {
     {"maxdepth 1001\n", 3, "'1001'"},
     {"lightsamples 0\n", 3, "'lightsamples' argument 1 must be in [1, 65536], got '0'"},
     {"lightsamples 65537\n", 3, "'65537'"},
-    {"integrator foo\n", 3, "'integrator' must be 'raytracer', 'analyticdirect', 'direct', "
-                            "'pathtracer' or 'prefiltered', got 'foo'"},
+    {"integrator foo\n", 3,
+     "'integrator' must be 'raytracer', 'analyticdirect', 'direct', "
+     "'pathtracer' or 'prefiltered', got 'foo'"},
     {"prefilter sh8\n", 3, "'prefilter' must be 'exact' or 'sh9', got 'sh8'"},
     {"nexteventestimation maybe\n", 3, "'maybe'"},
     {"lightstratify yes\n", 3, "'lightstratify' must be 'off' or 'on', got 'yes'"},
@@ -173,7 +177,8 @@ static const bad_case bad_cases[] = {
     {"scale 1e300 1 1\nscale 1e300 1 1\n", 4, "'scale' makes the current transform overflow"},
     {"scale 1 0 1\nsphere 0 0 0 1\n", 4, "'sphere' needs the inverse of the current transform"},
     {"vertexnormal 0 0 0 0 0 1\nvertexnormal 1 0 0 0 0 1\nvertexnormal 0 1 0 0 0 1\n"
-     "scale 1 1 0\ntrinormal 0 1 2\n", 7, "'trinormal' needs the inverse"},
+     "scale 1 1 0\ntrinormal 0 1 2\n",
+     7, "'trinormal' needs the inverse"},
     {"scale 0 0 0\nenvmap sky.exr\n", 4, "'envmap' needs the inverse"},
     /* lights */
     {"directional 0 0 0 1 1 1\n", 3, "'directional' direction is zero"},
@@ -193,7 +198,8 @@ static const bad_case bad_cases[] = {
     {"camera 0 0 5 0 0 0 0 0 2 45\n", 3, "'camera' up vector (0 0 2) is parallel"},
     {"camera 0 0 5 0 0 0 0 0 0 45\n", 3, "'camera' up vector is zero"},
     /* overflowing eye - center: not "parallel" (its length was Inf, the old test's message) */
-    {"camera 0 0 1e308 0 0 -1e308 0 1 0 45\n", 3, "'camera' look-from and look-at are too far apart"},
+    {"camera 0 0 1e308 0 0 -1e308 0 1 0 45\n", 3,
+     "'camera' look-from and look-at are too far apart"},
     /* envmap */
     {"envmap a.exr\nenvmap b.exr\n", 4, "envmap given twice (first at line 3)"},
     {"envmap sky.exr 0\n", 3, "'envmap' argument 2 must be > 0, got '0'"},
@@ -201,8 +207,9 @@ static const bad_case bad_cases[] = {
     {"envmap sky.exr fisheye\n", 3, "got 'fisheye'"},
     {"envmap sky.exr mirrorball 2\n", 3, "got '2' after them"},
     {"envmap sky.exr 2 angular extra\n", 3, "got 'extra' after them"},
-    {"envmap cube px.exr nx.exr py.exr\n", 3, "'envmap cube' takes six face files PX NX PY NY PZ NZ "
-                                              "and an optional scale, got 3 arguments"},
+    {"envmap cube px.exr nx.exr py.exr\n", 3,
+     "'envmap cube' takes six face files PX NX PY NY PZ NZ "
+     "and an optional scale, got 3 arguments"},
     {"envmap cube a b c d e f 0\n", 3, "'envmap' argument 8 must be > 0, got '0'"},
     {"envmap cube a b c d e f 1 2\n", 3, "got 8 arguments"},
     {"scale 1 0 1\nenvmap cube a b c d e f\n", 4, "'envmap' needs the inverse"},
@@ -335,7 +342,8 @@ START_TEST(test_limits_hold_at_their_exact_bounds)
     /* texture names: 63 bytes fit SCENE_MAX_TEXTURE_NAME (64), 64 do not */
     memset(name, 't', SCENE_MAX_TEXTURE_NAME);
     name[SCENE_MAX_TEXTURE_NAME - 1] = '\0';
-    snprintf(text, sizeof text, HEAD "texture %s checker 8 0 0 0 1 1 1\ndiffusemap %s\n", name, name);
+    snprintf(text, sizeof text, HEAD "texture %s checker 8 0 0 0 1 1 1\ndiffusemap %s\n", name,
+             name);
     load_ok(text, &sc);
     ck_assert_str_eq(sc.textures[0].name, name);
     scene_free(&sc);
@@ -358,8 +366,9 @@ START_TEST(test_limits_hold_at_their_exact_bounds)
     /* camera samples: 8192 x 8192 x 256 is exactly 2^34, one more spp is over */
     load_ok("size 8192 8192\nspp 256\ncamera 0 0 5 0 0 0 0 1 0 45\n", &sc);
     scene_free(&sc);
-    load_fails("size 8192 8192\nspp 257\ncamera 0 0 5 0 0 0 0 1 0 45\n", 0,
-               "size 8192 x 8192 at spp 257 asks for 17246978048 camera samples, over the limit of 2^34");
+    load_fails(
+        "size 8192 8192\nspp 257\ncamera 0 0 5 0 0 0 0 1 0 45\n", 0,
+        "size 8192 x 8192 at spp 257 asks for 17246978048 camera samples, over the limit of 2^34");
     /* the primitive limit counts textured vertices too */
     scene_load_opts o = scene_load_defaults();
     o.load_images = 0;
@@ -482,7 +491,8 @@ static void expect_warnings(const char *text, int n, int line, const char *what)
     scene sc;
     error err = {0};
     ck_assert_msg(scene_load_string(text, "t.test", &o, &sc, &err) == 0, "%s", err.msg);
-    ck_assert_msg(ws.n == n, "%d warnings, expected %d (last: %s) for:\n%s", ws.n, n, ws.last.msg, text);
+    ck_assert_msg(ws.n == n, "%d warnings, expected %d (last: %s) for:\n%s", ws.n, n, ws.last.msg,
+                  text);
     if (n > 0) {
         ck_assert_int_eq(ws.last.line, line);
         ck_assert_ptr_nonnull(strstr(ws.last.msg, what));
@@ -495,13 +505,16 @@ static void expect_warnings(const char *text, int n, int line, const char *what)
  * integrator that uses them is chosen, before or after the light */
 START_TEST(test_quad_lights_under_the_raytracer_warn_at_the_first_one)
 {
-    const char *quads = "quadLight -1 -1 2  2 0 0  0 2 0  3 3 3\nquadLight 1 1 2  2 0 0  0 2 0  3 3 3\n";
+    const char *quads =
+        "quadLight -1 -1 2  2 0 0  0 2 0  3 3 3\nquadLight 1 1 2  2 0 0  0 2 0  3 3 3\n";
     char text[512];
     snprintf(text, sizeof text, HEAD "sphere 0 0 0 1\n%s", quads);
     expect_warnings(text, 1, 4, "ignores quad lights");
-    static const char *const others[] = {"integrator analyticdirect\n", "integrator direct\n", "integrator pathtracer\n"};
+    static const char *const others[] = {"integrator analyticdirect\n", "integrator direct\n",
+                                         "integrator pathtracer\n"};
     for (int i = 0; i < 3; i++) {
-        snprintf(text, sizeof text, HEAD "%s%sintegrator raytracer\n%s", quads, others[i], others[i]);
+        snprintf(text, sizeof text, HEAD "%s%sintegrator raytracer\n%s", quads, others[i],
+                 others[i]);
         expect_warnings(text, 0, 0, NULL);
     }
 }
@@ -513,17 +526,21 @@ END_TEST
  * renders black with no word of why (an audit found it silent). */
 START_TEST(test_point_lights_under_analyticdirect_warn_at_the_first_one)
 {
-    const char *lights = "quadLight -1 -1 2  2 0 0  0 2 0  3 3 3\ndirectional 0 0 1 1 1 1\npoint 0 0 2 1 1 1\n";
+    const char *lights =
+        "quadLight -1 -1 2  2 0 0  0 2 0  3 3 3\ndirectional 0 0 1 1 1 1\npoint 0 0 2 1 1 1\n";
     char text[512];
     snprintf(text, sizeof text, HEAD "integrator analyticdirect\nsphere 0 0 0 1\n%s", lights);
     expect_warnings(text, 1, 6, "point and directional lights are ignored");
-    static const char *const others[] = {"integrator direct\n", "integrator pathtracer\nnexteventestimation on\n",
+    static const char *const others[] = {"integrator direct\n",
+                                         "integrator pathtracer\nnexteventestimation on\n",
                                          "integrator raytracer\n"};
     for (int i = 0; i < 3; i++) {
-        snprintf(text, sizeof text, HEAD "integrator analyticdirect\npoint 0 0 2 1 1 1\n%s", others[i]);
+        snprintf(text, sizeof text, HEAD "integrator analyticdirect\npoint 0 0 2 1 1 1\n%s",
+                 others[i]);
         expect_warnings(text, 0, 0, NULL);
     }
-    expect_warnings(HEAD "integrator analyticdirect\nquadLight -1 -1 2  2 0 0  0 2 0  3 3 3\n", 0, 0, NULL);
+    expect_warnings(HEAD "integrator analyticdirect\nquadLight -1 -1 2  2 0 0  0 2 0  3 3 3\n", 0,
+                    0, NULL);
 }
 END_TEST
 
@@ -536,9 +553,13 @@ START_TEST(test_point_lights_in_the_path_tracer_without_nee_warn)
     expect_warnings(HEAD "integrator pathtracer\nquadLight -1 -1 2  2 0 0  0 2 0  3 3 3\n"
                          "point 0 0 2 1 1 1\ndirectional 0 0 1 1 1 1\n",
                     1, 5, "never reaches point or directional lights");
-    expect_warnings(HEAD "integrator pathtracer\nnexteventestimation on\npoint 0 0 2 1 1 1\n", 0, 0, NULL);
-    expect_warnings(HEAD "integrator pathtracer\nnexteventestimation mis\ndirectional 0 0 1 1 1 1\n", 0, 0, NULL);
-    expect_warnings(HEAD "integrator pathtracer\nquadLight -1 -1 2  2 0 0  0 2 0  3 3 3\n", 0, 0, NULL);
+    expect_warnings(HEAD "integrator pathtracer\nnexteventestimation on\npoint 0 0 2 1 1 1\n", 0, 0,
+                    NULL);
+    expect_warnings(HEAD
+                    "integrator pathtracer\nnexteventestimation mis\ndirectional 0 0 1 1 1 1\n",
+                    0, 0, NULL);
+    expect_warnings(HEAD "integrator pathtracer\nquadLight -1 -1 2  2 0 0  0 2 0  3 3 3\n", 0, 0,
+                    NULL);
     expect_warnings(HEAD "integrator direct\npoint 0 0 2 1 1 1\n", 0, 0, NULL);
 }
 END_TEST
@@ -835,12 +856,15 @@ END_TEST
  * `camera` do): 1e-300 was refused as "zero" and 1e200 collapsed the object to a point. */
 START_TEST(test_rotate_takes_tiny_and_huge_axes_by_their_direction)
 {
-    static const char *const axes[] = {"1e-300 2e-300 3e-300", "1e-170 2e-170 3e-170", "1e200 2e200 3e200"};
+    static const char *const axes[] = {"1e-300 2e-300 3e-300", "1e-170 2e-170 3e-170",
+                                       "1e200 2e200 3e200"};
     scene ref;
     load_ok(HEAD "rotate 1 2 3 90\nvertex 1 0 0\nvertex 0 1 0\nvertex 0 0 1\ntri 0 1 2\n", &ref);
     for (int a = 0; a < 3; a++) {
         char text[512];
-        snprintf(text, sizeof text, HEAD "rotate %s 90\nvertex 1 0 0\nvertex 0 1 0\nvertex 0 0 1\ntri 0 1 2\n", axes[a]);
+        snprintf(text, sizeof text,
+                 HEAD "rotate %s 90\nvertex 1 0 0\nvertex 0 1 0\nvertex 0 0 1\ntri 0 1 2\n",
+                 axes[a]);
         scene sc;
         load_ok(text, &sc);
         for (int k = 0; k < 3; k++) {
@@ -858,7 +882,8 @@ END_TEST
  * (it was normalized to 0, a light that lit nothing, or refused as zero) */
 START_TEST(test_directional_takes_tiny_and_huge_directions_by_their_direction)
 {
-    static const char *const dirs[] = {"1e-300 2e-300 3e-300", "1e-170 2e-170 3e-170", "1e200 2e200 3e200"};
+    static const char *const dirs[] = {"1e-300 2e-300 3e-300", "1e-170 2e-170 3e-170",
+                                       "1e200 2e200 3e200"};
     vec3 want = vec3_normalize(vec3_make(1, 2, 3));
     for (int a = 0; a < 3; a++) {
         char text[512];
@@ -919,8 +944,10 @@ START_TEST(test_trinormal_transforms_normals_by_the_inverse_transpose)
     scene_free(&sc);
     /* normals of any finite length: 1e300 (its square overflows) and 1e-300 (underflows).
      * Catches a length from sqrt of squares ("degenerates under the current transform") */
-    load_ok(HEAD "vertexnormal 0 0 0 1e300 1e300 0\nvertexnormal 1 0 0 0 0 1e-300\nvertexnormal 0 1 0 0 0 1\n"
-                 "trinormal 0 1 2\n", &sc);
+    load_ok(HEAD "vertexnormal 0 0 0 1e300 1e300 0\nvertexnormal 1 0 0 0 0 1e-300\nvertexnormal 0 "
+                 "1 0 0 0 1\n"
+                 "trinormal 0 1 2\n",
+            &sc);
     assert_vec_near(sc.triangles[0].n[0], sqrt(0.5), sqrt(0.5), 0);
     assert_vec_near(sc.triangles[0].n[1], 0, 0, 1);
     scene_free(&sc);
@@ -1158,12 +1185,13 @@ START_TEST(test_bad_texels_are_zeroed_at_load_with_one_warning_each)
     ck_assert_msg(scene_load(scene_path, &o, &sc, &err) == 0, "%s", err.msg);
     ck_assert_int_eq(ws.n, 2);
     ck_assert_int_eq(ws.last.line, 3); /* textures are read first, the envmap last */
-    ck_assert_msg(strstr(ws.last.msg, "envmap 'sky.pfm': 3 NaN, infinite or negative texel values"), "%s",
-                  ws.last.msg);
+    ck_assert_msg(strstr(ws.last.msg, "envmap 'sky.pfm': 3 NaN, infinite or negative texel values"),
+                  "%s", ws.last.msg);
     for (int y = 0; y < 2; y++)
         for (int x = 0; x < 4; x++) {
             rgb c = image_get(&sc.envmap.img, x, y);
-            ck_assert(isfinite(c.r) && isfinite(c.g) && isfinite(c.b) && c.r >= 0 && c.g >= 0 && c.b >= 0);
+            ck_assert(isfinite(c.r) && isfinite(c.g) && isfinite(c.b) && c.r >= 0 && c.g >= 0 &&
+                      c.b >= 0);
         }
     ck_assert_double_eq(image_get(&sc.envmap.img, 0, 0).r, 0.0);
     ck_assert_double_eq(image_get(&sc.envmap.img, 1, 0).g, 0.0);
@@ -1324,18 +1352,22 @@ START_TEST(test_a_square_envmap_without_a_keyword_is_an_error_naming_file_and_li
     ck_assert_int_eq(img_scene_load(&d, "# a probe\nenvmap probe.pfm\n", &sc, &err), -1);
     ck_assert_str_eq(err.file, d.scene);
     ck_assert_int_eq(err.line, 4);
-    ck_assert_msg(strstr(err.msg, "envmap 'probe.pfm'") && strstr(err.msg, "square image (8 x 8)") &&
-                      strstr(err.msg, "mirrorball") && strstr(err.msg, "angular"),
+    ck_assert_msg(strstr(err.msg, "envmap 'probe.pfm'") &&
+                      strstr(err.msg, "square image (8 x 8)") && strstr(err.msg, "mirrorball") &&
+                      strstr(err.msg, "angular"),
                   "%s", err.msg);
     ck_assert_ptr_null(sc.envmap.img.px);
     ck_assert_int_eq(img_scene_load(&d, "envmap wide.pfm\n", &sc, &err), -1);
     ck_assert_int_eq(err.line, 3);
-    ck_assert_msg(strstr(err.msg, "cannot tell the representation of a 9 x 3 image"), "%s", err.msg);
+    ck_assert_msg(strstr(err.msg, "cannot tell the representation of a 9 x 3 image"), "%s",
+                  err.msg);
     /* named, both load */
-    ck_assert_msg(img_scene_load(&d, "envmap probe.pfm mirrorball\n", &sc, &err) == 0, "%s", err.msg);
+    ck_assert_msg(img_scene_load(&d, "envmap probe.pfm mirrorball\n", &sc, &err) == 0, "%s",
+                  err.msg);
     ck_assert_int_eq(sc.envmap.kind, CONVERT_MIRRORBALL);
     scene_free(&sc);
-    ck_assert_msg(img_scene_load(&d, "envmap wide.pfm cylindrical\n", &sc, &err) == 0, "%s", err.msg);
+    ck_assert_msg(img_scene_load(&d, "envmap wide.pfm cylindrical\n", &sc, &err) == 0, "%s",
+                  err.msg);
     ck_assert_int_eq(sc.envmap.kind, CONVERT_CYLINDRICAL);
     ck_assert_double_eq_tol(sc.envmap.max_height, M_PI * 3 / 9, 1e-15); /* square horizon texels */
     scene_free(&sc);
@@ -1351,7 +1383,8 @@ START_TEST(test_six_cube_faces_load_and_a_bad_face_is_named)
 {
     img_dir d;
     img_dir_make(&d);
-    static const char *const names[6] = {"px.pfm", "nx.pfm", "py.pfm", "ny.pfm", "pz.pfm", "nz.pfm"};
+    static const char *const names[6] = {"px.pfm", "nx.pfm", "py.pfm",
+                                         "ny.pfm", "pz.pfm", "nz.pfm"};
     for (int f = 0; f < 6; f++) img_write(&d, names[f], 4, 4, f + 1);
     img_write(&d, "small.pfm", 2, 2, 1);
     img_write(&d, "flat.pfm", 4, 2, 1);
@@ -1361,23 +1394,29 @@ START_TEST(test_six_cube_faces_load_and_a_bad_face_is_named)
                                  &sc, &err) == 0, "%s", err.msg);
     ck_assert_int_eq(sc.envmap.kind, CONVERT_CUBE);
     ck_assert_int_eq(sc.envmap.cube.size, 4);
-    for (int f = 0; f < 6; f++) ck_assert_double_eq(image_get(&sc.envmap.cube.face[f], 3, 0).g, f + 1);
+    for (int f = 0; f < 6; f++)
+        ck_assert_double_eq(image_get(&sc.envmap.cube.face[f], 3, 0).g, f + 1);
     scene_free(&sc);
     /* faces of different sizes, a face that is not square, a missing face: each named */
-    ck_assert_int_eq(img_scene_load(&d, "envmap cube px.pfm nx.pfm py.pfm small.pfm pz.pfm nz.pfm\n",
-                                    &sc, &err), -1);
+    ck_assert_int_eq(
+        img_scene_load(&d, "envmap cube px.pfm nx.pfm py.pfm small.pfm pz.pfm nz.pfm\n", &sc, &err),
+        -1);
     ck_assert_int_eq(err.line, 3);
-    ck_assert_msg(strstr(err.msg, "'small.pfm'") && strstr(err.msg, "differ in size"), "%s", err.msg);
+    ck_assert_msg(strstr(err.msg, "'small.pfm'") && strstr(err.msg, "differ in size"), "%s",
+                  err.msg);
     ck_assert_ptr_null(sc.envmap.cube.face[0].px);
     ck_assert_int_eq(img_scene_load(&d, "envmap cube px.pfm nx.pfm py.pfm ny.pfm flat.pfm nz.pfm\n",
                                     &sc, &err), -1);
-    ck_assert_msg(strstr(err.msg, "'flat.pfm'") && strstr(err.msg, "square, not 4 x 2"), "%s", err.msg);
+    ck_assert_msg(strstr(err.msg, "'flat.pfm'") && strstr(err.msg, "square, not 4 x 2"), "%s",
+                  err.msg);
     ck_assert_int_eq(img_scene_load(&d, "envmap cube px.pfm nx.pfm py.pfm ny.pfm pz.pfm gone.pfm\n",
                                     &sc, &err), -1);
     ck_assert_msg(strstr(err.msg, "'gone.pfm'") && strstr(err.msg, "No such file"), "%s", err.msg);
     /* a scale that takes the brightest face's texel (6) past the largest float */
-    ck_assert_int_eq(img_scene_load(&d, "envmap cube px.pfm nx.pfm py.pfm ny.pfm pz.pfm nz.pfm 1e38\n",
-                                    &sc, &err), -1);
+    ck_assert_int_eq(img_scene_load(&d,
+                                    "envmap cube px.pfm nx.pfm py.pfm ny.pfm pz.pfm nz.pfm 1e38\n",
+                                    &sc, &err),
+                     -1);
     ck_assert_msg(strstr(err.msg, "scale 1e+38 times its brightest texel 6"), "%s", err.msg);
     ck_assert_ptr_null(sc.envmap.cube.face[0].px);
     img_dir_remove(&d);
@@ -1476,7 +1515,8 @@ START_TEST(test_a_mirroring_transform_keeps_triangles_counter_clockwise_from_out
         if (x == 1) m = mat4_scale(vec3_make(-1, 1, 1));
         if (x == 2) m = mat4_scale(vec3_make(-1, -1, 1));
         if (x == 3) m = mat4_scale(vec3_make(1, 1, -2));
-        if (x == 4) m = mat4_mul(mat4_rotate(vec3_make(1, 2, 3), 40), mat4_scale(vec3_make(-1, -1, -1)));
+        if (x == 4)
+            m = mat4_mul(mat4_rotate(vec3_make(1, 2, 3), 40), mat4_scale(vec3_make(-1, -1, -1)));
         ck_assert_int_eq(mat4_inverse(m, &inv), 0);
         /* outward: the object's +z (counter-clockwise corners) through the inverse transpose */
         vec3 out = vec3_normalize(mat4_normal(&inv, vec3_make(0, 0, 1)));
@@ -1484,9 +1524,12 @@ START_TEST(test_a_mirroring_transform_keeps_triangles_counter_clockwise_from_out
         const vec3 nobj[3] = {{1, 0, 1}, {0, 1, 1}, {0, 0, 1}};
         for (int i = 0; i < 3; i++) {
             const triangle *t = &sc.triangles[i];
-            vec3 ng = vec3_normalize(vec3_cross(vec3_sub(t->p[1], t->p[0]), vec3_sub(t->p[2], t->p[0])));
-            ck_assert_msg(vec3_dot(ng, out) > 1 - 1e-12, "transform %d, triangle %d: normal (%g %g %g), "
-                          "outward (%g %g %g)", x, i, ng.x, ng.y, ng.z, out.x, out.y, out.z);
+            vec3 ng =
+                vec3_normalize(vec3_cross(vec3_sub(t->p[1], t->p[0]), vec3_sub(t->p[2], t->p[0])));
+            ck_assert_msg(vec3_dot(ng, out) > 1 - 1e-12,
+                          "transform %d, triangle %d: normal (%g %g %g), "
+                          "outward (%g %g %g)",
+                          x, i, ng.x, ng.y, ng.z, out.x, out.y, out.z);
             for (int k = 0; k < 3; k++) {
                 vec3 q = t->q[k], pw = mat4_point(&m, q);
                 assert_vec_near(t->p[k], pw.x, pw.y, pw.z); /* world corner = M object corner */
@@ -1584,7 +1627,8 @@ START_TEST(test_texture_errors_name_their_line_and_token)
     load_fails(HEAD "texture a checker 8 0 0 0 1 1 1\ntexture a perlin 1 0 0 0 1 1 1\n", 4,
                "texture 'a' defined twice (first at line 3)");
     load_fails(HEAD "texture a checker 8 0 0 0 1 1\n", 3, "takes FREQUENCY R0 G0 B0 R1 G1 B1");
-    load_fails(HEAD "texture a checker 8 0 0 0 1 1 1 9\n", 3, "(7 arguments after the kind), got 8");
+    load_fails(HEAD "texture a checker 8 0 0 0 1 1 1 9\n", 3,
+               "(7 arguments after the kind), got 8");
     load_fails(HEAD "texture a checker 0 0 0 0 1 1 1\n", 3, "must be > 0, got '0'");
     load_fails(HEAD "texture a fbm 1 0 0 0 0 1 1 1\n", 3, "must be in [1, 30], got '0'");
     load_fails(HEAD "texture a fbm 1 2.5 0 0 0 1 1 1\n", 3, "expected an integer");
@@ -1648,7 +1692,8 @@ START_TEST(test_a_scene_file_is_read_across_its_chunks_as_one_text)
     o.load_images = 0;
     scene from_file, from_string;
     error err = {0};
-    ck_assert_msg(scene_load(path, &o, &from_file, &err) == 0, "%s:%d: %s", err.file, err.line, err.msg);
+    ck_assert_msg(scene_load(path, &o, &from_file, &err) == 0, "%s:%d: %s", err.file, err.line,
+                  err.msg);
     load_ok(text, &from_string);
     ck_assert_int_eq(from_file.n_spheres, 3);
     ck_assert_int_eq(from_string.n_spheres, 3);
@@ -1786,13 +1831,15 @@ START_TEST(test_obj_meshes_load_under_the_transform_and_material)
     ck_assert_int_eq(scene_load(path, &o, &sc, &err), -1);
     ck_assert_int_eq(err.line, 5);
     /* counting the triangles already in the scene: 2 + 3 > 4 is refused before any is added */
-    write_file(dir, "x.test", HEAD "vertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\ntri 0 1 2\ntri 0 1 2\n"
-                                   "obj quad.obj\n");
+    write_file(dir, "x.test",
+               HEAD "vertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\ntri 0 1 2\ntri 0 1 2\n"
+                    "obj quad.obj\n");
     o.max_prims = 4;
     ck_assert_int_eq(scene_load(path, &o, &sc, &err), -1);
     ck_assert_int_eq(err.line, 8);
-    ck_assert_msg(strstr(err.msg, "obj 'quad.obj' has 3 triangles: more than 4 triangles in the scene"),
-                  "%s", err.msg);
+    ck_assert_msg(
+        strstr(err.msg, "obj 'quad.obj' has 3 triangles: more than 4 triangles in the scene"), "%s",
+        err.msg);
     write_file(dir, "x.test", HEAD "obj missing.obj\n");
     ck_assert_int_eq(scene_load(path, NULL, &sc, &err), -1);
     ck_assert_int_eq(err.line, 3);
@@ -1865,10 +1912,11 @@ START_TEST(test_files_named_many_ways_are_read_once_and_listed_as_inputs)
     image_free(&im);
     ck_assert_int_eq(link(img_path, link_path), 0);
     write_file(dir, "quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
-    write_file(dir, "x.test", HEAD "texture a wood.pfm\ntexture b ./wood.pfm\ntexture c link.pfm\n"
-                                   "texfilter trilinear\ndiffusemap a\nsphere 0 0 0 1\ndiffusemap b\n"
-                                   "sphere 0 0 0 1\ndiffusemap c\nsphere 0 0 0 1\n"
-                                   "obj quad.obj\nobj ./quad.obj\ntranslate 1 0 0\nobj ././quad.obj\n");
+    write_file(dir, "x.test",
+               HEAD "texture a wood.pfm\ntexture b ./wood.pfm\ntexture c link.pfm\n"
+                    "texfilter trilinear\ndiffusemap a\nsphere 0 0 0 1\ndiffusemap b\n"
+                    "sphere 0 0 0 1\ndiffusemap c\nsphere 0 0 0 1\n"
+                    "obj quad.obj\nobj ./quad.obj\ntranslate 1 0 0\nobj ././quad.obj\n");
     scene sc;
     ck_assert_msg(scene_load(path, NULL, &sc, &err) == 0, "%s", err.msg);
     ck_assert_int_eq(sc.n_texture_images, 1);
@@ -1910,7 +1958,8 @@ START_TEST(test_an_obj_named_often_is_parsed_once_and_its_triangles_are_charged)
     free(mesh);
     double peak[2];
     for (int k = 0; k < 2; k++) {
-        write_file(dir, "x.test", k == 0 ? HEAD "obj m.obj\n" : HEAD "obj m.obj\nobj ./m.obj\nobj m.obj\n");
+        write_file(dir, "x.test",
+                   k == 0 ? HEAD "obj m.obj\n" : HEAD "obj m.obj\nobj ./m.obj\nobj m.obj\n");
         budget mem;
         budget_init(&mem, 1e9);
         scene_load_opts o = scene_load_defaults();
