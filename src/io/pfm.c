@@ -62,7 +62,8 @@ int pfm_read(const char *path, image *out, budget *mem, error *err)
     char *end;
     double scale = strtod(ts, &end);
     if (*end || scale == 0.0 || isnan(scale)) {
-        error_set(err, path, 0, "bad PFM scale \"%s\" (its sign gives the byte order; 0 is not allowed)", ts);
+        error_set(err, path, 0,
+                  "bad PFM scale \"%s\" (its sign gives the byte order; 0 is not allowed)", ts);
         goto done;
     }
     if (at >= n || !isspace(d[at])) {
@@ -77,7 +78,8 @@ int pfm_read(const char *path, image *out, budget *mem, error *err)
      * file's size tells the two apart: after a lone "\r" the pixels leave no byte to spare. */
     if (d[at - 1] == '\r' && at < n && d[at] == '\n' && n - (at + 1) >= count * 4) at++;
     if (n - at < count * 4) {
-        error_set(err, path, 0, "truncated PFM: %zu bytes of pixels, %zu expected", n - at, count * 4);
+        error_set(err, path, 0, "truncated PFM: %zu bytes of pixels, %zu expected", n - at,
+                  count * 4);
         goto done;
     }
     if (budget_charge(mem, (double)w * h * IMAGE_TEXEL_BYTES, path, 0, err,
@@ -92,8 +94,10 @@ int pfm_read(const char *path, image *out, budget *mem, error *err)
         for (long x = 0; x < w; x++) {
             float v[3];
             for (int k = 0; k < chans; k++, p += 4) {
-                uint32_t u = little ? (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24
-                                    : (uint32_t)p[3] | (uint32_t)p[2] << 8 | (uint32_t)p[1] << 16 | (uint32_t)p[0] << 24;
+                uint32_t u = little ? (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 |
+                                          (uint32_t)p[3] << 24
+                                    : (uint32_t)p[3] | (uint32_t)p[2] << 8 | (uint32_t)p[1] << 16 |
+                                          (uint32_t)p[0] << 24;
                 memcpy(&v[k], &u, 4);
             }
             if (chans == 1) v[1] = v[2] = v[0];

@@ -79,7 +79,8 @@ static int read_scanline(const unsigned char *d, size_t n, size_t *at, unsigned 
                     unsigned char v = d[p++];
                     for (long i = 0; i < c; i++) scan[4 * (x + i) + ch] = v;
                 } else { /* a literal: c bytes */
-                    if (c == 0) return error_set(err, path, 0, "scanline %ld: zero-length RLE literal", y);
+                    if (c == 0)
+                        return error_set(err, path, 0, "scanline %ld: zero-length RLE literal", y);
                     if (c > w - x) goto overflow;
                     if (n - p < (size_t)c) goto truncated;
                     for (long i = 0; i < c; i++) scan[4 * (x + i) + ch] = d[p + (size_t)i];
@@ -98,7 +99,9 @@ static int read_scanline(const unsigned char *d, size_t n, size_t *at, unsigned 
             const unsigned char *q = d + p;
             p += 4;
             if (q[0] == 1 && q[1] == 1 && q[2] == 1) {
-                if (x == 0) return error_set(err, path, 0, "scanline %ld: old-style run with no pixel before it", y);
+                if (x == 0)
+                    return error_set(err, path, 0,
+                                     "scanline %ld: old-style run with no pixel before it", y);
                 if (shift > 16) goto overflow;
                 long count = (long)q[3] << shift;
                 if (count > w - x) goto overflow;
@@ -115,7 +118,8 @@ static int read_scanline(const unsigned char *d, size_t n, size_t *at, unsigned 
     *at = p;
     return 0;
 truncated:
-    return error_set(err, path, 0, "truncated Radiance file: scanline %ld of the pixels is incomplete", y);
+    return error_set(err, path, 0,
+                     "truncated Radiance file: scanline %ld of the pixels is incomplete", y);
 overflow:
     return error_set(err, path, 0, "corrupt Radiance file: a run overflows scanline %ld", y);
 }
@@ -155,7 +159,8 @@ int rgbe_read(const char *path, image *out, budget *mem, error *err)
         if (next_line(d, n, &at, line, sizeof line)) goto truncated_header;
         if (!line[0]) break;
         if (!strncmp(line, "FORMAT=", 7) && strcmp(line + 7, "32-bit_rle_rgbe") != 0) {
-            error_set(err, path, 0, "Radiance format \"%s\" is not supported (only 32-bit_rle_rgbe)", line + 7);
+            error_set(err, path, 0,
+                      "Radiance format \"%s\" is not supported (only 32-bit_rle_rgbe)", line + 7);
             goto done;
         }
     }
@@ -168,7 +173,8 @@ int rgbe_read(const char *path, image *out, budget *mem, error *err)
         goto done;
     }
     if (strcmp(ya, "-Y") != 0 || strcmp(xa, "+X") != 0) {
-        error_set(err, path, 0, "Radiance orientation \"%s ... %s\" is not supported (only -Y H +X W)", ya, xa);
+        error_set(err, path, 0,
+                  "Radiance orientation \"%s ... %s\" is not supported (only -Y H +X W)", ya, xa);
         goto done;
     }
     if (image_check_size(w, h, path, err)) goto done;
@@ -176,7 +182,9 @@ int rgbe_read(const char *path, image *out, budget *mem, error *err)
      * the file size bounds the height before the image is allocated: a 100-byte file that
      * claims 16384 x 16384 is refused here instead of costing 3 GB. */
     if ((size_t)h > (n - at) / RGBE_MIN_SCANLINE_BYTES) {
-        error_set(err, path, 0, "truncated Radiance file: %ld scanlines need at least %ld bytes, the file has %zu after its header",
+        error_set(err, path, 0,
+                  "truncated Radiance file: %ld scanlines need at least %ld bytes, the file has "
+                  "%zu after its header",
                   h, h * RGBE_MIN_SCANLINE_BYTES, n - at);
         goto done;
     }
@@ -256,7 +264,8 @@ static int write_rgbe(const char *path, const image *im, int rle, error *err)
     size_t w = (size_t)im->w;
     unsigned char *scan = malloc(4 * w), *packed = malloc(4 * (w + w / 128 + 2) + 4);
     int oom = !scan || !packed;
-    int ok = !oom && fprintf(f, "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y %d +X %d\n", im->h, im->w) > 0;
+    int ok =
+        !oom && fprintf(f, "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y %d +X %d\n", im->h, im->w) > 0;
     for (int y = 0; ok && y < im->h; y++) {
         const float *src = image_px(im, 0, y);
         for (size_t x = 0; x < w; x++) rgbe_from_float(src + 3 * x, scan + 4 * x);
@@ -283,6 +292,12 @@ static int write_rgbe(const char *path, const image *im, int rle, error *err)
     return fileio_tmp_commit(tmp, path, err);
 }
 
-int rgbe_write(const char *path, const image *im, error *err) { return write_rgbe(path, im, 1, err); }
+int rgbe_write(const char *path, const image *im, error *err)
+{
+    return write_rgbe(path, im, 1, err);
+}
 
-int rgbe_write_flat(const char *path, const image *im, error *err) { return write_rgbe(path, im, 0, err); }
+int rgbe_write_flat(const char *path, const image *im, error *err)
+{
+    return write_rgbe(path, im, 0, err);
+}
