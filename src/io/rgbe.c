@@ -139,6 +139,37 @@ static int next_line(const unsigned char *d, size_t n, size_t *at, char *line, s
     return 0;
 }
 
+/* The text header of the n bytes at d: "#?", the variables up to an empty line (FORMAT must be
+ * 32-bit_rle_rgbe), the resolution "-Y H +X W".  0 with *at after it, or -1 with *err. */
+static int read_header(const unsigned char *d, size_t n, size_t *at, long *w, long *h,
+                       const char *path, error *err)
+{
+    char line[256];
+    if (n < 2 || d[0] != '#' || d[1] != '?')
+        return error_set(err, path, 0, "not a Radiance file (it must start with #?)");
+    if (next_line(d, n, at, line, sizeof line)) goto truncated;
+    for (;;) { /* variables up to the empty line */
+        if (next_line(d, n, at, line, sizeof line)) goto truncated;
+        if (!line[0]) break;
+        if (!strncmp(line, "FORMAT=", 7) && strcmp(line + 7, "32-bit_rle_rgbe") != 0)
+            return error_set(err, path, 0,
+                             "Radiance format \"%s\" is not supported (only 32-bit_rle_rgbe)",
+                             line + 7);
+    }
+    if (next_line(d, n, at, line, sizeof line)) goto truncated;
+    char ya[8], xa[8];
+    int used = 0;
+    if (sscanf(line, "%7s %ld %7s %ld%n", ya, h, xa, w, &used) != 4 || line[used] != '\0')
+        return error_set(err, path, 0, "bad Radiance resolution line \"%s\"", line);
+    if (strcmp(ya, "-Y") != 0 || strcmp(xa, "+X") != 0)
+        return error_set(err, path, 0,
+                         "Radiance orientation \"%s ... %s\" is not supported (only -Y H +X W)",
+                         ya, xa);
+    return 0;
+truncated:
+    return error_set(err, path, 0, "truncated Radiance header");
+}
+
 int rgbe_read(const char *path, image *out, budget *mem, error *err)
 {
     out->w = out->h = 0;
@@ -147,36 +178,10 @@ int rgbe_read(const char *path, image *out, budget *mem, error *err)
     size_t n = 0, at = 0;
     int rc = -1;
     image im = {0};
-    char line[256];
     double image_bytes = 0; /* charged: the image (not its scanline buffer, 128 KB at most) */
     if (fileio_read_all(path, &d, &n, mem, err)) return -1;
-    if (n < 2 || d[0] != '#' || d[1] != '?') {
-        error_set(err, path, 0, "not a Radiance file (it must start with #?)");
-        goto done;
-    }
-    if (next_line(d, n, &at, line, sizeof line)) goto truncated_header;
-    for (;;) { /* variables up to the empty line */
-        if (next_line(d, n, &at, line, sizeof line)) goto truncated_header;
-        if (!line[0]) break;
-        if (!strncmp(line, "FORMAT=", 7) && strcmp(line + 7, "32-bit_rle_rgbe") != 0) {
-            error_set(err, path, 0,
-                      "Radiance format \"%s\" is not supported (only 32-bit_rle_rgbe)", line + 7);
-            goto done;
-        }
-    }
-    if (next_line(d, n, &at, line, sizeof line)) goto truncated_header;
-    char ya[8], xa[8];
     long h, w;
-    int used = 0;
-    if (sscanf(line, "%7s %ld %7s %ld%n", ya, &h, xa, &w, &used) != 4 || line[used] != '\0') {
-        error_set(err, path, 0, "bad Radiance resolution line \"%s\"", line);
-        goto done;
-    }
-    if (strcmp(ya, "-Y") != 0 || strcmp(xa, "+X") != 0) {
-        error_set(err, path, 0,
-                  "Radiance orientation \"%s ... %s\" is not supported (only -Y H +X W)", ya, xa);
-        goto done;
-    }
+    if (read_header(d, n, &at, &w, &h, path, err)) goto done;
     if (image_check_size(w, h, path, err)) goto done;
     /* Every scanline takes at least RGBE_MIN_SCANLINE_BYTES (a pixel, or the RLE marker), so
      * the file size bounds the height before the image is allocated: a 100-byte file that
@@ -209,9 +214,6 @@ int rgbe_read(const char *path, image *out, budget *mem, error *err)
     *out = im;
     im.px = NULL;
     rc = 0;
-    goto done;
-truncated_header:
-    error_set(err, path, 0, "truncated Radiance header");
 done:
     free(d);
     free(scan);
