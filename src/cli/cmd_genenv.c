@@ -16,7 +16,8 @@ int cmd_gen_env(int argc, char **argv)
         if (!strcmp(a, "--width")) {
             long n;
             if (!(v = cli_opt_value(argc, argv, &i))) return 1;
-            if (cli_parse_long(v, 2, IMAGE_MAX_SIDE, &n)) return cli_usage_error("--width needs a whole number from 2 to 32768, got '%s'", v);
+            if (cli_parse_long(v, 2, IMAGE_MAX_SIDE, &n))
+                return cli_usage_error("--width needs a whole number from 2 to 32768, got '%s'", v);
             p.width = (int)n;
             continue;
         }
@@ -27,7 +28,8 @@ int cmd_gen_env(int argc, char **argv)
         else if (!strcmp(a, "--sun-azimuth")) target = &p.sun_azimuth_deg;
         if (target) {
             if (!(v = cli_opt_value(argc, argv, &i))) return 1;
-            if (cli_parse_double(v, target)) return cli_usage_error("%s needs a finite number, got '%s'", a, v);
+            if (cli_parse_double(v, target))
+                return cli_usage_error("%s needs a finite number, got '%s'", a, v);
         } else if (a[0] == '-' && a[1]) return cli_usage_error("unknown option '%s'", a);
         else if (!kind_name) kind_name = a;
         else if (!out) out = a;
@@ -35,7 +37,9 @@ int cmd_gen_env(int argc, char **argv)
     }
     if (!out) return cli_usage_error("%s", "gen-env needs KIND and OUT");
     genenv_kind kind;
-    if (genenv_kind_parse(kind_name, &kind)) return cli_usage_error("unknown environment kind '%s' (constant, sky, sun, axes)", kind_name);
+    if (genenv_kind_parse(kind_name, &kind))
+        return cli_usage_error("unknown environment kind '%s' (constant, sky, sun, axes)",
+                               kind_name);
     error err = {0};
     image img = {0};
     int status = 1;

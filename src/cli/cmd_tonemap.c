@@ -18,13 +18,16 @@ int cmd_tonemap(int argc, char **argv)
             if (cli_memory_budget_option(argc, argv, &i, &mem_limit)) return 1;
         } else if (!strcmp(a, "--exposure")) {
             if (!(v = cli_opt_value(argc, argv, &i))) return 1;
-            if (cli_parse_double(v, &tm.exposure)) return cli_usage_error("--exposure needs a number, got '%s'", v);
+            if (cli_parse_double(v, &tm.exposure))
+                return cli_usage_error("--exposure needs a number, got '%s'", v);
         } else if (!strcmp(a, "--op")) {
             if (!(v = cli_opt_value(argc, argv, &i))) return 1;
-            if (tonemap_op_parse(v, &tm.op)) return cli_usage_error("--op must be clamp, reinhard or aces, got '%s'", v);
+            if (tonemap_op_parse(v, &tm.op))
+                return cli_usage_error("--op must be clamp, reinhard or aces, got '%s'", v);
         } else if (!strcmp(a, "--gamma")) {
             if (!(v = cli_opt_value(argc, argv, &i))) return 1;
-            if (cli_parse_double(v, &tm.gamma) || !(tm.gamma > 0)) return cli_usage_error("--gamma needs a number > 0, got '%s'", v);
+            if (cli_parse_double(v, &tm.gamma) || !(tm.gamma > 0))
+                return cli_usage_error("--gamma needs a number > 0, got '%s'", v);
         } else if (a[0] == '-' && a[1]) return cli_usage_error("unknown option '%s'", a);
         else if (!in) in = a;
         else if (!out) out = a;

@@ -4,7 +4,8 @@
  * prints FAIL and exits with status 2.
  *
  *   envtex SCENE                    same as `envtex render SCENE`
- *   envtex render SCENE [-o OUT] [--spp N] [--seed N] [--ref REF] [--variance VAR] [--quiet] [--verbose] [--strict]
+ *   envtex render SCENE [-o OUT] [--spp N] [--seed N] [--ref REF] [--variance VAR] [--quiet]
+ *                       [--verbose] [--strict]
  *   envtex compare A B [--diff D.png] [--fail-percent P] [--fail T] [--hard H]
  *   envtex compare --test IMG REF VAR [--img-spp N --ref-spp M] [--alpha A] [--max-fail F]
  *                                     [--diff MAP.png]
@@ -24,13 +25,17 @@
 
 static const char *usage_text =
     "usage: envtex SCENE                         (same as: envtex render SCENE)\n"
-    "       envtex render SCENE [-o OUT.exr|.png|.pfm|.hdr] [--spp N] [--seed N] [--ref REF] [--variance VAR.exr]\n"
+    "       envtex render SCENE [-o OUT.exr|.png|.pfm|.hdr] [--spp N] [--seed N] [--ref REF]"
+    " [--variance VAR.exr]\n"
     "                           [--quiet] [--verbose] [--strict]\n"
     "       envtex compare A B [--diff DIFF.png] [--fail-percent P] [--fail T] [--hard H]\n"
-    "       envtex compare --test IMG REF VAR [--img-spp N --ref-spp M] [--alpha A] [--max-fail F] [--diff MAP.png]\n"
+    "       envtex compare --test IMG REF VAR [--img-spp N --ref-spp M] [--alpha A]"
+    " [--max-fail F] [--diff MAP.png]\n"
     "       envtex tonemap IN OUT.png [--exposure EV] [--op clamp|reinhard|aces] [--gamma G]\n"
-    "       envtex convert IN OUT --to latlong|cube|cross|mirrorball|angular|cylindrical|equalarea\n"
-    "                      [--from KIND] [--width W] [--samples K]   (cube: OUT_px.exr ... OUT_nz.exr)\n"
+    "       envtex convert IN OUT"
+    " --to latlong|cube|cross|mirrorball|angular|cylindrical|equalarea\n"
+    "                      [--from KIND] [--width W] [--samples K]"
+    "   (cube: OUT_px.exr ... OUT_nz.exr)\n"
     "       render, compare, tonemap and convert take --memory-budget SIZE (512M, 8G, ...;\n"
     "       default 2G; 'none': only the hard limits)\n"
     "       envtex gen-env constant|sky|sun|axes OUT [--width W] [--value V] [--sun-ratio R]\n"

@@ -12,7 +12,8 @@ int image_check_size(long w, long h, const char *file, error *err)
         return error_set(err, file, 0, "image size %ld x %ld is over the limit of %ld per side", w,
                          h, IMAGE_MAX_SIDE);
     if (w * h > IMAGE_MAX_PIXELS) /* both <= 2^15, so the product fits in a long */
-        return error_set(err, file, 0, "image size %ld x %ld is over the limit of 2^28 pixels", w, h);
+        return error_set(err, file, 0, "image size %ld x %ld is over the limit of 2^28 pixels", w,
+                         h);
     return 0;
 }
 

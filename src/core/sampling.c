@@ -2,7 +2,10 @@
 #include "envtex/core/sampling.h"
 
 /* Largest double below 1: xi = 1 - 2^-53 must still give a valid direction. */
-static double clamp01(double x) { return x < 0 ? 0 : x > 0x1.fffffffffffffp-1 ? 0x1.fffffffffffffp-1 : x; }
+static double clamp01(double x)
+{
+    return x < 0 ? 0 : x > 0x1.fffffffffffffp-1 ? 0x1.fffffffffffffp-1 : x;
+}
 
 static vec3 from_cos(double cos_t, double phi)
 {
@@ -22,14 +25,21 @@ vec3 sampling_uniform_hemisphere(double xi1, double xi2)
     return from_cos(clamp01(xi1), 2 * M_PI * clamp01(xi2)); /* z uniform in [0, 1) */
 }
 
-double sampling_uniform_hemisphere_pdf(double cos_theta) { return cos_theta >= 0 ? 1 / (2 * M_PI) : 0; }
+double sampling_uniform_hemisphere_pdf(double cos_theta)
+{
+    return cos_theta >= 0 ? 1 / (2 * M_PI) : 0;
+}
 
 vec3 sampling_cosine_hemisphere(double xi1, double xi2)
 {
-    return from_cos(sqrt(1 - clamp01(xi1)), 2 * M_PI * clamp01(xi2)); /* cos^2 uniform: pdf cos/pi */
+    /* cos^2 uniform: pdf cos/pi */
+    return from_cos(sqrt(1 - clamp01(xi1)), 2 * M_PI * clamp01(xi2));
 }
 
-double sampling_cosine_hemisphere_pdf(double cos_theta) { return cos_theta > 0 ? cos_theta / M_PI : 0; }
+double sampling_cosine_hemisphere_pdf(double cos_theta)
+{
+    return cos_theta > 0 ? cos_theta / M_PI : 0;
+}
 
 vec3 sampling_phong_lobe(double s, double xi1, double xi2)
 {

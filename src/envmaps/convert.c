@@ -203,7 +203,8 @@ static double quadrant_area(double x, double y)
     if (y > 1) y = 1;
     if (x * x + y * y <= 1) return x * y;
     double s = sqrt(1.0 - y * y); /* < x here */
-    double sx = 0.5 * (x * sqrt(1.0 - x * x) + asin(x)), ss = 0.5 * (s * sqrt(1.0 - s * s) + asin(s));
+    double sx = 0.5 * (x * sqrt(1.0 - x * x) + asin(x)),
+           ss = 0.5 * (s * sqrt(1.0 - s * s) + asin(s));
     return y * s + (sx - ss);
 }
 
@@ -225,7 +226,8 @@ static double rect_disc_area(double a0, double a1, double b0, double b1)
 static double plane_corner(double x, double y) { return atan2(x * y, sqrt(1.0 + x * x + y * y)); }
 static double plane_rect_solid_angle(double x0, double x1, double y0, double y1)
 {
-    return plane_corner(x1, y1) - plane_corner(x0, y1) - plane_corner(x1, y0) + plane_corner(x0, y0);
+    return plane_corner(x1, y1) - plane_corner(x0, y1) - plane_corner(x1, y0) +
+           plane_corner(x0, y0);
 }
 
 /* d(omega) / (da db) of the angular map at disc radius rho <= 1: pi sin(pi rho) / rho. */
@@ -377,7 +379,8 @@ static int span_dir(const stratum_job *job, uv2 uv, vec3 *d)
     if (sample_dir(job->to, job->face, job->hh, uv, d, &jac) == 0) return 0;
     if (job->to != CONVERT_MIRRORBALL && job->to != CONVERT_ANGULAR) return -1;
     double a = 2.0 * uv.u - 1.0, b = 1.0 - 2.0 * uv.v, k = (1.0 - DISC_PULL) / sqrt(a * a + b * b);
-    return sample_dir(job->to, job->face, job->hh, (uv2){(a * k + 1.0) / 2.0, (1.0 - b * k) / 2.0}, d, &jac);
+    return sample_dir(job->to, job->face, job->hh, (uv2){(a * k + 1.0) / 2.0, (1.0 - b * k) / 2.0},
+                      d, &jac);
 }
 
 /* Angle between the directions through uv points a and b of the output (span_dir); 0 if either
@@ -392,7 +395,8 @@ static double span_angle(const stratum_job *job, uv2 a, uv2 b)
 /* Can a K x K stratum of texel [u0, u1] x [v0, v1] be wider than max_angle?  The texel's centre
  * lines, over K, against max_angle: where that holds, the texel is split no further and costs
  * what it always did (most texels of most maps); the pole rows and rim rings fail it. */
-static int texel_may_split(const stratum_job *job, double u0, double u1, double v0, double v1, int k)
+static int texel_may_split(const stratum_job *job, double u0, double u1, double v0, double v1,
+                           int k)
 {
     if (!(job->max_angle > 0)) return 0;
     double um = 0.5 * (u0 + u1), vm = 0.5 * (v0 + v1);
@@ -512,7 +516,8 @@ int convert_resample(const convert_env *in, convert_kind to, int width, int samp
     if (same_layout(in, out)) {
         for (int f = 0; f < convert_faces(in); f++) {
             const image *a = convert_face_image(in, f);
-            memcpy(convert_face_image(&ov, f)->px, a->px, (size_t)a->w * (size_t)a->h * 3 * sizeof(float));
+            memcpy(convert_face_image(&ov, f)->px, a->px,
+                   (size_t)a->w * (size_t)a->h * 3 * sizeof(float));
         }
         return 0;
     }
@@ -644,7 +649,8 @@ int convert_read(const char *path, const char *from, convert_map *out, budget *m
     } else {
         out->img = img;
         img = (image){0};
-        if (kind == CONVERT_CYLINDRICAL) out->max_height = convert_cylindrical_height(out->img.w, out->img.h);
+        if (kind == CONVERT_CYLINDRICAL)
+            out->max_height = convert_cylindrical_height(out->img.w, out->img.h);
     }
     rc = 0;
 done:

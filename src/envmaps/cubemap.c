@@ -23,7 +23,8 @@ static uv2 face_st(int f, vec3 d)
 {
     double sc, tc, ma;
     face_axes(f, d, &sc, &tc, &ma);
-    /* STEP(cubemap): "divide by the biggest": s = (sc / |ma| + 1) / 2, t = (tc / |ma| + 1) / 2 (slides 13-14) */
+    /* STEP(cubemap): "divide by the biggest": s = (sc / |ma| + 1) / 2, t = (tc / |ma| + 1) / 2
+     * (slides 13-14) */
     /* STUB: (void)sc; (void)tc; (void)ma; return (uv2){0.5, 0.5}; */
     double m = fabs(ma); /* divide, not multiply by 1/|ma|: 1/|ma| overflows for subnormal d */
     return (uv2){0.5 * (sc / m + 1.0), 0.5 * (tc / m + 1.0)};
@@ -33,7 +34,8 @@ static uv2 face_st(int f, vec3 d)
 /* Major axis with the tie rule x before y before z; d non-zero. */
 static int major_face(vec3 d)
 {
-    /* STEP(cubemap): "take the biggest abs of (x, y, z)": the major axis and its sign pick the face; ties: x before y before z (slides 13-14) */
+    /* STEP(cubemap): "take the biggest abs of (x, y, z)": the major axis and its sign pick the
+     * face; ties: x before y before z (slides 13-14) */
     /* STUB: (void)d; return CUBEMAP_POS_X; */
     double ax = fabs(d.x), ay = fabs(d.y), az = fabs(d.z);
     if (ax >= ay && ax >= az) return d.x > 0 ? CUBEMAP_POS_X : CUBEMAP_NEG_X;
@@ -56,7 +58,8 @@ int cubemap_dir_to_face(vec3 d, int *face, uv2 *st)
 /* The point (sc, tc, ma = +-1) on face f's plane, not normalized: the table read backwards. */
 static vec3 face_point(int f, uv2 st)
 {
-    /* STEP(cubemap): cube map coordinates back to a point on the face's plane (the face table read backwards; normalized by the caller) (slides 13-14) */
+    /* STEP(cubemap): cube map coordinates back to a point on the face's plane (the face table
+     * read backwards; normalized by the caller) (slides 13-14) */
     /* STUB: (void)f; (void)st; return vec3_make(1, 0, 0); */
     double sc = 2.0 * st.u - 1.0, tc = 2.0 * st.v - 1.0;
     switch (f) {
@@ -231,8 +234,10 @@ int cubemap_from_vertical_cross(const image *cross, cubemap *cm, error *err)
 int cubemap_from_cross(const image *cross, cubemap *cm, error *err)
 {
     /* 4:3 without overflow: w * 3 == h * 4, both sides at most IMAGE_MAX_SIDE */
-    if ((long)cross->w * 3 == (long)cross->h * 4) return cubemap_from_horizontal_cross(cross, cm, err);
-    if ((long)cross->w * 4 == (long)cross->h * 3) return cubemap_from_vertical_cross(cross, cm, err);
+    if ((long)cross->w * 3 == (long)cross->h * 4)
+        return cubemap_from_horizontal_cross(cross, cm, err);
+    if ((long)cross->w * 4 == (long)cross->h * 3)
+        return cubemap_from_vertical_cross(cross, cm, err);
     cm->size = 0;
     for (int f = 0; f < CUBEMAP_FACES; f++) cm->face[f] = (image){0, 0, NULL};
     return error_set(err, NULL, 0,

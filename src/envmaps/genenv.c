@@ -46,9 +46,12 @@ int genenv_make(genenv_kind kind, const genenv_params *p, image *out, error *err
 {
     out->w = out->h = 0;
     out->px = NULL;
-    if (!(p->value >= 0) || !isfinite(p->value)) return error_set(err, NULL, 0, "value must be finite and >= 0");
-    if (!(p->sun_ratio > 0) || !isfinite(p->sun_ratio)) return error_set(err, NULL, 0, "sun ratio must be finite and > 0");
-    if (!(p->sun_radius_deg > 0 && p->sun_radius_deg < 90)) return error_set(err, NULL, 0, "sun radius must be in (0, 90) degrees");
+    if (!(p->value >= 0) || !isfinite(p->value))
+        return error_set(err, NULL, 0, "value must be finite and >= 0");
+    if (!(p->sun_ratio > 0) || !isfinite(p->sun_ratio))
+        return error_set(err, NULL, 0, "sun ratio must be finite and > 0");
+    if (!(p->sun_radius_deg > 0 && p->sun_radius_deg < 90))
+        return error_set(err, NULL, 0, "sun radius must be in (0, 90) degrees");
     if (!(p->sun_elevation_deg >= -90 && p->sun_elevation_deg <= 90)) /* NaN fails too */
         return error_set(err, NULL, 0, "sun elevation must be in [-90, 90] degrees");
     if (!isfinite(p->sun_azimuth_deg)) return error_set(err, NULL, 0, "sun azimuth must be finite");
@@ -84,7 +87,8 @@ int genenv_make(genenv_kind kind, const genenv_params *p, image *out, error *err
             int inside = 0;
             for (int j = 0; j < 8; j++)
                 for (int i = 0; i < 8; i++) {
-                    vec3 d = latlong_uv_to_dir((uv2){(x + (i + 0.5) / 8) / w, (y + (j + 0.5) / 8) / h});
+                    vec3 d =
+                        latlong_uv_to_dir((uv2){(x + (i + 0.5) / 8) / w, (y + (j + 0.5) / 8) / h});
                     inside += vec3_dot(d, sun) >= cos_r;
                 }
             if (!inside) continue;

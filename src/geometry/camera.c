@@ -7,7 +7,8 @@ camera_frame_status camera_frame(vec3 eye, vec3 center, vec3 up, vec3 *u, vec3 *
 {
     vec3 d = vec3_sub(eye, center), wn, upn, right;
     if (!(isfinite(d.x) && isfinite(d.y) && isfinite(d.z))) return CAMERA_FRAME_TOO_FAR;
-    if (vec3_unit_direction(d, &wn)) return CAMERA_FRAME_SAME_POINT; /* w = (eye - center) / |...| */
+    if (vec3_unit_direction(d, &wn))
+        return CAMERA_FRAME_SAME_POINT; /* w = (eye - center) / |...| */
     if (vec3_unit_direction(up, &upn)) return CAMERA_FRAME_UP_ZERO;
     vec3 r = vec3_cross(upn, wn); /* |up x w| = sin(angle) for unit vectors */
     if (!(vec3_length(r) > CAMERA_PARALLEL_EPS) || vec3_unit_direction(r, &right))
@@ -18,7 +19,8 @@ camera_frame_status camera_frame(vec3 eye, vec3 center, vec3 up, vec3 *u, vec3 *
     return CAMERA_FRAME_OK;
 }
 
-void camera_init(camera *c, vec3 eye, vec3 center, vec3 up, double fovy_degrees, int width, int height)
+void camera_init(camera *c, vec3 eye, vec3 center, vec3 up, double fovy_degrees, int width,
+                 int height)
 {
     assert(width > 0 && height > 0 && fovy_degrees > 0 && fovy_degrees < 180);
     c->eye = eye;

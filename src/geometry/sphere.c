@@ -1,4 +1,5 @@
-/* sphere.c - ray-sphere intersection under an affine transform (see include/envtex/geometry/sphere.h). */
+/* sphere.c - ray-sphere intersection under an affine transform (see
+ * include/envtex/geometry/sphere.h). */
 #include "envtex/geometry/sphere.h"
 
 int sphere_intersect(const sphere *s, const ray *r, double *t_out)

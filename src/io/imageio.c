@@ -90,8 +90,8 @@ static imageio_format format_of_extension(const char *path)
 
 int imageio_can_write(const char *path) { return format_of_extension(path) != IMAGEIO_UNKNOWN; }
 
-int imageio_write_as(const char *path, imageio_format format, const image *im, const tonemap_params *tm,
-                     error *err)
+int imageio_write_as(const char *path, imageio_format format, const image *im,
+                     const tonemap_params *tm, error *err)
 {
     switch (format != IMAGEIO_UNKNOWN ? format : format_of_extension(path)) {
     case IMAGEIO_EXR: return exrfile_write(path, im, 0, err);
@@ -99,8 +99,9 @@ int imageio_write_as(const char *path, imageio_format format, const image *im, c
     case IMAGEIO_PFM: return pfm_write(path, im, err);
     case IMAGEIO_RGBE: return rgbe_write(path, im, err);
     default:
-        return error_set(err, path, 0, "cannot tell the image format from the name; use .exr, .png, "
-                                       ".pfm or .hdr");
+        return error_set(err, path, 0,
+                         "cannot tell the image format from the name; use .exr, .png, "
+                         ".pfm or .hdr");
     }
 }
 
@@ -117,15 +118,18 @@ int imageio_write_set(int n, const char *const *paths, const image *const *image
     assert(n >= 1 && n <= IMAGEIO_SET_MAX);
     imageio_format fmt[IMAGEIO_SET_MAX]; /* decided by the targets' names, not the temporaries' */
     for (int k = 0; k < n; k++)
-        fmt[k] = formats && formats[k] != IMAGEIO_UNKNOWN ? formats[k] : format_of_extension(paths[k]);
-    if (n == 1) return imageio_write_as(paths[0], fmt[0], images[0], tms ? tms[0] : NULL, err); /* atomic already */
+        fmt[k] =
+            formats && formats[k] != IMAGEIO_UNKNOWN ? formats[k] : format_of_extension(paths[k]);
+    if (n == 1) /* atomic already */
+        return imageio_write_as(paths[0], fmt[0], images[0], tms ? tms[0] : NULL, err);
     char part[IMAGEIO_SET_MAX][ERROR_FILE_MAX], tag[32];
     snprintf(tag, sizeof tag, ".partial-%ld", (long)getpid());
     for (int k = 0; k < n; k++) { /* "sky_px.exr" -> "sky_px.partial-PID.exr": same format */
         const char *x = extension(paths[k]);
         size_t stem = strlen(paths[k]) - strlen(x);
         int len = snprintf(part[k], sizeof part[k], "%.*s%s%s", (int)stem, paths[k], tag, x);
-        if (len < 0 || (size_t)len >= sizeof part[k]) return error_set(err, paths[k], 0, "path is too long");
+        if (len < 0 || (size_t)len >= sizeof part[k])
+            return error_set(err, paths[k], 0, "path is too long");
         /* a folder in a target's place would fail its rename at the end: refuse it first */
         struct stat st;
         if (stat(paths[k], &st) == 0 && !S_ISREG(st.st_mode))
@@ -134,7 +138,8 @@ int imageio_write_set(int n, const char *const *paths, const image *const *image
     }
     int done = 0;
     for (; done < n; done++)
-        if (imageio_write_as(part[done], fmt[done], images[done], tms ? tms[done] : NULL, err)) break;
+        if (imageio_write_as(part[done], fmt[done], images[done], tms ? tms[done] : NULL, err))
+            break;
     if (done < n) {
         for (int k = 0; k < done; k++) unlink(part[k]);
         if (err) { /* name the target, not its temporary */
@@ -148,8 +153,10 @@ int imageio_write_set(int n, const char *const *paths, const image *const *image
         if (rename(part[k], paths[k]) != 0) {
             int e = errno;
             for (int j = k; j < n; j++) unlink(part[j]);
-            return error_set(err, paths[k], 0, "cannot rename the finished file into place: %s (%d of %d "
-                             "files were already replaced, the rest left as they were)", strerror(e), k, n);
+            return error_set(err, paths[k], 0,
+                             "cannot rename the finished file into place: %s (%d of %d "
+                             "files were already replaced, the rest left as they were)",
+                             strerror(e), k, n);
         }
     return 0;
 }

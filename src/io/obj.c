@@ -83,7 +83,8 @@ static int parse_nums(reader *r, const char *kw, char **s, int need, int allow, 
     int n = 0;
     char *tok;
     while ((tok = next_token(s)) != NULL) {
-        if (n >= allow) return fail(r, "'%s' takes at most %d numbers, got more ('%s')", kw, allow, tok);
+        if (n >= allow)
+            return fail(r, "'%s' takes at most %d numbers, got more ('%s')", kw, allow, tok);
         double x = 0;
         if (parse_num(r, kw, tok, &x)) return -1;
         if (n < 3) v[n] = x;
@@ -99,7 +100,8 @@ static int parse_index(reader *r, const char *text, size_t len, long count, cons
                        long *out)
 {
     char buf[32];
-    if (len == 0 || len >= sizeof buf) return fail(r, "bad index '%.*s' in 'f'", (int)(len < 20 ? len : 20), text);
+    if (len == 0 || len >= sizeof buf)
+        return fail(r, "bad index '%.*s' in 'f'", (int)(len < 20 ? len : 20), text);
     memcpy(buf, text, len);
     buf[len] = '\0';
     char *end;
@@ -134,7 +136,8 @@ static int parse_corner(reader *r, const char *tok, long *v, long *vt, long *vn)
 static int add_tri(reader *r, const long c[3][3])
 {
     obj_mesh *m = r->m;
-    if (grow(r, (void **)&m->tris, m->n_tris, &r->cap_tris, sizeof *m->tris, "triangles")) return -1;
+    if (grow(r, (void **)&m->tris, m->n_tris, &r->cap_tris, sizeof *m->tris, "triangles"))
+        return -1;
     obj_triangle *t = &m->tris[m->n_tris++];
     for (int k = 0; k < 3; k++) {
         t->v[k] = c[k][0];

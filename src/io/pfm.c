@@ -34,6 +34,31 @@ static long parse_long(const char *t)
     return v;
 }
 
+/* The 32 bits at p in the file's byte order. */
+static uint32_t load_u32(const unsigned char *p, int little)
+{
+    if (little)
+        return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+    return (uint32_t)p[3] | (uint32_t)p[2] << 8 | (uint32_t)p[1] << 16 | (uint32_t)p[0] << 24;
+}
+
+/* The file's floats at p (rows bottom to top, `chans` a pixel) into the allocated *im. */
+static void decode_pixels(const unsigned char *p, int little, int chans, image *im)
+{
+    for (long row = 0; row < im->h; row++) {
+        float *dst = image_px(im, 0, (int)(im->h - 1 - row)); /* file rows go bottom to top */
+        for (long x = 0; x < im->w; x++) {
+            float v[3];
+            for (int k = 0; k < chans; k++, p += 4) {
+                uint32_t u = load_u32(p, little);
+                memcpy(&v[k], &u, 4);
+            }
+            if (chans == 1) v[1] = v[2] = v[0];
+            memcpy(dst + 3 * x, v, sizeof v);
+        }
+    }
+}
+
 int pfm_read(const char *path, image *out, budget *mem, error *err)
 {
     out->w = out->h = 0;
@@ -62,7 +87,8 @@ int pfm_read(const char *path, image *out, budget *mem, error *err)
     char *end;
     double scale = strtod(ts, &end);
     if (*end || scale == 0.0 || isnan(scale)) {
-        error_set(err, path, 0, "bad PFM scale \"%s\" (its sign gives the byte order; 0 is not allowed)", ts);
+        error_set(err, path, 0,
+                  "bad PFM scale \"%s\" (its sign gives the byte order; 0 is not allowed)", ts);
         goto done;
     }
     if (at >= n || !isspace(d[at])) {
@@ -77,7 +103,8 @@ int pfm_read(const char *path, image *out, budget *mem, error *err)
      * file's size tells the two apart: after a lone "\r" the pixels leave no byte to spare. */
     if (d[at - 1] == '\r' && at < n && d[at] == '\n' && n - (at + 1) >= count * 4) at++;
     if (n - at < count * 4) {
-        error_set(err, path, 0, "truncated PFM: %zu bytes of pixels, %zu expected", n - at, count * 4);
+        error_set(err, path, 0, "truncated PFM: %zu bytes of pixels, %zu expected", n - at,
+                  count * 4);
         goto done;
     }
     if (budget_charge(mem, (double)w * h * IMAGE_TEXEL_BYTES, path, 0, err,
@@ -85,21 +112,7 @@ int pfm_read(const char *path, image *out, budget *mem, error *err)
         goto done;
     charged = (double)w * h * IMAGE_TEXEL_BYTES;
     if (image_alloc(&im, (int)w, (int)h, err)) { error_prefix(err, "%s", path); goto done; }
-    int little = scale < 0;
-    const unsigned char *p = d + at;
-    for (long row = 0; row < h; row++) {
-        float *dst = image_px(&im, 0, (int)(h - 1 - row)); /* file rows go bottom to top */
-        for (long x = 0; x < w; x++) {
-            float v[3];
-            for (int k = 0; k < chans; k++, p += 4) {
-                uint32_t u = little ? (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24
-                                    : (uint32_t)p[3] | (uint32_t)p[2] << 8 | (uint32_t)p[1] << 16 | (uint32_t)p[0] << 24;
-                memcpy(&v[k], &u, 4);
-            }
-            if (chans == 1) v[1] = v[2] = v[0];
-            memcpy(dst + 3 * x, v, sizeof v);
-        }
-    }
+    decode_pixels(d + at, scale < 0, chans, &im);
     *out = im;
     im.px = NULL;
     rc = 0;

@@ -78,7 +78,8 @@ static int read_body(png_job *job, error *err)
      * is refused before 3 GB are allocated.  raw = h (1 + ceil(w channels depth / 8)), the
      * filtered rows of a non-interlaced image (an interlaced one has more). */
     struct stat st;
-    double raw = (double)h * (1.0 + ceil((double)w * png_get_channels(job->png, job->info) * depth / 8.0));
+    double raw =
+        (double)h * (1.0 + ceil((double)w * png_get_channels(job->png, job->info) * depth / 8.0));
     if (fstat(fileno(job->f), &st) == 0 && raw > PNG_MAX_INFLATE_RATIO * (double)st.st_size)
         return error_set(err, job->path, 0,
                          "corrupt or truncated PNG: %u x %u pixels need %.0f bytes of image data, "
@@ -89,7 +90,8 @@ static int read_body(png_job *job, error *err)
     if (type == PNG_COLOR_TYPE_PALETTE) png_set_palette_to_rgb(job->png);
     if (type == PNG_COLOR_TYPE_GRAY && depth < 8) png_set_expand_gray_1_2_4_to_8(job->png);
     png_set_strip_alpha(job->png); /* alpha, and the alpha a palette's tRNS expands to */
-    if (type == PNG_COLOR_TYPE_GRAY || type == PNG_COLOR_TYPE_GRAY_ALPHA) png_set_gray_to_rgb(job->png);
+    if (type == PNG_COLOR_TYPE_GRAY || type == PNG_COLOR_TYPE_GRAY_ALPHA)
+        png_set_gray_to_rgb(job->png);
     if (interlace != PNG_INTERLACE_NONE) png_set_interlace_handling(job->png);
     png_read_update_info(job->png, job->info);
     int bytes_per = png_get_bit_depth(job->png, job->info) == 16 ? 2 : 1;
@@ -111,12 +113,14 @@ static int read_body(png_job *job, error *err)
     size_t levels = bytes_per == 2 ? 65536 : 256;
     job->lut = malloc(sizeof *job->lut * levels);
     if (!job->bytes || !job->rows || !job->lut)
-        return error_set(err, job->path, 0, "out of memory for a %u x %u PNG", (unsigned)w, (unsigned)h);
+        return error_set(err, job->path, 0, "out of memory for a %u x %u PNG", (unsigned)w,
+                         (unsigned)h);
     double file_gamma = file_gamma_of(job->png, job->info);
     for (size_t i = 0; i < levels; i++) { /* code = i / max code */
         double code = (double)i / (double)(levels - 1);
-        job->lut[i] = (float)(file_gamma > 0.0 ? pow(code, 1.0 / file_gamma) /* linear = code^(1/g) */
-                                               : tonemap_srgb_decode(code));
+        job->lut[i] =
+            (float)(file_gamma > 0.0 ? pow(code, 1.0 / file_gamma) /* linear = code^(1/g) */
+                                     : tonemap_srgb_decode(code));
     }
     for (png_uint_32 y = 0; y < h; y++) job->rows[y] = job->bytes + rowbytes * y;
     png_read_image(job->png, job->rows);

@@ -79,7 +79,8 @@ static int read_scanline(const unsigned char *d, size_t n, size_t *at, unsigned 
                     unsigned char v = d[p++];
                     for (long i = 0; i < c; i++) scan[4 * (x + i) + ch] = v;
                 } else { /* a literal: c bytes */
-                    if (c == 0) return error_set(err, path, 0, "scanline %ld: zero-length RLE literal", y);
+                    if (c == 0)
+                        return error_set(err, path, 0, "scanline %ld: zero-length RLE literal", y);
                     if (c > w - x) goto overflow;
                     if (n - p < (size_t)c) goto truncated;
                     for (long i = 0; i < c; i++) scan[4 * (x + i) + ch] = d[p + (size_t)i];
@@ -98,7 +99,9 @@ static int read_scanline(const unsigned char *d, size_t n, size_t *at, unsigned 
             const unsigned char *q = d + p;
             p += 4;
             if (q[0] == 1 && q[1] == 1 && q[2] == 1) {
-                if (x == 0) return error_set(err, path, 0, "scanline %ld: old-style run with no pixel before it", y);
+                if (x == 0)
+                    return error_set(err, path, 0,
+                                     "scanline %ld: old-style run with no pixel before it", y);
                 if (shift > 16) goto overflow;
                 long count = (long)q[3] << shift;
                 if (count > w - x) goto overflow;
@@ -115,7 +118,8 @@ static int read_scanline(const unsigned char *d, size_t n, size_t *at, unsigned 
     *at = p;
     return 0;
 truncated:
-    return error_set(err, path, 0, "truncated Radiance file: scanline %ld of the pixels is incomplete", y);
+    return error_set(err, path, 0,
+                     "truncated Radiance file: scanline %ld of the pixels is incomplete", y);
 overflow:
     return error_set(err, path, 0, "corrupt Radiance file: a run overflows scanline %ld", y);
 }
@@ -135,6 +139,37 @@ static int next_line(const unsigned char *d, size_t n, size_t *at, char *line, s
     return 0;
 }
 
+/* The text header of the n bytes at d: "#?", the variables up to an empty line (FORMAT must be
+ * 32-bit_rle_rgbe), the resolution "-Y H +X W".  0 with *at after it, or -1 with *err. */
+static int read_header(const unsigned char *d, size_t n, size_t *at, long *w, long *h,
+                       const char *path, error *err)
+{
+    char line[256];
+    if (n < 2 || d[0] != '#' || d[1] != '?')
+        return error_set(err, path, 0, "not a Radiance file (it must start with #?)");
+    if (next_line(d, n, at, line, sizeof line)) goto truncated;
+    for (;;) { /* variables up to the empty line */
+        if (next_line(d, n, at, line, sizeof line)) goto truncated;
+        if (!line[0]) break;
+        if (!strncmp(line, "FORMAT=", 7) && strcmp(line + 7, "32-bit_rle_rgbe") != 0)
+            return error_set(err, path, 0,
+                             "Radiance format \"%s\" is not supported (only 32-bit_rle_rgbe)",
+                             line + 7);
+    }
+    if (next_line(d, n, at, line, sizeof line)) goto truncated;
+    char ya[8], xa[8];
+    int used = 0;
+    if (sscanf(line, "%7s %ld %7s %ld%n", ya, h, xa, w, &used) != 4 || line[used] != '\0')
+        return error_set(err, path, 0, "bad Radiance resolution line \"%s\"", line);
+    if (strcmp(ya, "-Y") != 0 || strcmp(xa, "+X") != 0)
+        return error_set(err, path, 0,
+                         "Radiance orientation \"%s ... %s\" is not supported (only -Y H +X W)",
+                         ya, xa);
+    return 0;
+truncated:
+    return error_set(err, path, 0, "truncated Radiance header");
+}
+
 int rgbe_read(const char *path, image *out, budget *mem, error *err)
 {
     out->w = out->h = 0;
@@ -143,40 +178,18 @@ int rgbe_read(const char *path, image *out, budget *mem, error *err)
     size_t n = 0, at = 0;
     int rc = -1;
     image im = {0};
-    char line[256];
     double image_bytes = 0; /* charged: the image (not its scanline buffer, 128 KB at most) */
     if (fileio_read_all(path, &d, &n, mem, err)) return -1;
-    if (n < 2 || d[0] != '#' || d[1] != '?') {
-        error_set(err, path, 0, "not a Radiance file (it must start with #?)");
-        goto done;
-    }
-    if (next_line(d, n, &at, line, sizeof line)) goto truncated_header;
-    for (;;) { /* variables up to the empty line */
-        if (next_line(d, n, &at, line, sizeof line)) goto truncated_header;
-        if (!line[0]) break;
-        if (!strncmp(line, "FORMAT=", 7) && strcmp(line + 7, "32-bit_rle_rgbe") != 0) {
-            error_set(err, path, 0, "Radiance format \"%s\" is not supported (only 32-bit_rle_rgbe)", line + 7);
-            goto done;
-        }
-    }
-    if (next_line(d, n, &at, line, sizeof line)) goto truncated_header;
-    char ya[8], xa[8];
     long h, w;
-    int used = 0;
-    if (sscanf(line, "%7s %ld %7s %ld%n", ya, &h, xa, &w, &used) != 4 || line[used] != '\0') {
-        error_set(err, path, 0, "bad Radiance resolution line \"%s\"", line);
-        goto done;
-    }
-    if (strcmp(ya, "-Y") != 0 || strcmp(xa, "+X") != 0) {
-        error_set(err, path, 0, "Radiance orientation \"%s ... %s\" is not supported (only -Y H +X W)", ya, xa);
-        goto done;
-    }
+    if (read_header(d, n, &at, &w, &h, path, err)) goto done;
     if (image_check_size(w, h, path, err)) goto done;
     /* Every scanline takes at least RGBE_MIN_SCANLINE_BYTES (a pixel, or the RLE marker), so
      * the file size bounds the height before the image is allocated: a 100-byte file that
      * claims 16384 x 16384 is refused here instead of costing 3 GB. */
     if ((size_t)h > (n - at) / RGBE_MIN_SCANLINE_BYTES) {
-        error_set(err, path, 0, "truncated Radiance file: %ld scanlines need at least %ld bytes, the file has %zu after its header",
+        error_set(err, path, 0,
+                  "truncated Radiance file: %ld scanlines need at least %ld bytes, the file has "
+                  "%zu after its header",
                   h, h * RGBE_MIN_SCANLINE_BYTES, n - at);
         goto done;
     }
@@ -201,9 +214,6 @@ int rgbe_read(const char *path, image *out, budget *mem, error *err)
     *out = im;
     im.px = NULL;
     rc = 0;
-    goto done;
-truncated_header:
-    error_set(err, path, 0, "truncated Radiance header");
 done:
     free(d);
     free(scan);
@@ -256,7 +266,8 @@ static int write_rgbe(const char *path, const image *im, int rle, error *err)
     size_t w = (size_t)im->w;
     unsigned char *scan = malloc(4 * w), *packed = malloc(4 * (w + w / 128 + 2) + 4);
     int oom = !scan || !packed;
-    int ok = !oom && fprintf(f, "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y %d +X %d\n", im->h, im->w) > 0;
+    int ok =
+        !oom && fprintf(f, "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y %d +X %d\n", im->h, im->w) > 0;
     for (int y = 0; ok && y < im->h; y++) {
         const float *src = image_px(im, 0, y);
         for (size_t x = 0; x < w; x++) rgbe_from_float(src + 3 * x, scan + 4 * x);
@@ -283,6 +294,12 @@ static int write_rgbe(const char *path, const image *im, int rle, error *err)
     return fileio_tmp_commit(tmp, path, err);
 }
 
-int rgbe_write(const char *path, const image *im, error *err) { return write_rgbe(path, im, 1, err); }
+int rgbe_write(const char *path, const image *im, error *err)
+{
+    return write_rgbe(path, im, 1, err);
+}
 
-int rgbe_write_flat(const char *path, const image *im, error *err) { return write_rgbe(path, im, 0, err); }
+int rgbe_write_flat(const char *path, const image *im, error *err)
+{
+    return write_rgbe(path, im, 0, err);
+}

@@ -34,7 +34,8 @@ double tonemap_srgb_decode(double e)
 static double tonemap_channel(const tonemap_params *tm, double scale, double c)
 {
     if (isnan(c)) return 0.0;
-    if (isinf(c)) return c > 0 ? 1.0 : 0.0; /* before the scale: Inf * 0 when 2^exposure underflows */
+    if (isinf(c))
+        return c > 0 ? 1.0 : 0.0; /* before the scale: Inf * 0 when 2^exposure underflows */
     double x = c * scale; /* c * 2^exposure: finite * finite, never NaN */
     if (x <= 0.0) return 0.0; /* display values are never negative; also guards 1 + x = 0 below */
     if (isinf(x)) return 1.0;

@@ -1,4 +1,5 @@
-/* envmap.c - the environment seen by rays that leave the scene (see include/envtex/reflection/envmap.h). */
+/* envmap.c - the environment seen by rays that leave the scene (see
+ * include/envtex/reflection/envmap.h). */
 #include "envtex/reflection/envmap.h"
 
 #include <string.h>
@@ -17,8 +18,9 @@ void envmap_init(envmap *env, const convert_env *map, double scale, const mat4 *
     else env->map = map->img;
     if (map->kind == CONVERT_LATLONG) env->img = map->img;
     if (map->kind == CONVERT_CYLINDRICAL)
-        env->max_height = map->max_height > 0 ? map->max_height
-                                              : convert_cylindrical_height(map->img->w, map->img->h);
+        env->max_height = map->max_height > 0
+                              ? map->max_height
+                              : convert_cylindrical_height(map->img->w, map->img->h);
     env->scale = scale;
     env->to_env = *to_env;
 }
@@ -38,7 +40,8 @@ rgb envmap_radiance(const envmap *env, vec3 d)
     if (!env->present) return rgb_gray(0);
     vec3 f = envmap_to_frame(env, d);
     /* the common case without the dispatch */
-    if (env->kind == CONVERT_LATLONG) return rgb_scale(latlong_lookup_bilinear(env->img, f), env->scale);
+    if (env->kind == CONVERT_LATLONG)
+        return rgb_scale(latlong_lookup_bilinear(env->img, f), env->scale);
     convert_env v = envmap_view(env);
     return rgb_scale(convert_lookup(&v, f), env->scale);
 }

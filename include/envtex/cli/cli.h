@@ -1,10 +1,7 @@
-/* cli.h - what the subcommands of the envtex command line share: option parsing, the one-line
- * errors, the memory budget option, and the checks that run before any work (an output must be
- * writable and must not replace an input).  Each subcommand is cmd_NAME.c with the function
- * cmd_NAME(argc, argv), given the arguments after its name; main.c picks it.
- *
- * Conventions: a subcommand returns its exit status: 0 done, 1 an error (one line on stderr,
- * `envtex: FILE:LINE: what is wrong`, nothing written), 2 a comparison that ran and failed.
+/* cli.h - what the subcommands share: option parsing, one-line errors, the memory budget, and
+ * the checks made before any work.  Subcommand NAME is cmd_NAME(argc, argv) in cmd_NAME.c,
+ * given the arguments after its name.  It returns the exit status: 0 done, 1 an error (one
+ * line `envtex: FILE:LINE: what`, nothing written), 2 a comparison that failed.
  */
 #ifndef ENVTEX_CLI_H
 #define ENVTEX_CLI_H
@@ -12,7 +9,6 @@
 #include "envtex/core/budget.h"
 #include "envtex/core/error.h"
 
-/* The subcommands (cmd_NAME.c). */
 int cmd_render(int argc, char **argv);
 int cmd_compare(int argc, char **argv);
 int cmd_tonemap(int argc, char **argv);
@@ -24,34 +20,34 @@ int cmd_prefilter(int argc, char **argv);
 /* Print *err as one line and return 1. */
 int cli_fail(const error *err);
 
-/* Print `envtex: WHAT (envtex --help for usage)`, WHAT formatted as printf does; return 1. */
+/* Print `envtex: WHAT (envtex --help for usage)`, WHAT printf'd; return 1. */
 int cli_usage_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 
 /* The whole token s as a finite double / as a long in [lo, hi]: 0, or -1 (nothing stored). */
 int cli_parse_double(const char *s, double *out);
 int cli_parse_long(const char *s, long lo, long hi, long *out);
 
-/* The value after option argv[*i] (and *i moved onto it), or NULL with the usage line printed. */
+/* The value after option argv[*i] (*i moved onto it), or NULL with the usage line printed. */
 const char *cli_opt_value(int argc, char **argv, int *i);
 
-/* --memory-budget SIZE at argv[*i]: "512M", "4G" (budget_parse) or "none" (*limit = 0).
- * 0, or 1 with the usage line printed. */
+/* --memory-budget SIZE at argv[*i]: budget_parse's or "none" (*limit = 0).  0, or 1 with the
+ * usage line printed. */
 int cli_memory_budget_option(int argc, char **argv, int *i, double *limit);
 
-/* The run's budget of `limit` bytes in *b, or NULL for limit 0 (--memory-budget none). */
+/* The run's budget of `limit` bytes in *b, or NULL for limit 0. */
 budget *cli_run_budget(budget *b, double limit);
 
-/* 1 if a and b name the same existing file (by identity, infile.h). */
+/* 1 if a and b name the same existing file (infile.h). */
 int cli_same_file(const char *a, const char *b);
 
-/* An output can be written: a known image extension (imageio_can_write) and a temporary file
- * that can be made beside it, tried now, so a run fails before its work.  0, or -1 with *err. */
+/* 0 if `path` has a known image extension and a temporary file can be made beside it (tried
+ * now, before the work), else -1 with *err. */
 int cli_check_output(const char *path, error *err);
-/* The same for an output written as a PNG whatever its name (a scene's `output scene2`). */
+/* The same for a PNG whatever its name (a scene's `output scene2`). */
 int cli_check_output_any_name(const char *path, error *err);
 
-/* An output must not replace an input image (`compare --diff REF.exr`, `tonemap a.png a.png`):
- * -1 with *err if `out` is one of the n `inputs` (NULL entries skipped) by name or identity. */
+/* -1 with *err if `out` is one of the n `inputs` (NULL skipped) by name or identity (`tonemap
+ * a.png a.png`), else 0. */
 int cli_check_not_replacing(const char *out, const char *const *inputs, int n, error *err);
 
 #endif

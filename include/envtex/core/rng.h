@@ -11,7 +11,7 @@
 
 typedef struct rng { uint64_t state, inc; } rng;
 
-/* Start stream `stream` of generator `seed`.  Distinct streams are statistically independent. */
+/* The next 32 random bits. */
 static inline uint32_t rng_u32(rng *r)
 {
     uint64_t old = r->state;
@@ -21,6 +21,7 @@ static inline uint32_t rng_u32(rng *r)
     return (xorshifted >> rot) | (xorshifted << ((-rot) & 31)); /* XSH RR output */
 }
 
+/* Start stream `stream` of generator `seed`; distinct streams are independent. */
 static inline void rng_seed(rng *r, uint64_t seed, uint64_t stream)
 {
     r->state = 0;
@@ -30,7 +31,7 @@ static inline void rng_seed(rng *r, uint64_t seed, uint64_t stream)
     rng_u32(r);
 }
 
-/* Uniform in [0, 1): 32 random bits times 2^-32, so the largest value is 1 - 2^-32. */
+/* Uniform in [0, 1): 32 bits times 2^-32, at most 1 - 2^-32. */
 static inline double rng_uniform(rng *r) { return rng_u32(r) * 0x1p-32; }
 
 #endif

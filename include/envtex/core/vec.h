@@ -1,10 +1,7 @@
-/* vec.h - the vector maths every lecture step uses: points and directions (vec3), colours (rgb),
- * 2D image / texture coordinates (uv2).  All double precision; images store float.
+/* vec.h - the vector maths of every lecture step: points and directions (vec3), colours (rgb),
+ * 2D coordinates (uv2), in double; static inline, allocation free, no NaN checks.
  *
- *     vec3 r = vec3_reflect(d, n);          // r = d - 2 (d.n) n, the mirror direction
- *     rgb c = rgb_mul(rgb_scale(k, 0.5), L); // colours multiply channel by channel
- *
- * Everything here is `static inline` and allocation free; no function checks for NaN.
+ *     vec3 r = vec3_reflect(d, n);            // r = d - 2 (d.n) n, the mirror direction
  */
 #ifndef ENVTEX_VEC_H
 #define ENVTEX_VEC_H
@@ -37,7 +34,7 @@ static inline vec3 vec3_cross(vec3 a, vec3 b)
 }
 static inline double vec3_length2(vec3 a) { return vec3_dot(a, a); }
 static inline double vec3_length(vec3 a) { return sqrt(vec3_dot(a, a)); }
-/* a / |a|; the zero vector stays zero (callers that care test the length first). */
+/* a / |a|; the zero vector stays zero. */
 static inline vec3 vec3_normalize(vec3 a)
 {
     double l = vec3_length(a);
@@ -48,10 +45,8 @@ static inline double vec3_max_abs(vec3 a)
     double x = fabs(a.x), y = fabs(a.y), z = fabs(a.z);
     return x > y ? (x > z ? x : z) : (y > z ? y : z);
 }
-/* Unit vector along d for ANY finite non-zero d: divides by the largest |component| first, so
- * neither 1e200 (x^2 overflows) nor 1e-200 (x^2 underflows to 0) breaks it.  Returns -1 (out
- * untouched) for a zero, infinite or NaN d, else 0.  The public direction functions of the
- * envmap representations use it to reject what has no direction. */
+/* Unit vector along ANY finite non-zero d (scaled by the largest |component| first: neither
+ * 1e200 nor 1e-200 breaks it).  0, or -1 (out untouched) for a zero, infinite or NaN d. */
 static inline int vec3_unit_direction(vec3 d, vec3 *out)
 {
     if (!(isfinite(d.x) && isfinite(d.y) && isfinite(d.z))) return -1;
@@ -64,8 +59,7 @@ static inline int vec3_unit_direction(vec3 d, vec3 *out)
     return 0;
 }
 static inline double vec3_get(vec3 a, int axis) { return axis == 0 ? a.x : axis == 1 ? a.y : a.z; }
-/* Component-wise min / max.  Ternaries, not fmin/fmax: those are library calls at -O2 (they
- * must honour NaN), and bounding-box code calls these millions of times. */
+/* Component-wise min / max (ternaries: no NaN rules). */
 static inline vec3 vec3_min(vec3 a, vec3 b)
 {
     return (vec3){a.x < b.x ? a.x : b.x, a.y < b.y ? a.y : b.y, a.z < b.z ? a.z : b.z};
@@ -74,10 +68,10 @@ static inline vec3 vec3_max(vec3 a, vec3 b)
 {
     return (vec3){a.x > b.x ? a.x : b.x, a.y > b.y ? a.y : b.y, a.z > b.z ? a.z : b.z};
 }
-/* Mirror direction of incoming d about normal n (n unit): r = d - 2 (d.n) n  (lecture slide 3). */
+/* Mirror direction of d about unit n (slide 3). */
 static inline vec3 vec3_reflect(vec3 d, vec3 n) { return vec3_madd(d, n, -2.0 * vec3_dot(d, n)); }
-/* Angle between two non-zero directions in radians, accurate for tiny angles (acos(a.b) is not:
- * acos(1 - ulp) is already 1e-8): atan2(|a x b|, a.b) on the normalized vectors. */
+/* Angle in radians between two non-zero directions, atan2(|a x b|, a.b): accurate for tiny
+ * angles, where acos(a.b) is not. */
 static inline double vec3_angle(vec3 a, vec3 b)
 {
     a = vec3_normalize(a);
@@ -86,8 +80,7 @@ static inline double vec3_angle(vec3 a, vec3 b)
 }
 static inline int vec3_is_finite(vec3 a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
 
-/* Orthonormal basis (t, b) completing unit n, without branches on the sign's neighbourhood
- * (Duff et al. 2017, "Building an orthonormal basis, revisited"). */
+/* Orthonormal basis (t, b) completing unit n (Duff et al. 2017). */
 static inline void vec3_basis(vec3 n, vec3 *t, vec3 *b)
 {
     double sign = copysign(1.0, n.z);
@@ -103,9 +96,15 @@ static inline rgb rgb_add(rgb a, rgb b) { return (rgb){a.r + b.r, a.g + b.g, a.b
 static inline rgb rgb_mul(rgb a, rgb b) { return (rgb){a.r * b.r, a.g * b.g, a.b * b.b}; }
 static inline rgb rgb_scale(rgb a, double s) { return (rgb){a.r * s, a.g * s, a.b * s}; }
 /* a + s * b */
-static inline rgb rgb_madd(rgb a, rgb b, double s) { return (rgb){a.r + s * b.r, a.g + s * b.g, a.b + s * b.b}; }
+static inline rgb rgb_madd(rgb a, rgb b, double s)
+{
+    return (rgb){a.r + s * b.r, a.g + s * b.g, a.b + s * b.b};
+}
 /* a + k * b, channel by channel */
-static inline rgb rgb_fma(rgb a, rgb k, rgb b) { return (rgb){a.r + k.r * b.r, a.g + k.g * b.g, a.b + k.b * b.b}; }
+static inline rgb rgb_fma(rgb a, rgb k, rgb b)
+{
+    return (rgb){a.r + k.r * b.r, a.g + k.g * b.g, a.b + k.b * b.b};
+}
 static inline double rgb_avg(rgb a) { return (a.r + a.g + a.b) / 3.0; }
 static inline double rgb_max(rgb a) { return fmax(a.r, fmax(a.g, a.b)); }
 static inline int rgb_is_black(rgb a) { return a.r == 0 && a.g == 0 && a.b == 0; }

@@ -1,16 +1,9 @@
-/* pfm.h - Portable Float Map images: a tiny text header and raw 32-bit floats.  Lecture slide
- * 10 (HDR images): the simplest lossless HDR format, handy for tests and tools.
+/* pfm.h - Portable Float Map: a text header and raw floats, slide 10's simplest HDR format.
  *
  *     if (pfm_write("render.pfm", &im, &err)) return -1;   // exact floats, atomic
- *     if (pfm_read("render.pfm", &back, &mem, &err)) return -1;
  *
- * Format: "PF" (colour) or "Pf" (grey, replicated to r = g = b on read), white space, width,
- * height, white space, a scale whose sign gives the byte order (negative: little endian,
- * positive: big endian; its magnitude is ignored), exactly one white-space character (or a
- * Windows line end "\r\n", when the file has room for the pixels after it), then
- * w * h * (3 or 1) floats.  Rows are stored BOTTOM to TOP; our images keep row 0 at the top, so
- * both functions flip.  Sizes are checked before allocation; a file shorter than its header
- * promises is an error.  Writing uses "PF", little endian (scale -1.0), atomically.
+ * "PF" (colour) or "Pf" (grey, replicated), w, h, a scale whose sign is the byte order (< 0:
+ * little endian), one white space (or "\r\n"), the floats, rows BOTTOM to TOP (flipped).
  */
 #ifndef ENVTEX_PFM_H
 #define ENVTEX_PFM_H
@@ -19,12 +12,11 @@
 #include "envtex/core/error.h"
 #include "envtex/core/image.h"
 
-/* Read the regular file `path` into *out (which must not own pixels; it stays empty on
- * failure).  Charged to `mem` before allocating (budget.h; NULL: none): the file's bytes while
- * it is read, and the image, 12 bytes a texel of the header's size, which stays charged. */
+/* Read the regular file `path` into *out (owning no pixels; empty on failure).  `mem` (NULL:
+ * none) is charged first: the file while read, the image (12 bytes a texel), which stays. */
 int pfm_read(const char *path, image *out, budget *mem, error *err);
 
-/* Write `im` as a colour PFM, little endian, atomically.  Floats are stored exactly. */
+/* Write `im` as an exact colour PFM, little endian, atomically. */
 int pfm_write(const char *path, const image *im, error *err);
 
 #endif

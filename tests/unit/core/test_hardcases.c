@@ -3,8 +3,9 @@
  * seam; rays through shared triangle edges and vertices (no cracks), grazing rays, degenerate
  * triangles; reflection and refraction far from the origin (no acne); a camera inside a sphere;
  * textures of 1 x 1 and 1 x N texels read far outside [0, 1] and with zero and whole-texture
- * footprints; noise at |x| = 1e6; tone mapping of Inf and NaN.  Each test names the bug it would catch.  Other modules' own
- * tests hold their own hard cases; this file collects the ones that cross modules. */
+ * footprints; noise at |x| = 1e6; tone mapping of Inf and NaN.  Each test names the bug it would
+ * catch.  Other modules' own tests hold their own hard cases; this file collects the ones that
+ * cross modules. */
 #include <math.h>
 #include <string.h>
 
@@ -112,7 +113,8 @@ START_TEST(test_one_by_one_map_is_constant_everywhere)
                          {1e-300, 0, 1}, {0.3, -0.4, 0.5}, {-1e-9, -1e-9, -1}};
     for (size_t i = 0; i < sizeof dirs / sizeof dirs[0]; i++) {
         rgb b = latlong_lookup_bilinear(&m, dirs[i]), n = latlong_lookup_nearest(&m, dirs[i]);
-        ck_assert_msg(b.r == 0.25 && b.g == 2.0 && b.b == 8.0, "bilinear dir %zu: %g %g %g", i, b.r, b.g, b.b);
+        ck_assert_msg(b.r == 0.25 && b.g == 2.0 && b.b == 8.0, "bilinear dir %zu: %g %g %g", i, b.r,
+                      b.g, b.b);
         ck_assert_msg(n.r == 0.25 && n.g == 2.0 && n.b == 8.0, "nearest dir %zu", i);
     }
     image_free(&m);
@@ -149,7 +151,8 @@ START_TEST(test_8192_map_poles_and_seam_are_exact)
     for (int r = 1; r < h - 1; r += 5) { /* seam columns */
         rgb a = latlong_lookup_nearest(&m, texel_dir(0, r, w, h));
         rgb b = latlong_lookup_nearest(&m, texel_dir(w - 1, r, w, h));
-        rgb across = latlong_lookup_bilinear(&m, vec3_make(sin(PI * (r + 0.5) / h), -1e-300, cos(PI * (r + 0.5) / h)));
+        rgb across = latlong_lookup_bilinear(
+            &m, vec3_make(sin(PI * (r + 0.5) / h), -1e-300, cos(PI * (r + 0.5) / h)));
         if (a.g != 1 || b.g != 1 || fabs(across.g - 1) > 1e-6) bad++;
     }
     ck_assert_int_eq(bad, 0);
@@ -194,7 +197,8 @@ START_TEST(test_rays_across_shared_edges_and_vertices_never_fall_through)
             vec3 on = vec3_add(a, vec3_scale(vec3_sub(b, a), s < 1 ? s : 0.999));
             for (int j = -8; j <= 8; j++) {
                 double off = j * 1e-15 * (1 + fabs(on.x) + fabs(on.y));
-                ray r = {vec3_make(on.x + off * side.x, on.y + off * side.y, 5), vec3_make(0, 0, -1), 0, INFINITY};
+                ray r = {vec3_make(on.x + off * side.x, on.y + off * side.y, 5),
+                         vec3_make(0, 0, -1), 0, INFINITY};
                 int hits = 0;
                 for (int q = 0; q < N; q++) {
                     double t, b1, b2;
@@ -207,7 +211,8 @@ START_TEST(test_rays_across_shared_edges_and_vertices_never_fall_through)
     }
     for (int k = 0; k <= N; k++) { /* through the vertices, from a few slanted directions */
         vec3 v = k < N ? rim[k] : centre;
-        if (k < N) v = vec3_add(vec3_scale(v, 0.999), vec3_scale(centre, 0.001)); /* rim: just inside */
+        if (k < N)
+            v = vec3_add(vec3_scale(v, 0.999), vec3_scale(centre, 0.001)); /* rim: just inside */
         for (int j = 0; j < 8; j++) {
             vec3 d = vec3_make(0.3 * cos(j), 0.3 * sin(j), -1);
             ray r = {vec3_sub(v, vec3_scale(d, 3)), d, 0, INFINITY};
@@ -261,7 +266,8 @@ START_TEST(test_grazing_rays_and_degenerate_triangles_give_no_garbage)
         double t, b1, b2;
         if (triangle_intersect(p0, p1, p2, &r, &t, &b1, &b2)) {
             vec3 p = vec3_madd(r.o, r.d, t);
-            if (!isfinite(t) || !isfinite(b1) || !isfinite(b2) || fabs(p.z) > 1e-9 || b1 < -1e-9 || b2 < -1e-9)
+            if (!isfinite(t) || !isfinite(b1) || !isfinite(b2) || fabs(p.z) > 1e-9 || b1 < -1e-9 ||
+                b2 < -1e-9)
                 bad++;
         }
     }
@@ -270,9 +276,12 @@ START_TEST(test_grazing_rays_and_degenerate_triangles_give_no_garbage)
     ray inplane = {vec3_make(-1, 0.2, 0), vec3_make(1, 0, 0), 0, INFINITY};
     ck_assert_int_eq(triangle_intersect(p0, p1, p2, &inplane, &t, &b1, &b2), 0);
     ray down = {vec3_make(0.2, 0.2, 1), vec3_make(0, 0, -1), 0, INFINITY};
-    ck_assert_int_eq(triangle_intersect(p0, vec3_make(1, 1, 0), vec3_make(2, 2, 0), &down, &t, &b1, &b2), 0);
+    ck_assert_int_eq(
+        triangle_intersect(p0, vec3_make(1, 1, 0), vec3_make(2, 2, 0), &down, &t, &b1, &b2), 0);
     ck_assert_int_eq(triangle_intersect(p0, p0, p2, &down, &t, &b1, &b2), 0);
-    ck_assert_int_eq(triangle_intersect(p0, vec3_make(1, 1e-300, 0), vec3_make(2, 0, 0), &down, &t, &b1, &b2), 0);
+    ck_assert_int_eq(
+        triangle_intersect(p0, vec3_make(1, 1e-300, 0), vec3_make(2, 0, 0), &down, &t, &b1, &b2),
+        0);
     /* and in a render: degenerate triangles in front of a sphere leave no NaN */
     scene sc;
     load(&sc, "size 16 16\ncamera 0 0 4  0 0 0  0 1 0  45\nambient 0.5 0.5 0.5\n"
@@ -311,9 +320,13 @@ START_TEST(test_tiny_textures_read_far_outside_stay_inside_their_texels)
         for (int a = 0; a < n; a++)
             for (int b = 0; b < n; b++) {
                 uv2 st = {far[a], far[b]};
-                rgb p = texlookup_nearest(&one, st, wraps[w]), q = texlookup_bilinear(&one, st, wraps[w]);
-                if (p.r != 0.25 || p.b != 0.75 || fabs(q.r - 0.25) > 1e-12 || fabs(q.b - 0.75) > 1e-12) bad++;
-                rgb c = texlookup_nearest(&col, st, wraps[w]), d = texlookup_bilinear(&col, st, wraps[w]);
+                rgb p = texlookup_nearest(&one, st, wraps[w]),
+                    q = texlookup_bilinear(&one, st, wraps[w]);
+                if (p.r != 0.25 || p.b != 0.75 || fabs(q.r - 0.25) > 1e-12 ||
+                    fabs(q.b - 0.75) > 1e-12)
+                    bad++;
+                rgb c = texlookup_nearest(&col, st, wraps[w]),
+                    d = texlookup_bilinear(&col, st, wraps[w]);
                 if (!(c.r >= 1 && c.r <= 5) || !(d.r >= 1 - 1e-12 && d.r <= 5 + 1e-12)) bad++;
             }
     ck_assert_int_eq(bad, 0);
@@ -407,7 +420,8 @@ static void check_far_from_origin(const char *material, double far)
     for (int y = 0; y < ia.h; y++)
         for (int x = 0; x < ia.w; x++) {
             rgb p = image_get(&ia, x, y), q = image_get(&ib, x, y);
-            if (!rgb_is_finite(q) || fabs(p.r - q.r) > 0.02 || fabs(p.g - q.g) > 0.02 || fabs(p.b - q.b) > 0.02)
+            if (!rgb_is_finite(q) || fabs(p.r - q.r) > 0.02 || fabs(p.g - q.g) > 0.02 ||
+                fabs(p.b - q.b) > 0.02)
                 differ++;
         }
     ck_assert_msg(differ <= ia.w * ia.h / 100, "%s at %g: %ld of %d pixels differ", material, far,
@@ -418,10 +432,16 @@ static void check_far_from_origin(const char *material, double far)
     scene_free(&sb);
 }
 
-START_TEST(test_mirror_far_from_origin_has_no_acne) { check_far_from_origin("brdf mirror\nspecular 1 1 1", 1e5); }
+START_TEST(test_mirror_far_from_origin_has_no_acne)
+{
+    check_far_from_origin("brdf mirror\nspecular 1 1 1", 1e5);
+}
 END_TEST
 
-START_TEST(test_glass_far_from_origin_has_no_acne) { check_far_from_origin("brdf glass\nspecular 1 1 1\nior 1.5", 1e5); }
+START_TEST(test_glass_far_from_origin_has_no_acne)
+{
+    check_far_from_origin("brdf glass\nspecular 1 1 1\nior 1.5", 1e5);
+}
 END_TEST
 
 /* ---- camera inside a sphere ---------------------------------------------------------------- */
@@ -432,7 +452,9 @@ END_TEST
 START_TEST(test_camera_inside_a_sphere_sees_its_inside_everywhere)
 {
     scene sc;
-    load(&sc, "size 24 16\ncamera 0.1 0.2 0.3  1 0 0  0 0 1  120\nambient 0.3 0.6 0.9\nsphere 0 0 0 2\n");
+    load(
+        &sc,
+        "size 24 16\ncamera 0.1 0.2 0.3  1 0 0  0 0 1  120\nambient 0.3 0.6 0.9\nsphere 0 0 0 2\n");
     image img = {0};
     render_stats st;
     render(&sc, &img, &st);
@@ -440,7 +462,8 @@ START_TEST(test_camera_inside_a_sphere_sees_its_inside_everywhere)
     for (int y = 0; y < img.h; y++)
         for (int x = 0; x < img.w; x++) {
             rgb c = image_get(&img, x, y);
-            if (fabs(c.r - 0.3) > 1e-6 || fabs(c.g - 0.6) > 1e-6 || fabs(c.b - 0.9) > 1e-6) wrong++; /* float pixels */
+            if (fabs(c.r - 0.3) > 1e-6 || fabs(c.g - 0.6) > 1e-6 || fabs(c.b - 0.9) > 1e-6)
+                wrong++; /* float pixels */
         }
     ck_assert_int_eq(wrong, 0);
     ck_assert_int_eq(st.nonfinite_pixels, 0);
@@ -481,7 +504,8 @@ END_TEST
 START_TEST(test_render_counts_the_nan_pixels_it_makes)
 {
     scene sc;
-    load(&sc, "size 32 32\ncamera 0 -4 0  0 0 0  0 0 1  40\nbrdf mirror\nspecular 1 1 1\nambient 0 0 0\nsphere 0 0 0 1\n");
+    load(&sc, "size 32 32\ncamera 0 -4 0  0 0 0  0 0 1  40\nbrdf mirror\nspecular 1 1 1\n"
+              "ambient 0 0 0\nsphere 0 0 0 1\n");
     set_sky(&sc);
     image *m = &sc.envmap.img;
     for (int y = 0; y < m->h; y++)
@@ -503,7 +527,8 @@ END_TEST
 START_TEST(test_render_counts_pixels_that_overflow_the_float_image)
 {
     scene sc;
-    load(&sc, "size 16 16\ncamera 0 0 4 0 0 0 0 1 0 45\nambient 0 0 0\nemission 1e39 1e39 1e39\nsphere 0 0 0 1\n");
+    load(&sc, "size 16 16\ncamera 0 0 4 0 0 0 0 1 0 45\nambient 0 0 0\n"
+              "emission 1e39 1e39 1e39\nsphere 0 0 0 1\n");
     image img = {0};
     render_stats st;
     render(&sc, &img, &st);
@@ -515,7 +540,8 @@ START_TEST(test_render_counts_pixels_that_overflow_the_float_image)
     scene_free(&sc);
     /* a finite image whose variance overflows: 4 samples of a pixel on the sphere's edge, each
      * 0 or 1e20: s^2 / 4 ~ 1e39 > FLT_MAX */
-    load(&sc, "size 16 16\ncamera 0 0 4 0 0 0 0 1 0 45\nambient 0 0 0\nemission 1e20 1e20 1e20\nsphere 0 0 0 1\n");
+    load(&sc, "size 16 16\ncamera 0 0 4 0 0 0 0 1 0 45\nambient 0 0 0\n"
+              "emission 1e20 1e20 1e20\nsphere 0 0 0 1\n");
     render_opts o = render_defaults();
     o.spp = 4;
     image var = {0};

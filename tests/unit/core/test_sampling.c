@@ -19,8 +19,9 @@
 #define N_SAMPLES 200000L /* per chi-square test: a 3% error in a 1% bin is ~4 sigma */
 #define N_U 16            /* bins in cos theta ... */
 #define N_PHI 32          /* ... and in phi: 512 bins of equal solid angle */
-#define NORM_TOL 1e-4     /* integral of a pdf: the quadrature is good to ~1e-5 on the sharpest lobe
-                           * (GGX alpha 0.05); a wrong constant, (s+2) for (s+1), is off by > 1e-3 */
+/* integral of a pdf: the quadrature is good to ~1e-5 on the sharpest lobe (GGX alpha 0.05); a
+ * wrong constant, (s+2) for (s+1), is off by > 1e-3 */
+#define NORM_TOL 1e-4
 #define GL_SUB 12         /* Gauss-Legendre sub-intervals per bin: the top bin spans 29 degrees
                            * of theta and a GGX alpha = 0.05 lobe only ~3 */
 #define UNIT_TOL 1e-12    /* |w| - 1 of a warped direction: a few roundings */
@@ -62,7 +63,8 @@ static double pdf_of(void *ctx, vec3 w)
 
 static const char *name_of(which k)
 {
-    static const char *names[] = {"uniform sphere", "uniform hemisphere", "cosine", "tilted cosine", "phong", "ggx"};
+    static const char *names[] = {
+        "uniform sphere", "uniform hemisphere", "cosine", "tilted cosine", "phong", "ggx"};
     return names[k];
 }
 
@@ -74,7 +76,8 @@ static void check_sampler(const sampler *s, uint64_t seed)
     sph_grid g = sph_grid_make(N_U, N_PHI);
     g.sub = GL_SUB;
     double total = sph_expected(&g, pdf_of, (void *)s, prob);
-    ck_assert_msg(fabs(total - 1) < NORM_TOL, "%s (%g): pdf integrates to %.9f", name_of(s->kind), s->param, total);
+    ck_assert_msg(fabs(total - 1) < NORM_TOL, "%s (%g): pdf integrates to %.9f", name_of(s->kind),
+                  s->param, total);
     int nb = sph_n_bins(&g);
     for (int k = 0; k < nb; k++) obs[k] = 0;
     rng r;
@@ -143,9 +146,10 @@ START_TEST(test_sampling_edge_random_numbers_give_unit_directions_in_the_right_h
     int n = (int)(sizeof xs / sizeof xs[0]), bad = 0;
     for (int i = 0; i < n; i++)
         for (int j = 0; j < n; j++) {
-            vec3 w[6] = {sampling_uniform_sphere(xs[i], xs[j]), sampling_uniform_hemisphere(xs[i], xs[j]),
-                         sampling_cosine_hemisphere(xs[i], xs[j]), sampling_phong_lobe(30, xs[i], xs[j]),
-                         sampling_ggx_half(0.3, xs[i], xs[j]), sampling_ggx_half(1.0, xs[i], xs[j])};
+            vec3 w[6] = {
+                sampling_uniform_sphere(xs[i], xs[j]),    sampling_uniform_hemisphere(xs[i], xs[j]),
+                sampling_cosine_hemisphere(xs[i], xs[j]), sampling_phong_lobe(30, xs[i], xs[j]),
+                sampling_ggx_half(0.3, xs[i], xs[j]),     sampling_ggx_half(1.0, xs[i], xs[j])};
             for (int k = 0; k < 6; k++) {
                 bad += !vec3_is_finite(w[k]) || !(fabs(vec3_length(w[k]) - 1) < UNIT_TOL);
                 bad += k > 0 && !(w[k].z >= 0);
@@ -253,15 +257,18 @@ END_TEST
  * (n = -z is where the branch-free basis changes sign) */
 START_TEST(test_sampling_to_world_is_a_rotation_taking_z_to_n)
 {
-    vec3 ns[] = {{0, 0, 1}, {0, 0, -1}, {1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {1e-9, 0, -1}, {-1e-9, 1e-9, -1},
-                 {0.3, -0.5, -0.81}, {0.577, 0.577, 0.577}};
+    vec3 ns[] = {{0, 0, 1},         {0, 0, -1},         {1, 0, 0},
+                 {0, 1, 0},         {0, -1, 0},         {1e-9, 0, -1},
+                 {-1e-9, 1e-9, -1}, {0.3, -0.5, -0.81}, {0.577, 0.577, 0.577}};
     int bad = 0;
     for (int i = 0; i < (int)(sizeof ns / sizeof ns[0]); i++) {
         vec3 n = vec3_normalize(ns[i]);
-        vec3 x = sampling_to_world(vec3_make(1, 0, 0), n), y = sampling_to_world(vec3_make(0, 1, 0), n);
+        vec3 x = sampling_to_world(vec3_make(1, 0, 0), n),
+             y = sampling_to_world(vec3_make(0, 1, 0), n);
         vec3 z = sampling_to_world(vec3_make(0, 0, 1), n);
         bad += vec3_length(vec3_sub(z, n)) > 1e-12;
-        bad += fabs(vec3_dot(x, y)) > 1e-12 || fabs(vec3_dot(x, z)) > 1e-12 || fabs(vec3_dot(y, z)) > 1e-12;
+        bad += fabs(vec3_dot(x, y)) > 1e-12 || fabs(vec3_dot(x, z)) > 1e-12 ||
+               fabs(vec3_dot(y, z)) > 1e-12;
         bad += fabs(vec3_length(x) - 1) > 1e-12 || fabs(vec3_length(y) - 1) > 1e-12;
         bad += vec3_dot(vec3_cross(x, y), z) < 0; /* right-handed: a rotation, not a reflection */
     }
@@ -282,7 +289,8 @@ Suite *sampling_suite(void)
     tcase_add_loop_test(tc, test_sampling_ggx_half_vector_fits_d_cos, 0, N_GGX);
     suite_add_tcase(s, tc);
     tc = tcase_create("edges");
-    tcase_add_test(tc, test_sampling_edge_random_numbers_give_unit_directions_in_the_right_hemisphere);
+    tcase_add_test(tc,
+                   test_sampling_edge_random_numbers_give_unit_directions_in_the_right_hemisphere);
     tcase_add_test(tc, test_sampling_pdfs_vanish_below_their_hemisphere);
     tcase_add_test(tc, test_sampling_ggx_d_with_zero_roughness_is_the_mirror_limit);
     tcase_add_test(tc, test_sampling_phong_pdf_treats_a_cosine_rounded_above_one_as_the_axis);

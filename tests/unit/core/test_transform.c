@@ -119,8 +119,9 @@ END_TEST
 
 START_TEST(test_transform_inverse_of_simple_matrices_is_within_1e_12)
 {
-    mat4 m = mat4_mul(mat4_translate(vec3_make(1, -2, 3)),
-                      mat4_mul(mat4_rotate(vec3_make(1, 2, 3), 37), mat4_scale(vec3_make(2, 0.5, 3)))),
+    mat4 m = mat4_mul(
+             mat4_translate(vec3_make(1, -2, 3)),
+             mat4_mul(mat4_rotate(vec3_make(1, 2, 3), 37), mat4_scale(vec3_make(2, 0.5, 3)))),
          inv;
     EXPECT_INT_EQ(mat4_inverse(m, &inv), 0);
     mat4 p = mat4_mul(m, inv);
@@ -182,7 +183,8 @@ START_TEST(test_transform_normal_stays_perpendicular_under_nonuniform_scale)
     assert_vec_near(n, vec3_make(0.5, 1, 0), 1e-15);
     /* the plain matrix would have given (2,1,0), which is not perpendicular */
     vec3 wrong = mat4_dir(&s, vec3_make(1, 1, 0));
-    EXPECT(fabs(vec3_dot(vec3_normalize(wrong), vec3_normalize(mat4_dir(&s, vec3_make(1, -1, 0))))) > 0.1);
+    EXPECT(fabs(vec3_dot(vec3_normalize(wrong),
+                         vec3_normalize(mat4_dir(&s, vec3_make(1, -1, 0))))) > 0.1);
 }
 END_TEST
 
@@ -223,8 +225,9 @@ START_TEST(test_transform_rotate_depends_only_on_the_axis_direction)
         mat4 r = mat4_rotate(vec3_make(k, 2 * k, 3 * k), 77);
         for (int i = 0; i < 4; i++)
             for (int j = 0; j < 4; j++)
-                EXPECT_MSG(fabs(r.m[i][j] - ref.m[i][j]) <= 1e-15, "axis scale 1e%d: m[%d][%d] = %.17g, "
-                           "expected %.17g", e, i, j, r.m[i][j], ref.m[i][j]);
+                EXPECT_MSG(fabs(r.m[i][j] - ref.m[i][j]) <= 1e-15,
+                           "axis scale 1e%d: m[%d][%d] = %.17g, expected %.17g", e, i, j,
+                           r.m[i][j], ref.m[i][j]);
     }
 }
 END_TEST

@@ -54,7 +54,8 @@ START_TEST(test_vec_cross_of_x_and_y_is_z_and_anticommutes)
         EXPECT_NEAR(vec3_dot(c, a), 0, 1e-14); /* perpendicular to both */
         EXPECT_NEAR(vec3_dot(c, b), 0, 1e-14);
         /* |a x b|^2 + (a.b)^2 = |a|^2 |b|^2 (Lagrange) */
-        EXPECT_NEAR(vec3_length2(c) + pow(vec3_dot(a, b), 2), vec3_length2(a) * vec3_length2(b), 1e-13);
+        EXPECT_NEAR(vec3_length2(c) + pow(vec3_dot(a, b), 2), vec3_length2(a) * vec3_length2(b),
+                    1e-13);
     }
 }
 END_TEST

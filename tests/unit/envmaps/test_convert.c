@@ -34,7 +34,8 @@ static void make_latlong(convert_map *m, genenv_kind kind, int w)
     ck_assert_msg(genenv_make(kind, &p, &m->img, &err) == 0, "%s", err.msg);
 }
 
-static void resample_ok(const convert_map *in, convert_kind to, int width, int samples, convert_map *out)
+static void resample_ok(const convert_map *in, convert_kind to, int width, int samples,
+                        convert_map *out)
 {
     convert_env v = convert_view(in);
     error err = {0};
@@ -77,7 +78,8 @@ START_TEST(test_shape_tells_latlong_and_crosses_but_not_squares)
     ck_assert_int_eq(convert_kind_detect(48, 64, &k, &err), 0);
     ck_assert_int_eq(k, CONVERT_CUBE);
     ck_assert_int_eq(convert_kind_detect(64, 64, &k, &err), -1);
-    ck_assert_msg(strstr(err.msg, "square image (64 x 64)") && strstr(err.msg, "mirrorball"), "%s", err.msg);
+    ck_assert_msg(strstr(err.msg, "square image (64 x 64)") && strstr(err.msg, "mirrorball"), "%s",
+                  err.msg);
     ck_assert_int_eq(convert_kind_detect(65, 32, &k, &err), -1); /* not exactly 2:1 */
     ck_assert_msg(strstr(err.msg, "65 x 32"), "%s", err.msg);
     ck_assert_int_eq(convert_kind_detect(0, 0, &k, &err), -1);
@@ -104,7 +106,8 @@ START_TEST(test_texel_solid_angles_sum_to_the_whole_sphere)
                 for (int r = 0; r < im->h; r++)
                     for (int c = 0; c < im->w; c++) {
                         double om = convert_texel_solid_angle(&v, f, c, r);
-                        ck_assert_msg(om >= 0, "%s width %d texel (%d, %d) of face %d: %g", convert_kind_name(every_kind[i]), widths[wi], c, r, f, om);
+                        ck_assert_msg(om >= 0, "%s width %d texel (%d, %d) of face %d: %g",
+                                      convert_kind_name(every_kind[i]), widths[wi], c, r, f, om);
                         sum += om;
                     }
             }
@@ -128,7 +131,8 @@ START_TEST(test_texel_solid_angles_match_a_fine_numerical_integral)
     resample_ok(&src, CONVERT_MIRRORBALL, 8, 1, &ball);
     convert_env cv = convert_view(&cube), bv = convert_view(&ball);
     enum { S = 400 };
-    /* cube face 0, texel (0, 0): sc, tc in [-1, -0.5]; d(omega) = dsc dtc / (1 + sc^2 + tc^2)^1.5 */
+    /* cube face 0, texel (0, 0): sc, tc in [-1, -0.5];
+     * d(omega) = dsc dtc / (1 + sc^2 + tc^2)^1.5 */
     double sum = 0, h = 0.5 / S;
     for (int j = 0; j < S; j++)
         for (int i = 0; i < S; i++) {
@@ -170,7 +174,8 @@ START_TEST(test_a_constant_map_stays_constant_with_power_four_pi)
         convert_map out;
         resample_ok(&src, every_kind[i], 12, 2, &out);
         convert_env v = convert_view(&out);
-        ck_assert_near(convert_power(&v).g, 4 * M_PI, 5e-6 * 4 * M_PI); /* angular: its midpoint rule */
+        /* angular: its midpoint rule */
+        ck_assert_near(convert_power(&v).g, 4 * M_PI, 5e-6 * 4 * M_PI);
         for (int f = 0; f < convert_faces(&v); f++) {
             const image *im = convert_face_image(&v, f);
             for (int r = 0; r < im->h; r++)
@@ -198,7 +203,8 @@ START_TEST(test_a_texel_is_the_solid_angle_average_not_the_uv_average)
     ea.kind = CONVERT_EQUALAREA;
     ck_assert_int_eq(image_alloc(&ea.img, 16, 512, &err), 0);
     for (int r = 0; r < 512; r++)
-        for (int c = 0; c < 16; c++) image_set(&ea.img, c, r, rgb_gray(1 - 2 * (r + 0.5) / 512)); /* z */
+        for (int c = 0; c < 16; c++)
+            image_set(&ea.img, c, r, rgb_gray(1 - 2 * (r + 0.5) / 512)); /* z */
     convert_map ll;
     resample_ok(&ea, CONVERT_LATLONG, 16, 32, &ll);
     for (int r = 0; r < 8; r++) {
@@ -219,7 +225,8 @@ END_TEST
  * is inside it, its caps of sky are not, so only the way back is checked for it). */
 START_TEST(test_round_trips_keep_the_power_of_a_sun_map)
 {
-    /* the issue's two, at 256 x 128 (the sun 1 degree across, 0.7 of a 1.4-degree texel, touching 2-3 texels) with the default sizes */
+    /* the issue's two, at 256 x 128 (the sun 1 degree across, 0.7 of a 1.4-degree texel, touching
+     * 2-3 texels) with the default sizes */
     static const convert_kind issue[] = {CONVERT_CUBE, CONVERT_MIRRORBALL};
     convert_map src = {0};
     make_latlong(&src, GENENV_SUN, 256);
@@ -230,8 +237,10 @@ START_TEST(test_round_trips_keep_the_power_of_a_sun_map)
         resample_ok(&mid, CONVERT_LATLONG, 256, 0, &back);
         rgb p1 = power_of(&mid), p2 = power_of(&back);
         const char *name = convert_kind_name(issue[i]);
-        ck_assert_msg(fabs(p1.r / p0.r - 1) < POWER_TOL, "%s: there %.4f%%", name, 100 * (p1.r / p0.r - 1));
-        ck_assert_msg(fabs(p2.g / p0.g - 1) < POWER_TOL, "%s: back %.4f%%", name, 100 * (p2.g / p0.g - 1));
+        ck_assert_msg(fabs(p1.r / p0.r - 1) < POWER_TOL, "%s: there %.4f%%", name,
+                      100 * (p1.r / p0.r - 1));
+        ck_assert_msg(fabs(p2.g / p0.g - 1) < POWER_TOL, "%s: back %.4f%%", name,
+                      100 * (p2.g / p0.g - 1));
         convert_map_free(&mid);
         convert_map_free(&back);
     }
@@ -247,11 +256,14 @@ START_TEST(test_round_trips_keep_the_power_of_a_sun_map)
         rgb p1 = power_of(&mid), p2 = power_of(&back);
         const char *name = convert_kind_name(every_kind[i]);
         if (every_kind[i] != CONVERT_CYLINDRICAL) {
-            ck_assert_msg(fabs(p1.r / p0.r - 1) < POWER_TOL, "%s: there %.4f%%", name, 100 * (p1.r / p0.r - 1));
-            ck_assert_msg(fabs(p2.g / p0.g - 1) < POWER_TOL, "%s: back %.4f%%", name, 100 * (p2.g / p0.g - 1));
+            ck_assert_msg(fabs(p1.r / p0.r - 1) < POWER_TOL, "%s: there %.4f%%", name,
+                          100 * (p1.r / p0.r - 1));
+            ck_assert_msg(fabs(p2.g / p0.g - 1) < POWER_TOL, "%s: back %.4f%%", name,
+                          100 * (p2.g / p0.g - 1));
         } else {
             ck_assert(p1.b < p0.b); /* the caps are gone */
-            ck_assert_msg(fabs(p2.b / p1.b - 1) < POWER_TOL, "%s: back %.4f%%", name, 100 * (p2.b / p1.b - 1));
+            ck_assert_msg(fabs(p2.b / p1.b - 1) < POWER_TOL, "%s: back %.4f%%", name,
+                          100 * (p2.b / p1.b - 1));
         }
         convert_map_free(&mid);
         convert_map_free(&back);
@@ -278,7 +290,8 @@ START_TEST(test_every_representation_keeps_the_orientation_of_the_axes_map)
             vec3 d = sampling_uniform_sphere(rng_uniform(&r), rng_uniform(&r));
             if (every_kind[i] == CONVERT_CYLINDRICAL && fabs(d.z) > 0.8) continue; /* beyond it */
             if ((every_kind[i] == CONVERT_MIRRORBALL) && d.x < -0.95) continue;    /* the rim */
-            if (every_kind[i] == CONVERT_EQUALAREA && fabs(d.z) > 0.95) continue;  /* squeezed poles */
+            if (every_kind[i] == CONVERT_EQUALAREA && fabs(d.z) > 0.95)
+                continue; /* squeezed poles */
             rgb c = convert_lookup(&v, d);
             checked++;
             bad += fabs(c.r - (d.x + 1) / 2) > 0.03 || fabs(c.g - (d.y + 1) / 2) > 0.03 ||
@@ -294,9 +307,11 @@ START_TEST(test_every_representation_keeps_the_orientation_of_the_axes_map)
                     rgb a = image_get(&src.img, x, y), b = image_get(&back.img, x, y);
                     vec3 d = latlong_uv_to_dir((uv2){(x + 0.5) / 128, (y + 0.5) / 64});
                     if (every_kind[i] == CONVERT_MIRRORBALL && d.x < -0.9) continue;
-                    worst = fmax(worst, fmax(fabs(a.r - b.r), fmax(fabs(a.g - b.g), fabs(a.b - b.b))));
+                    worst =
+                        fmax(worst, fmax(fabs(a.r - b.r), fmax(fabs(a.g - b.g), fabs(a.b - b.b))));
                 }
-            ck_assert_msg(worst < 0.03, "%s: round trip differs by %g", convert_kind_name(every_kind[i]), worst);
+            ck_assert_msg(worst < 0.03, "%s: round trip differs by %g",
+                          convert_kind_name(every_kind[i]), worst);
             convert_map_free(&back);
         }
         convert_map_free(&mid);
@@ -323,7 +338,8 @@ START_TEST(test_default_samples_keep_the_power_of_a_sun_in_a_pole_row_or_the_rim
         ck_assert_msg(genenv_make(GENENV_SUN, &p, &src.img, &err) == 0, "%s", err.msg);
         resample_ok(&src, cases[i].to, 0, 0, &out);
         rgb p0 = power_of(&src), p1 = power_of(&out);
-        ck_assert_msg(fabs(p1.r / p0.r - 1) < 0.01, "%s, sun at elevation %g azimuth %g: power %+.3f%%",
+        ck_assert_msg(fabs(p1.r / p0.r - 1) < 0.01,
+                      "%s, sun at elevation %g azimuth %g: power %+.3f%%",
                       convert_kind_name(cases[i].to), cases[i].elevation, cases[i].azimuth,
                       100 * (p1.r / p0.r - 1));
         convert_map_free(&out);
@@ -347,8 +363,9 @@ START_TEST(test_a_one_hot_texel_comes_back_in_place)
         for (int y = 0; y < 32; y++)
             for (int x = 0; x < 64; x++)
                 if (image_get(&back.img, x, y).r > image_get(&back.img, bx, by).r) bx = x, by = y;
-        ck_assert_msg(abs(bx - 41) <= 1 && abs(by - 11) <= 1, "%s: the bright texel moved to (%d, %d)",
-                      convert_kind_name(every_kind[i]), bx, by);
+        ck_assert_msg(abs(bx - 41) <= 1 && abs(by - 11) <= 1,
+                      "%s: the bright texel moved to (%d, %d)", convert_kind_name(every_kind[i]),
+                      bx, by);
         convert_map_free(&mid);
         convert_map_free(&back);
     }
@@ -384,7 +401,8 @@ START_TEST(test_default_sizes_keep_the_detail_and_bad_samples_fail)
     ck_assert_int_eq(convert_default_samples(&v, CONVERT_LATLONG, 8), 16); /* 8x smaller: 2 x 8 */
     ck_assert_int_eq(convert_default_samples(&v, CONVERT_LATLONG, 1), CONVERT_MAX_SAMPLES);
     error err = {0};
-    ck_assert_int_eq(convert_resample(&v, CONVERT_CUBE, 8, CONVERT_MAX_SAMPLES + 1, &out, &err), -1);
+    ck_assert_int_eq(convert_resample(&v, CONVERT_CUBE, 8, CONVERT_MAX_SAMPLES + 1, &out, &err),
+                     -1);
     ck_assert_msg(strstr(err.msg, "samples"), "%s", err.msg);
     ck_assert_ptr_null(out.cube.face[0].px);
     ck_assert_int_eq(convert_resample(&v, CONVERT_LATLONG, 40000, 1, &out, &err), -1);
@@ -567,14 +585,16 @@ START_TEST(test_six_faces_are_written_as_a_set_and_read_back)
     ck_assert_int_eq(again.kind, CONVERT_CUBE);
     ck_assert_int_eq(again.cube.size, 8);
     for (int f = 0; f < CUBEMAP_FACES; f++)
-        ck_assert_int_eq(memcmp(again.cube.face[f].px, cube.cube.face[f].px, 8 * 8 * 3 * sizeof(float)), 0);
+        ck_assert_int_eq(
+            memcmp(again.cube.face[f].px, cube.cube.face[f].px, 8 * 8 * 3 * sizeof(float)), 0);
     convert_map_free(&again);
     /* a cross, detected by its shape */
     snprintf(path, sizeof path, "%s/cross.pfm", dir);
     ck_assert_int_eq(convert_write_cross(path, &cube, &err), 0);
     ck_assert_msg(convert_read(path, NULL, &again, NULL, &err) == 0, "%s", err.msg);
     ck_assert_int_eq(again.kind, CONVERT_CUBE);
-    ck_assert_int_eq(memcmp(again.cube.face[4].px, cube.cube.face[4].px, 8 * 8 * 3 * sizeof(float)), 0);
+    ck_assert_int_eq(memcmp(again.cube.face[4].px, cube.cube.face[4].px, 8 * 8 * 3 * sizeof(float)),
+                     0);
     convert_map_free(&again);
     /* errors name the file */
     ck_assert_int_eq(convert_read(path, "fisheye", &again, NULL, &err), -1);
@@ -617,7 +637,8 @@ START_TEST(test_bad_texels_in_a_file_are_read_as_zero_and_counted)
     ck_assert_msg(isfinite(p.r) && isfinite(p.g) && isfinite(p.b), "power %g %g %g", p.r, p.g, p.b);
     resample_ok(&again, CONVERT_CUBE, 4, 2, &out);
     for (int f = 0; f < CUBEMAP_FACES; f++)
-        for (int k = 0; k < 4 * 4 * 3; k++) ck_assert(out.cube.face[f].px[k] >= 0 && isfinite(out.cube.face[f].px[k]));
+        for (int k = 0; k < 4 * 4 * 3; k++)
+            ck_assert(out.cube.face[f].px[k] >= 0 && isfinite(out.cube.face[f].px[k]));
     /* six faces: every face is cleaned */
     snprintf(path, sizeof path, "%s/cube.pfm", dir);
     out.cube.face[CUBEMAP_NEG_Y].px[7] = NAN;
@@ -626,7 +647,8 @@ START_TEST(test_bad_texels_in_a_file_are_read_as_zero_and_counted)
     convert_map_free(&again);
     ck_assert_msg(convert_read(path, "cube", &again, NULL, &err) == 0, "%s", err.msg);
     ck_assert_int_eq(again.bad_texels, 2);
-    ck_assert(again.cube.face[CUBEMAP_NEG_Y].px[7] == 0 && again.cube.face[CUBEMAP_POS_Z].px[0] == 0);
+    ck_assert(again.cube.face[CUBEMAP_NEG_Y].px[7] == 0 &&
+              again.cube.face[CUBEMAP_POS_Z].px[0] == 0);
     convert_map_free(&again);
     convert_map_free(&out);
     convert_map_free(&src);

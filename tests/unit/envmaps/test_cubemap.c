@@ -46,8 +46,10 @@ START_TEST(test_cubemap_face_orientation_follows_the_gl_table)
     };
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         int f = cases[k].face;
-        assert_dir_near(cubemap_face_to_dir(f, (uv2){1.0, 0.5}), vec3_scale(cases[k].right, h), 1e-15);
-        assert_dir_near(cubemap_face_to_dir(f, (uv2){0.5, 0.0}), vec3_scale(cases[k].top, h), 1e-15);
+        assert_dir_near(cubemap_face_to_dir(f, (uv2){1.0, 0.5}), vec3_scale(cases[k].right, h),
+                        1e-15);
+        assert_dir_near(cubemap_face_to_dir(f, (uv2){0.5, 0.0}), vec3_scale(cases[k].top, h),
+                        1e-15);
         /* the opposite edges are the mirror images through the face centre */
         vec3 left = vec3_sub(vec3_scale(axes[f], 2.0), cases[k].right);
         vec3 bottom = vec3_sub(vec3_scale(axes[f], 2.0), cases[k].top);
@@ -91,13 +93,16 @@ START_TEST(test_cubemap_face_points_come_back_to_the_same_face)
                 int g = -1;
                 uv2 back = {NAN, NAN};
                 int rc = cubemap_dir_to_face(cubemap_face_to_dir(f, st), &g, &back);
-                if (rc != 0 || g != f || !(fabs(back.u - st.u) < ST_TOL && fabs(back.v - st.v) < ST_TOL)) {
+                if (rc != 0 || g != f ||
+                    !(fabs(back.u - st.u) < ST_TOL && fabs(back.v - st.v) < ST_TOL)) {
                     if (!wrong++)
-                        snprintf(first, sizeof first, "face %d (s, t) = (%g, %g) came back as face %d (%g, %g)",
-                                 f, st.u, st.v, g, back.u, back.v);
+                        snprintf(first, sizeof first,
+                                 "face %d (s, t) = (%g, %g) came back as face %d (%g, %g)", f, st.u,
+                                 st.v, g, back.u, back.v);
                 }
             }
-    ck_assert_msg(wrong == 0, "%d of %d points did not come back; the first: %s", wrong, CUBEMAP_FACES * 63 * 63, first);
+    ck_assert_msg(wrong == 0, "%d of %d points did not come back; the first: %s", wrong,
+                  CUBEMAP_FACES * 63 * 63, first);
 }
 END_TEST
 
@@ -121,7 +126,10 @@ START_TEST(test_cubemap_edges_and_corners_follow_the_tie_rule)
         for (int e = 0; e < 4; e++)
             for (int k = 0; k <= 16; k++) {
                 double p = k / 16.0;
-                uv2 st = e == 0 ? (uv2){0, p} : e == 1 ? (uv2){1, p} : e == 2 ? (uv2){p, 0} : (uv2){p, 1};
+                uv2 st = e == 0   ? (uv2){0, p}
+                         : e == 1 ? (uv2){1, p}
+                         : e == 2 ? (uv2){p, 0}
+                                  : (uv2){p, 1};
                 vec3 d = cubemap_face_to_dir(f, st);
                 int g;
                 uv2 back;
@@ -287,7 +295,10 @@ START_TEST(test_cubemap_lookup_has_no_seam_across_edges_and_corners)
         for (int e = 0; e < 4; e++)
             for (int k = 0; k <= 200; k++) {
                 double p = k / 200.0;
-                uv2 st = e == 0 ? (uv2){0, p} : e == 1 ? (uv2){1, p} : e == 2 ? (uv2){p, 0} : (uv2){p, 1};
+                uv2 st = e == 0   ? (uv2){0, p}
+                         : e == 1 ? (uv2){1, p}
+                         : e == 2 ? (uv2){p, 0}
+                                  : (uv2){p, 1};
                 vec3 d = cubemap_face_to_dir(f, st);
                 /* grow each of the tied largest components in turn: lands on each face */
                 double m = vec3_max_abs(d);
@@ -487,7 +498,8 @@ START_TEST(test_cubemap_from_cross_rejects_other_shapes)
         ck_assert_int_eq(image_alloc(&im, cells[k][0], cells[k][1], NULL), 0);
         cubemap cm = {0};
         error err = {0};
-        int rc = k == 0 ? cubemap_from_horizontal_cross(&im, &cm, &err) : cubemap_from_vertical_cross(&im, &cm, &err);
+        int rc = k == 0 ? cubemap_from_horizontal_cross(&im, &cm, &err)
+                        : cubemap_from_vertical_cross(&im, &cm, &err);
         ck_assert_msg(rc == -1, "a %d x %d cross was accepted", cells[k][0], cells[k][1]);
         ck_assert_int_eq(cm.size, 0);
         ck_assert(err.msg[0] != 0);
@@ -520,7 +532,8 @@ START_TEST(test_cubemap_lookup_works_with_one_texel_faces)
     rng_seed(&r, 5, 5);
     int outside = 0; /* counted, not asserted, in the loop: Check writes a file per assert */
     for (int k = 0; k < 10000; k++) {
-        rgb c = cubemap_lookup_bilinear(&cm, sampling_uniform_sphere(rng_uniform(&r), rng_uniform(&r)));
+        rgb c =
+            cubemap_lookup_bilinear(&cm, sampling_uniform_sphere(rng_uniform(&r), rng_uniform(&r)));
         outside += !(c.r >= 1 - 1e-12 && c.r <= 6 + 1e-12);
     }
     ck_assert_int_eq(outside, 0);

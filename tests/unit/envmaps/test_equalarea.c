@@ -100,7 +100,8 @@ START_TEST(test_equalarea_poles_map_to_u_zero_and_the_end_rows)
         ck_assert_double_eq(uv.v, poles[k].z > 0 ? 0.0 : 1.0);
     }
     for (int i = 0; i < 8; i++) {
-        vec3 n = equalarea_uv_to_dir((uv2){i / 8.0, 0.0}), s = equalarea_uv_to_dir((uv2){i / 8.0, 1.0});
+        vec3 n = equalarea_uv_to_dir((uv2){i / 8.0, 0.0}),
+             s = equalarea_uv_to_dir((uv2){i / 8.0, 1.0});
         ck_assert_double_eq(n.z, 1.0);
         ck_assert_double_eq(s.z, -1.0);
         ck_assert_double_eq(vec3_length(n), 1.0);
@@ -137,7 +138,8 @@ START_TEST(test_equalarea_rejects_zero_infinite_and_nan_directions)
         uv2 uv = {-5, -5};
         ck_assert_int_eq(equalarea_dir_to_uv(bad[k], &uv), -1);
         ck_assert_double_eq(uv.u, -5);
-        ck_assert(rgb_is_black(equalarea_lookup_bilinear(&(image){1, 1, (float[]){1, 1, 1}}, bad[k])));
+        ck_assert(
+            rgb_is_black(equalarea_lookup_bilinear(&(image){1, 1, (float[]){1, 1, 1}}, bad[k])));
     }
 }
 END_TEST

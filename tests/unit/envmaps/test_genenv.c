@@ -70,7 +70,8 @@ START_TEST(test_genenv_axes_colours_name_their_directions)
         for (int x = 0; x < im.w; x++) {
             vec3 d = latlong_uv_to_dir((uv2){(x + 0.5) / im.w, (y + 0.5) / im.h});
             rgb c = image_get(&im, x, y);
-            if (!(fabs(c.r - (d.x + 1) / 2) < 1e-7 && fabs(c.g - (d.y + 1) / 2) < 1e-7 && fabs(c.b - (d.z + 1) / 2) < 1e-7))
+            if (!(fabs(c.r - (d.x + 1) / 2) < 1e-7 && fabs(c.g - (d.y + 1) / 2) < 1e-7 &&
+                  fabs(c.b - (d.z + 1) / 2) < 1e-7))
                 ck_abort_msg("texel (%d, %d) is not (d + 1) / 2", x, y);
         }
     image_free(&im);
@@ -82,7 +83,8 @@ START_TEST(test_genenv_sky_is_blue_above_and_dim_below)
     genenv_params p = genenv_defaults();
     p.width = 64;
     image im = make(GENENV_SKY, &p);
-    rgb zen = latlong_lookup_nearest(&im, vec3_make(0, 0, 1)), nad = latlong_lookup_nearest(&im, vec3_make(0, 0, -1));
+    rgb zen = latlong_lookup_nearest(&im, vec3_make(0, 0, 1)),
+        nad = latlong_lookup_nearest(&im, vec3_make(0, 0, -1));
     ck_assert(zen.b > zen.r);
     ck_assert(rgb_avg(nad) < rgb_avg(zen));
     for (int i = 0; i < im.w * im.h * 3; i++) ck_assert(isfinite(im.px[i]) && im.px[i] > 0);
@@ -112,8 +114,8 @@ START_TEST(test_genenv_sun_disc_carries_sun_ratio_times_the_sky_mean)
     /* the disc's extra power over the sky is (L_sun - L_sky) times its solid angle */
     double cap = 2 * M_PI * (1 - cos(p.sun_radius_deg * M_PI / 180));
     double extra = power(&sun) - power(&sky);
-    ck_assert_msg(fabs(extra / cap / mean / p.sun_ratio - 1) < 0.1, "disc mean = %g x the sky mean, want %g",
-                  extra / cap / mean, p.sun_ratio);
+    ck_assert_msg(fabs(extra / cap / mean / p.sun_ratio - 1) < 0.1,
+                  "disc mean = %g x the sky mean, want %g", extra / cap / mean, p.sun_ratio);
     /* fully covered texels hold exactly L_sun = ratio x mean (float rounding) */
     float peak = 0;
     for (int i = 0; i < sun.w * sun.h * 3; i++) peak = fmaxf(peak, sun.px[i]);
@@ -146,7 +148,8 @@ START_TEST(test_genenv_sun_power_points_at_the_requested_direction)
         double el = pos[k][0] * M_PI / 180, az = pos[k][1] * M_PI / 180;
         vec3 want = vec3_make(cos(el) * cos(az), cos(el) * sin(az), sin(el));
         double ang = acos(fmin(1, vec3_dot(vec3_normalize(m), want))) * 180 / M_PI;
-        ck_assert_msg(ang < 0.2, "sun %d: power centred %g degrees from the requested direction", k, ang);
+        ck_assert_msg(ang < 0.2, "sun %d: power centred %g degrees from the requested direction", k,
+                      ang);
         image_free(&sky);
         image_free(&sun);
     }
@@ -191,14 +194,16 @@ START_TEST(test_genenv_rejects_bad_parameters)
     const double bad_el[] = {90.000001, -90.000001, 100, -180, 1e300, NAN};
     for (int k = 0; k < (int)(sizeof bad_el / sizeof bad_el[0]); k++) {
         p.sun_elevation_deg = bad_el[k];
-        ck_assert_msg(genenv_make(GENENV_SUN, &p, &im, &err) == -1, "elevation %g accepted", bad_el[k]);
+        ck_assert_msg(genenv_make(GENENV_SUN, &p, &im, &err) == -1, "elevation %g accepted",
+                      bad_el[k]);
         ck_assert_ptr_null(im.px);
     }
     ck_assert_str_eq(err.msg, "sun elevation must be in [-90, 90] degrees");
     const double ok_el[] = {90, -90, 0};
     for (int k = 0; k < 3; k++) {
         p.sun_elevation_deg = ok_el[k];
-        ck_assert_msg(genenv_make(GENENV_SUN, &p, &im, &err) == 0, "elevation %g: %s", ok_el[k], err.msg);
+        ck_assert_msg(genenv_make(GENENV_SUN, &p, &im, &err) == 0, "elevation %g: %s", ok_el[k],
+                      err.msg);
         image_free(&im);
     }
     p = genenv_defaults();

@@ -36,7 +36,8 @@ START_TEST(test_camera_top_and_bottom_edge_rays_span_fovy)
     const double fovs[] = {1, 30, 45, 90, 120, 179};
     for (unsigned i = 0; i < sizeof fovs / sizeof fovs[0]; i++) {
         camera c;
-        camera_init(&c, vec3_make(0, 0, 5), vec3_make(0, 0, 0), vec3_make(0, 1, 0), fovs[i], 200, 100);
+        camera_init(&c, vec3_make(0, 0, 5), vec3_make(0, 0, 0), vec3_make(0, 1, 0), fovs[i], 200,
+                    100);
         ray top = camera_ray(&c, 100, 0), bottom = camera_ray(&c, 100, 100);
         ck_assert_near(vec3_angle(top.d, bottom.d), fovs[i] * M_PI / 180, 1e-12);
         /* the horizontal field follows from the aspect: tan(fovx/2) = 2 tan(fovy/2) */
@@ -115,22 +116,28 @@ END_TEST
 START_TEST(test_camera_frame_handles_tiny_and_huge_vectors_and_names_each_failure)
 {
     vec3 u, v, w;
-    ck_assert_int_eq(camera_frame(vec3_make(0, 0, 1e10), vec3_make(0, 0, 0), vec3_make(0, 1e-163, 1e-160),
-                                  &u, &v, &w), CAMERA_FRAME_OK);
+    ck_assert_int_eq(camera_frame(vec3_make(0, 0, 1e10), vec3_make(0, 0, 0),
+                                  vec3_make(0, 1e-163, 1e-160), &u, &v, &w),
+                     CAMERA_FRAME_OK);
     assert_vec_near(u, vec3_make(1, 0, 0), 1e-15); /* up's part across the view is +y: right = +x */
     ck_assert_near(vec3_length(u), 1, 1e-15);
     ck_assert_near(vec3_length(v), 1, 1e-15);
     ck_assert_near(vec3_dot(u, w), 0, 1e-15);
-    ck_assert_int_eq(camera_frame(vec3_make(1e300, 0, 0), vec3_make(0, 0, 0), vec3_make(0, 1e300, 0), &u, &v, &w),
+    ck_assert_int_eq(camera_frame(vec3_make(1e300, 0, 0), vec3_make(0, 0, 0),
+                                  vec3_make(0, 1e300, 0), &u, &v, &w),
                      CAMERA_FRAME_OK);
     assert_vec_near(w, vec3_make(1, 0, 0), 1e-15);
-    ck_assert_int_eq(camera_frame(vec3_make(0, 0, 1e308), vec3_make(0, 0, -1e308), vec3_make(0, 1, 0), &u, &v, &w),
+    ck_assert_int_eq(camera_frame(vec3_make(0, 0, 1e308), vec3_make(0, 0, -1e308),
+                                  vec3_make(0, 1, 0), &u, &v, &w),
                      CAMERA_FRAME_TOO_FAR);
-    ck_assert_int_eq(camera_frame(vec3_make(1, 2, 3), vec3_make(1, 2, 3), vec3_make(0, 1, 0), &u, &v, &w),
-                     CAMERA_FRAME_SAME_POINT);
-    ck_assert_int_eq(camera_frame(vec3_make(0, 0, 1), vec3_make(0, 0, 0), vec3_make(0, 0, 0), &u, &v, &w),
-                     CAMERA_FRAME_UP_ZERO);
-    ck_assert_int_eq(camera_frame(vec3_make(0, 0, 1e-300), vec3_make(0, 0, 0), vec3_make(0, 1e-300, 1), &u, &v, &w),
+    ck_assert_int_eq(
+        camera_frame(vec3_make(1, 2, 3), vec3_make(1, 2, 3), vec3_make(0, 1, 0), &u, &v, &w),
+        CAMERA_FRAME_SAME_POINT);
+    ck_assert_int_eq(
+        camera_frame(vec3_make(0, 0, 1), vec3_make(0, 0, 0), vec3_make(0, 0, 0), &u, &v, &w),
+        CAMERA_FRAME_UP_ZERO);
+    ck_assert_int_eq(camera_frame(vec3_make(0, 0, 1e-300), vec3_make(0, 0, 0),
+                                  vec3_make(0, 1e-300, 1), &u, &v, &w),
                      CAMERA_FRAME_UP_PARALLEL); /* sin(angle) = 1e-300, however small the vectors */
 }
 END_TEST

@@ -56,8 +56,12 @@ START_TEST(test_camera_differentials_are_the_derivatives_of_camera_ray)
         ray r0 = camera_ray(&c, x, y);
         ck_assert(rd.has);
         ck_assert(vec3_length(vec3_sub(r.d, r0.d)) == 0); /* the same ray as camera_ray */
-        vec3 fx = vec3_scale(vec3_sub(camera_ray(&c, x + FD_STEP, y).d, camera_ray(&c, x - FD_STEP, y).d), 0.5 / FD_STEP);
-        vec3 fy = vec3_scale(vec3_sub(camera_ray(&c, x, y + FD_STEP).d, camera_ray(&c, x, y - FD_STEP).d), 0.5 / FD_STEP);
+        vec3 fx =
+            vec3_scale(vec3_sub(camera_ray(&c, x + FD_STEP, y).d, camera_ray(&c, x - FD_STEP, y).d),
+                       0.5 / FD_STEP);
+        vec3 fy =
+            vec3_scale(vec3_sub(camera_ray(&c, x, y + FD_STEP).d, camera_ray(&c, x, y - FD_STEP).d),
+                       0.5 / FD_STEP);
         assert_vec_near(rd.ddx, fx, FD_TOL, "ddx");
         assert_vec_near(rd.ddy, fy, FD_TOL, "ddy");
         ck_assert(vec3_length(rd.dox) == 0 && vec3_length(rd.doy) == 0); /* a pinhole */
@@ -140,12 +144,14 @@ START_TEST(test_reflection_differentials_match_finite_differences_on_a_mirror_sp
         out.dox = vec3_scale(out.dox, 1 / DIFF_SCALE);
         /* finite differences of the reflected direction and of the hit point */
         vec3 pa, pb, da, db;
-        ck_assert(sphere_hit_at(&c, x + FD_STEP, y, &pa, &da) && sphere_hit_at(&c, x - FD_STEP, y, &pb, &db));
+        ck_assert(sphere_hit_at(&c, x + FD_STEP, y, &pa, &da) &&
+                  sphere_hit_at(&c, x - FD_STEP, y, &pb, &db));
         vec3 fd = vec3_scale(vec3_sub(vec3_reflect(da, pa), vec3_reflect(db, pb)), 0.5 / FD_STEP);
         vec3 fp = vec3_scale(vec3_sub(pa, pb), 0.5 / FD_STEP);
         assert_vec_near(out.ddx, fd, 1e-6, "reflected ddx");
         assert_vec_near(out.dox, fp, 1e-6, "reflected dox");
-        ck_assert(sphere_hit_at(&c, x, y + FD_STEP, &pa, &da) && sphere_hit_at(&c, x, y - FD_STEP, &pb, &db));
+        ck_assert(sphere_hit_at(&c, x, y + FD_STEP, &pa, &da) &&
+                  sphere_hit_at(&c, x, y - FD_STEP, &pb, &db));
         fd = vec3_scale(vec3_sub(vec3_reflect(da, pa), vec3_reflect(db, pb)), 0.5 / FD_STEP);
         assert_vec_near(out.ddy, fd, 1e-6, "reflected ddy");
     }
@@ -170,19 +176,24 @@ START_TEST(test_refraction_differentials_match_finite_differences_at_a_curved_su
         /* the normal on wo's side: outward entering, inward leaving (a ray inside the ball) */
         vec3 n = eta_ti > 1 ? p : vec3_neg(p);
         ck_assert(fresnel_refract(d, n, eta_ti, &wi));
-        ck_assert(raydiff_refract(&rd, dpdx, dpdy, vec3_neg(d), n, vec3_scale(dpdx, eta_ti > 1 ? 1 : -1),
+        ck_assert(raydiff_refract(&rd, dpdx, dpdy, vec3_neg(d), n,
+                                  vec3_scale(dpdx, eta_ti > 1 ? 1 : -1),
                                   vec3_scale(dpdy, eta_ti > 1 ? 1 : -1), 1 / eta_ti, wi, &out));
         out.ddx = vec3_scale(out.ddx, 1 / DIFF_SCALE);
         out.ddy = vec3_scale(out.ddy, 1 / DIFF_SCALE);
         vec3 pa, pb, da, db, ta, tb;
-        ck_assert(sphere_hit_at(&c, x + FD_STEP, y, &pa, &da) && sphere_hit_at(&c, x - FD_STEP, y, &pb, &db));
+        ck_assert(sphere_hit_at(&c, x + FD_STEP, y, &pa, &da) &&
+                  sphere_hit_at(&c, x - FD_STEP, y, &pb, &db));
         ck_assert(fresnel_refract(da, eta_ti > 1 ? pa : vec3_neg(pa), eta_ti, &ta) &&
                   fresnel_refract(db, eta_ti > 1 ? pb : vec3_neg(pb), eta_ti, &tb));
-        assert_vec_near(out.ddx, vec3_scale(vec3_sub(ta, tb), 0.5 / FD_STEP), 1e-6, "refracted ddx");
-        ck_assert(sphere_hit_at(&c, x, y + FD_STEP, &pa, &da) && sphere_hit_at(&c, x, y - FD_STEP, &pb, &db));
+        assert_vec_near(out.ddx, vec3_scale(vec3_sub(ta, tb), 0.5 / FD_STEP), 1e-6,
+                        "refracted ddx");
+        ck_assert(sphere_hit_at(&c, x, y + FD_STEP, &pa, &da) &&
+                  sphere_hit_at(&c, x, y - FD_STEP, &pb, &db));
         ck_assert(fresnel_refract(da, eta_ti > 1 ? pa : vec3_neg(pa), eta_ti, &ta) &&
                   fresnel_refract(db, eta_ti > 1 ? pb : vec3_neg(pb), eta_ti, &tb));
-        assert_vec_near(out.ddy, vec3_scale(vec3_sub(ta, tb), 0.5 / FD_STEP), 1e-6, "refracted ddy");
+        assert_vec_near(out.ddy, vec3_scale(vec3_sub(ta, tb), 0.5 / FD_STEP), 1e-6,
+                        "refracted ddy");
     }
 }
 END_TEST
@@ -288,10 +299,12 @@ START_TEST(test_reflected_and_refracted_origins_move_with_the_hit_point)
                    vec3_make(0, 0.002, 0.0005)}, out;
     raydiff_reflect(&in, dpdx, dpdy, wo, n, dn, dn, &out);
     ck_assert(out.has);
-    ck_assert(vec3_length(vec3_sub(out.dox, dpdx)) == 0 && vec3_length(vec3_sub(out.doy, dpdy)) == 0);
+    ck_assert(vec3_length(vec3_sub(out.dox, dpdx)) == 0 &&
+              vec3_length(vec3_sub(out.doy, dpdy)) == 0);
     ck_assert(fresnel_refract(vec3_neg(wo), n, 1.5, &wi));
     ck_assert(raydiff_refract(&in, dpdx, dpdy, wo, n, dn, dn, 1 / 1.5, wi, &out));
-    ck_assert(vec3_length(vec3_sub(out.dox, dpdx)) == 0 && vec3_length(vec3_sub(out.doy, dpdy)) == 0);
+    ck_assert(vec3_length(vec3_sub(out.dox, dpdx)) == 0 &&
+              vec3_length(vec3_sub(out.doy, dpdy)) == 0);
 }
 END_TEST
 
@@ -355,7 +368,8 @@ START_TEST(test_footprint_of_a_plane_at_known_distance_picks_the_mip_level)
     texshade_point_at(&sc, &h, &s, &tp);
     double w = 7 * tan(30 * M_PI / 180) / 32; /* texture units per pixel */
     ck_assert(fabs(tp.st.u - 0.5) < 1e-12 && fabs(tp.st.v - 0.5) < 1e-12);
-    ck_assert_msg(fabs(tp.dst_dx.u - w) < 1e-12 && fabs(tp.dst_dx.v) < 1e-12, "ds/dx %g, want %g", tp.dst_dx.u, w);
+    ck_assert_msg(fabs(tp.dst_dx.u - w) < 1e-12 && fabs(tp.dst_dx.v) < 1e-12, "ds/dx %g, want %g",
+                  tp.dst_dx.u, w);
     ck_assert(fabs(tp.dst_dy.v + w) < 1e-12 && fabs(tp.dst_dy.u) < 1e-12);
     /* a 64 x 64 pyramid: level log2(64 w) */
     image img;
@@ -388,7 +402,8 @@ START_TEST(test_delta_diff_tells_reflection_from_refraction_by_the_shading_norma
     s.dpdy = vec3_make(0, 0.01, 0);
     s.dndx = vec3_make(0, 0.002, 0);
     s.dndy = vec3_make(0.001, 0, -0.00075);
-    ray_diff rd = {1, vec3_make(0.01, 0, 0), vec3_make(0, 0.003, 0.001), vec3_make(0, 0.01, 0), vec3_make(0.002, 0, 0)};
+    ray_diff rd = {1, vec3_make(0.01, 0, 0), vec3_make(0, 0.003, 0.001), vec3_make(0, 0.01, 0),
+                   vec3_make(0.002, 0, 0)};
     vec3 wo = vec3_normalize(vec3_make(-0.5, 0, 1)); /* above ng, and above n */
     vec3 wi = vec3_sub(vec3_scale(s.n, 2 * vec3_dot(wo, s.n)), wo); /* mirror about n */
     ck_assert(vec3_dot(wo, s.n) > 0 && wi.z < 0);                    /* below the surface */
@@ -396,7 +411,8 @@ START_TEST(test_delta_diff_tells_reflection_from_refraction_by_the_shading_norma
     texshade_delta_diff(&s, &rd, wo, wi, &got);
     raydiff_reflect(&rd, s.dpdx, s.dpdy, wo, s.n, s.dndx, s.dndy, &want);
     ck_assert(got.has && want.has);
-    ck_assert_msg(vec3_length(vec3_sub(got.ddx, want.ddx)) < 1e-15 && vec3_length(vec3_sub(got.ddy, want.ddy)) < 1e-15,
+    ck_assert_msg(vec3_length(vec3_sub(got.ddx, want.ddx)) < 1e-15 &&
+                      vec3_length(vec3_sub(got.ddy, want.ddy)) < 1e-15,
                   "a mirror direction below ng got other differentials than raydiff_reflect's");
     /* a refraction through the same bumped normal */
     vec3 wt;
@@ -404,7 +420,8 @@ START_TEST(test_delta_diff_tells_reflection_from_refraction_by_the_shading_norma
     texshade_delta_diff(&s, &rd, wo, wt, &got);
     ck_assert(raydiff_refract(&rd, s.dpdx, s.dpdy, wo, s.n, s.dndx, s.dndy, 1 / 1.5, wt, &want));
     ck_assert(got.has);
-    ck_assert(vec3_length(vec3_sub(got.ddx, want.ddx)) < 1e-15 && vec3_length(vec3_sub(got.ddy, want.ddy)) < 1e-15);
+    ck_assert(vec3_length(vec3_sub(got.ddx, want.ddx)) < 1e-15 &&
+              vec3_length(vec3_sub(got.ddy, want.ddy)) < 1e-15);
 }
 END_TEST
 
@@ -432,8 +449,9 @@ START_TEST(test_a_mirror_falling_back_to_the_geometric_normal_reflects_the_footp
     hit h;
     ck_assert(find_hit(&sc, &r, &h));
     double b1 = h.bary.u, b2 = h.bary.v; /* the interpolated normal, as the triangle's hit has */
-    h.ns = vec3_normalize(vec3_add(vec3_add(vec3_scale(tr->n[0], 1 - b1 - b2), vec3_scale(tr->n[1], b1)),
-                                   vec3_scale(tr->n[2], b2)));
+    h.ns = vec3_normalize(
+        vec3_add(vec3_add(vec3_scale(tr->n[0], 1 - b1 - b2), vec3_scale(tr->n[1], b1)),
+                 vec3_scale(tr->n[2], b2)));
     vec3 view = vec3_neg(r.d);
     /* the integrators' frame: ns faces away from the viewer here, so n = ng */
     ck_assert(vec3_dot(view, h.ng) > 0 && vec3_dot(view, h.ns) < 0);
@@ -447,8 +465,10 @@ START_TEST(test_a_mirror_falling_back_to_the_geometric_normal_reflects_the_footp
     texshade_delta_diff(&s, &rd, view, vec3_reflect(r.d, s.n), &out);
     ck_assert(out.has);
     vec3 n = s.ng; /* dwi = dd - 2 (dd . n) n */
-    assert_vec_near(out.ddx, vec3_madd(rd.ddx, n, -2 * vec3_dot(rd.ddx, n)), 1e-12, "ddx of a flat mirror");
-    assert_vec_near(out.ddy, vec3_madd(rd.ddy, n, -2 * vec3_dot(rd.ddy, n)), 1e-12, "ddy of a flat mirror");
+    assert_vec_near(out.ddx, vec3_madd(rd.ddx, n, -2 * vec3_dot(rd.ddx, n)), 1e-12,
+                    "ddx of a flat mirror");
+    assert_vec_near(out.ddy, vec3_madd(rd.ddy, n, -2 * vec3_dot(rd.ddy, n)), 1e-12,
+                    "ddy of a flat mirror");
     /* seen with its own interpolated normal the same hit does curve: dn is not zero */
     s.n = h.ns;
     texshade_differentials(&sc, &h, &r, &rd, &s);
@@ -507,7 +527,8 @@ START_TEST(test_diffusemap_replaces_kd_and_untextured_materials_are_untouched)
     h.material = sc.triangles[1].material;
     brdf_surface_from_material(&s, &sc.materials[h.material]);
     texshade_surface(&sc, &h, &r, NULL, &s);
-    ck_assert(fabs(s.kd.r - 0.2) < 1e-12 && fabs(s.kd.g - 0.4) < 1e-12 && fabs(s.kd.b - 0.6) < 1e-12);
+    ck_assert(fabs(s.kd.r - 0.2) < 1e-12 && fabs(s.kd.g - 0.4) < 1e-12 &&
+              fabs(s.kd.b - 0.6) < 1e-12);
     ck_assert(fabs(s.ks.b - 0.6) < 1e-12 && fabs(s.emission.g - 0.4) < 1e-12);
     scene_free(&sc);
 }
@@ -521,16 +542,18 @@ START_TEST(test_differentials_only_for_maps_that_use_a_footprint)
     const char *head =
         "size 8 8\ncamera 0 0 0  0 0 -1  0 1 0  60\n"
         "texture c checker 4  0.1 0.2 0.3  0.7 0.8 0.9\ntexture n fbm 3 4  0 0 0  1 1 1\n";
-    const char *mats[] = {"texfilter nearest\ndiffusemap c\nroughnessmap n\nspecularmap n\nemissionmap c\n",
-                          "texfilter bilinear\ndiffusemap n\nspecularmap c\n",
-                          "texfilter nearest\nbumpmap c 1\n",
-                          "texfilter ewa\ndiffusemap c\n", "texfilter trilinear\nemissionmap n\n",
-                          "texfilter ewa\n"};
+    const char *mats[] = {
+        "texfilter nearest\ndiffusemap c\nroughnessmap n\nspecularmap n\nemissionmap c\n",
+        "texfilter bilinear\ndiffusemap n\nspecularmap c\n",
+        "texfilter nearest\nbumpmap c 1\n",
+        "texfilter ewa\ndiffusemap c\n",
+        "texfilter trilinear\nemissionmap n\n",
+        "texfilter ewa\n"};
     const int needs[] = {0, 0, 1, 1, 1, 0};
     for (int k = 0; k < 6; k++) {
         char text[1024];
-        snprintf(text, sizeof text, "%s%svertex -4 -4 -3\nvertex 4 -4 -3\nvertex 0 4 -3\ntri 0 1 2\n",
-                 head, mats[k]);
+        snprintf(text, sizeof text,
+                 "%s%svertex -4 -4 -3\nvertex 4 -4 -3\nvertex 0 4 -3\ntri 0 1 2\n", head, mats[k]);
         scene sc;
         error err = {0};
         ck_assert_msg(scene_load_string(text, NULL, NULL, &sc, &err) == 0, "%s", err.msg);
@@ -554,7 +577,8 @@ START_TEST(test_differentials_only_for_maps_that_use_a_footprint)
                     texshade_surface(&sc, &h, &r, NULL, &b);
                     ck_assert(a.has_diff && !b.has_diff);
                     ck_assert(a.kd.r == b.kd.r && a.kd.g == b.kd.g && a.kd.b == b.kd.b);
-                    ck_assert(a.ks.r == b.ks.r && a.emission.g == b.emission.g && a.roughness == b.roughness);
+                    ck_assert(a.ks.r == b.ks.r && a.emission.g == b.emission.g &&
+                              a.roughness == b.roughness);
                 }
         }
         scene_free(&sc);
@@ -577,8 +601,11 @@ START_TEST(test_colour_maps_from_negative_texels_read_as_zero)
     for (int i = 0; i < 2 * 2 * 3; i++) img.px[i] = i % 3 == 1 ? 0.5f : -2.0f; /* (-2, 0.5, -2) */
     ck_assert_int_eq(pfm_write(path, &img, &err), 0);
     image_free(&img);
-    snprintf(text, sizeof text, "size 8 8\ncamera 0 0 0  0 0 -1  0 1 0  60\ntexture c %s\ntexfilter nearest\n"
-             "diffusemap c\nspecularmap c\nemissionmap c\nvertex -1 -1 -3\nvertex 1 -1 -3\nvertex 0 1 -3\ntri 0 1 2\n", path);
+    snprintf(text, sizeof text,
+             "size 8 8\ncamera 0 0 0  0 0 -1  0 1 0  60\ntexture c %s\ntexfilter nearest\n"
+             "diffusemap c\nspecularmap c\nemissionmap c\n"
+             "vertex -1 -1 -3\nvertex 1 -1 -3\nvertex 0 1 -3\ntri 0 1 2\n",
+             path);
     scene sc;
     ck_assert_msg(scene_load_string(text, NULL, NULL, &sc, &err) == 0, "%s", err.msg);
     ray r = {vec3_make(0, 0, 0), vec3_make(0, 0, -1), 0, INFINITY};
@@ -587,7 +614,8 @@ START_TEST(test_colour_maps_from_negative_texels_read_as_zero)
     surface s = front_frame(&h);
     brdf_surface_from_material(&s, &sc.materials[h.material]);
     texshade_surface(&sc, &h, &r, NULL, &s);
-    ck_assert_msg(s.kd.r == 0 && s.kd.b == 0 && fabs(s.kd.g - 0.5) < 1e-6, "kd (%g %g %g)", s.kd.r, s.kd.g, s.kd.b);
+    ck_assert_msg(s.kd.r == 0 && s.kd.b == 0 && fabs(s.kd.g - 0.5) < 1e-6, "kd (%g %g %g)", s.kd.r,
+                  s.kd.g, s.kd.b);
     ck_assert(s.ks.r == 0 && s.ks.b == 0 && s.emission.r == 0 && s.emission.b == 0);
     ck_assert(fabs(s.emission.g - 0.5) < 1e-6);
     scene_free(&sc);
@@ -603,18 +631,21 @@ Suite *raydiff_suite(void)
     tcase_add_test(tc, test_camera_differentials_are_the_derivatives_of_camera_ray);
     tcase_add_test(tc, test_camera_differentials_shrink_with_the_scale);
     tcase_add_test(tc, test_hit_differential_on_a_plane_at_known_distance);
-    tcase_add_test(tc, test_hit_differential_is_none_for_a_grazing_offset_ray_and_without_differentials);
+    tcase_add_test(
+        tc, test_hit_differential_is_none_for_a_grazing_offset_ray_and_without_differentials);
     tcase_add_test(tc, test_reflection_differentials_match_finite_differences_on_a_mirror_sphere);
     tcase_add_test(tc, test_refraction_differentials_match_finite_differences_at_a_curved_surface);
     tcase_add_test(tc, test_no_differentials_in_means_none_out);
     tcase_add_test(tc, test_hit_differential_ignores_the_lengths_of_d_and_ng);
-    tcase_add_test(tc, test_hit_differential_is_none_when_either_offset_ray_nearly_grazes_or_has_is_zero);
+    tcase_add_test(
+        tc, test_hit_differential_is_none_when_either_offset_ray_nearly_grazes_or_has_is_zero);
     tcase_add_test(tc, test_refraction_differentials_stop_just_above_grazing_too);
     tcase_add_test(tc, test_reflected_and_refracted_origins_move_with_the_hit_point);
     tcase_add_test(tc, test_footprint_of_a_plane_at_known_distance_picks_the_mip_level);
     tcase_add_test(tc, test_barycentric_st_at_a_hit_interpolates_the_corners);
     tcase_add_test(tc, test_delta_diff_tells_reflection_from_refraction_by_the_shading_normal);
-    tcase_add_test(tc, test_a_mirror_falling_back_to_the_geometric_normal_reflects_the_footprint_flat);
+    tcase_add_test(tc,
+                   test_a_mirror_falling_back_to_the_geometric_normal_reflects_the_footprint_flat);
     tcase_add_test(tc, test_diffusemap_replaces_kd_and_untextured_materials_are_untouched);
     tcase_add_test(tc, test_differentials_only_for_maps_that_use_a_footprint);
     tcase_add_test(tc, test_colour_maps_from_negative_texels_read_as_zero);

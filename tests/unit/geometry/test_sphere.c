@@ -114,14 +114,17 @@ START_TEST(test_sphere_ray_leaving_the_surface_outward_does_not_hit_it_again)
     rng g;
     rng_seed(&g, 21, 0);
     /* a unit sphere, an ellipsoid, and a sphere far from the origin */
-    mat4 ell = mat4_mul(mat4_translate(vec3_make(3, -1, 2)),
-                        mat4_mul(mat4_rotate(vec3_make(1, 1, 0), 30), mat4_scale(vec3_make(2, 1, 0.5))));
+    mat4 ell =
+        mat4_mul(mat4_translate(vec3_make(3, -1, 2)),
+                 mat4_mul(mat4_rotate(vec3_make(1, 1, 0), 30), mat4_scale(vec3_make(2, 1, 0.5))));
     sphere ss[3] = {unit_sphere(), make_sphere(vec3_make(0, 0, 0), 1, ell),
                           make_sphere(vec3_make(1e4, 0, 0), 10, mat4_identity())};
     for (int k = 0; k < 3; k++)
         for (int i = 0; i < 20000; i++) {
             /* hit the sphere from a random outside point */
-            vec3 target = mat4_point(&ss[k].xf, vec3_add(ss[k].center, vec3_scale(random_unit(&g), 0.999 * ss[k].radius)));
+            vec3 target =
+                mat4_point(&ss[k].xf, vec3_add(ss[k].center,
+                                               vec3_scale(random_unit(&g), 0.999 * ss[k].radius)));
             vec3 from = vec3_add(target, vec3_scale(random_unit(&g), 30 * ss[k].radius + 10));
             ray r = make_ray(from, vec3_normalize(vec3_sub(target, from)));
             double t;
@@ -133,7 +136,8 @@ START_TEST(test_sphere_ray_leaving_the_surface_outward_does_not_hit_it_again)
             if (vec3_dot(d, h.ng) < 0) d = vec3_neg(d);
             ray out = ray_spawn(h.p, h.ng, d);
             double t2;
-            EXPECT_MSG(!sphere_intersect(&ss[k], &out, &t2), "sphere %d: self hit at t = %g", k, t2);
+            EXPECT_MSG(!sphere_intersect(&ss[k], &out, &t2), "sphere %d: self hit at t = %g", k,
+                       t2);
             /* leave inward (well away from tangent): hit the far side, at a positive distance */
             if (vec3_dot(d, h.ng) > 0.05) {
                 ray in = ray_spawn(h.p, h.ng, vec3_neg(d));
@@ -174,7 +178,8 @@ START_TEST(test_sphere_ellipsoid_normal_is_the_analytic_one)
     int hits = 0;
     for (int i = 0; i < 20000; i++) {
         ray r = make_ray(vec3_add(off, vec3_scale(random_unit(&g), 10)), vec3_make(0, 0, 0));
-        r.d = vec3_normalize(vec3_sub(vec3_add(off, vec3_mul(random_unit(&g), vec3_make(a, b, c))), r.o));
+        r.d = vec3_normalize(
+            vec3_sub(vec3_add(off, vec3_mul(random_unit(&g), vec3_make(a, b, c))), r.o));
         double t;
         if (!sphere_intersect(&s, &r, &t)) continue;
         hits++;
@@ -230,7 +235,8 @@ static double exact_t(vec3 o, vec3 d, vec3 c, double radius)
 {
     long double dx = d.x, dy = d.y, dz = d.z, l = sqrtl(dx * dx + dy * dy + dz * dz);
     dx /= l, dy /= l, dz /= l;
-    long double cx = (long double)c.x - o.x, cy = (long double)c.y - o.y, cz = (long double)c.z - o.z;
+    long double cx = (long double)c.x - o.x, cy = (long double)c.y - o.y,
+                cz = (long double)c.z - o.z;
     long double along = cx * dx + cy * dy + cz * dz;
     long double px = cx - along * dx, py = cy - along * dy, pz = cz - along * dz;
     long double h2 = (long double)radius * radius - (px * px + py * py + pz * pz);
@@ -335,8 +341,9 @@ START_TEST(test_sphere_untransformed_fast_path_gives_the_general_paths_t)
         hit a, b;
         sphere_hit(&general, &r, t0, &a);
         sphere_hit(&fast, &r, t0, &b);
-        if (!same_hit_bits(&a, &b)) ck_abort_msg("o (%g %g %g) d (%g %g %g): sphere_hit's bits differ untransformed",
-                                                 o.x, o.y, o.z, d.x, d.y, d.z);
+        if (!same_hit_bits(&a, &b))
+            ck_abort_msg("o (%g %g %g) d (%g %g %g): sphere_hit's bits differ untransformed", o.x,
+                         o.y, o.z, d.x, d.y, d.z);
         n++;
     }
     ck_assert_int_gt(n, 1000);
@@ -345,8 +352,9 @@ END_TEST
 
 START_TEST(test_sphere_bounds_contain_the_transformed_surface)
 {
-    mat4 xf = mat4_mul(mat4_translate(vec3_make(5, 0, -3)),
-                       mat4_mul(mat4_rotate(vec3_make(1, 2, 3), 40), mat4_scale(vec3_make(3, 1, 0.2))));
+    mat4 xf =
+        mat4_mul(mat4_translate(vec3_make(5, 0, -3)),
+                 mat4_mul(mat4_rotate(vec3_make(1, 2, 3), 40), mat4_scale(vec3_make(3, 1, 0.2))));
     sphere s = make_sphere(vec3_make(0.5, 0, 0), 2, xf);
     vec3 lo, hi;
     sphere_bounds(&s, &lo, &hi);

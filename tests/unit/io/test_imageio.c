@@ -43,9 +43,11 @@ START_TEST(test_every_extension_writes_and_reads_back)
     double tol[] = {0.0, 0.0, 1.0 / 256.0, 0.01, 0.0};
     for (int f = 0; f < 5; f++) {
         ck_assert(imageio_can_write(names[f]));
-        ck_assert_msg(imageio_write(in_dir(names[f]), &im, NULL, &err) == 0, "%s: %s", names[f], err.msg);
+        ck_assert_msg(imageio_write(in_dir(names[f]), &im, NULL, &err) == 0, "%s: %s", names[f],
+                      err.msg);
         image back = {0};
-        ck_assert_msg(imageio_read(in_dir(names[f]), &back, NULL, &err) == 0, "%s: %s", names[f], err.msg);
+        ck_assert_msg(imageio_read(in_dir(names[f]), &back, NULL, &err) == 0, "%s: %s", names[f],
+                      err.msg);
         ck_assert_int_eq(back.w, 12);
         ck_assert_int_eq(back.h, 10);
         double worst = 0.0;
@@ -87,7 +89,8 @@ START_TEST(test_detect_names_the_format_by_magic_bytes_as_read_does)
         ck_assert_int_eq(imageio_write(in_dir(names[f]), &im, NULL, &err), 0);
         ck_assert_int_eq(imageio_detect(in_dir(names[f])), want[f]);
     }
-    ck_assert_int_eq(rename(in_dir("b.png"), in_dir("png_named.exr")), 0); /* the name does not count */
+    /* the name does not count */
+    ck_assert_int_eq(rename(in_dir("b.png"), in_dir("png_named.exr")), 0);
     ck_assert_int_eq(imageio_detect(in_dir("png_named.exr")), IMAGEIO_PNG);
     FILE *f = fopen(in_dir("text.exr"), "wb");
     ck_assert_ptr_nonnull(f);
@@ -139,8 +142,10 @@ START_TEST(test_every_reader_charges_the_budget_and_keeps_only_the_image_charged
         budget mem;
         budget_init(&mem, 1e9);
         image back = {0};
-        ck_assert_msg(imageio_read(in_dir(names[f]), &back, &mem, &err) == 0, "%s: %s", names[f], err.msg);
-        ck_assert_msg(mem.used == 40 * 30 * IMAGE_TEXEL_BYTES, "%s: %g charged", names[f], mem.used);
+        ck_assert_msg(imageio_read(in_dir(names[f]), &back, &mem, &err) == 0, "%s: %s", names[f],
+                      err.msg);
+        ck_assert_msg(mem.used == 40 * 30 * IMAGE_TEXEL_BYTES, "%s: %g charged", names[f],
+                      mem.used);
         ck_assert_msg(mem.peak > mem.used, "%s: no scratch charged (peak %g)", names[f], mem.peak);
         image_free(&back);
         double peak = mem.peak;
@@ -151,7 +156,8 @@ START_TEST(test_every_reader_charges_the_budget_and_keeps_only_the_image_charged
         ck_assert_msg(strstr(err.msg, "beyond the memory budget of"), "%s: %s", names[f], err.msg);
         ck_assert_msg(mem.used == 0, "%s: %g left charged", names[f], mem.used);
         budget_init(&mem, peak);
-        ck_assert_msg(imageio_read(in_dir(names[f]), &back, &mem, &err) == 0, "%s: %s", names[f], err.msg);
+        ck_assert_msg(imageio_read(in_dir(names[f]), &back, &mem, &err) == 0, "%s: %s", names[f],
+                      err.msg);
         image_free(&back);
     }
     image_free(&im);
@@ -174,7 +180,8 @@ START_TEST(test_truncated_files_of_every_format_are_errors)
         for (size_t i = 0; i < 4; i++) {
             write_bytes(in_dir("cut"), d, cuts[i]);
             image back = {0};
-            ck_assert_msg(imageio_read(in_dir("cut"), &back, NULL, &err) == -1, "%s cut at %zu", names[f], cuts[i]);
+            ck_assert_msg(imageio_read(in_dir("cut"), &back, NULL, &err) == -1, "%s cut at %zu",
+                          names[f], cuts[i]);
             ck_assert_ptr_null(back.px);
         }
         free(d);
@@ -257,9 +264,12 @@ START_TEST(test_a_write_that_fails_part_way_leaves_the_old_file_and_no_temporary
             file_size_limit(round == 0 ? 2048 : 100);
             int rc = imageio_write(in_dir(names[f]), round == 0 ? &noise : &small, NULL, &err);
             file_size_unlimited();
-            ck_assert_msg(rc == -1, "%s, round %d: a write over the size limit succeeded", names[f], round);
-            ck_assert_msg(strstr(err.file, names[f]) != NULL, "%s: error names '%s'", names[f], err.file);
-            ck_assert_msg(strstr(err.msg, "File too large") != NULL, "%s, round %d: %s", names[f], round, err.msg);
+            ck_assert_msg(rc == -1, "%s, round %d: a write over the size limit succeeded", names[f],
+                          round);
+            ck_assert_msg(strstr(err.file, names[f]) != NULL, "%s: error names '%s'", names[f],
+                          err.file);
+            ck_assert_msg(strstr(err.msg, "File too large") != NULL, "%s, round %d: %s", names[f],
+                          round, err.msg);
             assert_unchanged(in_dir(names[f]), before, n);
         }
     image_free(&im);

@@ -94,11 +94,14 @@ START_TEST(test_anything_but_a_regular_file_is_refused_with_what_it_is)
 {
     make_dir();
     ck_assert_int_eq(mkfifo(in_dir("fifo"), 0600), 0);
-    refused(in_dir("fifo"), "cannot open: it is a FIFO, not a regular file"); /* no writer: no block */
+    refused(in_dir("fifo"),
+            "cannot open: it is a FIFO, not a regular file"); /* no writer: no block */
     ck_assert_int_eq(mkdir(in_dir("sub"), 0700), 0);
     refused(in_dir("sub"), "cannot open: it is a directory, not a regular file");
-    if (access("/dev/zero", R_OK) == 0) refused("/dev/zero", "cannot open: it is a character device");
-    if (access("/dev/urandom", R_OK) == 0) refused("/dev/urandom", "cannot open: it is a character device");
+    if (access("/dev/zero", R_OK) == 0)
+        refused("/dev/zero", "cannot open: it is a character device");
+    if (access("/dev/urandom", R_OK) == 0)
+        refused("/dev/urandom", "cannot open: it is a character device");
     int s = socket(AF_UNIX, SOCK_STREAM, 0);
     struct sockaddr_un addr = {.sun_family = AF_UNIX};
     snprintf(addr.sun_path, sizeof addr.sun_path, "%s", in_dir("sock"));
@@ -171,7 +174,8 @@ static Suite *infile_suite(void)
     tcase_add_test(tc, test_a_regular_file_opens_with_its_identity_whatever_its_name);
     tcase_add_test(tc, test_anything_but_a_regular_file_is_refused_with_what_it_is);
     tcase_add_test(tc, test_a_stream_may_be_a_pipe_and_a_silent_fifo_reads_as_empty);
-    tcase_add_test(tc, test_the_input_list_holds_each_file_once_and_finds_the_one_an_output_replaces);
+    tcase_add_test(tc,
+                   test_the_input_list_holds_each_file_once_and_finds_the_one_an_output_replaces);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -19,7 +19,8 @@ static void load_fails(const char *text, long max, int line, const char *what)
 {
     obj_mesh m;
     error err = {0};
-    ck_assert_msg(obj_load_string(text, "m.obj", max, &m, NULL, &err) == -1, "no error for:\n%s", text);
+    ck_assert_msg(obj_load_string(text, "m.obj", max, &m, NULL, &err) == -1, "no error for:\n%s",
+                  text);
     ck_assert_str_eq(err.file, "m.obj");
     ck_assert_msg(err.line == line, "line %d, expected %d: %s", err.line, line, err.msg);
     ck_assert_msg(strstr(err.msg, what) != NULL, "'%s' lacks \"%s\"", err.msg, what);
@@ -166,8 +167,9 @@ START_TEST(test_the_arrays_growth_is_charged_and_a_refusal_leaves_nothing_charge
     ck_assert_int_eq(obj_load_string(QUAD "f 1 2 3 4\n", "m.obj", 0, &m, &mem, &err), -1);
     ck_assert_str_eq(err.file, "m.obj");
     ck_assert_int_eq(err.line, 5); /* the face: 64 vertices fit (1.5 KiB), 64 triangles do not */
-    ck_assert_str_eq(err.msg, "room for 64 more triangles x 72 bytes = 4.5 KiB, beyond the memory budget of "
-                              "1.95 KiB (1.5 KiB of it in use; envtex --memory-budget SIZE sets it)");
+    ck_assert_str_eq(err.msg,
+                     "room for 64 more triangles x 72 bytes = 4.5 KiB, beyond the memory budget of "
+                     "1.95 KiB (1.5 KiB of it in use; envtex --memory-budget SIZE sets it)");
     ck_assert(mem.used == 0);
     ck_assert_ptr_null(m.v);
 }

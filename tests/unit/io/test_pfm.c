@@ -37,7 +37,8 @@ START_TEST(test_pfm_roundtrip_is_bit_exact_including_nan_and_inf)
     image im = {0}, back = {0};
     error err = {0};
     ck_assert_int_eq(image_alloc(&im, 5, 3, &err), 0);
-    for (int i = 0; i < 45; i++) im.px[i] = (float)(i - 20) * 0.123f * powf(10.0f, (float)(i % 7 - 3));
+    for (int i = 0; i < 45; i++)
+        im.px[i] = (float)(i - 20) * 0.123f * powf(10.0f, (float)(i % 7 - 3));
     im.px[4] = NAN;
     im.px[7] = INFINITY;
     im.px[8] = -0.0f;
@@ -71,7 +72,8 @@ END_TEST
 
 /* A header with Windows line ends ("PF\r\n2 1\r\n-1.0\r\n") ends in one "\r\n": the pixels start
  * after the "\n" (read from the "\n", every float came out shifted by a byte: garbage, no error).
- * A header ending in a lone "\r" whose first pixel byte is 0x0A still reads that byte as a pixel. */
+ * A header ending in a lone "\r" whose first pixel byte is 0x0A still reads that byte as a pixel.
+ */
 START_TEST(test_pfm_header_with_crlf_line_ends)
 {
     make_dir();
@@ -81,7 +83,8 @@ START_TEST(test_pfm_header_with_crlf_line_ends)
     error err = {0};
     ck_assert_msg(pfm_read(in_dir("crlf.pfm"), &im, NULL, &err) == 0, "%s", err.msg);
     ck_assert_int_eq(im.w, 2);
-    for (int i = 0; i < 6; i++) ck_assert_msg(im.px[i] == v[i], "px[%d] = %g, want %g", i, im.px[i], v[i]);
+    for (int i = 0; i < 6; i++)
+        ck_assert_msg(im.px[i] == v[i], "px[%d] = %g, want %g", i, im.px[i], v[i]);
     image_free(&im);
 
     /* lone "\r", grey, first float 0x3F80000A little endian: its first byte is the 0x0A */
@@ -135,7 +138,8 @@ START_TEST(test_absurd_pfm_size_is_refused_before_allocation)
     ck_assert_ptr_null(im.px);
     const char *z = "PF\n2 2\n0\n";
     write_bytes(in_dir("zero.pfm"), z, strlen(z));
-    ck_assert_int_eq(pfm_read(in_dir("zero.pfm"), &im, NULL, &err), -1); /* scale 0: no byte order */
+    ck_assert_int_eq(pfm_read(in_dir("zero.pfm"), &im, NULL, &err),
+                     -1); /* scale 0: no byte order */
     const char *m = "P6\n2 2\n255\n";
     write_bytes(in_dir("ppm.pfm"), m, strlen(m));
     ck_assert_int_eq(pfm_read(in_dir("ppm.pfm"), &im, NULL, &err), -1);

@@ -323,7 +323,8 @@ START_TEST(test_png_claiming_40000_by_40000_is_refused_before_allocation)
     memcpy(d + 16, big, 4);
     memcpy(d + 20, big, 4);
     uint32_t c = crc32_png(d + 12, 17);
-    unsigned char cb[4] = {(unsigned char)(c >> 24), (unsigned char)(c >> 16), (unsigned char)(c >> 8), (unsigned char)c};
+    unsigned char cb[4] = {(unsigned char)(c >> 24), (unsigned char)(c >> 16),
+                           (unsigned char)(c >> 8), (unsigned char)c};
     memcpy(d + 29, cb, 4);
     write_bytes(in_dir("big.png"), d, n);
     image im = {0};
@@ -405,7 +406,8 @@ START_TEST(test_a_partial_signature_and_a_folder_are_refused_by_name)
     ck_assert_int_eq(pngfile_read(in_dir("p4.png"), &im, NULL, &err), -1);
     ck_assert_str_eq(err.msg, "not a PNG file");
     ck_assert_int_eq(pngfile_read(dir, &im, NULL, &err), -1);
-    ck_assert_msg(strstr(err.msg, "cannot open: it is a directory, not a regular file") != NULL, "%s", err.msg);
+    ck_assert_msg(strstr(err.msg, "cannot open: it is a directory, not a regular file") != NULL,
+                  "%s", err.msg);
     ck_assert_ptr_null(im.px);
     remove_dir();
 }

@@ -119,7 +119,8 @@ START_TEST(test_handmade_flat_file_with_comments_and_exposure_reads)
     ck_assert_msg(imageio_read(in_dir("hand.hdr"), &im, NULL, &err) == 0, "%s", err.msg);
     ck_assert_int_eq(im.w, 1);
     ck_assert_int_eq(im.h, 2);
-    ck_assert(im.px[0] == 128.5f / 128.0f && im.px[1] == 64.5f / 128.0f && im.px[2] == 0.5f / 128.0f);
+    ck_assert(im.px[0] == 128.5f / 128.0f && im.px[1] == 64.5f / 128.0f &&
+              im.px[2] == 0.5f / 128.0f);
     ck_assert(im.px[3] == 0.0f); /* second row: e = 0 is black */
     image_free(&im);
     remove_dir();
@@ -179,10 +180,12 @@ START_TEST(test_hostile_rle_runs_that_overflow_the_scanline_are_errors)
     write_rle8(in_dir("run.hdr"), (const unsigned char *)"\xff\x20", 2); /* a run of 127 */
     ck_assert_int_eq(rgbe_read(in_dir("run.hdr"), &im, NULL, &err), -1);
     ck_assert_ptr_nonnull(strstr(err.msg, "overflows"));
-    write_rle8(in_dir("lit.hdr"), (const unsigned char *)"\x04\x01\x02\x03\x04\x80", 6); /* 4 + 128 */
+    write_rle8(in_dir("lit.hdr"), (const unsigned char *)"\x04\x01\x02\x03\x04\x80",
+               6); /* 4 + 128 */
     ck_assert_int_eq(rgbe_read(in_dir("lit.hdr"), &im, NULL, &err), -1);
     ck_assert_ptr_nonnull(strstr(err.msg, "overflows"));
-    write_rle8(in_dir("lit9.hdr"), (const unsigned char *)"\x09\x01\x02\x03\x04\x05\x06\x07\x08\x09", 10);
+    write_rle8(in_dir("lit9.hdr"),
+               (const unsigned char *)"\x09\x01\x02\x03\x04\x05\x06\x07\x08\x09", 10);
     ck_assert_int_eq(rgbe_read(in_dir("lit9.hdr"), &im, NULL, &err), -1); /* one byte more than 8 */
     ck_assert_ptr_nonnull(strstr(err.msg, "overflows"));
     write_rle8(in_dir("zero.hdr"), (const unsigned char *)"\x00", 1);
@@ -203,11 +206,13 @@ START_TEST(test_rle_literals_of_128_bytes_roundtrip_exactly)
     error err = {0};
     ck_assert_int_eq(image_alloc(&im, 300, 2, &err), 0);
     for (int y = 0; y < 2; y++)
-        for (int x = 0; x < 300; x++) image_px(&im, x, y)[0] = (float)((128 + x % 128 + 0.5) / 256.0);
+        for (int x = 0; x < 300; x++)
+            image_px(&im, x, y)[0] = (float)((128 + x % 128 + 0.5) / 256.0);
     ck_assert_int_eq(rgbe_write(in_dir("lit.hdr"), &im, &err), 0);
     ck_assert_msg(rgbe_read(in_dir("lit.hdr"), &back, NULL, &err) == 0, "%s", err.msg);
     for (int i = 0; i < 600; i++) /* red exactly; green and blue are 0, read as half a bin */
-        ck_assert_msg(back.px[3 * i] == im.px[3 * i], "pixel %d: %.9g, want %.9g", i, back.px[3 * i], im.px[3 * i]);
+        ck_assert_msg(back.px[3 * i] == im.px[3 * i], "pixel %d: %.9g, want %.9g", i,
+                      back.px[3 * i], im.px[3 * i]);
     image_free(&im);
     image_free(&back);
     remove_dir();
@@ -309,19 +314,37 @@ START_TEST(test_old_style_run_counts_shift_by_8_and_restart)
     image im = {0};
     error err = {0};
     /* 260 pixels: A, then 3 and 1 << 8 = 256 copies of it from two consecutive markers */
-    ck_assert_msg(read_bytes_hdr("-Y 1 +X 260", "\x80\x80\x80\x81" "\x01\x01\x01\x03" "\x01\x01\x01\x01", 12,
-                                 &im, &err) == 0, "%s", err.msg);
+    ck_assert_msg(read_bytes_hdr("-Y 1 +X 260",
+                                 "\x80\x80\x80\x81"
+                                 "\x01\x01\x01\x03"
+                                 "\x01\x01\x01\x01",
+                                 12, &im, &err) == 0,
+                  "%s", err.msg);
     for (int x = 0; x < 260; x++) ck_assert(image_px(&im, x, 0)[1] == 128.5f / 128.0f);
     image_free(&im);
     /* A, 2 copies, B, 2 copies: the second marker's shift is 0 again (a kept shift made 512) */
-    ck_assert_msg(read_bytes_hdr("-Y 1 +X 6", "\x80\x80\x80\x81" "\x01\x01\x01\x02" "\x40\x40\x40\x81" "\x01\x01\x01\x02",
-                                 16, &im, &err) == 0, "%s", err.msg);
-    ck_assert(image_px(&im, 2, 0)[1] == 128.5f / 128.0f && image_px(&im, 5, 0)[1] == 64.5f / 128.0f);
+    ck_assert_msg(read_bytes_hdr("-Y 1 +X 6",
+                                 "\x80\x80\x80\x81"
+                                 "\x01\x01\x01\x02"
+                                 "\x40\x40\x40\x81"
+                                 "\x01\x01\x01\x02",
+                                 16, &im, &err) == 0,
+                  "%s", err.msg);
+    ck_assert(image_px(&im, 2, 0)[1] == 128.5f / 128.0f &&
+              image_px(&im, 5, 0)[1] == 64.5f / 128.0f);
     image_free(&im);
     /* a marker before any pixel, and a run one pixel too long */
-    ck_assert_int_eq(read_bytes_hdr("-Y 1 +X 6", "\x01\x01\x01\x02" "\x80\x80\x80\x81", 8, &im, &err), -1);
+    ck_assert_int_eq(read_bytes_hdr("-Y 1 +X 6",
+                                    "\x01\x01\x01\x02"
+                                    "\x80\x80\x80\x81",
+                                    8, &im, &err),
+                     -1);
     ck_assert_ptr_nonnull(strstr(err.msg, "old-style run with no pixel before it"));
-    ck_assert_int_eq(read_bytes_hdr("-Y 1 +X 6", "\x80\x80\x80\x81" "\x01\x01\x01\x06", 8, &im, &err), -1);
+    ck_assert_int_eq(read_bytes_hdr("-Y 1 +X 6",
+                                    "\x80\x80\x80\x81"
+                                    "\x01\x01\x01\x06",
+                                    8, &im, &err),
+                     -1);
     ck_assert_ptr_nonnull(strstr(err.msg, "overflows"));
     ck_assert_ptr_null(im.px);
     remove_dir();
@@ -334,7 +357,11 @@ START_TEST(test_rle_literal_past_the_end_of_the_file_is_truncated)
     make_dir();
     image im = {0};
     error err = {0};
-    ck_assert_int_eq(read_bytes_hdr("-Y 1 +X 8", "\x02\x02\x00\x08" "\x08\x01\x02\x03", 8, &im, &err), -1);
+    ck_assert_int_eq(read_bytes_hdr("-Y 1 +X 8",
+                                    "\x02\x02\x00\x08"
+                                    "\x08\x01\x02\x03",
+                                    8, &im, &err),
+                     -1);
     ck_assert_ptr_nonnull(strstr(err.msg, "truncated Radiance file: scanline 0"));
     ck_assert_ptr_null(im.px);
     remove_dir();
@@ -348,7 +375,8 @@ START_TEST(test_header_lines_magic_and_resolution)
     make_dir();
     image im = {0};
     error err = {0};
-    const char *ws = "#?RADIANCE \r\nFORMAT=32-bit_rle_rgbe \t\r\n\r\n-Y 1 +X 1 \r\n\x80\x80\x80\x81";
+    const char *ws =
+        "#?RADIANCE \r\nFORMAT=32-bit_rle_rgbe \t\r\n\r\n-Y 1 +X 1 \r\n\x80\x80\x80\x81";
     write_bytes(in_dir("ws.hdr"), ws, strlen(ws));
     ck_assert_msg(rgbe_read(in_dir("ws.hdr"), &im, NULL, &err) == 0, "%s", err.msg);
     ck_assert(im.px[0] == 128.5f / 128.0f);
@@ -380,7 +408,8 @@ START_TEST(test_truncated_hdr_is_an_error_at_every_offset)
         for (size_t i = 0; i < sizeof cuts / sizeof cuts[0]; i++) {
             write_bytes(in_dir("cut.hdr"), d, cuts[i]);
             image back = {0};
-            ck_assert_msg(rgbe_read(in_dir("cut.hdr"), &back, NULL, &err) == -1, "flat %d cut at %zu", flat, cuts[i]);
+            ck_assert_msg(rgbe_read(in_dir("cut.hdr"), &back, NULL, &err) == -1,
+                          "flat %d cut at %zu", flat, cuts[i]);
             ck_assert_ptr_null(back.px);
         }
         free(d);

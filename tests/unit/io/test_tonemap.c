@@ -134,10 +134,12 @@ START_TEST(test_extreme_exposures_and_values_keep_white_white)
         ck_assert_msg(o[0] == 255 && o[1] == 255, "op %d: %d %d", op, o[0], o[1]);
         tm.exposure = 1000; /* 2^1000 = 1e301: 1 x that is finite, 1e10 x that is Inf */
         px(&tm, 1.0, 1e10, 1e-300, o);
-        ck_assert_msg(o[0] == 255 && o[1] == 255 && o[2] > 0, "op %d: %d %d %d", op, o[0], o[1], o[2]);
+        ck_assert_msg(o[0] == 255 && o[1] == 255 && o[2] > 0, "op %d: %d %d %d", op, o[0], o[1],
+                      o[2]);
         tm.exposure = -2000; /* 2^-2000 = 0 */
         px(&tm, INFINITY, 1e38, -INFINITY, o);
-        ck_assert_msg(o[0] == 255 && o[1] == 0 && o[2] == 0, "op %d: %d %d %d", op, o[0], o[1], o[2]);
+        ck_assert_msg(o[0] == 255 && o[1] == 0 && o[2] == 0, "op %d: %d %d %d", op, o[0], o[1],
+                      o[2]);
     }
     tm.op = TONEMAP_ACES; /* the curve at the guard's edge: 7.24 -> 1.0000, 8 -> 1.003 */
     tm.exposure = 0;

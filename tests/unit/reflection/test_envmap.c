@@ -26,7 +26,8 @@ static void env_scene(scene *sc, genenv_kind kind, mat4 xf, double scale)
 static void assert_rgb_near(rgb a, rgb b, double tol)
 {
     ck_assert_msg(fabs(a.r - b.r) <= tol && fabs(a.g - b.g) <= tol && fabs(a.b - b.b) <= tol,
-                  "(%.9g, %.9g, %.9g) != (%.9g, %.9g, %.9g) within %g", a.r, a.g, a.b, b.r, b.g, b.b, tol);
+                  "(%.9g, %.9g, %.9g) != (%.9g, %.9g, %.9g) within %g", a.r, a.g, a.b, b.r, b.g,
+                  b.b, tol);
 }
 
 START_TEST(test_envmap_absent_is_black)
@@ -57,7 +58,8 @@ START_TEST(test_envmap_identity_transform_is_the_latlong_lookup)
     ck_assert_int_eq(env.present, 1);
     const vec3 dirs[] = {{0, 0, 1}, {0, 0, -1}, {1, 0, 0}, {0.3, -0.8, 0.2}, {-1, -1, -1}};
     for (unsigned i = 0; i < sizeof dirs / sizeof dirs[0]; i++) {
-        rgb a = envmap_radiance(&env, dirs[i]), b = latlong_lookup_bilinear(&sc.envmap.img, dirs[i]);
+        rgb a = envmap_radiance(&env, dirs[i]),
+            b = latlong_lookup_bilinear(&sc.envmap.img, dirs[i]);
         assert_rgb_near(a, b, 0);
         /* length does not matter */
         assert_rgb_near(envmap_radiance(&env, vec3_scale(dirs[i], 7.5)), a, 1e-12);
@@ -87,7 +89,8 @@ END_TEST
  * as an equal-area, cylindrical or angular map with scale 2.5. */
 START_TEST(test_envmap_scale_multiplies_every_representation)
 {
-    const convert_kind kinds[] = {CONVERT_EQUALAREA, CONVERT_CYLINDRICAL, CONVERT_ANGULAR, CONVERT_MIRRORBALL};
+    const convert_kind kinds[] = {CONVERT_EQUALAREA, CONVERT_CYLINDRICAL, CONVERT_ANGULAR,
+                                  CONVERT_MIRRORBALL};
     for (int k = 0; k < 4; k++) {
         scene a, b;
         env_scene(&a, GENENV_SKY, mat4_identity(), 1);
@@ -127,7 +130,8 @@ START_TEST(test_envmap_rotate_x_minus_90_puts_the_zenith_at_world_plus_y)
     assert_rgb_near(envmap_radiance(&env, vec3_make(1, 0, 0)), rgb_make(1, 0.5, 0.5), 0.01);
     /* the zenith row itself, by value: a map whose top row is 7 and the rest 1 */
     for (int y = 0; y < sc.envmap.img.h; y++)
-        for (int x = 0; x < sc.envmap.img.w; x++) image_set(&sc.envmap.img, x, y, rgb_gray(y == 0 ? 7 : 1));
+        for (int x = 0; x < sc.envmap.img.w; x++)
+            image_set(&sc.envmap.img, x, y, rgb_gray(y == 0 ? 7 : 1));
     ck_assert(envmap_radiance(&env, vec3_make(0, 1, 0)).r == 7);
     ck_assert(envmap_radiance(&env, vec3_make(0, 0, 1)).r == 1);
     image_free(&sc.envmap.img);
@@ -141,8 +145,10 @@ START_TEST(test_envmap_rotation_about_z_turns_the_map)
     env_scene(&sc, GENENV_AXES, mat4_rotate(vec3_make(0, 0, 1), 90), 3);
     envmap env;
     scene_environment(&sc, &env);
-    assert_rgb_near(envmap_radiance(&env, vec3_make(0, 1, 0)), rgb_scale(rgb_make(1, 0.5, 0.5), 3), 0.03);
-    assert_rgb_near(envmap_radiance(&env, vec3_make(-1, 0, 0)), rgb_scale(rgb_make(0.5, 1, 0.5), 3), 0.03);
+    assert_rgb_near(envmap_radiance(&env, vec3_make(0, 1, 0)), rgb_scale(rgb_make(1, 0.5, 0.5), 3),
+                    0.03);
+    assert_rgb_near(envmap_radiance(&env, vec3_make(-1, 0, 0)), rgb_scale(rgb_make(0.5, 1, 0.5), 3),
+                    0.03);
     image_free(&sc.envmap.img);
 }
 END_TEST

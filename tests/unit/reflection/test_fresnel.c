@@ -19,10 +19,11 @@ START_TEST(test_fresnel_at_normal_incidence_is_f0)
     }
     ck_assert_near(fresnel_dielectric(1.0, 1.5), 0.04, 1e-15); /* glass: 4 percent */
     /* no interface, no reflection: exact Fresnel gives 0, Schlick's approximation (1 - cos)^5 */
-    ck_assert_msg(fresnel_dielectric(0.7, 1.0) == 0,
-                  "fresnel_dielectric(0.7, 1.0) = %g: with eta = 1 there is no interface, and the exact "
-                  "Fresnel term of fresnel.h is 0 (Schlick's approximation gives (1 - cos)^5 = 0.00243)",
-                  fresnel_dielectric(0.7, 1.0));
+    ck_assert_msg(
+        fresnel_dielectric(0.7, 1.0) == 0,
+        "fresnel_dielectric(0.7, 1.0) = %g: with eta = 1 there is no interface, and the exact "
+        "Fresnel term of fresnel.h is 0 (Schlick's approximation gives (1 - cos)^5 = 0.00243)",
+        fresnel_dielectric(0.7, 1.0));
 }
 END_TEST
 
@@ -82,7 +83,8 @@ START_TEST(test_fresnel_refract_obeys_snell_and_stays_unit)
     for (unsigned k = 0; k < sizeof etas / sizeof etas[0]; k++)
         for (int i = 0; i < 20000; i++) {
             /* random normal, random incident direction against it */
-            double z = 2 * rng_uniform(&g) - 1, phi = 2 * M_PI * rng_uniform(&g), sz = sqrt(1 - z * z);
+            double z = 2 * rng_uniform(&g) - 1, phi = 2 * M_PI * rng_uniform(&g),
+                   sz = sqrt(1 - z * z);
             vec3 n = vec3_make(sz * cos(phi), sz * sin(phi), z);
             z = 2 * rng_uniform(&g) - 1, phi = 2 * M_PI * rng_uniform(&g), sz = sqrt(1 - z * z);
             vec3 d = vec3_make(sz * cos(phi), sz * sin(phi), z);
@@ -91,8 +93,10 @@ START_TEST(test_fresnel_refract_obeys_snell_and_stays_unit)
             vec3 t;
             double cos_i = -vec3_dot(d, n), sin_i = sqrt(fmax(0, 1 - cos_i * cos_i));
             int ok = fresnel_refract(d, n, etas[k], &t);
-            if (sin_i / etas[k] > 1 + 1e-12 && ok) ck_abort_msg("refracted beyond the critical angle");
-            if (sin_i / etas[k] < 1 - 1e-12 && !ok) ck_abort_msg("no refraction below the critical angle");
+            if (sin_i / etas[k] > 1 + 1e-12 && ok)
+                ck_abort_msg("refracted beyond the critical angle");
+            if (sin_i / etas[k] < 1 - 1e-12 && !ok)
+                ck_abort_msg("no refraction below the critical angle");
             if (!ok) continue;
             EXPECT_NEAR(vec3_length(t), 1, 1e-14);
             double cos_t = -vec3_dot(t, n), sin_t = vec3_length(vec3_cross(t, n));
