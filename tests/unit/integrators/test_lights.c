@@ -442,7 +442,7 @@ START_TEST(test_lights_intersect_quad_finds_the_nearest_quad_of_many)
 END_TEST
 
 /* A ray tests the quads along one path of a BVH, not every light: many quads get a tree of
- * depth O(log n) (SAH leaves of up to BVH_LEAF_MAX triangles), a few a plain loop, and a scene
+ * depth O(log n) (SAH leaves of up to BVH_LEAF_MAX quads), a few a plain loop, and a scene
  * of point and directional lights nothing to test at all */
 START_TEST(test_lights_quads_get_a_bvh_and_other_lights_none)
 {
@@ -452,14 +452,14 @@ START_TEST(test_lights_quads_get_a_bvh_and_other_lights_none)
     error err = {0};
     ck_assert_int_eq(lights_build(&ls, &sc, NULL, 3, NULL, &err), 0);
     ck_assert(ls.quad_bvh.is_tree);
-    ck_assert_int_eq(ls.quad_bvh.n_prims, 600);
-    ck_assert_int_le(ls.quad_bvh.depth, 24); /* a balanced tree of 600 / 4 leaves: ~9 levels */
+    ck_assert_int_eq(ls.quad_bvh.n_prims, 300); /* one parallelogram a quad */
+    ck_assert_int_le(ls.quad_bvh.depth, 24);    /* a balanced tree of 300 / 4 leaves: ~7 levels */
     lights_free(&ls);
     scene_free(&sc);
 
     load_many_quads(&sc, 4, 3);
     ck_assert_int_eq(lights_build(&ls, &sc, NULL, 3, NULL, &err), 0);
-    ck_assert(!ls.quad_bvh.is_tree); /* 8 triangles: BVH_MIN_PRIMS, tested in a loop */
+    ck_assert(!ls.quad_bvh.is_tree); /* 4 quads: at most BVH_MIN_PRIMS, tested in a loop */
     lights_free(&ls);
     scene_free(&sc);
 
@@ -470,7 +470,7 @@ START_TEST(test_lights_quads_get_a_bvh_and_other_lights_none)
     ck_assert_int_eq(lights_build(&ls, &sc, NULL, 3, NULL, &err), 0);
     ck_assert_int_eq(ls.n, 2);
     ck_assert_int_eq(ls.n_quads, 0);
-    ck_assert_ptr_null(ls.quad_tris);
+    ck_assert_ptr_null(ls.quad_light);
     int k;
     double t;
     ray r = {vec3_make(0, 0, 0), vec3_make(0, 1, 0), 0, INFINITY};
