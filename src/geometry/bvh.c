@@ -294,9 +294,15 @@ void bvh_free(bvh *b)
 
 /* The ray in float for the box and triangle tests: origin, direction, 1 / direction, and which
  * direction components are negative (the near side of each slab). */
-typedef struct fray { float o[3], d[3], inv[3]; int neg[3]; } fray;
+typedef struct fray { float o[3], o_lo[3], d[3], inv[3], o_near[3], o_far[3]; int neg[3]; } fray;
 
 typedef struct best_hit { long id; double t, b1, b2; } best_hit;
+
+static float float_up(double x)
+{
+    float f = (float)x;
+    return f < x ? nextafterf(f, INFINITY) : f;
+}
 
 static fray fray_make(const ray *r)
 {
@@ -306,15 +312,18 @@ static fray fray_make(const ray *r)
         f.d[a] = (float)vec3_get(r->d, a);
         f.inv[a] = 1.0f / f.d[a];
         f.neg[a] = f.inv[a] < 0;
+        /* the slabs' near ends from an origin a float ulp ahead of o (or at it), the far ends
+         * from one behind: the rounding of o to float never narrows a slab */
+        double o = vec3_get(r->o, a);
+        f.o_lo[a] = (float)(o - f.o[a]); /* o = o + o_lo to ~2^-48: the triangles' s = o - p0 */
+        float up = f.o[a] < o ? nextafterf(f.o[a], INFINITY) : f.o[a];
+        float down = f.o[a] > o ? nextafterf(f.o[a], -INFINITY) : f.o[a];
+        f.o_near[a] = f.neg[a] ? down : up;
+        f.o_far[a] = f.neg[a] ? up : down;
     }
     return f;
 }
 
-static float float_up(double x)
-{
-    float f = (float)x;
-    return f < x ? nextafterf(f, INFINITY) : f;
-}
 
 static inline float max3(float a, float b, float c, float d)
 {
@@ -331,15 +340,19 @@ static inline float min3(float a, float b, float c, float d)
 }
 
 /* Slab test: does the ray cross the box for some t in [tmin, tmax]?  Conservative: the far
- * ends are widened by BVH_SLAB_SLACK. */
+ * ends are widened by BVH_SLAB_SLACK (the caller widens tmax so too: the near ends' rounding),
+ * and the slabs are measured from origins that bracket the double one (fray_make). */
 static inline int box_hit(const bvh_node *nd, const fray *f, float tmin, float tmax)
 {
     const float(*bx)[3] = nd->box;
-    float x0 = (bx[f->neg[0]][0] - f->o[0]) * f->inv[0], x1 = (bx[!f->neg[0]][0] - f->o[0]) * f->inv[0];
-    float y0 = (bx[f->neg[1]][1] - f->o[1]) * f->inv[1], y1 = (bx[!f->neg[1]][1] - f->o[1]) * f->inv[1];
-    float z0 = (bx[f->neg[2]][2] - f->o[2]) * f->inv[2], z1 = (bx[!f->neg[2]][2] - f->o[2]) * f->inv[2];
     const float grow = 1 + BVH_SLAB_SLACK; /* (a far end below 0 misses anyway) */
-    return max3(tmin, x0, y0, z0) <= min3(tmax, x1 * grow, y1 * grow, z1 * grow);
+    float x0 = (bx[f->neg[0]][0] - f->o_near[0]) * f->inv[0];
+    float y0 = (bx[f->neg[1]][1] - f->o_near[1]) * f->inv[1];
+    float z0 = (bx[f->neg[2]][2] - f->o_near[2]) * f->inv[2];
+    float x1 = (bx[!f->neg[0]][0] - f->o_far[0]) * f->inv[0] * grow;
+    float y1 = (bx[!f->neg[1]][1] - f->o_far[1]) * f->inv[1] * grow;
+    float z1 = (bx[!f->neg[2]][2] - f->o_far[2]) * f->inv[2] * grow;
+    return max3(tmin, x0, y0, z0) <= min3(tmax, x1, y1, z1);
 }
 
 /* The float Moller-Trumbore test as a filter: 0 only when the double test cannot hit either
@@ -353,7 +366,9 @@ static inline int tri_maybe(const bvh_tri *t, const fray *f, float tmax, int qua
      * barycentrics noise: the double test decides (NaN too) */
     float n1 = fabsf(e1[0]) + fabsf(e1[1]) + fabsf(e1[2]), np = fabsf(pv[0]) + fabsf(pv[1]) + fabsf(pv[2]);
     if (!(fabsf(det) > BVH_GRAZING * n1 * np)) return 1;
-    float inv = 1 / det, s[3] = {f->o[0] - t->p0[0], f->o[1] - t->p0[1], f->o[2] - t->p0[2]};
+    float inv = 1 / det;
+    float s[3] = {(f->o[0] - t->p0[0]) + f->o_lo[0], (f->o[1] - t->p0[1]) + f->o_lo[1],
+                  (f->o[2] - t->p0[2]) + f->o_lo[2]};
     float b1 = (s[0] * pv[0] + s[1] * pv[1] + s[2] * pv[2]) * inv;
     if (!(b1 >= -BVH_FILTER_EPS && b1 <= 1 + BVH_FILTER_EPS)) return 0;
     float qv[3] = {s[1] * e1[2] - s[2] * e1[1], s[2] * e1[0] - s[0] * e1[2], s[0] * e1[1] - s[1] * e1[0]};
@@ -417,9 +432,10 @@ static int traverse(const bvh *b, const ray *r0, int any, best_hit *best)
     int32_t stack[BVH_MAX_DEPTH];
     int sp = 0, found = 0;
     int32_t node = 0;
+    float tmax_box = tmax_f * (1 + BVH_SLAB_SLACK);
     for (;;) {
         const bvh_node *nd = &b->nodes[node];
-        if (box_hit(nd, &f, tmin_f, tmax_f)) {
+        if (box_hit(nd, &f, tmin_f, tmax_box)) {
             if (nd->count == 0) {
                 int near_second = f.neg[nd->axis];
                 stack[sp++] = near_second ? node + 1 : nd->offset;
@@ -429,6 +445,7 @@ static int traverse(const bvh *b, const ray *r0, int any, best_hit *best)
             if (leaf_hits(b, &f, &r, &tmax_f, nd->offset, nd->count, any, best)) {
                 if (any) return 1;
                 found = 1;
+                tmax_box = tmax_f * (1 + BVH_SLAB_SLACK);
             }
         }
         if (sp == 0) break;

@@ -13,11 +13,12 @@
  * the double test gives, bit for bit.  The float tests are made conservative, never robustly
  * watertight: a watertight test needs the corners relative to the ray's origin, which the
  * layout of precomputed edges does not keep, and the double test closes cracks anyway
- * (TRIANGLE_EDGE_EPS).  Boxes are widened outwards by BVH_BOX_PAD_REL, the slab test by
- * BVH_SLAB_SLACK, the float triangle test by BVH_FILTER_EPS (below): each covers its float
- * rounding, with margin, for a ray whose origin lies within ~30 times the coordinates of the
- * geometry it tests, and for a triangle seen from up to ~10^3 times its size.  A scene with at
- * most BVH_MIN_PRIMS primitives gets no tree (one leaf, tested linearly, no slab test).
+ * (TRIANGLE_EDGE_EPS).  Boxes are rounded outwards and padded (BVH_BOX_PAD_REL), slabs are
+ * measured from float origins that bracket the double one and widened by BVH_SLAB_SLACK, so no
+ * box culls a hit; the float triangle test widens by BVH_FILTER_EPS and leaves grazing rays
+ * (BVH_GRAZING) to the double test, which covers its rounding for a triangle seen from up to
+ * ~10^3 times its size.  A scene with at most BVH_MIN_PRIMS primitives gets no tree (one
+ * leaf, tested linearly, no slab test).
  * The bvh keeps a pointer to nothing in the scene but reads its spheres and triangles on every
  * query: pass the same scene, unchanged, to every call.  Queries allocate nothing.
  */
@@ -39,16 +40,17 @@
 /* SAH: the cost of visiting a node, in units of one primitive's float test (docs/design-notes.md) */
 #define BVH_TRAVERSAL_COST 2.0
 /* Each primitive's box grows by this times (its extent + its largest coordinate) before it is
- * rounded outwards to float: 2^-18 is 32 float ulps, room for the float ray origin's own
- * rounding (half an ulp of |o|) while |o| is within ~30 times the box's coordinates. */
+ * rounded outwards to float: room for the double tests' edge tolerance (TRIANGLE_EDGE_EPS)
+ * and rounding, far beyond both (~1e-12 relative), invisible. */
 #define BVH_BOX_PAD_REL 0x1p-18
 /* The float slab test's rounding: the far end of each slab is widened by 2 gamma(3) =
  * 6 u / (1 - 3 u), u = 2^-24 (pbrt-v3, 3.9.2, "robust ray-bounds intersections"). */
 #define BVH_SLAB_SLACK (6 * 0x1p-24f / (1 - 3 * 0x1p-24f))
 /* The float triangle test accepts barycentrics this far outside [0, 1] and t this fraction
- * beyond tmax: its rounding is ~ 3 u |s| / (|e| cos) (s: the origin's offset from the corner,
- * e: an edge, u = 2^-24), under 2^-7 while |s| / |e| stays below ~10^3 for cos >= 2^-5.  A wider
- * filter only sends more near misses to the double test. */
+ * beyond tmax: its rounding is ~ 3 u |s| / (|e| cos) (s = o - p0, from the origin split in two
+ * floats; e: an edge; u = 2^-24), under 2^-7 while |s| / |e| stays below ~10^3 for cos >= 2^-5
+ * (and |p0| / |e|, the corner's own rounding, below ~10^4).  A wider filter only sends more
+ * near misses to the double test. */
 #define BVH_FILTER_EPS 0x1p-7f
 /* ... when the ray is not grazing: below this |det| / (|e1| |pv|) (in L1 norms; ~ the cosine
  * of the ray and the plane's normal) the double test decides alone */

@@ -354,7 +354,8 @@ START_TEST(test_bvh_of_a_geometric_series_stays_within_the_depth_limit)
         hit h;
         EXPECT_INT_EQ(want, 1);
         EXPECT_INT_EQ(bvh_intersect(&b, &r, &h), 1);
-        EXPECT(h.t == tb);
+        EXPECT_MSG(h.t == tb, "ray %d (k %d): bvh t %.17g prim %ld, brute %.17g prim %ld", i, k, h.t,
+                   h.prim, tb, idb);
         EXPECT_INT_EQ(h.prim, idb);
         EXPECT_INT_EQ(bvh_occluded(&b, &r), 1);
     }
