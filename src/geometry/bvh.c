@@ -8,8 +8,14 @@
 
 /* ---- build -------------------------------------------------------------------------------- */
 
-typedef struct box { float lo[3], hi[3]; } box;
-typedef struct build_prim { box b; float c[3]; } build_prim; /* a primitive's box, its centre */
+typedef struct box {
+    float lo[3], hi[3];
+} box;
+
+typedef struct build_prim { /* a primitive's box and its centre */
+    box b;
+    float c[3];
+} build_prim;
 
 typedef struct builder {
     bvh *b;
@@ -21,7 +27,10 @@ typedef struct builder {
  * left before BVH_MAX_DEPTH - 2 hold 2^22 leaves, however the primitives are spread. */
 #define BVH_HALVE_DEPTH 40
 
-static box box_empty(void) { return (box){{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}}; }
+static box box_empty(void)
+{
+    return (box){{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
+}
 
 static void box_grow(box *b, const float lo[3], const float hi[3])
 {
@@ -61,8 +70,8 @@ static int bin_of(float c, double cmin, double k)
 }
 
 typedef struct split {
-    int axis, bin;  /* bins 0..bin go to the first child; axis -1: no split */
-    double cost;    /* C_trav A + A_1 N_1 + A_2 N_2 (A: areas, N: counts) */
+    int axis, bin; /* bins 0..bin go to the first child; axis -1: no split */
+    double cost;   /* C_trav A + A_1 N_1 + A_2 N_2 (A: areas, N: counts) */
 } split;
 
 /* The binned SAH's best split of ids[first, first + count), whose centres span cb. */
@@ -113,7 +122,8 @@ static long partition(builder *bd, long first, long count, split s, const box *c
     double cmin = cb->lo[s.axis], k = BVH_BINS * (1 - 1e-9) / ((double)cb->hi[s.axis] - cmin);
     long i = first, j = first + count - 1;
     while (i <= j) {
-        if (bin_of(bd->bp[bd->ids[i]].c[s.axis], cmin, k) <= s.bin) i++;
+        if (bin_of(bd->bp[bd->ids[i]].c[s.axis], cmin, k) <= s.bin)
+            i++;
         else {
             uint32_t t = bd->ids[i];
             bd->ids[i] = bd->ids[j];
@@ -141,7 +151,8 @@ static int build_rec(builder *bd, long node, long first, long count, int depth)
     int axis = 0;
     if (count > 1 && depth < BVH_MAX_DEPTH - 2) {
         double area = box_area(&bb);
-        split s = depth < BVH_HALVE_DEPTH ? find_split(bd, first, count, &cb, area) : (split){-1, 0, 0};
+        split s =
+            depth < BVH_HALVE_DEPTH ? find_split(bd, first, count, &cb, area) : (split){-1, 0, 0};
         if (count <= BVH_LEAF_MAX && !(s.cost < area * (double)count)) s.axis = -2; /* a leaf */
         if (s.axis >= 0) {
             n1 = partition(bd, first, count, s, &cb);
@@ -234,8 +245,8 @@ int bvh_build(bvh *b, bvh_prims prims, budget *mem, error *err)
     long n = prims.n_spheres + prims.n_triangles + prims.n_quads, m = n > 0 ? n : 1;
     if (n > 0x7fffffffL) return error_set(err, prims.name, 0, "too many primitives (%ld)", n);
     double scratch, keep = bvh_bytes(n, &scratch) + (double)prims.n_quads * sizeof(bvh_quad);
-    if (budget_charge(mem, keep + scratch, prims.name, 0, err, "the BVH of %ld primitives x %.0f "
-                      "bytes", n, (keep + scratch) / (double)m))
+    if (budget_charge(mem, keep + scratch, prims.name, 0, err,
+                      "the BVH of %ld primitives x %.0f bytes", n, (keep + scratch) / (double)m))
         return -1;
     long max_nodes = 2 * m - 1;
     b->nodes = malloc((size_t)max_nodes * sizeof *b->nodes);
@@ -259,8 +270,11 @@ int bvh_build(bvh *b, bvh_prims prims, budget *mem, error *err)
         builder bd = {b, bp, b->prims};
         if (build_rec(&bd, 0, 0, n, 0)) goto done;
     } else { /* one leaf, no tree (its box, never tested, is all space) */
-        b->nodes[0] = (bvh_node){{{-INFINITY, -INFINITY, -INFINITY}, {INFINITY, INFINITY, INFINITY}},
-                                 0, (uint16_t)n, 0, 0};
+        bvh_node *all = &b->nodes[0];
+        for (int a = 0; a < 3; a++) all->box[0][a] = -INFINITY, all->box[1][a] = INFINITY;
+        all->offset = 0;
+        all->count = (uint16_t)n;
+        all->axis = 0;
     }
     leaf_tris(b);
     bvh_node *fit = realloc(b->nodes, (size_t)b->n_nodes * sizeof *b->nodes);
@@ -272,8 +286,10 @@ done:
         int no_memory = !b->nodes || !b->prims || !b->tris || !b->quads || !bp;
         bvh_free(b);
         budget_release(mem, keep + scratch);
-        return error_set(err, prims.name, 0, no_memory ? "out of memory building the BVH (%ld "
-                         "primitives)" : "no BVH fits %ld primitives (too many alike)", n);
+        return error_set(err, prims.name, 0,
+                         no_memory ? "out of memory building the BVH (%ld primitives)"
+                                   : "no BVH fits %ld primitives (too many alike)",
+                         n);
     }
     b->bytes = keep - (double)(max_nodes - b->n_nodes) * sizeof(bvh_node);
     budget_release(mem, scratch + (keep - b->bytes));
@@ -294,9 +310,15 @@ void bvh_free(bvh *b)
 
 /* The ray in float for the box and triangle tests: origin, direction, 1 / direction, and which
  * direction components are negative (the near side of each slab). */
-typedef struct fray { float o[3], o_lo[3], d[3], inv[3], o_near[3], o_far[3]; int neg[3]; } fray;
+typedef struct fray {
+    float o[3], o_lo[3], d[3], inv[3], o_near[3], o_far[3];
+    int neg[3];
+} fray;
 
-typedef struct best_hit { long id; double t, b1, b2; } best_hit;
+typedef struct best_hit {
+    long id;
+    double t, b1, b2;
+} best_hit;
 
 static float float_up(double x)
 {
@@ -323,7 +345,6 @@ static fray fray_make(const ray *r)
     }
     return f;
 }
-
 
 static inline float max3(float a, float b, float c, float d)
 {
@@ -360,18 +381,21 @@ static inline int box_hit(const bvh_node *nd, const fray *f, float tmin, float t
 static inline int tri_maybe(const bvh_tri *t, const fray *f, float tmax, int quad)
 {
     const float *d = f->d, *e1 = t->e1, *e2 = t->e2;
-    float pv[3] = {d[1] * e2[2] - d[2] * e2[1], d[2] * e2[0] - d[0] * e2[2], d[0] * e2[1] - d[1] * e2[0]};
+    float pv[3] = {d[1] * e2[2] - d[2] * e2[1], d[2] * e2[0] - d[0] * e2[2],
+                   d[0] * e2[1] - d[1] * e2[0]};
     float det = e1[0] * pv[0] + e1[1] * pv[1] + e1[2] * pv[2];
     /* |det| = |e1| |pv| cos: a grazing ray (cos below ~BVH_GRAZING, L1 norms) makes the float
      * barycentrics noise: the double test decides (NaN too) */
-    float n1 = fabsf(e1[0]) + fabsf(e1[1]) + fabsf(e1[2]), np = fabsf(pv[0]) + fabsf(pv[1]) + fabsf(pv[2]);
+    float n1 = fabsf(e1[0]) + fabsf(e1[1]) + fabsf(e1[2]),
+          np = fabsf(pv[0]) + fabsf(pv[1]) + fabsf(pv[2]);
     if (!(fabsf(det) > BVH_GRAZING * n1 * np)) return 1;
     float inv = 1 / det;
     float s[3] = {(f->o[0] - t->p0[0]) + f->o_lo[0], (f->o[1] - t->p0[1]) + f->o_lo[1],
                   (f->o[2] - t->p0[2]) + f->o_lo[2]};
     float b1 = (s[0] * pv[0] + s[1] * pv[1] + s[2] * pv[2]) * inv;
     if (!(b1 >= -BVH_FILTER_EPS && b1 <= 1 + BVH_FILTER_EPS)) return 0;
-    float qv[3] = {s[1] * e1[2] - s[2] * e1[1], s[2] * e1[0] - s[0] * e1[2], s[0] * e1[1] - s[1] * e1[0]};
+    float qv[3] = {s[1] * e1[2] - s[2] * e1[1], s[2] * e1[0] - s[0] * e1[2],
+                   s[0] * e1[1] - s[1] * e1[0]};
     float b2 = (d[0] * qv[0] + d[1] * qv[1] + d[2] * qv[2]) * inv;
     if (!(b2 >= -BVH_FILTER_EPS && (quad ? b2 : b1 + b2) <= 1 + BVH_FILTER_EPS)) return 0;
     float tt = (e2[0] * qv[0] + e2[1] * qv[1] + e2[2] * qv[2]) * inv;
@@ -474,10 +498,12 @@ int bvh_intersect(const bvh *b, const ray *r, hit *h)
     const triangle *tr = &b->prims_of.triangles[bh.id - b->n_spheres];
     double b1 = bh.b1, b2 = bh.b2, b0 = 1 - b1 - b2;
     /* p = b0 p0 + b1 p1 + b2 p2 : the barycentric interpolation of the lecture */
-    h->p = vec3_add(vec3_add(vec3_scale(tr->p[0], b0), vec3_scale(tr->p[1], b1)), vec3_scale(tr->p[2], b2));
+    h->p = vec3_add(vec3_add(vec3_scale(tr->p[0], b0), vec3_scale(tr->p[1], b1)),
+                    vec3_scale(tr->p[2], b2));
     h->ng = vec3_normalize(vec3_cross(vec3_sub(tr->p[1], tr->p[0]), vec3_sub(tr->p[2], tr->p[0])));
     if (tr->has_normals) {
-        vec3 n = vec3_add(vec3_add(vec3_scale(tr->n[0], b0), vec3_scale(tr->n[1], b1)), vec3_scale(tr->n[2], b2));
+        vec3 n = vec3_add(vec3_add(vec3_scale(tr->n[0], b0), vec3_scale(tr->n[1], b1)),
+                          vec3_scale(tr->n[2], b2));
         h->ns = vec3_normalize(n);
         /* the given normals define the outside: turn the winding's normal to agree with them */
         if (vec3_dot(h->ns, h->ng) < 0) h->ng = vec3_neg(h->ng);

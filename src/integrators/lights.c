@@ -42,7 +42,8 @@ static int scene_quads(const scene *sc, bvh_quad **out, long *n)
     bvh_quad *q = *out = malloc((size_t)*n * sizeof *q);
     if (!q) return -1;
     for (int i = 0; i < sc->n_lights; i++)
-        if (sc->lights[i].kind == LIGHT_QUAD) *q++ = (bvh_quad){sc->lights[i].pos, sc->lights[i].ab, sc->lights[i].ac};
+        if (sc->lights[i].kind == LIGHT_QUAD)
+            *q++ = (bvh_quad){sc->lights[i].pos, sc->lights[i].ab, sc->lights[i].ac};
     return 0;
 }
 
@@ -52,7 +53,8 @@ static int build_quads(lights *ls, const scene *sc, budget *mem, error *err)
 {
     bvh_quad *quads;
     long nq;
-    if (scene_quads(sc, &quads, &nq)) return error_set(err, sc->path, 0, "out of memory for the quad lights");
+    if (scene_quads(sc, &quads, &nq))
+        return error_set(err, sc->path, 0, "out of memory for the quad lights");
     if (nq == 0) return 0;
     double bytes = (double)nq * sizeof *ls->quad_light;
     int st = budget_charge(mem, bytes, sc->path, 0, err, "%ld quad lights x %zu bytes", nq,
@@ -63,7 +65,8 @@ static int build_quads(lights *ls, const scene *sc, budget *mem, error *err)
     }
     for (int i = 0; st == 0 && i < sc->n_lights; i++)
         if (sc->lights[i].kind == LIGHT_QUAD) ls->quad_light[ls->n_quads++] = i;
-    if (st == 0) st = bvh_build(&ls->quad_bvh, (bvh_prims){.name = sc->path, .quads = quads, .n_quads = nq}, mem, err);
+    bvh_prims p = {.name = sc->path, .quads = quads, .n_quads = nq};
+    if (st == 0) st = bvh_build(&ls->quad_bvh, p, mem, err);
     free(quads); /* (the bvh keeps a copy) */
     return st;
 }
@@ -72,7 +75,8 @@ int lights_scene_bvh(bvh *b, const scene *sc, budget *mem, error *err)
 {
     bvh_prims p = scene_prims(sc);
     bvh_quad *quads = NULL;
-    int sees_quads = sc->integrator != INTEGRATOR_RAYTRACER && sc->integrator != INTEGRATOR_PREFILTERED;
+    int sees_quads =
+        sc->integrator != INTEGRATOR_RAYTRACER && sc->integrator != INTEGRATOR_PREFILTERED;
     if (sees_quads && scene_quads(sc, &quads, &p.n_quads)) {
         memset(b, 0, sizeof *b);
         return error_set(err, sc->path, 0, "out of memory for the quad lights");

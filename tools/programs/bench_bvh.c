@@ -46,7 +46,8 @@ static int primary(const char *path, int rounds)
     bvh accel;
     integrator it;
     double t0 = cpu_seconds();
-    if (lights_scene_bvh(&accel, &sc, NULL, &err) || integrator_init(&it, &sc, &accel, NULL, &err)) {
+    if (lights_scene_bvh(&accel, &sc, NULL, &err) ||
+        integrator_init(&it, &sc, &accel, NULL, &err)) {
         fprintf(stderr, "bench_bvh: %s: %s\n", path, err.msg);
         return 1;
     }
@@ -97,10 +98,12 @@ static triangle *make_mesh(const char *kind, long *n)
             vec3 c = sphere_point(i + 1, j, rows, cols), d = sphere_point(i + 1, jn, rows, cols);
             t[k].p[0] = a, t[k].p[1] = k % 2 ? d : b, t[k].p[2] = k % 2 ? c : d;
         } else {
-            vec3 c = vec3_make(2 * rng_uniform(&g) - 1, 2 * rng_uniform(&g) - 1, 2 * rng_uniform(&g) - 1);
+            vec3 c = vec3_make(2 * rng_uniform(&g) - 1, 2 * rng_uniform(&g) - 1,
+                               2 * rng_uniform(&g) - 1);
             double size = 0.02 + 0.08 * rng_uniform(&g);
             for (int v = 0; v < 3; v++)
-                t[k].p[v] = vec3_add(c, vec3_make(size * (rng_uniform(&g) - 0.5), size * (rng_uniform(&g) - 0.5),
+                t[k].p[v] = vec3_add(c, vec3_make(size * (rng_uniform(&g) - 0.5),
+                                                  size * (rng_uniform(&g) - 0.5),
                                                   size * (rng_uniform(&g) - 0.5)));
         }
     }
@@ -142,8 +145,10 @@ static int mesh(const char *kind, long n)
 
 int main(int argc, char **argv)
 {
-    if (argc >= 3 && !strcmp(argv[1], "primary")) return primary(argv[2], argc > 3 ? atoi(argv[3]) : 3);
-    if (argc == 4 && !strcmp(argv[1], "mesh") && (!strcmp(argv[2], "sphere") || !strcmp(argv[2], "soup")))
+    if (argc >= 3 && !strcmp(argv[1], "primary"))
+        return primary(argv[2], argc > 3 ? atoi(argv[3]) : 3);
+    if (argc == 4 && !strcmp(argv[1], "mesh") &&
+        (!strcmp(argv[2], "sphere") || !strcmp(argv[2], "soup")))
         return mesh(argv[2], atol(argv[3]));
     fprintf(stderr, "usage: bench_bvh primary SCENE [ROUNDS] | bench_bvh mesh sphere|soup N\n");
     return 2;

@@ -73,7 +73,8 @@ int main(int argc, char **argv)
 {
     const char *kind = argc > 1 ? argv[1] : "";
     int is_dragon = strcmp(kind, "dragon") == 0;
-    if (!(is_dragon ? argc == 3 : argc == 4 && (!strcmp(kind, "sphere") || !strcmp(kind, "soup")))) {
+    if (!(is_dragon ? argc == 3
+                    : argc == 4 && (!strcmp(kind, "sphere") || !strcmp(kind, "soup")))) {
         fprintf(stderr, "usage: gen_mesh dragon OUT.obj | gen_mesh sphere|soup N OUT.obj\n");
         return 2;
     }
@@ -88,11 +89,13 @@ int main(int argc, char **argv)
         fprintf(stderr, "gen_mesh: cannot write %s\n", path);
         return 1;
     }
-    if (is_dragon) write_sphere(f, 158, 316, dragon_radius);
+    if (is_dragon)
+        write_sphere(f, 158, 316, dragon_radius);
     else if (!strcmp(kind, "sphere")) {
         int rows = (int)fmax(1, floor(sqrt(n / 4.0))); /* 2 rows x cols = n, cols = 2 rows */
         write_sphere(f, rows, 2 * rows, unit_radius);
-    } else write_soup(f, n);
+    } else
+        write_soup(f, n);
     if (fclose(f)) {
         fprintf(stderr, "gen_mesh: error writing %s\n", path);
         return 1;

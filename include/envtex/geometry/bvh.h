@@ -34,10 +34,10 @@
 #include "envtex/geometry/triangle.h"
 
 #define BVH_MIN_PRIMS 8  /* this many primitives or fewer: one leaf, no tree (make bench) */
-#define BVH_LEAF_MAX 8   /* a leaf holds at most this many; the SAH decides below it */
-#define BVH_BINS 16      /* SAH bins per axis */
+#define BVH_LEAF_MAX  8  /* a leaf holds at most this many; the SAH decides below it */
+#define BVH_BINS      16 /* SAH bins per axis */
 #define BVH_MAX_DEPTH 64 /* traversal stack size; the build stops splitting at depth 62 */
-/* SAH: the cost of visiting a node, in units of one primitive's float test (docs/design-notes.md) */
+/* SAH: the cost of visiting a node, in units of a primitive's float test (design-notes.md) */
 #define BVH_TRAVERSAL_COST 2.0
 /* Each primitive's box grows by this times (its extent + its largest coordinate) before it is
  * rounded outwards to float: room for the double tests' edge tolerance (TRIANGLE_EDGE_EPS)
@@ -62,40 +62,48 @@ enum { BVH_MISS = 0, BVH_SURFACE = 1, BVH_QUAD = 2 }; /* what bvh_intersect foun
  * second child (the first child is the next node: depth-first order). */
 typedef struct bvh_node {
     float box[2][3]; /* lower corner, upper corner */
-    int32_t offset; /* leaf: first index into prims and tris; inner: index of the second child */
-    uint16_t count; /* leaf: number of primitives (> 0); inner: 0 */
-    uint8_t axis;   /* inner: the split axis (the first child holds the smaller coordinates) */
+    int32_t offset;  /* leaf: first index into prims and tris; inner: index of the second child */
+    uint16_t count;  /* leaf: number of primitives (> 0); inner: 0 */
+    uint8_t axis;    /* inner: the split axis (the first child holds the smaller coordinates) */
     uint8_t pad;
 } bvh_node;
 
 /* A triangle or quad laid out for the float test: corner p0, edges e1 = p1 - p0, e2 = p2 - p0
  * (a quad: its corner a and edges ab, ac). */
-typedef struct bvh_tri { float p0[3], e1[3], e2[3]; } bvh_tri;
+typedef struct bvh_tri {
+    float p0[3], e1[3], e2[3];
+} bvh_tri;
 
 /* A quad light: the parallelogram a, a+ab, a+ab+ac, a+ac, opaque from both sides. */
-typedef struct bvh_quad { vec3 a, ab, ac; } bvh_quad;
+typedef struct bvh_quad {
+    vec3 a, ab, ac;
+} bvh_quad;
 
 /* The primitives a BVH is built over.  Spheres and triangles are borrowed (they must outlive
  * the bvh, unchanged); quads are copied.  Ids: sphere i is id i, triangle j is n_spheres + j,
  * quad k is n_spheres + n_triangles + k. */
 typedef struct bvh_prims {
-    const sphere *spheres; long n_spheres;
-    const triangle *triangles; long n_triangles;
-    const char *name;  /* whose primitives, for messages (a scene file; may be NULL) */
-    const bvh_quad *quads; long n_quads;
+    const sphere *spheres;
+    long n_spheres;
+    const triangle *triangles;
+    long n_triangles;
+    const char *name; /* whose primitives, for messages (a scene file; may be NULL) */
+    const bvh_quad *quads;
+    long n_quads;
 } bvh_prims;
 
 typedef struct bvh {
     bvh_prims prims_of; /* what it was built over (quads: pointing at b->quads) */
-    bvh_node *nodes; long n_nodes;
-    uint32_t *prims;  /* primitive ids in leaf order */
-    bvh_tri *tris;    /* float triangles and quads in leaf order, parallel to prims */
-    bvh_quad *quads;  /* the copied quads (owned) */
+    bvh_node *nodes;
+    long n_nodes;
+    uint32_t *prims; /* primitive ids in leaf order */
+    bvh_tri *tris;   /* float triangles and quads in leaf order, parallel to prims */
+    bvh_quad *quads; /* the copied quads (owned) */
     long n_prims;
     long n_spheres, n_surfaces; /* id < n_spheres: a sphere; < n_surfaces: a triangle; a quad */
-    int is_tree;      /* 0: a single leaf (no tree was worth building) */
-    int depth;        /* deepest leaf */
-    double bytes;     /* what the bvh keeps (nodes, leaf order, float triangles, quads) */
+    int is_tree;                /* 0: a single leaf (no tree was worth building) */
+    int depth;                  /* deepest leaf */
+    double bytes;               /* what the bvh keeps (nodes, leaf order, float triangles, quads) */
     double build_seconds;
 } bvh;
 
