@@ -93,8 +93,8 @@ def main():
     try:
         import mitsuba  # noqa: F401
     except ImportError:
-        print("bench bvh_vs_mitsuba: skipped (Mitsuba 3 is not importable here; "
-              "`pip install mitsuba` in a venv and run make bench with its python to compare)")
+        print("bench bvh_vs_mitsuba: skipped: this Python cannot import Mitsuba 3 (to compare, "
+              "`pip install mitsuba` into a venv, then `PYTHON=VENV/bin/python make bench`)")
         return 0
     folder = os.path.join(build, "bench")
     os.makedirs(folder, exist_ok=True)
