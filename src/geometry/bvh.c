@@ -1,226 +1,298 @@
-/* bvh.c - binned-SAH bounding volume hierarchy (see include/envtex/geometry/bvh.h). */
+/* bvh.c - binned-SAH bounding volume hierarchy in float (see include/envtex/geometry/bvh.h). */
 #include "envtex/geometry/bvh.h"
 
+#include <float.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
-#include "envtex/geometry/sphere.h"
-#include "envtex/geometry/triangle.h"
+/* ---- build -------------------------------------------------------------------------------- */
 
-typedef struct build_prim { vec3 lo, hi, c; } build_prim;
+typedef struct box {
+    float lo[3], hi[3];
+} box;
 
-/* A box must never cull a hit its primitives' own tests accept.  Triangles accept points up to
- * TRIANGLE_EDGE_EPS (barycentric) outside their edges, and the rounding of both tests grows
- * with the coordinates' size, so each primitive's box is padded by BVH_BOX_PAD_REL times its
- * extent plus its distance from the origin: 1e-9 is far beyond both (1e-12 and ~1e-16
- * relative) and changes no traversal measurably. */
-#define BVH_BOX_PAD_REL 1e-9
-/* The slab test's own rounding: each t = (lo - o) * (1 / d) is within 2 ulp of the exact
- * value, so the far end of each slab interval is widened by 2 gamma(3) = 6 eps / (1 - 3 eps),
- * eps = 2^-53 (pbrt-v3, section 3.9.2, "robust ray-bounds intersections"). */
-#define BVH_SLAB_SLACK (6 * 0x1p-53 / (1 - 3 * 0x1p-53))
-
-static void pad_box(vec3 *lo, vec3 *hi)
-{
-    double m = fmax(vec3_max_abs(*lo), vec3_max_abs(*hi));
-    double pad = BVH_BOX_PAD_REL * (m + vec3_max_abs(vec3_sub(*hi, *lo)));
-    *lo = vec3_sub(*lo, vec3_make(pad, pad, pad));
-    *hi = vec3_add(*hi, vec3_make(pad, pad, pad));
-}
+typedef struct build_prim { /* a primitive's box and its centre */
+    box b;
+    float c[3];
+} build_prim;
 
 typedef struct builder {
     bvh *b;
     build_prim *bp;
-    unsigned *ids;
-    long cap_nodes;
+    uint32_t *ids; /* the leaf order, permuted in place as the build partitions */
 } builder;
 
-static double box_area(vec3 lo, vec3 hi)
+/* From this depth on, a node is split in half by count instead of by the SAH: the 22 levels
+ * left before BVH_MAX_DEPTH - 2 hold 2^22 leaves, however the primitives are spread. */
+#define BVH_HALVE_DEPTH 40
+
+static box box_empty(void)
 {
-    vec3 e = vec3_sub(hi, lo);
-    if (e.x < 0 || e.y < 0 || e.z < 0) return 0;
-    return 2 * (e.x * e.y + e.y * e.z + e.z * e.x);
+    return (box){{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
 }
 
-static long push_node(builder *bd)
+static void box_grow(box *b, const float lo[3], const float hi[3])
 {
-    /* at most 2 n - 1 nodes, reserved up front: never grows */
-    return bd->b->n_nodes++;
-}
-
-static void build_rec(builder *bd, long node, long first, long count, int depth)
-{
-    bvh_node *nd = &bd->b->nodes[node];
-    vec3 lo = vec3_make(INFINITY, INFINITY, INFINITY), hi = vec3_neg(lo);
-    vec3 clo = lo, chi = hi;
-    for (long i = first; i < first + count; i++) {
-        const build_prim *p = &bd->bp[bd->ids[i]];
-        lo = vec3_min(lo, p->lo);
-        hi = vec3_max(hi, p->hi);
-        clo = vec3_min(clo, p->c);
-        chi = vec3_max(chi, p->c);
+    for (int a = 0; a < 3; a++) {
+        b->lo[a] = lo[a] < b->lo[a] ? lo[a] : b->lo[a];
+        b->hi[a] = hi[a] > b->hi[a] ? hi[a] : b->hi[a];
     }
-    nd->lo = lo;
-    nd->hi = hi;
-    if (depth + 1 > bd->b->depth) bd->b->depth = depth + 1;
-    if (count <= BVH_LEAF_MAX || depth >= BVH_MAX_DEPTH - 2) goto leaf;
+}
 
-    /* Binned SAH: cost(split) = A_left N_left + A_right N_right, against A N for a leaf. */
-    int best_axis = -1, best_bin = -1;
-    double best_cost = box_area(lo, hi) * (double)count;
+static double box_area(const box *b)
+{
+    double e[3];
+    for (int a = 0; a < 3; a++) e[a] = (double)b->hi[a] - b->lo[a];
+    if (!(e[0] >= 0 && e[1] >= 0 && e[2] >= 0)) return 0;
+    return 2 * (e[0] * e[1] + e[1] * e[2] + e[2] * e[0]);
+}
+
+/* The double box [lo, hi] padded by BVH_BOX_PAD_REL and rounded outwards to float, and its
+ * centre (kept finite for the binning). */
+static void prim_box(vec3 lo, vec3 hi, build_prim *p)
+{
+    double m = fmax(vec3_max_abs(lo), vec3_max_abs(hi));
+    double pad = BVH_BOX_PAD_REL * (m + vec3_max_abs(vec3_sub(hi, lo)));
+    for (int a = 0; a < 3; a++) {
+        double l = vec3_get(lo, a) - pad, h = vec3_get(hi, a) + pad;
+        float fl = (float)l, fh = (float)h;
+        p->b.lo[a] = fl > l ? nextafterf(fl, -INFINITY) : fl;
+        p->b.hi[a] = fh < h ? nextafterf(fh, INFINITY) : fh;
+        p->c[a] = (float)fmin(fmax(0.5 * l + 0.5 * h, -FLT_MAX), FLT_MAX);
+    }
+}
+
+static int bin_of(float c, double cmin, double k)
+{
+    int j = (int)((c - cmin) * k);
+    return j < 0 ? 0 : j >= BVH_BINS ? BVH_BINS - 1 : j;
+}
+
+typedef struct split {
+    int axis, bin; /* bins 0..bin go to the first child; axis -1: no split */
+    double cost;   /* C_trav A + A_1 N_1 + A_2 N_2 (A: areas, N: counts) */
+} split;
+
+/* The binned SAH's best split of ids[first, first + count), whose centres span cb. */
+static split find_split(const builder *bd, long first, long count, const box *cb, double area)
+{
+    split best = {-1, -1, INFINITY};
     for (int axis = 0; axis < 3; axis++) {
-        double cmin = vec3_get(clo, axis), cmax = vec3_get(chi, axis);
+        double cmin = cb->lo[axis], cmax = cb->hi[axis];
         if (!(cmax > cmin)) continue;
         double k = BVH_BINS * (1 - 1e-9) / (cmax - cmin);
         long n[BVH_BINS] = {0};
-        vec3 blo[BVH_BINS], bhi[BVH_BINS];
-        for (int j = 0; j < BVH_BINS; j++) {
-            blo[j] = vec3_make(INFINITY, INFINITY, INFINITY);
-            bhi[j] = vec3_neg(blo[j]);
-        }
+        box bins[BVH_BINS];
+        for (int j = 0; j < BVH_BINS; j++) bins[j] = box_empty();
         for (long i = first; i < first + count; i++) {
             const build_prim *p = &bd->bp[bd->ids[i]];
-            int j = (int)((vec3_get(p->c, axis) - cmin) * k);
-            if (j >= BVH_BINS) j = BVH_BINS - 1;
+            int j = bin_of(p->c[axis], cmin, k);
             n[j]++;
-            blo[j] = vec3_min(blo[j], p->lo);
-            bhi[j] = vec3_max(bhi[j], p->hi);
+            box_grow(&bins[j], p->b.lo, p->b.hi);
         }
-        /* sweep: right-side areas from the top, then left side from the bottom */
-        double right_area[BVH_BINS];
-        long right_n[BVH_BINS];
-        vec3 rlo = vec3_make(INFINITY, INFINITY, INFINITY), rhi = vec3_neg(rlo);
-        long rn = 0;
+        /* sweep: the second child's areas and counts from the top, then the first's */
+        double area2[BVH_BINS];
+        long n2[BVH_BINS];
+        box acc = box_empty();
+        long m = 0;
         for (int j = BVH_BINS - 1; j > 0; j--) {
-            rlo = vec3_min(rlo, blo[j]);
-            rhi = vec3_max(rhi, bhi[j]);
-            rn += n[j];
-            right_area[j] = box_area(rlo, rhi);
-            right_n[j] = rn;
+            box_grow(&acc, bins[j].lo, bins[j].hi);
+            m += n[j];
+            area2[j] = box_area(&acc);
+            n2[j] = m;
         }
-        vec3 llo = vec3_make(INFINITY, INFINITY, INFINITY), lhi = vec3_neg(llo);
-        long ln = 0;
+        acc = box_empty();
+        m = 0;
         for (int j = 0; j < BVH_BINS - 1; j++) {
-            llo = vec3_min(llo, blo[j]);
-            lhi = vec3_max(lhi, bhi[j]);
-            ln += n[j];
-            if (ln == 0 || right_n[j + 1] == 0) continue;
-            double cost = box_area(llo, lhi) * (double)ln + right_area[j + 1] * (double)right_n[j + 1];
-            if (cost < best_cost) {
-                best_cost = cost;
-                best_axis = axis;
-                best_bin = j;
-            }
+            box_grow(&acc, bins[j].lo, bins[j].hi);
+            m += n[j];
+            if (m == 0 || n2[j + 1] == 0) continue;
+            double cost = BVH_TRAVERSAL_COST * area + box_area(&acc) * (double)m +
+                          area2[j + 1] * (double)n2[j + 1];
+            if (cost < best.cost) best = (split){axis, j, cost};
         }
     }
-    if (best_axis < 0) goto leaf;
+    return best;
+}
 
-    /* partition: bins 0..best_bin go left */
-    double cmin = vec3_get(clo, best_axis), cmax = vec3_get(chi, best_axis);
-    double k = BVH_BINS * (1 - 1e-9) / (cmax - cmin);
+/* Move the primitives of bins 0..s.bin to the front; returns how many they are. */
+static long partition(builder *bd, long first, long count, split s, const box *cb)
+{
+    double cmin = cb->lo[s.axis], k = BVH_BINS * (1 - 1e-9) / ((double)cb->hi[s.axis] - cmin);
     long i = first, j = first + count - 1;
     while (i <= j) {
-        int bin = (int)((vec3_get(bd->bp[bd->ids[i]].c, best_axis) - cmin) * k);
-        if (bin >= BVH_BINS) bin = BVH_BINS - 1;
-        if (bin <= best_bin) i++;
+        if (bin_of(bd->bp[bd->ids[i]].c[s.axis], cmin, k) <= s.bin)
+            i++;
         else {
-            unsigned t = bd->ids[i];
+            uint32_t t = bd->ids[i];
             bd->ids[i] = bd->ids[j];
             bd->ids[j--] = t;
         }
     }
-    long nleft = i - first;
-    if (nleft == 0 || nleft == count) goto leaf;
-    long left = push_node(bd);
-    build_rec(bd, left, first, nleft, depth + 1);
-    long right = push_node(bd);
-    build_rec(bd, right, first + nleft, count - nleft, depth + 1);
-    nd = &bd->b->nodes[node];
-    nd->first = (int)right;
+    return i - first;
+}
+
+/* Node `node` over ids[first, first + count) and, unless it is a leaf, its subtree.  The SAH
+ * decides: a leaf when it holds at most BVH_LEAF_MAX and costs no more than its best split. */
+static int build_rec(builder *bd, long node, long first, long count, int depth)
+{
+    box bb = box_empty(), cb = box_empty();
+    for (long i = first; i < first + count; i++) {
+        const build_prim *p = &bd->bp[bd->ids[i]];
+        box_grow(&bb, p->b.lo, p->b.hi);
+        box_grow(&cb, p->c, p->c);
+    }
+    bvh_node *nd = &bd->b->nodes[node];
+    memcpy(nd->box[0], bb.lo, sizeof bb.lo);
+    memcpy(nd->box[1], bb.hi, sizeof bb.hi);
+    if (depth + 1 > bd->b->depth) bd->b->depth = depth + 1;
+    long n1 = 0;
+    int axis = 0;
+    if (count > 1 && depth < BVH_MAX_DEPTH - 2) {
+        double area = box_area(&bb);
+        split s =
+            depth < BVH_HALVE_DEPTH ? find_split(bd, first, count, &cb, area) : (split){-1, 0, 0};
+        if (count <= BVH_LEAF_MAX && !(s.cost < area * (double)count)) s.axis = -2; /* a leaf */
+        if (s.axis >= 0) {
+            n1 = partition(bd, first, count, s, &cb);
+            axis = s.axis;
+        }
+        if (s.axis != -2 && (n1 == 0 || n1 == count)) n1 = count > BVH_LEAF_MAX ? count / 2 : 0;
+    }
+    if (n1 == 0) {
+        if (count > UINT16_MAX) return -1; /* the depth limit with that many left: no leaf fits */
+        nd->offset = (int32_t)first;
+        nd->count = (uint16_t)count;
+        nd->axis = 0;
+        return 0;
+    }
+    long second;
+    if (build_rec(bd, bd->b->n_nodes++, first, n1, depth + 1)) return -1;
+    second = bd->b->n_nodes++;
+    if (build_rec(bd, second, first + n1, count - n1, depth + 1)) return -1;
+    nd = &bd->b->nodes[node]; /* (the array does not move: reserved up front) */
+    nd->offset = (int32_t)second;
     nd->count = 0;
-    nd->axis = best_axis;
-    return;
-leaf:
-    nd->first = (int)first;
-    nd->count = (int)count;
-    nd->axis = 0;
+    nd->axis = (uint8_t)axis;
+    return 0;
 }
 
 double bvh_bytes_per_prim(void)
 {
-    return 2.0 * sizeof(bvh_node) + sizeof(unsigned) + sizeof(bvh_tri) + sizeof(build_prim);
+    return 2.0 * sizeof(bvh_node) + sizeof(uint32_t) + sizeof(bvh_tri) + sizeof(build_prim);
 }
 
 double bvh_bytes(long n, double *scratch)
 {
     long m = n > 0 ? n : 1, max_nodes = n > 0 ? 2 * n - 1 : 1;
     if (scratch) *scratch = (double)m * sizeof(build_prim);
-    return (double)max_nodes * sizeof(bvh_node) + (double)m * (sizeof(unsigned) + sizeof(bvh_tri));
+    return (double)max_nodes * sizeof(bvh_node) + (double)m * (sizeof(uint32_t) + sizeof(bvh_tri));
+}
+
+static void store_tri(bvh_tri *t, vec3 p0, vec3 e1, vec3 e2)
+{
+    for (int a = 0; a < 3; a++) {
+        t->p0[a] = (float)vec3_get(p0, a);
+        t->e1[a] = (float)vec3_get(e1, a);
+        t->e2[a] = (float)vec3_get(e2, a);
+    }
+}
+
+/* The primitives' padded float boxes, in id order. */
+static void prim_boxes(const bvh *b, build_prim *bp)
+{
+    const bvh_prims *sc = &b->prims_of;
+    for (long i = 0; i < b->n_prims; i++) {
+        vec3 lo, hi;
+        if (i < b->n_spheres) {
+            sphere_bounds(&sc->spheres[i], &lo, &hi);
+        } else if (i < b->n_surfaces) {
+            const triangle *t = &sc->triangles[i - b->n_spheres];
+            lo = vec3_min(t->p[0], vec3_min(t->p[1], t->p[2]));
+            hi = vec3_max(t->p[0], vec3_max(t->p[1], t->p[2]));
+        } else {
+            const bvh_quad *q = &b->quads[i - b->n_surfaces];
+            vec3 p1 = vec3_add(q->a, q->ab), p2 = vec3_add(p1, q->ac), p3 = vec3_add(q->a, q->ac);
+            lo = vec3_min(vec3_min(q->a, p1), vec3_min(p2, p3));
+            hi = vec3_max(vec3_max(q->a, p1), vec3_max(p2, p3));
+        }
+        prim_box(lo, hi, &bp[i]);
+        b->prims[i] = (uint32_t)i;
+    }
+}
+
+/* The float triangles and quads in leaf order (spheres' slots stay unused). */
+static void leaf_tris(bvh *b)
+{
+    for (long i = 0; i < b->n_prims; i++) {
+        uint32_t id = b->prims[i];
+        if (id < b->n_spheres) continue;
+        if (id < b->n_surfaces) {
+            const vec3 *p = b->prims_of.triangles[id - b->n_spheres].p;
+            store_tri(&b->tris[i], p[0], vec3_sub(p[1], p[0]), vec3_sub(p[2], p[0]));
+        } else {
+            const bvh_quad *q = &b->quads[id - b->n_surfaces];
+            store_tri(&b->tris[i], q->a, q->ab, q->ac);
+        }
+    }
 }
 
 int bvh_build(bvh *b, bvh_prims prims, budget *mem, error *err)
 {
     memset(b, 0, sizeof *b);
-    b->prims_of = prims;
-    const bvh_prims *sc = &b->prims_of;
     clock_t t0 = clock();
-    long n = sc->n_spheres + sc->n_triangles;
-    b->n_spheres = sc->n_spheres;
-    b->n_prims = n;
-    if (n > 0x7fffffffL) return error_set(err, sc->name, 0, "too many primitives (%ld)", n);
-    double scratch, keep = bvh_bytes(n, &scratch);
-    double each = (keep + scratch) / (n > 0 ? n : 1);
-    if (budget_charge(mem, keep + scratch, sc->name, 0, err, "the BVH of %ld primitives x %.0f "
-                      "bytes", n, each))
+    long n = prims.n_spheres + prims.n_triangles + prims.n_quads, m = n > 0 ? n : 1;
+    if (n > 0x7fffffffL) return error_set(err, prims.name, 0, "too many primitives (%ld)", n);
+    double scratch, keep = bvh_bytes(n, &scratch) + (double)prims.n_quads * sizeof(bvh_quad);
+    if (budget_charge(mem, keep + scratch, prims.name, 0, err,
+                      "the BVH of %ld primitives x %.0f bytes", n, (keep + scratch) / (double)m))
         return -1;
-    long max_nodes = n > 0 ? 2 * n - 1 : 1;
-    b->nodes = calloc((size_t)max_nodes, sizeof *b->nodes);
-    b->prims = malloc((size_t)(n > 0 ? n : 1) * sizeof *b->prims);
-    b->tris = malloc((size_t)(n > 0 ? n : 1) * sizeof *b->tris);
-    build_prim *bp = malloc((size_t)(n > 0 ? n : 1) * sizeof *bp);
-    if (!b->nodes || !b->prims || !b->tris || !bp) {
-        free(bp);
+    long max_nodes = 2 * m - 1;
+    b->nodes = malloc((size_t)max_nodes * sizeof *b->nodes);
+    b->prims = malloc((size_t)m * sizeof *b->prims);
+    b->tris = calloc((size_t)m, sizeof *b->tris);
+    b->quads = malloc((size_t)(prims.n_quads > 0 ? prims.n_quads : 1) * sizeof *b->quads);
+    build_prim *bp = malloc((size_t)m * sizeof *bp);
+    int st = -1;
+    if (!b->nodes || !b->prims || !b->tris || !b->quads || !bp) goto done;
+    if (prims.n_quads) memcpy(b->quads, prims.quads, (size_t)prims.n_quads * sizeof *b->quads);
+    prims.quads = b->quads;
+    b->prims_of = prims;
+    b->n_prims = n;
+    b->n_spheres = prims.n_spheres;
+    b->n_surfaces = prims.n_spheres + prims.n_triangles;
+    prim_boxes(b, bp);
+    b->n_nodes = 1;
+    b->depth = 1;
+    b->is_tree = n > BVH_MIN_PRIMS;
+    if (b->is_tree) {
+        builder bd = {b, bp, b->prims};
+        if (build_rec(&bd, 0, 0, n, 0)) goto done;
+    } else { /* one leaf, no tree (its box, never tested, is all space) */
+        bvh_node *all = &b->nodes[0];
+        for (int a = 0; a < 3; a++) all->box[0][a] = -INFINITY, all->box[1][a] = INFINITY;
+        all->offset = 0;
+        all->count = (uint16_t)n;
+        all->axis = 0;
+    }
+    leaf_tris(b);
+    bvh_node *fit = realloc(b->nodes, (size_t)b->n_nodes * sizeof *b->nodes);
+    if (fit) b->nodes = fit;
+    st = 0;
+done:
+    free(bp);
+    if (st) {
+        int no_memory = !b->nodes || !b->prims || !b->tris || !b->quads || !bp;
         bvh_free(b);
         budget_release(mem, keep + scratch);
-        return error_set(err, sc->name, 0, "out of memory building the BVH (%ld primitives)", n);
+        return error_set(err, prims.name, 0,
+                         no_memory ? "out of memory building the BVH (%ld primitives)"
+                                   : "no BVH fits %ld primitives (too many alike)",
+                         n);
     }
-    for (long i = 0; i < n; i++) {
-        build_prim *p = &bp[i];
-        if (i < sc->n_spheres) {
-            sphere_bounds(&sc->spheres[i], &p->lo, &p->hi);
-        } else {
-            const triangle *t = &sc->triangles[i - sc->n_spheres];
-            p->lo = vec3_min(t->p[0], vec3_min(t->p[1], t->p[2]));
-            p->hi = vec3_max(t->p[0], vec3_max(t->p[1], t->p[2]));
-        }
-        pad_box(&p->lo, &p->hi);
-        p->c = vec3_scale(vec3_add(p->lo, p->hi), 0.5);
-        b->prims[i] = (unsigned)i;
-    }
-    builder bd = {b, bp, b->prims, max_nodes};
-    b->n_nodes = 1;
-    if (n <= BVH_MIN_PRIMS) {
-        /* one leaf, no tree */
-        bvh_node *nd = &b->nodes[0];
-        nd->lo = vec3_make(-INFINITY, -INFINITY, -INFINITY);
-        nd->hi = vec3_make(INFINITY, INFINITY, INFINITY);
-        nd->first = 0;
-        nd->count = (int)n;
-        b->depth = 1;
-    } else {
-        b->is_tree = 1;
-        build_rec(&bd, 0, 0, n, 0);
-    }
-    for (long i = 0; i < n; i++) {
-        unsigned id = b->prims[i];
-        if (id >= (unsigned)sc->n_spheres) {
-            const triangle *t = &sc->triangles[id - sc->n_spheres];
-            b->tris[i] = (bvh_tri){t->p[0], t->p[1], t->p[2]};
-        }
-    }
-    free(bp);
-    budget_release(mem, scratch);
+    b->bytes = keep - (double)(max_nodes - b->n_nodes) * sizeof(bvh_node);
+    budget_release(mem, scratch + (keep - b->bytes));
     b->build_seconds = (double)(clock() - t0) / CLOCKS_PER_SEC;
     return 0;
 }
@@ -230,83 +302,174 @@ void bvh_free(bvh *b)
     free(b->nodes);
     free(b->prims);
     free(b->tris);
+    free(b->quads);
     memset(b, 0, sizeof *b);
 }
 
-/* Slab test: does the ray cross the box for some t in (tmin, tmax)?  Conservative: the far
- * end of each slab is widened by BVH_SLAB_SLACK, so rounding never culls a ray through a face. */
-static inline int box_hit(const bvh_node *nd, vec3 o, vec3 inv, double tmin, double tmax)
+/* ---- traversal ---------------------------------------------------------------------------- */
+
+/* The ray in float for the box and triangle tests: origin, direction, 1 / direction, and which
+ * direction components are negative (the near side of each slab). */
+typedef struct fray {
+    float o[3], o_lo[3], d[3], inv[3], o_near[3], o_far[3];
+    int neg[3];
+} fray;
+
+typedef struct best_hit {
+    long id;
+    double t, b1, b2;
+} best_hit;
+
+static float float_up(double x)
 {
-    double t0 = (nd->lo.x - o.x) * inv.x, t1 = (nd->hi.x - o.x) * inv.x;
-    if (t0 > t1) { double t = t0; t0 = t1; t1 = t; }
-    t1 += fabs(t1) * BVH_SLAB_SLACK;
-    tmin = t0 > tmin ? t0 : tmin;
-    tmax = t1 < tmax ? t1 : tmax;
-    t0 = (nd->lo.y - o.y) * inv.y; t1 = (nd->hi.y - o.y) * inv.y;
-    if (t0 > t1) { double t = t0; t0 = t1; t1 = t; }
-    t1 += fabs(t1) * BVH_SLAB_SLACK;
-    tmin = t0 > tmin ? t0 : tmin;
-    tmax = t1 < tmax ? t1 : tmax;
-    t0 = (nd->lo.z - o.z) * inv.z; t1 = (nd->hi.z - o.z) * inv.z;
-    if (t0 > t1) { double t = t0; t0 = t1; t1 = t; }
-    t1 += fabs(t1) * BVH_SLAB_SLACK;
-    tmin = t0 > tmin ? t0 : tmin;
-    tmax = t1 < tmax ? t1 : tmax;
-    /* NaN (0 * inf for a ray in a slab's plane) fails both compares and keeps the old bound */
-    return tmin <= tmax;
+    float f = (float)x;
+    return f < x ? nextafterf(f, INFINITY) : f;
 }
 
-/* The primitives prims[first .. first + count) against ray *r: each hit shrinks r->tmax (the
- * closest so far) and records it; any = 1 stops at the first hit (shadow rays). */
-static inline int leaf_hits(const bvh *b, ray *r, int first, int count, int any,
-                            long *best_i, double *best_t, double *bb1, double *bb2)
+static fray fray_make(const ray *r)
+{
+    fray f;
+    for (int a = 0; a < 3; a++) {
+        f.o[a] = (float)vec3_get(r->o, a);
+        f.d[a] = (float)vec3_get(r->d, a);
+        f.inv[a] = 1.0f / f.d[a];
+        f.neg[a] = f.inv[a] < 0;
+        /* the slabs' near ends from an origin a float ulp ahead of o (or at it), the far ends
+         * from one behind: the rounding of o to float never narrows a slab */
+        double o = vec3_get(r->o, a);
+        f.o_lo[a] = (float)(o - f.o[a]); /* o = o + o_lo to ~2^-48: the triangles' s = o - p0 */
+        float up = f.o[a] < o ? nextafterf(f.o[a], INFINITY) : f.o[a];
+        float down = f.o[a] > o ? nextafterf(f.o[a], -INFINITY) : f.o[a];
+        f.o_near[a] = f.neg[a] ? down : up;
+        f.o_far[a] = f.neg[a] ? up : down;
+    }
+    return f;
+}
+
+static inline float max3(float a, float b, float c, float d)
+{
+    a = b > a ? b : a; /* NaN (0 * inf: a ray in a slab's plane) fails and keeps the bound */
+    a = c > a ? c : a;
+    return d > a ? d : a;
+}
+
+static inline float min3(float a, float b, float c, float d)
+{
+    a = b < a ? b : a;
+    a = c < a ? c : a;
+    return d < a ? d : a;
+}
+
+/* Slab test: does the ray cross the box for some t in [tmin, tmax]?  Conservative: the far
+ * ends are widened by BVH_SLAB_SLACK (the caller widens tmax so too: the near ends' rounding),
+ * and the slabs are measured from origins that bracket the double one (fray_make). */
+static inline int box_hit(const bvh_node *nd, const fray *f, float tmin, float tmax)
+{
+    const float(*bx)[3] = nd->box;
+    const float grow = 1 + BVH_SLAB_SLACK; /* (a far end below 0 misses anyway) */
+    float x0 = (bx[f->neg[0]][0] - f->o_near[0]) * f->inv[0];
+    float y0 = (bx[f->neg[1]][1] - f->o_near[1]) * f->inv[1];
+    float z0 = (bx[f->neg[2]][2] - f->o_near[2]) * f->inv[2];
+    float x1 = (bx[!f->neg[0]][0] - f->o_far[0]) * f->inv[0] * grow;
+    float y1 = (bx[!f->neg[1]][1] - f->o_far[1]) * f->inv[1] * grow;
+    float z1 = (bx[!f->neg[2]][2] - f->o_far[2]) * f->inv[2] * grow;
+    return max3(tmin, x0, y0, z0) <= min3(tmax, x1, y1, z1);
+}
+
+/* The float Moller-Trumbore test as a filter: 0 only when the double test cannot hit either
+ * (BVH_FILTER_EPS).  A quad is a parallelogram: b1, b2 in [0, 1] each. */
+static inline int tri_maybe(const bvh_tri *t, const fray *f, float tmax, int quad)
+{
+    const float *d = f->d, *e1 = t->e1, *e2 = t->e2;
+    float pv[3] = {d[1] * e2[2] - d[2] * e2[1], d[2] * e2[0] - d[0] * e2[2],
+                   d[0] * e2[1] - d[1] * e2[0]};
+    float det = e1[0] * pv[0] + e1[1] * pv[1] + e1[2] * pv[2];
+    /* |det| = |e1| |pv| cos: a grazing ray (cos below ~BVH_GRAZING, L1 norms) makes the float
+     * barycentrics noise: the double test decides (NaN too) */
+    float n1 = fabsf(e1[0]) + fabsf(e1[1]) + fabsf(e1[2]),
+          np = fabsf(pv[0]) + fabsf(pv[1]) + fabsf(pv[2]);
+    if (!(fabsf(det) > BVH_GRAZING * n1 * np)) return 1;
+    float inv = 1 / det;
+    float s[3] = {(f->o[0] - t->p0[0]) + f->o_lo[0], (f->o[1] - t->p0[1]) + f->o_lo[1],
+                  (f->o[2] - t->p0[2]) + f->o_lo[2]};
+    float b1 = (s[0] * pv[0] + s[1] * pv[1] + s[2] * pv[2]) * inv;
+    if (!(b1 >= -BVH_FILTER_EPS && b1 <= 1 + BVH_FILTER_EPS)) return 0;
+    float qv[3] = {s[1] * e1[2] - s[2] * e1[1], s[2] * e1[0] - s[0] * e1[2],
+                   s[0] * e1[1] - s[1] * e1[0]};
+    float b2 = (d[0] * qv[0] + d[1] * qv[1] + d[2] * qv[2]) * inv;
+    if (!(b2 >= -BVH_FILTER_EPS && (quad ? b2 : b1 + b2) <= 1 + BVH_FILTER_EPS)) return 0;
+    float tt = (e2[0] * qv[0] + e2[1] * qv[1] + e2[2] * qv[2]) * inv;
+    return tt <= tmax + fabsf(tt) * BVH_FILTER_EPS; /* no lower bound: the double test's */
+}
+
+/* The double test of quad q: its two triangles (a, a+ab, a+ab+ac) and (a, a+ab+ac, a+ac). */
+static int quad_intersect(const bvh_quad *q, const ray *r, double *t)
+{
+    vec3 b = vec3_add(q->a, q->ab), c = vec3_add(b, q->ac), d = vec3_add(q->a, q->ac);
+    double b1, b2;
+    ray rr = *r;
+    int h = triangle_intersect(q->a, b, c, &rr, t, &b1, &b2);
+    if (h) rr.tmax = *t;
+    return triangle_intersect(q->a, c, d, &rr, t, &b1, &b2) || h;
+}
+
+/* The primitives prims[first .. first + count) against ray *r: each hit shrinks r->tmax (and
+ * *tmax_f) and is recorded in *best; any = 1 stops at the first hit (shadow rays). */
+static int leaf_hits(const bvh *b, const fray *f, ray *r, float *tmax_f, long first, int count,
+                     int any, best_hit *best)
 {
     int found = 0;
-    for (int i = first; i < first + count; i++) {
-        unsigned id = b->prims[i];
+    for (long i = first; i < first + count; i++) {
+        uint32_t id = b->prims[i];
         double t, b1 = 0, b2 = 0;
         int h;
-        if (id < (unsigned)b->n_spheres) h = sphere_intersect(&b->prims_of.spheres[id], r, &t);
-        else {
-            const bvh_tri *tr = &b->tris[i];
-            h = triangle_intersect(tr->p0, tr->p1, tr->p2, r, &t, &b1, &b2);
+        if (id < b->n_spheres) {
+            h = sphere_intersect(&b->prims_of.spheres[id], r, &t);
+        } else if (!tri_maybe(&b->tris[i], f, *tmax_f, id >= b->n_surfaces)) {
+            continue;
+        } else if (id < b->n_surfaces) {
+            const vec3 *p = b->prims_of.triangles[id - b->n_spheres].p;
+            h = triangle_intersect(p[0], p[1], p[2], r, &t, &b1, &b2);
+        } else {
+            h = quad_intersect(&b->quads[id - b->n_surfaces], r, &t);
         }
-        if (h) {
-            if (any) return 1;
-            found = 1;
-            r->tmax = t; /* closest so far: shrink the ray */
-            *best_i = id;
-            *best_t = t;
-            *bb1 = b1;
-            *bb2 = b2;
-        }
+        if (!h) continue;
+        if (any) return 1;
+        found = 1;
+        r->tmax = t; /* closest so far: shrink the ray */
+        *tmax_f = float_up(t);
+        *best = (best_hit){id, t, b1, b2};
     }
     return found;
 }
 
-/* Shared traversal.  any = 1: stop at the first hit (shadow rays). */
-static int traverse(const bvh *b, const ray *r0, int any, long *best_i,
-                    double *best_t, double *bb1, double *bb2)
+/* Depth first, the near child first (the first child along the split axis unless the ray runs
+ * towards smaller coordinates).  any = 1: stop at the first hit (shadow rays). */
+static int traverse(const bvh *b, const ray *r0, int any, best_hit *best)
 {
     ray r = *r0;
+    fray f = fray_make(&r);
+    float tmin_f = (float)r.tmin, tmax_f = float_up(r.tmax);
+    if (tmin_f > r.tmin) tmin_f = nextafterf(tmin_f, -INFINITY);
     /* no tree (a few primitives): the one leaf's box is all space, so no slab test */
-    if (!b->is_tree) return leaf_hits(b, &r, 0, (int)b->n_prims, any, best_i, best_t, bb1, bb2);
-    vec3 inv = vec3_make(1.0 / r.d.x, 1.0 / r.d.y, 1.0 / r.d.z);
-    int stack[BVH_MAX_DEPTH];
-    int sp = 0, node = 0, found = 0;
+    if (!b->is_tree) return leaf_hits(b, &f, &r, &tmax_f, 0, (int)b->n_prims, any, best);
+    int32_t stack[BVH_MAX_DEPTH];
+    int sp = 0, found = 0;
+    int32_t node = 0;
+    float tmax_box = tmax_f * (1 + BVH_SLAB_SLACK);
     for (;;) {
         const bvh_node *nd = &b->nodes[node];
-        if (box_hit(nd, r.o, inv, r.tmin, r.tmax)) {
+        if (box_hit(nd, &f, tmin_f, tmax_box)) {
             if (nd->count == 0) {
-                /* visit the nearer child first: left holds the smaller coordinates */
-                int left = node + 1, right = nd->first;
-                if (vec3_get(r.d, nd->axis) < 0) { node = right; stack[sp++] = left; }
-                else { node = left; stack[sp++] = right; }
+                int near_second = f.neg[nd->axis];
+                stack[sp++] = near_second ? node + 1 : nd->offset;
+                node = near_second ? nd->offset : node + 1;
                 continue;
             }
-            if (leaf_hits(b, &r, nd->first, nd->count, any, best_i, best_t, bb1, bb2)) {
+            if (leaf_hits(b, &f, &r, &tmax_f, nd->offset, nd->count, any, best)) {
                 if (any) return 1;
                 found = 1;
+                tmax_box = tmax_f * (1 + BVH_SLAB_SLACK);
             }
         }
         if (sp == 0) break;
@@ -317,26 +480,30 @@ static int traverse(const bvh *b, const ray *r0, int any, long *best_i,
 
 int bvh_intersect(const bvh *b, const ray *r, hit *h)
 {
-    const bvh_prims *sc = &b->prims_of;
-    long id = -1;
-    double t = 0, b1 = 0, b2 = 0;
-    if (b->n_prims == 0 || !traverse(b, r, 0, &id, &t, &b1, &b2)) return 0;
-    h->t = t;
-    if (id < b->n_spheres) {
-        const sphere *s = &sc->spheres[id];
-        sphere_hit(s, r, t, h);
-        h->prim = id;
+    best_hit bh;
+    if (b->n_prims == 0 || !traverse(b, r, 0, &bh)) return BVH_MISS;
+    h->t = bh.t;
+    if (bh.id >= b->n_surfaces) {
+        h->prim = bh.id - b->n_surfaces;
+        return BVH_QUAD;
+    }
+    if (bh.id < b->n_spheres) {
+        const sphere *s = &b->prims_of.spheres[bh.id];
+        sphere_hit(s, r, bh.t, h);
+        h->prim = bh.id;
         h->is_sphere = 1;
         h->material = s->material;
-        return 1;
+        return BVH_SURFACE;
     }
-    const triangle *tr = &sc->triangles[id - b->n_spheres];
-    double b0 = 1 - b1 - b2;
+    const triangle *tr = &b->prims_of.triangles[bh.id - b->n_spheres];
+    double b1 = bh.b1, b2 = bh.b2, b0 = 1 - b1 - b2;
     /* p = b0 p0 + b1 p1 + b2 p2 : the barycentric interpolation of the lecture */
-    h->p = vec3_add(vec3_add(vec3_scale(tr->p[0], b0), vec3_scale(tr->p[1], b1)), vec3_scale(tr->p[2], b2));
+    h->p = vec3_add(vec3_add(vec3_scale(tr->p[0], b0), vec3_scale(tr->p[1], b1)),
+                    vec3_scale(tr->p[2], b2));
     h->ng = vec3_normalize(vec3_cross(vec3_sub(tr->p[1], tr->p[0]), vec3_sub(tr->p[2], tr->p[0])));
     if (tr->has_normals) {
-        vec3 n = vec3_add(vec3_add(vec3_scale(tr->n[0], b0), vec3_scale(tr->n[1], b1)), vec3_scale(tr->n[2], b2));
+        vec3 n = vec3_add(vec3_add(vec3_scale(tr->n[0], b0), vec3_scale(tr->n[1], b1)),
+                          vec3_scale(tr->n[2], b2));
         h->ns = vec3_normalize(n);
         /* the given normals define the outside: turn the winding's normal to agree with them */
         if (vec3_dot(h->ns, h->ng) < 0) h->ng = vec3_neg(h->ng);
@@ -344,15 +511,14 @@ int bvh_intersect(const bvh *b, const ray *r, hit *h)
         h->ns = h->ng;
     }
     h->bary = (uv2){b1, b2};
-    h->prim = id - b->n_spheres;
+    h->prim = bh.id - b->n_spheres;
     h->is_sphere = 0;
     h->material = tr->material;
-    return 1;
+    return BVH_SURFACE;
 }
 
 int bvh_occluded(const bvh *b, const ray *r)
 {
-    long id;
-    double t, b1, b2;
-    return b->n_prims > 0 && traverse(b, r, 1, &id, &t, &b1, &b2);
+    best_hit bh;
+    return b->n_prims > 0 && traverse(b, r, 1, &bh);
 }

@@ -115,14 +115,22 @@ void integrator_intersect_diff(integrator *it, const ray *r, const ray_diff *rd,
     it->rays++;
     ray rr = *r;
     out->kind = 0;
-    if (bvh_intersect(it->accel, &rr, &out->h)) {
+    int got = bvh_intersect(it->accel, &rr, &out->h);
+    if (got == BVH_QUAD) { /* the quads are in the scene's BVH (lights_scene_bvh) */
+        out->kind = 2;
+        out->light = it->ls.quad_light[out->h.prim];
+        out->t = out->h.t;
+        return;
+    }
+    if (got) {
         out->kind = 1;
         rr.tmax = out->h.t;
     }
     int k;
     double t;
-    /* (n_quads tested here: a scene without quad lights pays no call a ray) */
-    if (it->has_lights && it->ls.n_quads > 0 && lights_intersect_quad(&it->ls, &rr, &k, &t)) {
+    /* quads outside the scene's BVH (bvh_build's): their own; a scene without pays no call */
+    if (it->accel->prims_of.n_quads == 0 && it->has_lights && it->ls.n_quads > 0 &&
+        lights_intersect_quad(&it->ls, &rr, &k, &t)) {
         out->kind = 2;
         out->light = k;
         out->t = t;
@@ -151,7 +159,8 @@ int integrator_occluded(integrator *it, const ray *shadow)
      * shadow ray to a point of light k stops short of k's plane, so k never blocks itself. */
     int k;
     double t;
-    return it->has_lights && it->ls.n_quads > 0 && lights_intersect_quad(&it->ls, shadow, &k, &t);
+    return it->accel->prims_of.n_quads == 0 && it->has_lights && it->ls.n_quads > 0 &&
+           lights_intersect_quad(&it->ls, shadow, &k, &t);
 }
 
 int integrator_strata(int n, int stratify)

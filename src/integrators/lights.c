@@ -4,7 +4,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "envtex/geometry/triangle.h"
 
 /* log2 of light k's power (-inf for none), from factors that each fit a double: the power
  * itself may not (4 pi I with I = 1e308, or pi R^2 E for a huge scene), and only the ratios of
@@ -32,36 +31,60 @@ static double light_log2_power(const lights *ls, int k)
     }
 }
 
-/* The quad lights' triangles and their BVH (lights.h).  Testing every light for every ray cost
- * a path tracer ~90% of its time with 100 quad lights, and 66% with 1000 point lights and no
- * quad at all. */
+/* The quads of sc's quad lights, in the order of sc->lights (malloc'd, *n of them; NULL when
+ * there are none), each the parallelogram a, a+ab, a+ab+ac, a+ac.  -1 when memory runs out. */
+static int scene_quads(const scene *sc, bvh_quad **out, long *n)
+{
+    *out = NULL;
+    *n = 0;
+    for (int i = 0; i < sc->n_lights; i++) *n += sc->lights[i].kind == LIGHT_QUAD;
+    if (*n == 0) return 0;
+    bvh_quad *q = *out = malloc((size_t)*n * sizeof *q);
+    if (!q) return -1;
+    for (int i = 0; i < sc->n_lights; i++)
+        if (sc->lights[i].kind == LIGHT_QUAD)
+            *q++ = (bvh_quad){sc->lights[i].pos, sc->lights[i].ab, sc->lights[i].ac};
+    return 0;
+}
+
+/* The quad lights' BVH (lights.h).  Testing every light for every ray cost a path tracer ~90%
+ * of its time with 100 quad lights, and 66% with 1000 point lights and no quad at all. */
 static int build_quads(lights *ls, const scene *sc, budget *mem, error *err)
 {
-    int nq = 0;
-    for (int i = 0; i < sc->n_lights; i++) nq += sc->lights[i].kind == LIGHT_QUAD;
+    bvh_quad *quads;
+    long nq;
+    if (scene_quads(sc, &quads, &nq))
+        return error_set(err, sc->path, 0, "out of memory for the quad lights");
     if (nq == 0) return 0;
-    double bytes = (double)nq * (2 * sizeof(triangle) + sizeof *ls->quad_light);
-    if (budget_charge(mem, bytes, sc->path, 0, err, "%d quad lights as 2 triangles x %zu bytes", nq,
-                      sizeof(triangle)))
-        return -1;
-    ls->quad_light = malloc((size_t)nq * sizeof *ls->quad_light);
-    triangle *tris = ls->quad_tris = calloc((size_t)nq * 2, sizeof *tris);
-    if (!ls->quad_light || !tris) {
+    double bytes = (double)nq * sizeof *ls->quad_light;
+    int st = budget_charge(mem, bytes, sc->path, 0, err, "%ld quad lights x %zu bytes", nq,
+                           sizeof *ls->quad_light);
+    if (st == 0 && !(ls->quad_light = malloc((size_t)nq * sizeof *ls->quad_light))) {
         budget_release(mem, bytes);
-        return error_set(err, sc->path, 0, "out of memory for %d quad lights", nq);
+        st = error_set(err, sc->path, 0, "out of memory for %ld quad lights", nq);
     }
-    for (int i = 0; i < sc->n_lights; i++) {
-        const scene_light *l = &sc->lights[i];
-        if (l->kind != LIGHT_QUAD) continue;
-        /* the parallelogram a, a+ab, a+ab+ac, a+ac as two triangles */
-        vec3 a = l->pos, b = vec3_add(l->pos, l->ab), c = vec3_add(b, l->ac), d = vec3_add(l->pos, l->ac);
-        int j = ls->n_quads++;
-        ls->quad_light[j] = i;
-        triangle *t = &tris[2 * j];
-        t[0].p[0] = a, t[0].p[1] = b, t[0].p[2] = c;
-        t[1].p[0] = a, t[1].p[1] = c, t[1].p[2] = d;
+    for (int i = 0; st == 0 && i < sc->n_lights; i++)
+        if (sc->lights[i].kind == LIGHT_QUAD) ls->quad_light[ls->n_quads++] = i;
+    bvh_prims p = {.name = sc->path, .quads = quads, .n_quads = nq};
+    if (st == 0) st = bvh_build(&ls->quad_bvh, p, mem, err);
+    free(quads); /* (the bvh keeps a copy) */
+    return st;
+}
+
+int lights_scene_bvh(bvh *b, const scene *sc, budget *mem, error *err)
+{
+    bvh_prims p = scene_prims(sc);
+    bvh_quad *quads = NULL;
+    int sees_quads =
+        sc->integrator != INTEGRATOR_RAYTRACER && sc->integrator != INTEGRATOR_PREFILTERED;
+    if (sees_quads && scene_quads(sc, &quads, &p.n_quads)) {
+        memset(b, 0, sizeof *b);
+        return error_set(err, sc->path, 0, "out of memory for the quad lights");
     }
-    return bvh_build(&ls->quad_bvh, (bvh_prims){NULL, 0, tris, 2L * nq, sc->path}, mem, err);
+    p.quads = quads;
+    int st = bvh_build(b, p, mem, err);
+    free(quads); /* (the bvh keeps a copy) */
+    return st;
 }
 
 int lights_build(lights *ls, const scene *sc, const envlight *env, double scene_radius, budget *mem,
@@ -97,9 +120,7 @@ void lights_free(lights *ls)
 {
     distrib1d_free(&ls->choose);
     bvh_free(&ls->quad_bvh); /* safe on a zeroed or failed build */
-    free(ls->quad_tris);
     free(ls->quad_light);
-    ls->quad_tris = NULL;
     ls->quad_light = NULL;
     ls->n_quads = 0;
 }
@@ -211,8 +232,8 @@ int lights_sample(const lights *ls, int k, vec3 p, vec3 ng, double xi1, double x
 int lights_intersect_quad(const lights *ls, const ray *r, int *k, double *t_out)
 {
     hit h;
-    if (ls->n_quads == 0 || !bvh_intersect(&ls->quad_bvh, r, &h)) return 0;
-    *k = ls->quad_light[h.prim / 2]; /* triangles 2 j and 2 j + 1 are quad j */
+    if (ls->n_quads == 0 || bvh_intersect(&ls->quad_bvh, r, &h) != BVH_QUAD) return 0;
+    *k = ls->quad_light[h.prim];
     *t_out = h.t;
     return 1;
 }

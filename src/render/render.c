@@ -79,7 +79,7 @@ int render_scene(const scene *sc, const render_opts *opts, image *out, render_st
         sc = &displaced;
     }
     bvh accel;
-    if (bvh_build(&accel, scene_prims(sc), opts->mem, err)) {
+    if (lights_scene_bvh(&accel, sc, opts->mem, err)) { /* its quad lights too (lights.h) */
         if (has_displaced) displacemap_free(&displaced);
         return -1;
     }

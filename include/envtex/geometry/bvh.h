@@ -1,18 +1,31 @@
-/* bvh.h - bounding volume hierarchy over a scene's spheres and triangles, built with the binned
- * surface area heuristic (Wald 2007).  A scene with at most BVH_MIN_PRIMS primitives gets no
- * tree (one leaf, tested linearly, without a slab test): it pays nothing for a structure it
- * cannot gain from (the slab test of an all-space box was 7-11% of such renders' instructions).
+/* bvh.h - bounding volume hierarchy over a scene's spheres, triangles and quad lights, built
+ * with the binned surface area heuristic (Wald 2007), nodes and triangles stored in float.
  *
  *     bvh b;
- *     if (bvh_build(&b, scene_prims(sc), &mem, &err)) ...   // scene.h
- *     hit h; if (bvh_intersect(&b, &r, &h)) shade(&h);
+ *     if (bvh_build(&b, scene_prims(sc), &mem, &err)) ...   // scene.h (lights.h adds quads)
+ *     hit h; if (bvh_intersect(&b, &r, &h) == BVH_SURFACE) shade(&h);
  *     bvh_free(&b);
  *
- * The bvh keeps a pointer to nothing in the scene but reads it on every query: pass the same
- * scene, unchanged, to every call.  Queries allocate nothing.
+ * Float finds, double decides.  Traversal tests the rays against float boxes and float
+ * triangles (a corner and two edges, Moller-Trumbore); a triangle or quad that passes the float
+ * test only becomes a candidate, and the double-precision test of triangle.h on the scene's own
+ * corners decides whether it is hit and where.  So every hit (t, barycentrics, point) is the one
+ * the double test gives, bit for bit.  The float tests are made conservative, never robustly
+ * watertight: a watertight test needs the corners relative to the ray's origin, which the
+ * layout of precomputed edges does not keep, and the double test closes cracks anyway
+ * (TRIANGLE_EDGE_EPS).  Boxes are rounded outwards and padded (BVH_BOX_PAD_REL), slabs are
+ * measured from float origins that bracket the double one and widened by BVH_SLAB_SLACK, so no
+ * box culls a hit; the float triangle test widens by BVH_FILTER_EPS and leaves grazing rays
+ * (BVH_GRAZING) to the double test, which covers its rounding for a triangle seen from up to
+ * ~10^3 times its size.  A scene with at most BVH_MIN_PRIMS primitives gets no tree (one
+ * leaf, tested linearly, no slab test).
+ * The bvh keeps a pointer to nothing in the scene but reads its spheres and triangles on every
+ * query: pass the same scene, unchanged, to every call.  Queries allocate nothing.
  */
 #ifndef ENVTEX_BVH_H
 #define ENVTEX_BVH_H
+
+#include <stdint.h>
 
 #include "envtex/core/budget.h"
 #include "envtex/core/error.h"
@@ -20,59 +33,100 @@
 #include "envtex/geometry/sphere.h"
 #include "envtex/geometry/triangle.h"
 
-/* With this many primitives or fewer, a linear loop beats a tree (measured: make bench). */
-#define BVH_MIN_PRIMS 8
-#define BVH_LEAF_MAX 4   /* a node with this many primitives or fewer becomes a leaf */
-#define BVH_BINS 16      /* SAH bins per axis */
-#define BVH_MAX_DEPTH 64 /* traversal stack size; the build stops splitting at depth 62
-                         * (traversal stacks one child per interior node on its path) */
+#define BVH_MIN_PRIMS 8  /* this many primitives or fewer: one leaf, no tree (make bench) */
+#define BVH_LEAF_MAX  8  /* a leaf holds at most this many; the SAH decides below it */
+#define BVH_BINS      16 /* SAH bins per axis */
+#define BVH_MAX_DEPTH 64 /* traversal stack size; the build stops splitting at depth 62 */
+/* SAH: the cost of visiting a node, in units of a primitive's float test (design-notes.md) */
+#define BVH_TRAVERSAL_COST 2.0
+/* Each primitive's box grows by this times (its extent + its largest coordinate) before it is
+ * rounded outwards to float: room for the double tests' edge tolerance (TRIANGLE_EDGE_EPS)
+ * and rounding, far beyond both (~1e-12 relative), invisible. */
+#define BVH_BOX_PAD_REL 0x1p-18
+/* The float slab test's rounding: the far end of each slab is widened by 2 gamma(3) =
+ * 6 u / (1 - 3 u), u = 2^-24 (pbrt-v3, 3.9.2, "robust ray-bounds intersections"). */
+#define BVH_SLAB_SLACK (6 * 0x1p-24f / (1 - 3 * 0x1p-24f))
+/* The float triangle test accepts barycentrics this far outside [0, 1] and t this fraction
+ * beyond tmax: its rounding is ~ 3 u |s| / (|e| cos) (s = o - p0, from the origin split in two
+ * floats; e: an edge; u = 2^-24), under 2^-7 while |s| / |e| stays below ~10^3 for cos >= 2^-5
+ * (and |p0| / |e|, the corner's own rounding, below ~10^4).  A wider filter only sends more
+ * near misses to the double test. */
+#define BVH_FILTER_EPS 0x1p-7f
+/* ... when the ray is not grazing: below this |det| / (|e1| |pv|) (in L1 norms; ~ the cosine
+ * of the ray and the plane's normal) the double test decides alone */
+#define BVH_GRAZING 0x1p-5f
 
+enum { BVH_MISS = 0, BVH_SURFACE = 1, BVH_QUAD = 2 }; /* what bvh_intersect found */
+
+/* A node, 32 bytes (pbrt-v4's layout): its box, and either its primitives (a leaf) or its
+ * second child (the first child is the next node: depth-first order). */
 typedef struct bvh_node {
-    vec3 lo, hi;   /* bounds */
-    int first;     /* leaf: first index into prims; inner: index of the right child (left = +1) */
-    int count;     /* leaf: number of primitives (> 0); inner: 0 */
-    int axis;      /* inner: split axis, to visit the nearer child first */
+    float box[2][3]; /* lower corner, upper corner */
+    int32_t offset;  /* leaf: first index into prims and tris; inner: index of the second child */
+    uint16_t count;  /* leaf: number of primitives (> 0); inner: 0 */
+    uint8_t axis;    /* inner: the split axis (the first child holds the smaller coordinates) */
+    uint8_t pad;
 } bvh_node;
 
-typedef struct bvh_tri { vec3 p0, p1, p2; } bvh_tri;
+/* A triangle or quad laid out for the float test: corner p0, edges e1 = p1 - p0, e2 = p2 - p0
+ * (a quad: its corner a and edges ab, ac). */
+typedef struct bvh_tri {
+    float p0[3], e1[3], e2[3];
+} bvh_tri;
 
-/* The primitives a BVH is built over (borrowed: they must outlive the bvh, unchanged).  Ids:
- * sphere i is id i, triangle j is id n_spheres + j. */
+/* A quad light: the parallelogram a, a+ab, a+ab+ac, a+ac, opaque from both sides. */
+typedef struct bvh_quad {
+    vec3 a, ab, ac;
+} bvh_quad;
+
+/* The primitives a BVH is built over.  Spheres and triangles are borrowed (they must outlive
+ * the bvh, unchanged); quads are copied.  Ids: sphere i is id i, triangle j is n_spheres + j,
+ * quad k is n_spheres + n_triangles + k. */
 typedef struct bvh_prims {
-    const sphere *spheres; long n_spheres;
-    const triangle *triangles; long n_triangles;
-    const char *name;  /* whose primitives, for messages (a scene file; may be NULL) */
+    const sphere *spheres;
+    long n_spheres;
+    const triangle *triangles;
+    long n_triangles;
+    const char *name; /* whose primitives, for messages (a scene file; may be NULL) */
+    const bvh_quad *quads;
+    long n_quads;
 } bvh_prims;
 
 typedef struct bvh {
-    bvh_prims prims_of; /* what it was built over */
-    bvh_node *nodes; long n_nodes;
-    unsigned *prims;  /* primitive ids in leaf order: id < n_spheres is a sphere, else a triangle */
-    bvh_tri *tris;    /* triangle corners in leaf order (cache friendly), parallel to prims */
+    bvh_prims prims_of; /* what it was built over (quads: pointing at b->quads) */
+    bvh_node *nodes;
+    long n_nodes;
+    uint32_t *prims; /* primitive ids in leaf order */
+    bvh_tri *tris;   /* float triangles and quads in leaf order, parallel to prims */
+    bvh_quad *quads; /* the copied quads (owned) */
     long n_prims;
-    long n_spheres;
-    int is_tree;      /* 0: a single leaf (no tree was worth building) */
-    int depth;        /* deepest leaf */
+    long n_spheres, n_surfaces; /* id < n_spheres: a sphere; < n_surfaces: a triangle; a quad */
+    int is_tree;                /* 0: a single leaf (no tree was worth building) */
+    int depth;                  /* deepest leaf */
+    double bytes;               /* what the bvh keeps (nodes, leaf order, float triangles, quads) */
     double build_seconds;
 } bvh;
 
-/* Build b over the spheres and triangles of `prims` (borrowed), its memory charged to `mem` first (budget.h, bvh_bytes;
- * NULL: no budget): the tree stays charged, the build's scratch is released.  Returns 0, or -1
- * with *err set (more than 2^31 - 1 primitives, the budget, out of memory) and b holding
- * nothing.  Free with bvh_free, which is safe on a zeroed or failed bvh. */
+/* Build b over `prims`, its memory charged to `mem` first (budget.h, bvh_bytes; NULL: no
+ * budget): what the tree keeps stays charged, the build's scratch and unused nodes are
+ * released.  Returns 0, or -1 with *err set (more than 2^31 - 1 primitives, the budget, out of
+ * memory) and b holding nothing.  Free with bvh_free, which is safe on a zeroed or failed bvh. */
 int bvh_build(bvh *b, bvh_prims prims, budget *mem, error *err);
 
-/* The bytes a BVH of n primitives keeps (nodes, the leaf order, the triangles' corners: about
- * 200 a primitive), and in *scratch (may be NULL) what its build holds only while it runs. */
+/* At most the bytes a BVH of n primitives keeps (at most 2 n - 1 nodes, the leaf order, the
+ * float triangles), and in *scratch (may be NULL) what its build holds only while it runs. */
 double bvh_bytes(long n, double *scratch);
-/* What one more primitive costs a BVH, its build's scratch included (the slope of bvh_bytes). */
+/* What one more primitive costs a BVH at most, its build's scratch included. */
 double bvh_bytes_per_prim(void);
 void bvh_free(bvh *b);
 
-/* Closest hit with t in (r->tmin, r->tmax): fills *h completely and returns 1, else 0. */
+/* The closest hit with t in (r->tmin, r->tmax).  BVH_SURFACE: a sphere or triangle, *h filled
+ * completely.  BVH_QUAD: a quad, h->t and h->prim (the quad's index k) set, nothing else.
+ * BVH_MISS (0): nothing. */
 int bvh_intersect(const bvh *b, const ray *r, hit *h);
 
-/* 1 if anything lies on the ray with t in (r->tmin, r->tmax) (shadow rays; any hit will do). */
+/* 1 if anything (quads included) lies on the ray with t in (r->tmin, r->tmax): shadow rays,
+ * which stop at the first hit found. */
 int bvh_occluded(const bvh *b, const ray *r);
 
 #endif

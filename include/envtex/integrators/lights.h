@@ -12,9 +12,10 @@
  * light emits on the side of ac x ab (FORMAT.md) and is opaque from both sides to every ray:
  * camera and BRDF rays stop at it (lights_intersect_quad), and it blocks shadow rays towards
  * other lights (integrator_occluded), so NEE and BRDF sampling agree.
- * Every camera, BRDF and shadow ray asks for the nearest quad, so the quads get a BVH of their
- * own (bvh.h, two triangles a quad): a ray tests O(log n) of n quads, not all of them, and a
- * scene whose lights are all point or directional tests none.
+ * Every camera, BRDF and shadow ray asks for the nearest quad, so the quads join the scene's
+ * BVH (lights_scene_bvh, bvh.h): one traversal finds the nearest surface or quad, a ray tests
+ * O(log n) of n quads, and a scene whose lights are all point or directional tests none.  The
+ * lights keep a BVH of the quads alone too, for callers whose BVH has none (bvh_build).
  *
  *     lights ls;
  *     lights_build(&ls, sc, el, radius, &mem, &err);
@@ -40,10 +41,8 @@ typedef struct lights {
     double radius;
     double env_fraction;  /* c in [0, 1]: a pick of the envmap is sampled with probability c
                            * (1 unless lights_set_env_fraction; see there) */
-    /* the quad lights as triangles 2 j: (a, a+ab, a+ab+ac) and 2 j + 1: (a, a+ab+ac, a+ac)
-     * (owned; NULL without quads), with a BVH over them; both triangles of pair j are quad
-     * quad_light[j] (an index into sc->lights) */
-    triangle *quad_tris;
+    /* a BVH over the quad lights alone; its quad j is light quad_light[j] (an index into
+     * sc->lights; owned, NULL without quads), in the order of sc->lights */
     bvh quad_bvh;
     int *quad_light;
     int n_quads;
@@ -102,6 +101,13 @@ static inline int lights_env_index(const lights *ls) { return ls->env ? ls->n - 
  * nothing. */
 int lights_sample(const lights *ls, int k, vec3 p, vec3 ng, double xi1, double xi2, double xi3,
                   int stratified, light_sample *out);
+
+/* The BVH of sc's spheres and triangles and, for an integrator that sees quad lights (all but
+ * `raytracer` and `prefiltered`), its quad lights: bvh_intersect's BVH_QUAD with h.prim = j is
+ * light quad_light[j] of lights_build (the j-th quadLight of sc->lights).  sc is borrowed (it
+ * must outlive b); b is charged to `mem`.  Returns 0, or -1 with *err set (bvh_build's
+ * reasons); free with bvh_free. */
+int lights_scene_bvh(bvh *b, const scene *sc, budget *mem, error *err);
 
 /* Nearest quad light hit by r with t in (r->tmin, r->tmax): 1, its index (into sc->lights) and
  * t.  Quads are two-sided for visibility; lights_quad_radiance tells the emitting side. */

@@ -442,8 +442,53 @@ START_TEST(test_lights_intersect_quad_finds_the_nearest_quad_of_many)
 }
 END_TEST
 
+/* lights_scene_bvh puts the quads into the scene's BVH for the integrators that see them, and
+ * a BVH_QUAD there is the same nearest quad, at the same t, as testing every light finds (and
+ * occludes as it does); the Whitted raytracer's BVH holds none */
+START_TEST(test_lights_scene_bvh_holds_the_quads_and_finds_the_nearest)
+{
+    scene sc;
+    load_many_quads(&sc, 300, 5);
+    bvh b;
+    error err = {0};
+    ck_assert_int_eq(lights_scene_bvh(&b, &sc, NULL, &err), 0); /* integrator raytracer */
+    ck_assert_int_eq(b.prims_of.n_quads, 0);
+    bvh_free(&b);
+    sc.integrator = INTEGRATOR_PATHTRACER;
+    lights ls;
+    ck_assert_int_eq(lights_build(&ls, &sc, NULL, 3, NULL, &err), 0);
+    ck_assert_int_eq(lights_scene_bvh(&b, &sc, NULL, &err), 0);
+    ck_assert_int_eq(b.prims_of.n_quads, 300);
+    rng g;
+    rng_seed(&g, 98, 0);
+    int hits = 0;
+    for (int i = 0; i < 4000; i++) {
+        vec3 o = vec3_make(12 * (2 * rng_uniform(&g) - 1), 12 * (2 * rng_uniform(&g) - 1), 12);
+        const scene_light *l = &sc.lights[3 * (int)(rng_uniform(&g) * 300) + 2];
+        double u = rng_uniform(&g), v = rng_uniform(&g);
+        vec3 q = vec3_add(l->pos, vec3_add(vec3_scale(l->ab, u), vec3_scale(l->ac, v)));
+        ray r = {o, vec3_normalize(vec3_sub(q, o)), 0, i % 3 ? INFINITY : 14};
+        int k0 = -1;
+        double t0 = 0;
+        int h0 = nearest_quad_by_testing_all(&sc, &r, &k0, &t0);
+        hit h;
+        ck_require((bvh_intersect(&b, &r, &h) == BVH_QUAD) == h0);
+        ck_require(bvh_occluded(&b, &r) == h0);
+        if (!h0) continue;
+        if (!(ls.quad_light[h.prim] == k0 && h.t == t0))
+            ck_abort_msg("ray %d: quad %d at t %.17g, testing all: %d at %.17g", i,
+                         ls.quad_light[h.prim], h.t, k0, t0);
+        hits++;
+    }
+    ck_assert_int_gt(hits, 1000);
+    bvh_free(&b);
+    lights_free(&ls);
+    scene_free(&sc);
+}
+END_TEST
+
 /* A ray tests the quads along one path of a BVH, not every light: many quads get a tree of
- * depth O(log n) (SAH leaves of up to BVH_LEAF_MAX triangles), a few a plain loop, and a scene
+ * depth O(log n) (SAH leaves of up to BVH_LEAF_MAX quads), a few a plain loop, and a scene
  * of point and directional lights nothing to test at all */
 START_TEST(test_lights_quads_get_a_bvh_and_other_lights_none)
 {
@@ -453,14 +498,14 @@ START_TEST(test_lights_quads_get_a_bvh_and_other_lights_none)
     error err = {0};
     ck_assert_int_eq(lights_build(&ls, &sc, NULL, 3, NULL, &err), 0);
     ck_assert(ls.quad_bvh.is_tree);
-    ck_assert_int_eq(ls.quad_bvh.n_prims, 600);
-    ck_assert_int_le(ls.quad_bvh.depth, 24); /* a balanced tree of 600 / 4 leaves: ~9 levels */
+    ck_assert_int_eq(ls.quad_bvh.n_prims, 300); /* one parallelogram a quad */
+    ck_assert_int_le(ls.quad_bvh.depth, 24);    /* a balanced tree of 300 / 4 leaves: ~7 levels */
     lights_free(&ls);
     scene_free(&sc);
 
     load_many_quads(&sc, 4, 3);
     ck_assert_int_eq(lights_build(&ls, &sc, NULL, 3, NULL, &err), 0);
-    ck_assert(!ls.quad_bvh.is_tree); /* 8 triangles: BVH_MIN_PRIMS, tested in a loop */
+    ck_assert(!ls.quad_bvh.is_tree); /* 4 quads: at most BVH_MIN_PRIMS, tested in a loop */
     lights_free(&ls);
     scene_free(&sc);
 
@@ -471,7 +516,7 @@ START_TEST(test_lights_quads_get_a_bvh_and_other_lights_none)
     ck_assert_int_eq(lights_build(&ls, &sc, NULL, 3, NULL, &err), 0);
     ck_assert_int_eq(ls.n, 2);
     ck_assert_int_eq(ls.n_quads, 0);
-    ck_assert_ptr_null(ls.quad_tris);
+    ck_assert_ptr_null(ls.quad_light);
     int k;
     double t;
     ray r = {vec3_make(0, 0, 0), vec3_make(0, 1, 0), 0, INFINITY};
@@ -496,6 +541,7 @@ Suite *lights_suite(void)
     tcase_add_test(tc, test_lights_median_cut_shadow_ray_is_jittered_in_the_stratum);
     tcase_add_test(tc, test_lights_intersect_quad_finds_the_nearest_quad_of_many);
     tcase_add_test(tc, test_lights_quads_get_a_bvh_and_other_lights_none);
+    tcase_add_test(tc, test_lights_scene_bvh_holds_the_quads_and_finds_the_nearest);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -1,0 +1,155 @@
+/* bench_bvh - ray-tracing throughput of the BVH, in CPU time (the machines are shared).
+ *
+ *     bench_bvh primary SCENE [ROUNDS]   primary rays of SCENE (one a pixel, through the
+ *                                        integrator: the scene's BVH with its quad lights)
+ *     bench_bvh mesh sphere|soup N       build time, memory and closest-hit rays of a mesh of
+ *                                        about N triangles made in memory
+ *
+ * Prints one key=value line per measurement.  The memory figure is what the allocator holds
+ * after the build minus before it (glibc's mallinfo2): the same measure for any BVH layout.
+ */
+#define _GNU_SOURCE
+#include <malloc.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "envtex/geometry/bvh.h"
+#include "envtex/integrators/integrator.h"
+#include "envtex/core/rng.h"
+#include "envtex/geometry/camera.h"
+#include "envtex/scene/scene.h"
+
+static double cpu_seconds(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+static double heap_bytes(void)
+{
+    struct mallinfo2 m = mallinfo2();
+    return (double)m.uordblks + (double)m.hblkhd;
+}
+
+static int primary(const char *path, int rounds)
+{
+    scene sc;
+    error err;
+    if (scene_load(path, NULL, &sc, &err)) {
+        fprintf(stderr, "bench_bvh: %s:%d: %s\n", err.file, err.line, err.msg);
+        return 1;
+    }
+    bvh accel;
+    integrator it;
+    double t0 = cpu_seconds();
+    if (lights_scene_bvh(&accel, &sc, NULL, &err) ||
+        integrator_init(&it, &sc, &accel, NULL, &err)) {
+        fprintf(stderr, "bench_bvh: %s: %s\n", path, err.msg);
+        return 1;
+    }
+    printf("scene=%s triangles=%ld build_cpu_s=%.3f\n", path, sc.n_triangles, cpu_seconds() - t0);
+    camera cam;
+    camera_init(&cam, sc.eye, sc.center, sc.up, sc.fovy, sc.width, sc.height);
+    long hits = 0;
+    for (int k = 0; k < rounds; k++) {
+        double t1 = cpu_seconds();
+        for (int y = 0; y < sc.height; y++)
+            for (int x = 0; x < sc.width; x++) {
+                ray r = camera_ray(&cam, x + 0.5, y + 0.5);
+                scene_hit h;
+                integrator_intersect(&it, &r, &h);
+                hits += h.kind != 0;
+            }
+        double s = cpu_seconds() - t1, rays = (double)sc.width * sc.height;
+        printf("round=%d rays=%.0f cpu_s=%.4f mrays_per_cpu_s=%.3f hits=%ld\n", k + 1, rays, s,
+               rays / s * 1e-6, hits);
+        hits = 0;
+    }
+    integrator_free(&it);
+    bvh_free(&accel);
+    scene_free(&sc);
+    return 0;
+}
+
+static vec3 sphere_point(int i, int j, int rows, int cols)
+{
+    double theta = M_PI * i / rows, phi = 2 * M_PI * j / cols;
+    return vec3_make(sin(theta) * cos(phi), cos(theta), sin(theta) * sin(phi));
+}
+
+/* n triangles: a unit UV sphere (rows x 2 rows quads) or a soup in [-1, 1]^3 */
+static triangle *make_mesh(const char *kind, long *n)
+{
+    int rows = (int)fmax(1, floor(sqrt(*n / 4.0))), cols = 2 * rows;
+    int sphere = strcmp(kind, "sphere") == 0;
+    if (sphere) *n = 2L * rows * cols;
+    triangle *t = calloc((size_t)*n, sizeof *t);
+    if (!t) return NULL;
+    rng g;
+    rng_seed(&g, 168, 0);
+    for (long k = 0; k < *n; k++) {
+        if (sphere) {
+            int i = (int)(k / 2 / cols), j = (int)(k / 2 % cols), jn = (j + 1) % cols;
+            vec3 a = sphere_point(i, j, rows, cols), b = sphere_point(i, jn, rows, cols);
+            vec3 c = sphere_point(i + 1, j, rows, cols), d = sphere_point(i + 1, jn, rows, cols);
+            t[k].p[0] = a, t[k].p[1] = k % 2 ? d : b, t[k].p[2] = k % 2 ? c : d;
+        } else {
+            vec3 c = vec3_make(2 * rng_uniform(&g) - 1, 2 * rng_uniform(&g) - 1,
+                               2 * rng_uniform(&g) - 1);
+            double size = 0.02 + 0.08 * rng_uniform(&g);
+            for (int v = 0; v < 3; v++)
+                t[k].p[v] = vec3_add(c, vec3_make(size * (rng_uniform(&g) - 0.5),
+                                                  size * (rng_uniform(&g) - 0.5),
+                                                  size * (rng_uniform(&g) - 0.5)));
+        }
+    }
+    return t;
+}
+
+static int mesh(const char *kind, long n)
+{
+    triangle *t = make_mesh(kind, &n);
+    if (!t) return 1;
+    bvh b;
+    error err;
+    double m0 = heap_bytes(), t0 = cpu_seconds();
+    if (bvh_build(&b, (bvh_prims){.triangles = t, .n_triangles = n, .name = kind}, NULL, &err)) {
+        fprintf(stderr, "bench_bvh: %s\n", err.msg);
+        return 1;
+    }
+    double build = cpu_seconds() - t0, bytes = heap_bytes() - m0;
+    camera cam;
+    int w = 640, h = 480;
+    camera_init(&cam, vec3_make(0, 0.6, 3), vec3_make(0, 0, 0), vec3_make(0, 1, 0), 45, w, h);
+    long hits = 0;
+    double t1 = cpu_seconds();
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            ray r = camera_ray(&cam, x + 0.5, y + 0.5);
+            hit ht;
+            hits += bvh_intersect(&b, &r, &ht) != 0;
+        }
+    double s = cpu_seconds() - t1;
+    printf("mesh=%s triangles=%ld build_cpu_s=%.3f mbytes=%.1f bytes_per_tri=%.1f "
+           "mrays_per_cpu_s=%.3f hit_fraction=%.3f\n",
+           kind, n, build, bytes / 1048576, bytes / (double)n, (double)w * h / s * 1e-6,
+           (double)hits / ((double)w * h));
+    bvh_free(&b);
+    free(t);
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc >= 3 && !strcmp(argv[1], "primary"))
+        return primary(argv[2], argc > 3 ? atoi(argv[3]) : 3);
+    if (argc == 4 && !strcmp(argv[1], "mesh") &&
+        (!strcmp(argv[2], "sphere") || !strcmp(argv[2], "soup")))
+        return mesh(argv[2], atol(argv[3]));
+    fprintf(stderr, "usage: bench_bvh primary SCENE [ROUNDS] | bench_bvh mesh sphere|soup N\n");
+    return 2;
+}
