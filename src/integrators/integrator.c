@@ -81,7 +81,7 @@ int integrator_init(integrator *it, const scene *sc, const bvh *accel, budget *m
     }
     it->has_lights = 1;
     if (sc->integrator == INTEGRATOR_PATHTRACER && sc->nee == NEE_MIS && lights_env_index(&it->ls) >= 0 &&
-        it->el.mode != ENVSAMPLING_MEDIANCUT) {
+        it->el.mode != ENVSAMPLING_MEDIANCUT && it->el.mode != ENVSAMPLING_SIS) {
         /* MIS: sample the envmap at a fraction of its picks (lights.h); auto: the fraction that
          * minimizes variance x time for diffuse surfaces under this map (envlight.h) */
         double c = sc->envsamplefraction >= 0 ? sc->envsamplefraction

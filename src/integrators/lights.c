@@ -146,7 +146,7 @@ int lights_sample(const lights *ls, int k, vec3 p, vec3 ng, double xi1, double x
     out->is_delta = 0;
     if (k == lights_env_index(ls)) {
         const envlight *el = ls->env;
-        if (el->mode == ENVSAMPLING_MEDIANCUT) {
+        if (el->mode == ENVSAMPLING_MEDIANCUT || el->mode == ENVSAMPLING_SIS) {
             /* a stratum as a point light: shade with its centroid, jitter only the shadow ray.
              * The caller already picked the envmap; pick the stratum inside it. */
             int j;

@@ -36,7 +36,8 @@ rgb pathtracer_radiance_diff(integrator *it, ray r, const ray_diff *rd0, rng *g)
             } else {
                 int ke = lights_env_index(&it->ls);
                 double pdf_env = 0;
-                int mis_env = !counts && nee == NEE_MIS && ke >= 0 && it->el.mode != ENVSAMPLING_MEDIANCUT;
+                int mis_env = !counts && nee == NEE_MIS && ke >= 0 && it->el.mode != ENVSAMPLING_MEDIANCUT &&
+                              it->el.mode != ENVSAMPLING_SIS;
                 Le = mis_env ? envlight_radiance_pdf(&it->el, r.d, &pdf_env) : envlight_radiance(&it->el, r.d);
                 if (!counts) {
                     if (mis_env) {

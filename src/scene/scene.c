@@ -16,6 +16,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "envtex/envlight/sis.h"
 #include "envtex/geometry/camera.h"
 #include "envtex/io/imageio.h"
 #include "envtex/io/obj.h"
@@ -758,18 +759,21 @@ static int cmd_envmiss(parser *p)
 }
 
 /* the words of `envsampling`, in envsampling_mode order (scene_envsampling_name too) */
-static const char *const envsampling_words[] = {"uniform", "cdf", "cdf-sintheta", "mediancut"};
+static const char *const envsampling_words[] = {"uniform", "cdf", "cdf-sintheta", "mediancut",
+                                                "sis"};
 #define N_ENVSAMPLING_WORDS ((int)(sizeof envsampling_words / sizeof envsampling_words[0]))
 
 static int cmd_envsampling(parser *p)
 {
     int k = 0;
     if (arg_word(p, envsampling_words, N_ENVSAMPLING_WORDS, &k)) return -1;
-    if (k != ENVSAMPLING_MEDIANCUT && p->ntok > 2)
-        return fail(p, "'envsampling %s' takes no count (only 'mediancut N' does)", envsampling_words[k]);
-    if (p->ntok > 2) {
+    if (k != ENVSAMPLING_MEDIANCUT && k != ENVSAMPLING_SIS && p->ntok > 2)
+        return fail(p, "'envsampling %s' takes no count (only 'mediancut N' and 'sis N' do)",
+                    envsampling_words[k]);
+    if (p->ntok > 2) { /* the count of mediancut's or sis's point lights */
         long n;
-        if (arg_int(p, 2, 1, SCENE_MAX_MEDIANCUT, &n)) return -1;
+        if (arg_int(p, 2, 1, k == ENVSAMPLING_SIS ? SIS_MAX_LIGHTS : SCENE_MAX_MEDIANCUT, &n))
+            return -1;
         p->sc->mediancut_lights = (int)n;
     }
     p->sc->envsampling = (envsampling_mode)k;

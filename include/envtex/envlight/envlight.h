@@ -16,6 +16,8 @@
  *   mediancut N   the map cut into N strata of equal energy (Debevec 2005), each a point light
  *                 at its energy centroid carrying the stratum's whole power; only the shadow
  *                 ray is jittered inside the stratum (envlight_mediancut_*)
+ *   sis N         the same kind of N point lights from structured importance sampling's
+ *                 strata (Agarwal et al. 2003, sis.h), through envlight_mediancut_pick too
  *
  * L_avg is the average of the colour channels, so a sample's estimate L_c / pdf =
  * |L| L_c / L_avg: exact for grey light, and coloured light still converges (the ratio
@@ -48,7 +50,8 @@ typedef enum envsampling_mode {
     ENVSAMPLING_UNIFORM,      /* uniform directions on the sphere */
     ENVSAMPLING_CDF,          /* the lecture's 2D CDF in (u = cos theta, v = phi); default */
     ENVSAMPLING_CDF_SINTHETA, /* PBRT: rows uniform in theta, weights times sin theta */
-    ENVSAMPLING_MEDIANCUT     /* the map reduced to N point lights (median cut) */
+    ENVSAMPLING_MEDIANCUT,    /* the map reduced to N point lights (median cut) */
+    ENVSAMPLING_SIS           /* N point lights by structured importance sampling (sis.h) */
 } envsampling_mode;
 /* `envsampler binary|alias`: CDF inversion by binary search or Walker/Vose alias tables */
 typedef enum envsampler_kind { ENVSAMPLER_BINARY, ENVSAMPLER_ALIAS } envsampler_kind;
@@ -81,7 +84,8 @@ typedef struct envlight {
     mat4 to_world;       /* envmap frame -> world: the transpose of env->to_env, whose linear part is
                           * a rotation times s (its translation is no matter); normalize after it */
     envlight_point *points; int n_points; /* mediancut */
-    distrib1d point_choice; /* mediancut: choose a point light by power */
+    distrib1d point_choice; /* mediancut, sis: choose a point light by power */
+    struct sis_shadow *sis; /* sis: the strata's texels for shadow rays (sis.h; owned) */
     double build_seconds;
 } envlight;
 
@@ -154,8 +158,8 @@ rgb envlight_radiance_pdf(const envlight *el, vec3 wi, double *pdf);
 #define ENVLIGHT_MIS_FRACTIONS 8
 double envlight_mis_fraction(const envlight *el, double light_cost, double *rel_var_out);
 
-/* mediancut: pick point light k with probability power_avg(k) / sum (xi in [0,1)); the shadow
- * direction is jittered inside its stratum with (xi1, xi2).  *prob = the pick probability. */
+/* mediancut and sis: pick point light k with probability power_avg(k) / sum (xi in [0,1)); the
+ * shadow direction is jittered inside its stratum with (xi1, xi2) (sis: sis_shadow_dir).  *prob = the pick probability. */
 int envlight_mediancut_pick(const envlight *el, double xi, double xi1, double xi2, int *k,
                             vec3 *shadow_dir, double *prob);
 

@@ -158,7 +158,7 @@ typedef struct scene {
     double gamma;              /* 0: not given (PNG gets the sRGB curve) */
     envmiss_mode envmiss;
     envsampling_mode envsampling; /* default ENVSAMPLING_CDF */
-    int mediancut_lights;      /* N of `envsampling mediancut N`, default 64 */
+    int mediancut_lights;      /* N of `envsampling mediancut N` or `sis N`, default 64 */
     envsampler_kind envsampler; /* default ENVSAMPLER_BINARY */
     double envsamplefraction;  /* `envsamplefraction F` in [0, 1]; -1 = auto (lights.h) */
     irradiance_method prefilter; /* `prefilter exact|sh9`, default exact */
@@ -226,7 +226,7 @@ material scene_default_material(void);
 /* "raytracer", "analyticdirect", "direct", "pathtracer" or "prefiltered" (static strings), as
  * in the file. */
 const char *scene_integrator_name(integrator_kind k);
-/* "uniform", "cdf", "cdf-sintheta" or "mediancut" (static strings), the words of `envsampling`. */
+/* "uniform", "cdf", "cdf-sintheta", "mediancut" or "sis" (static strings), the words of `envsampling`. */
 const char *scene_envsampling_name(envsampling_mode m);
 
 /* The scene's spheres and triangles, as bvh_build takes them (borrowed). */
