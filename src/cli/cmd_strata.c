@@ -21,8 +21,10 @@ static void print_layers(const sis_strata *s)
         printf(" %s=", names[f]);
         for (int i = 0; i < s->n_layers; i++) {
             if (i) putchar(',');
-            if (f == 0) printf("%.6g", s->threshold[i]);
-            else printf("%d", f == 1 ? s->regions[i] : f == 2 ? s->layer_total[i] : s->layer_new[i]);
+            if (f == 0)
+                printf("%.6g", s->threshold[i]);
+            else
+                printf("%d", f == 1 ? s->regions[i] : f == 2 ? s->layer_total[i] : s->layer_new[i]);
         }
     }
     putchar('\n');
@@ -40,14 +42,20 @@ int cmd_strata(int argc, char **argv)
         } else if (!strcmp(a, "-n")) {
             if (!(v = cli_opt_value(argc, argv, &i))) return 1;
             if (cli_parse_long(v, 1, SIS_MAX_LIGHTS, &n))
-                return cli_usage_error("-n needs a whole number from 1 to %d, got '%s'", SIS_MAX_LIGHTS, v);
+                return cli_usage_error("-n needs a whole number from 1 to %d, got '%s'",
+                                       SIS_MAX_LIGHTS, v);
         } else if (!strcmp(a, "--exposure")) {
             if (!(v = cli_opt_value(argc, argv, &i))) return 1;
-            if (cli_parse_double(v, &ev)) return cli_usage_error("--exposure needs a number, got '%s'", v);
-        } else if (a[0] == '-' && a[1]) return cli_usage_error("unknown option '%s'", a);
-        else if (!in) in = a;
-        else if (!out) out = a;
-        else return cli_usage_error("unexpected argument '%s'", a);
+            if (cli_parse_double(v, &ev))
+                return cli_usage_error("--exposure needs a number, got '%s'", v);
+        } else if (a[0] == '-' && a[1])
+            return cli_usage_error("unknown option '%s'", a);
+        else if (!in)
+            in = a;
+        else if (!out)
+            out = a;
+        else
+            return cli_usage_error("unexpected argument '%s'", a);
     }
     if (!out) return cli_usage_error("%s", "strata needs MAP (lat-long) and OUT");
     error err = {0};

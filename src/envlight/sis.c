@@ -42,24 +42,44 @@ double sis_strata_bytes(int w, int h, int n)
 
 static void work_free(work *k)
 {
-    free(k->x); free(k->y); free(k->z); free(k->bd);
-    free(k->near); free(k->parent); free(k->region_of); free(k->order); free(k->start);
-    free(k->held); free(k->seed_start); free(k->seed_order);
-    free(k->energy); free(k->omega); free(k->row_omega);
+    free(k->x);
+    free(k->y);
+    free(k->z);
+    free(k->bd);
+    free(k->near);
+    free(k->parent);
+    free(k->region_of);
+    free(k->order);
+    free(k->start);
+    free(k->held);
+    free(k->seed_start);
+    free(k->seed_order);
+    free(k->energy);
+    free(k->omega);
+    free(k->row_omega);
 }
 
 static int work_alloc(work *k, int w, int h, int n)
 {
     size_t t = (size_t)w * h;
     memset(k, 0, sizeof *k);
-    k->w = w; k->h = h; k->n = n;
-    k->x = malloc(t * sizeof(double)); k->y = malloc(t * sizeof(double));
-    k->z = malloc(t * sizeof(double)); k->bd = malloc(t * sizeof(double));
-    k->energy = malloc(t * sizeof(double)); k->omega = malloc(t * sizeof(double));
-    k->near = malloc(t * sizeof(int)); k->parent = malloc(t * sizeof(int));
-    k->region_of = malloc(t * sizeof(int)); k->order = malloc(t * sizeof(int));
-    k->start = malloc((t + 1) * sizeof(int)); k->held = malloc(t * sizeof(int));
-    k->seed_start = malloc((t + 1) * sizeof(int)); k->seed_order = malloc((size_t)n * sizeof(int));
+    k->w = w;
+    k->h = h;
+    k->n = n;
+    k->x = malloc(t * sizeof(double));
+    k->y = malloc(t * sizeof(double));
+    k->z = malloc(t * sizeof(double));
+    k->bd = malloc(t * sizeof(double));
+    k->energy = malloc(t * sizeof(double));
+    k->omega = malloc(t * sizeof(double));
+    k->near = malloc(t * sizeof(int));
+    k->parent = malloc(t * sizeof(int));
+    k->region_of = malloc(t * sizeof(int));
+    k->order = malloc(t * sizeof(int));
+    k->start = malloc((t + 1) * sizeof(int));
+    k->held = malloc(t * sizeof(int));
+    k->seed_start = malloc((t + 1) * sizeof(int));
+    k->seed_order = malloc((size_t)n * sizeof(int));
     k->row_omega = malloc((size_t)h * sizeof(double));
     if (!k->x || !k->y || !k->z || !k->bd || !k->energy || !k->omega || !k->near || !k->parent ||
         !k->region_of || !k->order || !k->start || !k->held || !k->seed_start || !k->seed_order ||
@@ -70,7 +90,9 @@ static int work_alloc(work *k, int w, int h, int n)
         for (int c = 0; c < w; c++) { /* the texel's centre, latlong.h */
             vec3 d = latlong_uv_to_dir((uv2){(c + 0.5) / w, (r + 0.5) / h});
             size_t i = (size_t)r * w + c;
-            k->x[i] = d.x; k->y[i] = d.y; k->z[i] = d.z;
+            k->x[i] = d.x;
+            k->y[i] = d.y;
+            k->z[i] = d.z;
         }
     }
     return 0;
@@ -87,7 +109,8 @@ static int uf_find(int *p, int i)
 static void uf_union(int *p, int a, int b)
 {
     if (p[a] < 0 || p[b] < 0) return; /* a texel outside the layer */
-    a = uf_find(p, a); b = uf_find(p, b);
+    a = uf_find(p, a);
+    b = uf_find(p, b);
     if (a != b) p[a < b ? b : a] = a < b ? a : b; /* the smaller index is the root */
 }
 
@@ -118,7 +141,10 @@ static int layer_regions(work *k, const double *lum, double t, int all)
     }
     int nreg = 0;
     for (int i = 0; i < t_n; i++) { /* a root comes before its texels: ids by first texel */
-        if (k->parent[i] < 0) { k->region_of[i] = -1; continue; }
+        if (k->parent[i] < 0) {
+            k->region_of[i] = -1;
+            continue;
+        }
         int root = uf_find(k->parent, i);
         k->region_of[i] = root == i ? nreg++ : k->region_of[root];
     }
@@ -140,7 +166,10 @@ static int layer_regions(work *k, const double *lum, double t, int all)
 }
 
 /* Gamma = E^a Omega^b (sis.h) */
-static double importance(double energy, double omega) { return pow(energy, SIS_A) * pow(omega, SIS_B); }
+static double importance(double energy, double omega)
+{
+    return pow(energy, SIS_A) * pow(omega, SIS_B);
+}
 
 /* ---- the farthest-point samples of one region (Hochbaum-Shmoys) -------------------------- */
 
@@ -156,8 +185,14 @@ static int add_seed(work *k, int s, int ts, int b, int e)
     for (int j = b; j < e; j++) {
         int t = k->order[j];
         double d = k->x[t] * sx + k->y[t] * sy + k->z[t] * sz; /* cos of the angle */
-        if (d > k->bd[t]) { k->bd[t] = d; k->near[t] = s; }
-        if (k->bd[t] < far_bd) { far_bd = k->bd[t]; far = t; }
+        if (d > k->bd[t]) {
+            k->bd[t] = d;
+            k->near[t] = s;
+        }
+        if (k->bd[t] < far_bd) {
+            far_bd = k->bd[t];
+            far = t;
+        }
     }
     return far;
 }
@@ -167,7 +202,10 @@ static int add_seed(work *k, int s, int ts, int b, int e)
 static void stratify_region(work *k, const double *lum, sis_strata *out, int g, int n_g, int layer)
 {
     int b = k->start[g], e = k->start[g + 1];
-    for (int j = b; j < e; j++) { k->bd[k->order[j]] = -2; k->near[k->order[j]] = -1; }
+    for (int j = b; j < e; j++) {
+        k->bd[k->order[j]] = -2;
+        k->near[k->order[j]] = -1;
+    }
     int far = -1;
     for (int q = k->seed_start[g]; q < k->seed_start[g + 1]; q++) {
         int s = k->seed_order[q];
@@ -232,33 +270,36 @@ static int sis_thresholds(const work *k, const double *lum, sis_strata *out)
         if (lum[i] > lmax) lmax = lum[i];
     }
     if (!(e > 0)) return -1;
-    double mean = e / om;                               /* mu = sum L dw / 4 pi */
+    double mean = e / om;                                /* mu = sum L dw / 4 pi */
     out->sigma = sqrt(fmax(0.0, e2 / om - mean * mean)); /* sigma^2 = E[L^2] - mu^2 */
     out->gamma_4pi = importance(e, om);
     out->n_layers = 1;
     out->threshold[0] = 0;
-    while (out->sigma > 0 && out->n_layers < SIS_MAX_LAYERS &&
-           lmax >= out->n_layers * out->sigma) {
+    while (out->sigma > 0 && out->n_layers < SIS_MAX_LAYERS && lmax >= out->n_layers * out->sigma) {
         out->threshold[out->n_layers] = out->n_layers * out->sigma; /* t_i = i sigma */
         out->n_layers++;
     }
     return 0;
 }
 
-int sis_stratify(const double *lum, int w, int h, int n, budget *mem, sis_strata *out,
-                 error *err)
+int sis_stratify(const double *lum, int w, int h, int n, budget *mem, sis_strata *out, error *err)
 {
     memset(out, 0, sizeof *out);
     if (w < 1 || h < 1 || n < 1 || (double)n > (double)w * h)
-        return error_set(err, NULL, 0, "structured importance sampling of a %d x %d map into %d "
-                         "strata: the count must be in [1, %.0f]", w, h, n, (double)w * h);
+        return error_set(err, NULL, 0,
+                         "structured importance sampling of a %d x %d map into %d "
+                         "strata: the count must be in [1, %.0f]",
+                         w, h, n, (double)w * h);
     double keep = sis_strata_bytes(w, h, n), scratch = sis_scratch_bytes(w, h, n);
-    if (budget_charge(mem, keep + scratch, NULL, 0, err, "structured importance sampling of a "
-                      "%d x %d map", w, h))
+    if (budget_charge(mem, keep + scratch, NULL, 0, err,
+                      "structured importance sampling of a "
+                      "%d x %d map",
+                      w, h))
         return -1;
     work k;
     int status = -1;
-    out->w = w; out->h = h;
+    out->w = w;
+    out->h = h;
     out->seed = malloc((size_t)n * sizeof(int));
     out->seed_layer = malloc((size_t)n * sizeof(int));
     if (work_alloc(&k, w, h, n) || !out->seed || !out->seed_layer) {
@@ -345,7 +386,9 @@ static void make_points(envlight *el, const sis_strata *s, const double *lum, ve
     struct sis_shadow *sh = el->sis;
     for (int k = 0; k < s->n; k++) {
         envlight_point *pt = &el->points[k];
-        pt->c0 = el->w; pt->r0 = el->h; pt->c1 = pt->r1 = 0;
+        pt->c0 = el->w;
+        pt->r0 = el->h;
+        pt->c1 = pt->r1 = 0;
         mean[k] = vec3_make(0, 0, 0);
     }
     for (int j = 0; j < el->w * el->h; j++) {
@@ -369,9 +412,10 @@ static void make_points(envlight *el, const sis_strata *s, const double *lum, ve
         envlight_point *pt = &el->points[k];
         double E = sh->cum[sh->first[k + 1] - 1], len = vec3_length(mean[k]);
         int t = s->seed[k];
-        vec3 d = len > 1e-6 * E ? vec3_scale(mean[k], 1 / len)
-                                : latlong_uv_to_dir((uv2){(t % el->w + 0.5) / el->w,
-                                                          (t / el->w + 0.5) / el->h});
+        vec3 d =
+            len > 1e-6 * E
+                ? vec3_scale(mean[k], 1 / len)
+                : latlong_uv_to_dir((uv2){(t % el->w + 0.5) / el->w, (t / el->w + 0.5) / el->h});
         pt->dir = to_world(el, d);
         wts[k] = rgb_avg(pt->power);
     }
@@ -427,8 +471,10 @@ vec3 sis_shadow_dir(const envlight *el, int k, double xi1, double xi2)
         double target = xi1 * E;
         while (lo < hi) {
             int m = lo + (hi - lo) / 2;
-            if (sh->cum[m] > target) hi = m;
-            else lo = m + 1;
+            if (sh->cum[m] > target)
+                hi = m;
+            else
+                lo = m + 1;
         }
         double before = lo > sh->first[k] ? sh->cum[lo - 1] : 0, e = sh->cum[lo] - before;
         frac = e > 0 ? (target - before) / e : 0.5;
@@ -455,8 +501,8 @@ int sis_strata_picture(const sis_strata *s, const image *map, double scale, rgb 
     for (int r = 0; r < h; r++)
         for (int c = 0; c < w; c++) {
             int l = s->label[r * w + c];
-            int border = l != s->label[r * w + (c + 1) % w] ||
-                         (r + 1 < h && l != s->label[(r + 1) * w + c]);
+            int border =
+                l != s->label[r * w + (c + 1) % w] || (r + 1 < h && l != s->label[(r + 1) * w + c]);
             rgb v = image_get(map, c, r);
             image_set(out, c, r, border ? edge : rgb_scale(v, scale));
         }

@@ -33,33 +33,32 @@
 #include "envtex/core/image.h"
 #include "envtex/envlight/envlight.h"
 
-#define SIS_A 1.0         /* Gamma = E^a Omega^b: the exponent of the energy */
-#define SIS_B 0.25        /* ... and of the solid angle */
-#define SIS_MAX_LAYERS 16 /* thresholds t_0 .. t_15 at most (i sigma beyond: one layer) */
+#define SIS_A          1.0  /* Gamma = E^a Omega^b: the exponent of the energy */
+#define SIS_B          0.25 /* ... and of the solid angle */
+#define SIS_MAX_LAYERS 16   /* thresholds t_0 .. t_15 at most (i sigma beyond: one layer) */
 #define SIS_MAX_LIGHTS 4096 /* `envsampling sis N`: N in [1, SIS_MAX_LIGHTS] */
 
 typedef struct sis_strata {
-    int w, h;      /* the lat-long map */
-    int n;         /* samples = strata made: N (fewer only if the map has fewer texels) */
-    int *label;    /* w * h, row-major: the stratum of each texel, in [0, n) (owned) */
-    int *seed;     /* n texel indices r * w + c: the samples, in the order placed (owned) */
-    int *seed_layer;           /* n: the layer whose farthest-point step placed each (owned) */
-    int n_layers;              /* d: thresholds t_0 .. t_{d-1} */
-    double sigma;              /* standard deviation of L over the sphere (solid-angle weighted) */
+    int w, h;        /* the lat-long map */
+    int n;           /* samples = strata made: N (fewer only if the map has fewer texels) */
+    int *label;      /* w * h, row-major: the stratum of each texel, in [0, n) (owned) */
+    int *seed;       /* n texel indices r * w + c: the samples, in the order placed (owned) */
+    int *seed_layer; /* n: the layer whose farthest-point step placed each (owned) */
+    int n_layers;    /* d: thresholds t_0 .. t_{d-1} */
+    double sigma;    /* standard deviation of L over the sphere (solid-angle weighted) */
     double threshold[SIS_MAX_LAYERS]; /* t_i = i sigma */
     int regions[SIS_MAX_LAYERS];      /* connected regions of each layer */
     int layer_total[SIS_MAX_LAYERS];  /* sum of n_R over the regions of each layer */
     int layer_new[SIS_MAX_LAYERS];    /* samples each layer placed itself */
-    double gamma_4pi;          /* Gamma of the whole map */
-    double radius;             /* largest angle (radians) from a texel to its stratum's sample */
+    double gamma_4pi;                 /* Gamma of the whole map */
+    double radius; /* largest angle (radians) from a texel to its stratum's sample */
 } sis_strata;
 
 /* Stratify the w x h lat-long luminance `lum` (row-major, each >= 0 and finite) into n strata.
  * n must be in [1, w h].  What it allocates is charged to `mem` first (NULL: none): the result
  * (sis_strata_bytes), and while it runs the scratch (sis_scratch_bytes), released after.
  * 0, or -1 with *err (a black map, bad n, memory), *out then empty (safe to free). */
-int sis_stratify(const double *lum, int w, int h, int n, budget *mem, sis_strata *out,
-                 error *err);
+int sis_stratify(const double *lum, int w, int h, int n, budget *mem, sis_strata *out, error *err);
 void sis_strata_free(sis_strata *s);
 /* The bytes sis_stratify keeps in its result, and holds only while it runs. */
 double sis_strata_bytes(int w, int h, int n);

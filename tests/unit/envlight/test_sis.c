@@ -19,7 +19,7 @@
 
 #define POWER_REL_TOL 1e-9  /* the lights' power against one sum in double */
 #define SIGMA_REL_TOL 1e-9  /* sigma of a cap against its closed form (texel edges are exact) */
-#define ANGLE_TOL 1e-12     /* ties between dot products of unit vectors */
+#define ANGLE_TOL     1e-12 /* ties between dot products of unit vectors */
 
 static double *constant_lum(int w, int h, double v)
 {
@@ -52,7 +52,8 @@ START_TEST(test_sis_layer_thresholds_are_multiples_of_sigma)
     sis_strata s;
     stratify(lum, w, h, 16, &s);
     double sigma = 0.8 / sqrt(8.0);
-    ck_assert_msg(fabs(s.sigma - sigma) <= SIGMA_REL_TOL * sigma, "sigma %.12g, want %.12g", s.sigma, sigma);
+    ck_assert_msg(fabs(s.sigma - sigma) <= SIGMA_REL_TOL * sigma, "sigma %.12g, want %.12g",
+                  s.sigma, sigma);
     ck_assert_int_eq(s.n_layers, 4);
     for (int i = 0; i < 4; i++) ck_assert_near(s.threshold[i], i * s.sigma, 1e-15);
     ck_assert_int_eq(s.regions[0], 1);
@@ -209,8 +210,8 @@ START_TEST(test_sis_constant_map_gives_strata_of_near_equal_solid_angle)
         lo = fmin(lo, om[k]);
         hi = fmax(hi, om[k]);
     }
-    ck_assert_msg(hi <= 2.5 * lo, "stratum solid angles from %.4f to %.4f sr (4 pi / N = %.4f)",
-                  lo, hi, 4 * M_PI / n);
+    ck_assert_msg(hi <= 2.5 * lo, "stratum solid angles from %.4f to %.4f sr (4 pi / N = %.4f)", lo,
+                  hi, 4 * M_PI / n);
     sis_strata_free(&s);
     free(lum);
 }
@@ -252,14 +253,15 @@ START_TEST(test_sis_light_powers_sum_to_the_map_power)
     for (int q = 0; q < 3; q++) {
         envlight el;
         error err = {0};
-        ck_assert_int_eq(envlight_build(&el, &env, ENVSAMPLING_SIS, ENVSAMPLER_BINARY, ns[q], NULL, &err), 0);
+        ck_assert_int_eq(
+            envlight_build(&el, &env, ENVSAMPLING_SIS, ENVSAMPLER_BINARY, ns[q], NULL, &err), 0);
         ck_assert_int_eq(el.n_points, ns[q]);
         rgb got = rgb_gray(0);
         for (int k = 0; k < el.n_points; k++) got = rgb_add(got, el.points[k].power);
         double g[3] = {got.r, got.g, got.b}, x[3] = {want.r, want.g, want.b};
         for (int ch = 0; ch < 3; ch++)
-            ck_assert_msg(fabs(g[ch] - x[ch]) <= POWER_REL_TOL * x[ch], "N %d channel %d: %.15g, want %.15g",
-                          ns[q], ch, g[ch], x[ch]);
+            ck_assert_msg(fabs(g[ch] - x[ch]) <= POWER_REL_TOL * x[ch],
+                          "N %d channel %d: %.15g, want %.15g", ns[q], ch, g[ch], x[ch]);
         envlight_free(&el);
     }
     image_free(&im);
@@ -275,7 +277,8 @@ START_TEST(test_sis_shadow_rays_stay_inside_their_stratum)
     envmap env = env_of(&im, 1);
     envlight el;
     error err = {0};
-    ck_assert_int_eq(envlight_build(&el, &env, ENVSAMPLING_SIS, ENVSAMPLER_BINARY, 24, NULL, &err), 0);
+    ck_assert_int_eq(envlight_build(&el, &env, ENVSAMPLING_SIS, ENVSAMPLER_BINARY, 24, NULL, &err),
+                     0);
     double *lum = sis_luminance(&im, 1);
     sis_strata s;
     stratify(lum, im.w, im.h, 24, &s);
@@ -288,7 +291,10 @@ START_TEST(test_sis_shadow_rays_stay_inside_their_stratum)
             if (s.label[t] != k) continue;
             double e = lum[t] * latlong_texel_solid_angle(t / im.w, im.w, im.h);
             e_k += e;
-            if (e > e_b) { e_b = e; bright = t; }
+            if (e > e_b) {
+                e_b = e;
+                bright = t;
+            }
         }
         for (int i = 0; i < draws; i++) {
             vec3 d = sis_shadow_dir(&el, k, rng_uniform(&g), rng_uniform(&g));
@@ -323,12 +329,14 @@ START_TEST(test_sis_memory_is_charged_before_it_is_built)
     error err = {0};
     budget mem;
     budget_init(&mem, 1e9);
-    ck_assert_int_eq(envlight_build(&el, &env, ENVSAMPLING_SIS, ENVSAMPLER_BINARY, 32, &mem, &err), 0);
+    ck_assert_int_eq(envlight_build(&el, &env, ENVSAMPLING_SIS, ENVSAMPLER_BINARY, 32, &mem, &err),
+                     0);
     double peak = mem.peak, used = mem.used;
     ck_assert(peak > used && used >= sis_envlight_bytes(im.w, im.h, 32));
     envlight_free(&el);
     budget_init(&mem, peak - 1);
-    ck_assert_int_eq(envlight_build(&el, &env, ENVSAMPLING_SIS, ENVSAMPLER_BINARY, 32, &mem, &err), -1);
+    ck_assert_int_eq(envlight_build(&el, &env, ENVSAMPLING_SIS, ENVSAMPLER_BINARY, 32, &mem, &err),
+                     -1);
     ck_assert_msg(strstr(err.msg, "beyond the memory budget"), "%s", err.msg);
     ck_assert(mem.used == 0);
     double *lum = sis_luminance(&im, 1);
