@@ -9,7 +9,6 @@
 #include <time.h>
 
 #include "envtex/envmaps/latlong.h"
-#include "envtex/envlight/sis.h"
 #include "envtex/core/sampling.h"
 
 /* cdf-sintheta: the least remapped value inside a row, so that theta > 0 (sin theta > 0) */
@@ -300,8 +299,6 @@ static int build_tables(envlight *el, const envmap *env, envsampling_mode mode,
     } else if (el->mode == ENVSAMPLING_MEDIANCUT) {
         if (el->fell_back) for (size_t i = 0; i < (size_t)w * h; i++) energy[i] = 1; /* equal strata */
         status = build_mediancut(el, energy, mediancut_n > 0 ? mediancut_n : 64, err);
-    } else if (el->mode == ENVSAMPLING_SIS) {
-        status = sis_envlight_build(el, mediancut_n > 0 ? mediancut_n : 64, err);
     }
     free(energy);
     if (status) envlight_free(el);
@@ -334,10 +331,7 @@ static double build_bytes(const envmap *env, envsampling_mode mode, envsampler_k
     *scratch = texels * sizeof(double); /* the energy of each texel */
     if (cdf) {
         *tables = distrib2d_bytes(*w, *h, sampler == ENVSAMPLER_ALIAS);
-    } else if (mode == ENVSAMPLING_SIS) { /* sis.h: the strata's lights and shadow tables */
-        int n = n_lights > 0 ? n_lights : 64;
-        *scratch += sis_envlight_scratch_bytes(*w, *h, n);
-        *tables = sis_envlight_bytes(*w, *h, n);
+    } else if (mode == ENVSAMPLING_SIS) { /* the strata: sis_envlight_build charges its own */
     } else { /* median cut: the summed-area table and the regions; the points and their choice */
         int n = n_lights > 0 ? n_lights : 64;
         *scratch += (double)(*w + 1) * (*h + 1) * sizeof(double) +
@@ -382,7 +376,9 @@ void envlight_free(envlight *el)
 {
     distrib2d_free(&el->table);
     distrib1d_free(&el->point_choice);
-    sis_envlight_free(el);
+    if (el->strata_free) el->strata_free(el->strata);
+    el->strata = NULL;
+    el->strata_free = NULL;
     free(el->points);
     image_free(&el->converted);
     el->map = NULL;
@@ -592,12 +588,6 @@ int envlight_mediancut_pick(const envlight *el, double xi, double xi1, double xi
     double pmf;
     int i = distrib1d_sample(&el->point_choice, xi, &pmf, NULL);
     const envlight_point *pt = &el->points[i];
-    *k = i;
-    *prob = pmf;
-    if (el->mode == ENVSAMPLING_SIS) {
-        *shadow_dir = sis_shadow_dir(el, i, xi1, xi2);
-        return pmf > 0;
-    }
     /* jitter inside the stratum, uniform in (cos theta, phi): for the shadow ray only */
     double u0 = el->cos_edge[pt->r0], u1 = el->cos_edge[pt->r1];
     double cos_t = u0 + xi1 * (u1 - u0), sin_t = sqrt(fmax(0.0, 1 - cos_t * cos_t));

@@ -361,14 +361,15 @@ double sis_envlight_scratch_bytes(int w, int h, int n)
            (double)n * (sizeof(double) + sizeof(vec3) + sizeof(int));
 }
 
-void sis_envlight_free(envlight *el)
+/* envlight's strata_free: the shadow-ray tables */
+static void shadow_free(void *p)
 {
-    if (!el->sis) return;
-    free(el->sis->order);
-    free(el->sis->first);
-    free(el->sis->cum);
-    free(el->sis);
-    el->sis = NULL;
+    struct sis_shadow *sh = p;
+    if (!sh) return;
+    free(sh->order);
+    free(sh->first);
+    free(sh->cum);
+    free(sh);
 }
 
 /* envmap frame -> world: A^T d / |A^T d| (envlight.c's frame_to_world) */
@@ -383,7 +384,7 @@ static vec3 to_world(const envlight *el, vec3 d)
 static void make_points(envlight *el, const sis_strata *s, const double *lum, vec3 *mean,
                         double *wts)
 {
-    struct sis_shadow *sh = el->sis;
+    struct sis_shadow *sh = el->strata;
     for (int k = 0; k < s->n; k++) {
         envlight_point *pt = &el->points[k];
         pt->c0 = el->w;
@@ -421,7 +422,8 @@ static void make_points(envlight *el, const sis_strata *s, const double *lum, ve
     }
 }
 
-int sis_envlight_build(envlight *el, int n, error *err)
+/* the lights of n strata for el, built with the common tables of mode sis */
+static int build_lights(envlight *el, int n, error *err)
 {
     int w = el->w, h = el->h, status = -1;
     sis_strata s = {0};
@@ -429,14 +431,15 @@ int sis_envlight_build(envlight *el, int n, error *err)
     double *wts = malloc((size_t)n * sizeof *wts);
     int *cursor = malloc((size_t)n * sizeof *cursor);
     double *lum = sis_luminance(el->map, el->env->scale);
-    el->sis = calloc(1, sizeof *el->sis);
-    if (!mean || !wts || !cursor || !lum || !el->sis) {
+    el->strata = calloc(1, sizeof(struct sis_shadow));
+    el->strata_free = shadow_free;
+    if (!mean || !wts || !cursor || !lum || !el->strata) {
         error_set(err, NULL, 0, "out of memory for structured importance sampling");
         goto cleanup;
     }
     if (n > w * h) n = w * h; /* a map smaller than the lights asked for: a light a texel */
     if (sis_stratify(lum, w, h, n, NULL, &s, err)) goto cleanup;
-    struct sis_shadow *sh = el->sis;
+    struct sis_shadow *sh = el->strata;
     sh->order = malloc((size_t)w * h * sizeof(int));
     sh->cum = malloc((size_t)w * h * sizeof(double));
     sh->first = calloc((size_t)s.n + 1, sizeof(int));
@@ -462,9 +465,49 @@ cleanup:
     return status;
 }
 
+/* release what mem holds above `before` (NULL: nothing) */
+static void give_back(budget *mem, double before)
+{
+    if (mem) budget_release(mem, mem->used - before);
+}
+
+int sis_envlight_build(envlight *el, const envmap *env, envsampler_kind sampler, int n, budget *mem,
+                       error *err)
+{
+    double before = mem ? mem->used : 0; /* on failure, envlight_build's share goes back too */
+    if (envlight_build(el, env, ENVSAMPLING_SIS, sampler, n, mem, err)) return -1;
+    if (el->mode != ENVSAMPLING_SIS) return 0; /* a black map: uniform directions (fell_back) */
+    if (n < 1) n = 64;
+    double keep = sis_envlight_bytes(el->w, el->h, n);
+    double scratch = sis_envlight_scratch_bytes(el->w, el->h, n);
+    if (budget_charge(mem, keep + scratch, NULL, 0, err,
+                      "structured importance sampling of a %d x %d lat-long map", el->w, el->h)) {
+        give_back(mem, before);
+        envlight_free(el);
+        return -1;
+    }
+    int status = build_lights(el, n, err);
+    budget_release(mem, scratch);
+    if (status) {
+        give_back(mem, before);
+        envlight_free(el);
+    }
+    return status;
+}
+
+int sis_pick(const envlight *el, double xi, double xi1, double xi2, int *k, vec3 *shadow_dir,
+             double *prob)
+{
+    if (el->n_points == 0 || !el->strata) return 0;
+    int i = distrib1d_sample(&el->point_choice, xi, prob, NULL); /* by power */
+    *k = i;
+    *shadow_dir = sis_shadow_dir(el, i, xi1, xi2);
+    return *prob > 0;
+}
+
 vec3 sis_shadow_dir(const envlight *el, int k, double xi1, double xi2)
 {
-    const struct sis_shadow *sh = el->sis;
+    const struct sis_shadow *sh = el->strata;
     int lo = sh->first[k], hi = sh->first[k + 1] - 1, size = hi - lo + 1;
     double E = sh->cum[hi], frac;
     if (E > 0) { /* the first texel j with cum[j] > xi1 E: probability e_t / E */

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "envtex/envlight/sis.h"
 #include "envtex/geometry/triangle.h"
 
 /* log2 of light k's power (-inf for none), from factors that each fit a double: the power
@@ -152,7 +153,9 @@ int lights_sample(const lights *ls, int k, vec3 p, vec3 ng, double xi1, double x
             int j;
             double prob;
             vec3 sd;
-            if (!envlight_mediancut_pick(el, xi1, xi2, xi3, &j, &sd, &prob)) return 0;
+            if (!(el->mode == ENVSAMPLING_SIS ? sis_pick : envlight_mediancut_pick)(el, xi1, xi2, xi3,
+                                                                                 &j, &sd, &prob))
+                return 0;
             out->wi = el->points[j].dir;
             out->Li = rgb_scale(el->points[j].power, 1 / prob);
             out->pdf = 0;

@@ -17,7 +17,8 @@
  *                 at its energy centroid carrying the stratum's whole power; only the shadow
  *                 ray is jittered inside the stratum (envlight_mediancut_*)
  *   sis N         the same kind of N point lights from structured importance sampling's
- *                 strata (Agarwal et al. 2003, sis.h), through envlight_mediancut_pick too
+ *                 strata (Agarwal et al. 2003): sis_envlight_build and sis_pick (sis.h);
+ *                 envlight_build in this mode makes only what every mode shares
  *
  * L_avg is the average of the colour channels, so a sample's estimate L_c / pdf =
  * |L| L_c / L_avg: exact for grey light, and coloured light still converges (the ratio
@@ -85,7 +86,8 @@ typedef struct envlight {
                           * a rotation times s (its translation is no matter); normalize after it */
     envlight_point *points; int n_points; /* mediancut */
     distrib1d point_choice; /* mediancut, sis: choose a point light by power */
-    struct sis_shadow *sis; /* sis: the strata's texels for shadow rays (sis.h; owned) */
+    void *strata;           /* sis: its shadow-ray tables (sis.h), owned: freed by strata_free */
+    void (*strata_free)(void *strata);
     double build_seconds;
 } envlight;
 
@@ -159,7 +161,8 @@ rgb envlight_radiance_pdf(const envlight *el, vec3 wi, double *pdf);
 double envlight_mis_fraction(const envlight *el, double light_cost, double *rel_var_out);
 
 /* mediancut and sis: pick point light k with probability power_avg(k) / sum (xi in [0,1)); the
- * shadow direction is jittered inside its stratum with (xi1, xi2) (sis: sis_shadow_dir).  *prob = the pick probability. */
+ * shadow direction is jittered inside its stratum with (xi1, xi2) (median cut's rectangles;
+ * sis_pick for sis).  *prob = the pick probability. */
 int envlight_mediancut_pick(const envlight *el, double xi, double xi1, double xi2, int *k,
                             vec3 *shadow_dir, double *prob);
 

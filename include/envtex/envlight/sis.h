@@ -13,17 +13,15 @@
  *      the Hochbaum-Shmoys farthest-point rule (the texel farthest from the samples it already
  *      holds; the first is its brightest texel), a 2-approximation of the k-center problem.
  * Every texel then belongs to its nearest sample (angular distance): the strata.  As a light
- * (sis_envlight_build), each stratum is a point light at its energy centroid carrying the
+ * (sis_envlight_build, sis_pick), each stratum is a point light at its energy centroid carrying the
  * stratum's exact power sum L d(omega); only the shadow ray is jittered, to a texel chosen by
  * energy inside the stratum and a uniform point in (cos theta, phi) inside that texel.
  *
- *     sis_strata s;
- *     if (sis_stratify(lum, w, h, 64, NULL, &s, &err)) ...   // lum: w * h, row-major
- *     ... s.label[r * w + c] is the stratum of texel (c, r), s.seed[k] its sample's texel ...
- *     sis_strata_free(&s);
+ *     sis_strata s;  // lum: w * h luminances, row-major; s.label[r * w + c]: a texel's stratum
+ *     if (sis_stratify(lum, w, h, 64, NULL, &s, &err)) ...   else ... sis_strata_free(&s);
  *
- * Conventions: the envmap frame and texel layout of latlong.h (row 0 the zenith); texels are
- * adjacent across the phi seam and all texels of row 0 (of row H - 1) meet at the pole.
+ * Frame and texels as latlong.h (row 0 the zenith); texels are adjacent across the phi seam,
+ * and all of row 0 (of row H - 1) meet at the pole.  Versus the paper: docs/sis.md.
  */
 #ifndef ENVTEX_SIS_H
 #define ENVTEX_SIS_H
@@ -68,16 +66,22 @@ double sis_scratch_bytes(int w, int h, int n);
  * NaN, Inf and negative channels as 0; w * h doubles row-major, malloc'd (NULL: no memory). */
 double *sis_luminance(const image *map, double scale);
 
-/* Point lights of `envsampling sis n` for an envlight being built (envlight.c calls it with
- * el->map, w, h, cos_edge and row_omega set): el->points, n_points, point_choice (by power) and
- * the shadow-ray tables el->sis.  Charges nothing itself: envlight's budget counts
- * sis_envlight_bytes.  0, or -1 with *err (el's tables then partly built: envlight_free). */
-int sis_envlight_build(envlight *el, int n, error *err);
-/* The bytes sis_envlight_build keeps (points, choice, shadow tables), and holds only while
- * building (its luminance, the strata and sis_stratify's scratch). */
+/* The envmap as `envsampling sis n` (n < 1: 64): envlight_build in mode sis (the tables every
+ * mode shares), then the strata's point lights in el->points (n_points = n, or the map's texel
+ * count if smaller), el->point_choice by power, and the shadow-ray tables in el->strata.  A black
+ * map falls back to uniform directions as envlight_build says (mode uniform, fell_back).  Charged
+ * to `mem` first: what stays (sis_envlight_bytes) and what only building holds
+ * (sis_envlight_scratch_bytes).  0, or -1 with *err and *el freed.  Free with envlight_free. */
+int sis_envlight_build(envlight *el, const envmap *env, envsampler_kind sampler, int n, budget *mem,
+                       error *err);
 double sis_envlight_bytes(int w, int h, int n);
 double sis_envlight_scratch_bytes(int w, int h, int n);
-void sis_envlight_free(envlight *el);
+
+/* envlight_mediancut_pick for sis: light k with probability power_avg(k) / sum (by xi in
+ * [0, 1)), *prob that probability, and the shadow direction sis_shadow_dir(el, k, xi1, xi2).
+ * 0 if there is nothing to pick. */
+int sis_pick(const envlight *el, double xi, double xi1, double xi2, int *k, vec3 *shadow_dir,
+             double *prob);
 
 /* The world direction of a shadow ray towards point light k of a sis envlight: a texel of
  * stratum k chosen with probability e_t / E_k (its energy over the stratum's, by xi1), then

@@ -253,11 +253,16 @@ START_TEST(test_sis_light_powers_sum_to_the_map_power)
     for (int q = 0; q < 3; q++) {
         envlight el;
         error err = {0};
-        ck_assert_int_eq(
-            envlight_build(&el, &env, ENVSAMPLING_SIS, ENVSAMPLER_BINARY, ns[q], NULL, &err), 0);
+        ck_assert_int_eq(sis_envlight_build(&el, &env, ENVSAMPLER_BINARY, ns[q], NULL, &err), 0);
         ck_assert_int_eq(el.n_points, ns[q]);
         rgb got = rgb_gray(0);
+        double avg = 0;
         for (int k = 0; k < el.n_points; k++) got = rgb_add(got, el.points[k].power);
+        for (int k = 0; k < el.n_points; k++) avg += rgb_avg(el.points[k].power);
+        for (int k = 0; k < el.n_points; k++) { /* sis_pick chooses a light by its power */
+            double p = rgb_avg(el.points[k].power) / avg;
+            ck_assert_near(distrib1d_pmf(&el.point_choice, k), p, 1e-12);
+        }
         double g[3] = {got.r, got.g, got.b}, x[3] = {want.r, want.g, want.b};
         for (int ch = 0; ch < 3; ch++)
             ck_assert_msg(fabs(g[ch] - x[ch]) <= POWER_REL_TOL * x[ch],
@@ -277,8 +282,7 @@ START_TEST(test_sis_shadow_rays_stay_inside_their_stratum)
     envmap env = env_of(&im, 1);
     envlight el;
     error err = {0};
-    ck_assert_int_eq(envlight_build(&el, &env, ENVSAMPLING_SIS, ENVSAMPLER_BINARY, 24, NULL, &err),
-                     0);
+    ck_assert_int_eq(sis_envlight_build(&el, &env, ENVSAMPLER_BINARY, 24, NULL, &err), 0);
     double *lum = sis_luminance(&im, 1);
     sis_strata s;
     stratify(lum, im.w, im.h, 24, &s);
@@ -329,14 +333,12 @@ START_TEST(test_sis_memory_is_charged_before_it_is_built)
     error err = {0};
     budget mem;
     budget_init(&mem, 1e9);
-    ck_assert_int_eq(envlight_build(&el, &env, ENVSAMPLING_SIS, ENVSAMPLER_BINARY, 32, &mem, &err),
-                     0);
+    ck_assert_int_eq(sis_envlight_build(&el, &env, ENVSAMPLER_BINARY, 32, &mem, &err), 0);
     double peak = mem.peak, used = mem.used;
     ck_assert(peak > used && used >= sis_envlight_bytes(im.w, im.h, 32));
     envlight_free(&el);
     budget_init(&mem, peak - 1);
-    ck_assert_int_eq(envlight_build(&el, &env, ENVSAMPLING_SIS, ENVSAMPLER_BINARY, 32, &mem, &err),
-                     -1);
+    ck_assert_int_eq(sis_envlight_build(&el, &env, ENVSAMPLER_BINARY, 32, &mem, &err), -1);
     ck_assert_msg(strstr(err.msg, "beyond the memory budget"), "%s", err.msg);
     ck_assert(mem.used == 0);
     double *lum = sis_luminance(&im, 1);
@@ -350,6 +352,25 @@ START_TEST(test_sis_memory_is_charged_before_it_is_built)
     ck_assert(mem.used == sis_strata_bytes(im.w, im.h, 32));
     sis_strata_free(&s);
     free(lum);
+    image_free(&im);
+}
+END_TEST
+
+/* A black map as a light falls back to uniform directions, as envlight_build's other modes do */
+START_TEST(test_sis_black_map_light_falls_back_to_uniform)
+{
+    image im = {0};
+    error err = {0};
+    ck_assert_int_eq(image_alloc(&im, 16, 8, &err), 0);
+    envmap env = env_of(&im, 1);
+    envlight el;
+    ck_assert_int_eq(sis_envlight_build(&el, &env, ENVSAMPLER_BINARY, 8, NULL, &err), 0);
+    ck_assert(el.fell_back && el.mode == ENVSAMPLING_UNIFORM && el.n_points == 0);
+    int k;
+    vec3 d;
+    double prob;
+    ck_assert_int_eq(sis_pick(&el, 0.5, 0.5, 0.5, &k, &d, &prob), 0);
+    envlight_free(&el);
     image_free(&im);
 }
 END_TEST
@@ -390,6 +411,7 @@ Suite *sis_suite(void)
     tcase_add_test(tc, test_sis_light_powers_sum_to_the_map_power);
     tcase_add_test(tc, test_sis_shadow_rays_stay_inside_their_stratum);
     tcase_add_test(tc, test_sis_memory_is_charged_before_it_is_built);
+    tcase_add_test(tc, test_sis_black_map_light_falls_back_to_uniform);
     suite_add_tcase(s, tc);
     return s;
 }
