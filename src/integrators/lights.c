@@ -153,9 +153,10 @@ int lights_sample(const lights *ls, int k, vec3 p, vec3 ng, double xi1, double x
             int j;
             double prob;
             vec3 sd;
-            if (!(el->mode == ENVSAMPLING_SIS ? sis_pick : envlight_mediancut_pick)(el, xi1, xi2, xi3,
-                                                                                 &j, &sd, &prob))
-                return 0;
+            int ok = el->mode == ENVSAMPLING_SIS
+                         ? sis_pick(el, xi1, xi2, xi3, &j, &sd, &prob)
+                         : envlight_mediancut_pick(el, xi1, xi2, xi3, &j, &sd, &prob);
+            if (!ok) return 0;
             out->wi = el->points[j].dir;
             out->Li = rgb_scale(el->points[j].power, 1 / prob);
             out->pdf = 0;

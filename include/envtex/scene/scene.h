@@ -226,7 +226,8 @@ material scene_default_material(void);
 /* "raytracer", "analyticdirect", "direct", "pathtracer" or "prefiltered" (static strings), as
  * in the file. */
 const char *scene_integrator_name(integrator_kind k);
-/* "uniform", "cdf", "cdf-sintheta", "mediancut" or "sis" (static strings), the words of `envsampling`. */
+/* "uniform", "cdf", "cdf-sintheta", "mediancut" or "sis" (static strings), the words of
+ * `envsampling`. */
 const char *scene_envsampling_name(envsampling_mode m);
 
 /* The scene's spheres and triangles, as bvh_build takes them (borrowed). */
