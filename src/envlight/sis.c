@@ -7,6 +7,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "envtex/envmaps/latlong.h"
 
@@ -486,7 +487,9 @@ int sis_envlight_build(envlight *el, const envmap *env, envsampler_kind sampler,
         envlight_free(el);
         return -1;
     }
+    clock_t t0 = clock();
     int status = build_lights(el, n, err);
+    el->build_seconds += (double)(clock() - t0) / CLOCKS_PER_SEC; /* the strata are tables too */
     budget_release(mem, scratch);
     if (status) {
         give_back(mem, before);
