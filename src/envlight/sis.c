@@ -26,8 +26,9 @@ typedef struct work {
     double *energy, *omega, *row_omega;
 } work;
 
-/* 18 texel-sized arrays of 4 or 8 bytes (see work), one region start more, h row angles */
-#define SIS_SCRATCH_PER_TEXEL (5 * sizeof(double) + 8 * sizeof(int))
+/* work's texel-sized arrays: x, y, z, bd, energy, omega; parent, region_of, order, start, held,
+ * seed_start (near becomes the result's label: sis_strata_bytes counts it) */
+#define SIS_SCRATCH_PER_TEXEL (6 * sizeof(double) + 6 * sizeof(int))
 
 double sis_scratch_bytes(int w, int h, int n)
 {
