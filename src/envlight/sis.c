@@ -220,7 +220,7 @@ static void stratify_region(work *k, const double *lum, sis_strata *out, int g, 
             if (lum[k->order[j]] > lum[best]) best = k->order[j];
         far = best;
     }
-    for (; have < n_g && far >= 0; have++) {
+    for (; have < n_g && far >= 0 && out->n < k->n; have++) { /* k->n: the seeds' room */
         int s = out->n++;
         out->seed[s] = far;
         out->seed_layer[s] = layer;
@@ -294,9 +294,7 @@ int sis_stratify(const double *lum, int w, int h, int n, budget *mem, sis_strata
                          w, h, n, (double)w * h);
     double keep = sis_strata_bytes(w, h, n), scratch = sis_scratch_bytes(w, h, n);
     if (budget_charge(mem, keep + scratch, NULL, 0, err,
-                      "structured importance sampling of a "
-                      "%d x %d map",
-                      w, h))
+                      "structured importance sampling of a %d x %d map", w, h))
         return -1;
     work k;
     int status = -1;
