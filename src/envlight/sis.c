@@ -13,6 +13,9 @@
 
 /* bd of a texel that is a sample itself: above any dot product, so never the farthest again */
 #define SIS_SEED_BD 2.0
+/* |energy-weighted mean direction| / E below this: the stratum's directions all but cancel (it
+ * spans more than a hemisphere), so its light sits at its sample; any real centroid is far above */
+#define SIS_CENTROID_MIN 1e-6
 
 /* What sis_stratify holds while it runs, per texel unless said: the texel centres' directions,
  * the best dot product to a sample of the texel's region and that sample, the union-find
@@ -414,7 +417,7 @@ static void make_points(envlight *el, const sis_strata *s, const double *lum, ve
         double E = sh->cum[sh->first[k + 1] - 1], len = vec3_length(mean[k]);
         int t = s->seed[k];
         vec3 d =
-            len > 1e-6 * E
+            len > SIS_CENTROID_MIN * E
                 ? vec3_scale(mean[k], 1 / len)
                 : latlong_uv_to_dir((uv2){(t % el->w + 0.5) / el->w, (t / el->w + 0.5) / el->h});
         pt->dir = to_world(el, d);
