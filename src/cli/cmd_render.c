@@ -190,7 +190,8 @@ static void verbose_envmap(const scene *sc, const render_stats *st)
                 st->envlight_fell_back && sc->envsampling != ENVSAMPLING_UNIFORM
                     ? " (black map: uniform fallback)" : "");
     if (st->envlight_points)
-        fprintf(stderr, "envtex: median cut: %d point lights\n", st->envlight_points);
+        fprintf(stderr, "envtex: %s: %d point lights\n", st->envlight_mode == ENVSAMPLING_SIS
+                ? "structured importance sampling" : "median cut", st->envlight_points);
     if (st->envlight_built && sc->integrator == INTEGRATOR_PATHTRACER && sc->nee == NEE_MIS)
         fprintf(stderr, "envtex: MIS: the envmap is sampled at a fraction %.3g of its light "
                 "samples (%s; kappa = E[L^2]/E[L]^2 = %.4g)%s\n", st->env_fraction,

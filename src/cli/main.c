@@ -17,6 +17,7 @@
  *   envtex prefilter IN --sh9 | IN OUT --irradiance [--method sh9|exact] | IN OUT --phong S
  *                           [--width W] [--from KIND]
  *   envtex noise X Y Z              Perlin's improved noise at (X, Y, Z), 9 significant digits
+ *   envtex strata MAP OUT [-n N] [--exposure EV]   structured importance sampling's strata
  */
 #include <stdio.h>
 #include <string.h>
@@ -43,7 +44,9 @@ static const char *usage_text =
     "       envtex prefilter IN --sh9 [--from KIND]       (9 lines: l m R G B)\n"
     "       envtex prefilter IN OUT --irradiance [--method sh9|exact] [--width W] [--from KIND]\n"
     "       envtex prefilter IN OUT --phong S [--width W] [--from KIND]\n"
-    "       envtex noise X Y Z                   (Perlin's improved noise, 9 significant digits)\n";
+    "       envtex noise X Y Z                   (Perlin's improved noise, 9 significant digits)\n"
+    "       envtex strata MAP OUT [-n N] [--exposure EV] [--memory-budget SIZE]\n"
+    "                      (structured importance sampling's strata of a lat-long map)\n";
 
 int main(int argc, char **argv)
 {
@@ -63,5 +66,6 @@ int main(int argc, char **argv)
     if (!strcmp(cmd, "convert")) return cmd_convert(argc - 2, argv + 2);
     if (!strcmp(cmd, "prefilter")) return cmd_prefilter(argc - 2, argv + 2);
     if (!strcmp(cmd, "noise")) return cmd_noise(argc - 2, argv + 2);
+    if (!strcmp(cmd, "strata")) return cmd_strata(argc - 2, argv + 2);
     return cmd_render(argc - 1, argv + 1); /* envtex SCENE [options] */
 }

@@ -229,6 +229,7 @@ static double sampling_bytes(const envmap *env, envsampling_mode mode, envsample
     if (mode == ENVSAMPLING_CDF || mode == ENVSAMPLING_CDF_SINTHETA) {
         *tables = distrib2d_bytes(*w, *h);
         if (sampler == ENVSAMPLER_ALIAS) *tables += distrib2d_alias_bytes(*w, *h);
+    } else if (mode == ENVSAMPLING_SIS) { /* the strata: sis_envlight_build charges its own */
     } else { /* median cut: the summed-area table and the regions; the points and their choice */
         int n = n_lights > 0 ? n_lights : MEDIANCUT_DEFAULT_LIGHTS;
         *scratch += mediancut_scratch_bytes(*w, *h, n);
@@ -278,6 +279,9 @@ void envlight_free(envlight *el)
 {
     distrib2d_free(&el->table);
     distrib1d_free(&el->point_choice);
+    if (el->strata_free) el->strata_free(el->strata);
+    el->strata = NULL;
+    el->strata_free = NULL;
     free(el->points);
     image_free(&el->converted);
     el->map = NULL;

@@ -5,6 +5,7 @@
 #include <time.h>
 
 #include "envtex/envlight/misfraction.h"
+#include "envtex/envlight/sis.h"
 #include "envtex/geometry/sphere.h"
 #include "envtex/integrators/prefiltered.h"
 #include "envtex/integrators/texshade.h"
@@ -40,6 +41,16 @@ static double scene_radius(const scene *sc)
     return r > 0 ? r : 1.0;
 }
 
+/* The envmap as a light that is sampled: `envsampling sis N` adds its point lights (sis.h) */
+static int build_sampled_envlight(envlight *el, const envmap *env, const scene *sc, budget *mem,
+                                  error *err)
+{
+    if (sc->envsampling == ENVSAMPLING_SIS)
+        return sis_envlight_build(el, env, sc->envsampler, sc->mediancut_lights, mem, err);
+    return envlight_build(el, env, sc->envsampling, sc->envsampler, sc->mediancut_lights, mem,
+                          err);
+}
+
 int integrator_init(integrator *it, const scene *sc, const bvh *accel, budget *mem, error *err)
 {
     memset(it, 0, sizeof *it);
@@ -64,8 +75,7 @@ int integrator_init(integrator *it, const scene *sc, const bvh *accel, budget *m
     if (env_lights) {
         /* tables only for an integrator that samples the envmap; otherwise just the
          * piecewise-constant lookup, without a pass over the texels */
-        if (samples_lights ? envlight_build(&it->el, &it->env, sc->envsampling, sc->envsampler,
-                                            sc->mediancut_lights, mem, err)
+        if (samples_lights ? build_sampled_envlight(&it->el, &it->env, sc, mem, err)
                            : envlight_build_lookup(&it->el, &it->env, mem, err)) {
             /* about the scene's `envmap` (its transform, most often): reported at its line */
             char why[ERROR_MSG_MAX];
@@ -82,7 +92,7 @@ int integrator_init(integrator *it, const scene *sc, const bvh *accel, budget *m
     }
     it->has_lights = 1;
     if (sc->integrator == INTEGRATOR_PATHTRACER && sc->nee == NEE_MIS && lights_env_index(&it->ls) >= 0 &&
-        it->el.mode != ENVSAMPLING_MEDIANCUT) {
+        it->el.mode != ENVSAMPLING_MEDIANCUT && it->el.mode != ENVSAMPLING_SIS) {
         /* MIS: sample the envmap at a fraction of its picks (lights.h); auto: the fraction that
          * minimizes variance x time for diffuse surfaces under this map (misfraction.h) */
         double c = sc->envsamplefraction >= 0 ? sc->envsamplefraction

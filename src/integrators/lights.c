@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "envtex/envlight/sis.h"
 
 /* log2 of light k's power (-inf for none), from factors that each fit a double: the power
  * itself may not (4 pi I with I = 1e308, or pi R^2 E for a huge scene), and only the ratios of
@@ -167,13 +168,16 @@ int lights_sample(const lights *ls, int k, vec3 p, vec3 ng, double xi1, double x
     out->is_delta = 0;
     if (k == lights_env_index(ls)) {
         const envlight *el = ls->env;
-        if (el->mode == ENVSAMPLING_MEDIANCUT) {
+        if (el->mode == ENVSAMPLING_MEDIANCUT || el->mode == ENVSAMPLING_SIS) {
             /* a stratum as a point light: shade with its centroid, jitter only the shadow ray.
              * The caller already picked the envmap; pick the stratum inside it. */
             int j;
             double prob;
             vec3 sd;
-            if (!envlight_mediancut_pick(el, xi1, xi2, xi3, &j, &sd, &prob)) return 0;
+            int ok = el->mode == ENVSAMPLING_SIS
+                         ? sis_pick(el, xi1, xi2, xi3, &j, &sd, &prob)
+                         : envlight_mediancut_pick(el, xi1, xi2, xi3, &j, &sd, &prob);
+            if (!ok) return 0;
             out->wi = el->points[j].dir;
             out->Li = rgb_scale(el->points[j].power, 1 / prob);
             out->pdf = 0;

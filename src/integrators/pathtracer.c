@@ -36,7 +36,9 @@ rgb pathtracer_radiance_diff(integrator *it, ray r, const ray_diff *rd0, rng *g)
             } else {
                 int ke = lights_env_index(&it->ls);
                 double pdf_env = 0;
-                int mis_env = !counts && nee == NEE_MIS && ke >= 0 && it->el.mode != ENVSAMPLING_MEDIANCUT;
+                /* point lights (median cut, sis) have no density: only NEE finds them */
+                int points = it->el.mode == ENVSAMPLING_MEDIANCUT || it->el.mode == ENVSAMPLING_SIS;
+                int mis_env = !counts && nee == NEE_MIS && ke >= 0 && !points;
                 Le = mis_env ? envlight_radiance_pdf(&it->el, r.d, &pdf_env) : envlight_radiance(&it->el, r.d);
                 if (!counts) {
                     if (mis_env) {

@@ -6,6 +6,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "envtex/envlight/sis.h"
+
 static int cmd_lightselection(parser *p)
 {
     static const char *const w[] = {"all", "power"}; /* light_selection order */
@@ -60,11 +62,13 @@ static int cmd_envsampling(parser *p)
     }
     int k = 0;
     if (parse_arg_word(p, words, n_words, &k)) return -1;
-    if (k != ENVSAMPLING_MEDIANCUT && p->ntok > 2)
-        return parse_fail(p, "'envsampling %s' takes no count (only 'mediancut N' does)", words[k]);
-    if (p->ntok > 2) {
+    if (k != ENVSAMPLING_MEDIANCUT && k != ENVSAMPLING_SIS && p->ntok > 2)
+        return parse_fail(p, "'envsampling %s' takes no count (only 'mediancut N' and 'sis N' do)",
+                          words[k]);
+    if (p->ntok > 2) { /* the count of mediancut's or sis's point lights */
         long n;
-        if (parse_arg_int(p, 2, 1, SCENE_MAX_MEDIANCUT, &n)) return -1;
+        if (parse_arg_int(p, 2, 1, k == ENVSAMPLING_SIS ? SIS_MAX_LIGHTS : SCENE_MAX_MEDIANCUT, &n))
+            return -1;
         p->sc->mediancut_lights = (int)n;
     }
     p->sc->envsampling = (envsampling_mode)k;

@@ -49,7 +49,8 @@ texmapping_kind scene_material_texmapping(const material *m, int is_sphere)
 
 /* the words of `envsampling`, in envsampling_mode order (their one home: cmd_envsampling
  * reads them through scene_envsampling_name) */
-static const char *const envsampling_words[] = {"uniform", "cdf", "cdf-sintheta", "mediancut"};
+static const char *const envsampling_words[] = {"uniform", "cdf", "cdf-sintheta", "mediancut",
+                                                "sis"};
 #define N_ENVSAMPLING_WORDS ((int)(sizeof envsampling_words / sizeof envsampling_words[0]))
 
 const char *scene_envsampling_name(envsampling_mode m)

@@ -16,6 +16,7 @@ int cmd_convert(int argc, char **argv);
 int cmd_gen_env(int argc, char **argv);
 int cmd_noise(int argc, char **argv);
 int cmd_prefilter(int argc, char **argv);
+int cmd_strata(int argc, char **argv);
 
 /* Print *err as one line and return 1. */
 int cli_fail(const error *err);

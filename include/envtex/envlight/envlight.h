@@ -1,6 +1,6 @@
 /* envlight.h - the environment as a light (slides 16-23).  The lecture's cdf mode: texel (c, r)
  * by its 2D CDF (distrib.h), p = L_avg dOmega_r / |L|, then a point uniform in (u = cos theta,
- * v = phi), d(omega) = du dv: pdf = L_avg / |L|.  Also uniform, cdf-sintheta, mediancut.
+ * v = phi), d(omega) = du dv: pdf = L_avg / |L|.  Also uniform, cdf-sintheta, mediancut, sis (sis.h).
  *
  *     if (envlight_build(&el, &env, ENVSAMPLING_CDF, ENVSAMPLER_BINARY, 0, &mem, &err)) ...
  *     if (envlight_sample(&el, xi1, xi2, &s)) ... s.wi, s.L, s.pdf ...
@@ -23,7 +23,8 @@ typedef enum envsampling_mode {
     ENVSAMPLING_UNIFORM,
     ENVSAMPLING_CDF, /* the default */
     ENVSAMPLING_CDF_SINTHETA,
-    ENVSAMPLING_MEDIANCUT
+    ENVSAMPLING_MEDIANCUT,
+    ENVSAMPLING_SIS /* built by sis_envlight_build (sis.h); envlight_build makes the shared part */
 } envsampling_mode;
 /* `envsampler binary|alias` */
 typedef enum envsampler_kind { ENVSAMPLER_BINARY, ENVSAMPLER_ALIAS } envsampler_kind;
@@ -46,7 +47,9 @@ typedef struct envlight {
     mat4 to_world;      /* to_env transposed (normalize after it) */
     mediancut_point *points; /* mediancut: n_points lights, world directions */
     int n_points;
-    distrib1d point_choice;  /* mediancut: a light by its power */
+    distrib1d point_choice;  /* mediancut, sis: a light by its power */
+    void *strata;            /* sis: its shadow-ray tables (sis.h), owned, freed by strata_free */
+    void (*strata_free)(void *strata);
     double build_seconds;
 } envlight;
 

@@ -144,7 +144,7 @@ typedef struct scene {
     double gamma;              /* 0: not given (PNG gets the sRGB curve) */
     envmiss_mode envmiss;
     envsampling_mode envsampling; /* default ENVSAMPLING_CDF */
-    int mediancut_lights;      /* `envsampling mediancut N`, default 64 */
+    int mediancut_lights;      /* N of `envsampling mediancut N` or `sis N`, default 64 */
     envsampler_kind envsampler; /* default ENVSAMPLER_BINARY */
     double envsamplefraction;  /* in [0, 1]; -1 = auto (lights.h) */
     irradiance_method prefilter; /* `prefilter exact|sh9`, default exact */

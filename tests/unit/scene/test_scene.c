@@ -213,7 +213,7 @@ static const bad_case bad_cases[] = {
     {"envmap cube a b c d e f 0\n", 3, "'envmap' argument 8 must be > 0, got '0'"},
     {"envmap cube a b c d e f 1 2\n", 3, "got 8 arguments"},
     {"scale 1 0 1\nenvmap cube a b c d e f\n", 4, "'envmap' needs the inverse"},
-    {"envsampling cdf 4\n", 3, "'envsampling cdf' takes no count (only 'mediancut N' does)"},
+    {"envsampling cdf 4\n", 3, "'envsampling cdf' takes no count (only 'mediancut N' and 'sis N' do)"},
     /* a corner that overflows where the transform itself does not */
     {"scale 1e300 1 1\nvertex 0 0 0\nvertex 1e10 0 0\nvertex 0 1 0\ntri 0 1 2\n", 7,
      "'tri' corner 1 overflows under the current transform"},
