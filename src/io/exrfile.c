@@ -539,7 +539,83 @@ static exr_result_t guarded_compress(exr_encode_pipeline_t *p)
     return r;
 }
 
+/* Set the envtex attributes of `at` that are known on part 0 (before the header is written). */
+static exr_result_t set_attrs(exr_context_t ctx, int part, const exrfile_attrs *at)
+{
+    exr_result_t r = EXR_ERR_SUCCESS;
+    char text[EXRFILE_TEXT_MAX];
+    if (!at) return r;
+    if (at->spp > 0) r = exr_attr_set_int(ctx, part, "envtex:spp", at->spp);
+    if (r == EXR_ERR_SUCCESS && at->has_seed) {
+        snprintf(text, sizeof text, "%llu", (unsigned long long)at->seed);
+        r = exr_attr_set_string(ctx, part, "envtex:seed", text);
+    }
+    if (r == EXR_ERR_SUCCESS && at->integrator[0]) {
+        snprintf(text, sizeof text, "%s", at->integrator);
+        r = exr_attr_set_string(ctx, part, "envtex:integrator", text);
+    }
+    if (r == EXR_ERR_SUCCESS && at->scene[0]) {
+        snprintf(text, sizeof text, "%s", at->scene);
+        r = exr_attr_set_string(ctx, part, "envtex:scene", text);
+    }
+    return r;
+}
+
+/* One scanline part "rgb": the required attributes, R, G, B of `ptype`, `at`, then the header. */
+static exr_result_t write_header(exr_context_t ctx, const image *im, exr_pixel_type_t ptype,
+                                 const exrfile_attrs *at, int *part)
+{
+    static const char *const names[3] = {"R", "G", "B"};
+    exr_result_t r = exr_add_part(ctx, "rgb", EXR_STORAGE_SCANLINE, part);
+    if (r == EXR_ERR_SUCCESS)
+        r = exr_initialize_required_attr_simple(ctx, *part, im->w, im->h, EXR_COMPRESSION_ZIP);
+    for (int k = 0; k < 3 && r == EXR_ERR_SUCCESS; k++)
+        r = exr_add_channel(ctx, *part, names[k], ptype, EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
+    if (r == EXR_ERR_SUCCESS) r = set_attrs(ctx, *part, at);
+    if (r == EXR_ERR_SUCCESS) r = exr_write_header(ctx);
+    return r;
+}
+
+/* Encode and write im's rows in blocks of `lines`, in increasing y (see raw_guard). */
+static exr_result_t write_chunks(exr_context_t ctx, int part, const image *im, int32_t lines,
+                                 raw_guard *guard, exr_encode_pipeline_t *enc, int *enc_ready)
+{
+    exr_result_t r = EXR_ERR_SUCCESS;
+    for (int y = 0; y < im->h && r == EXR_ERR_SUCCESS; y += lines) {
+        exr_chunk_info_t ci;
+        r = exr_write_scanline_chunk_info(ctx, part, y, &ci);
+        if (r == EXR_ERR_SUCCESS)
+            r = *enc_ready ? exr_encoding_update(ctx, part, &ci, enc)
+                           : exr_encoding_initialize(ctx, part, &ci, enc);
+        if (r != EXR_ERR_SUCCESS) return r;
+        *enc_ready = 1;
+        for (int c = 0; c < enc->channel_count; c++) {
+            exr_coding_channel_info_t *ch = &enc->channels[c];
+            int k = ch->channel_name[0] == 'R' ? 0 : ch->channel_name[0] == 'G' ? 1 : 2;
+            ch->encode_from_ptr = (const uint8_t *)(image_px(im, 0, y) + k);
+            ch->user_pixel_stride = 3 * (int32_t)sizeof(float);
+            ch->user_line_stride = 3 * (int32_t)sizeof(float) * im->w;
+            ch->user_data_type = EXR_PIXEL_FLOAT;
+            ch->user_bytes_per_element = (int16_t)sizeof(float);
+        }
+        if ((r = exr_encoding_choose_default_routines(ctx, part, enc))) return r;
+        if (enc->compress_fn) { /* see raw_guard */
+            guard->compress = enc->compress_fn;
+            enc->compress_fn = guarded_compress;
+            enc->encoding_user_data = guard;
+        }
+        r = exr_encoding_run(ctx, part, enc);
+    }
+    return r;
+}
+
 int exrfile_write(const char *path, const image *im, int half, error *err)
+{
+    return exrfile_write_attrs(path, im, half, NULL, err);
+}
+
+int exrfile_write_attrs(const char *path, const image *im, int half, const exrfile_attrs *at,
+                        error *err)
 {
     if (!im || !im->px || image_check_size(im->w, im->h, path, err))
         return error_set(err, path, 0, "cannot write an empty or invalid image");
@@ -548,32 +624,24 @@ int exrfile_write(const char *path, const image *im, int half, error *err)
     exr_context_t ctx = NULL;
     exr_encode_pipeline_t enc = EXR_ENCODE_PIPELINE_INITIALIZER;
     raw_guard guard = {NULL, NULL, 0};
-    int enc_ready = 0, rc = -1;
+    int enc_ready = 0, rc = -1, part = 0;
+    int32_t lines = 0;
     exr_result_t r;
 
     s.fd = fileio_tmp_open(path, tmp, err);
     if (s.fd < 0) return -1;
-
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
     init.error_handler_fn = stream_on_write_error; /* not stream_on_error: see `writing` */
     init.user_data = &s;
     init.write_fn = stream_write;
     writing = &s;
     r = exr_start_write(&ctx, path, EXR_WRITE_FILE_DIRECTLY, &init);
-    int part = 0;
-    if (r == EXR_ERR_SUCCESS) r = exr_add_part(ctx, "rgb", EXR_STORAGE_SCANLINE, &part);
     if (r == EXR_ERR_SUCCESS)
-        r = exr_initialize_required_attr_simple(ctx, part, im->w, im->h, EXR_COMPRESSION_ZIP);
-    exr_pixel_type_t ptype = half ? EXR_PIXEL_HALF : EXR_PIXEL_FLOAT;
-    static const char *const names[3] = {"R", "G", "B"};
-    for (int k = 0; k < 3 && r == EXR_ERR_SUCCESS; k++)
-        r = exr_add_channel(ctx, part, names[k], ptype, EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
-    if (r == EXR_ERR_SUCCESS) r = exr_write_header(ctx);
+        r = write_header(ctx, im, half ? EXR_PIXEL_HALF : EXR_PIXEL_FLOAT, at, &part);
     if (r != EXR_ERR_SUCCESS) {
         error_set(err, path, 0, "cannot write OpenEXR header: %s", exr_why(&s, r));
         goto done;
     }
-    int32_t lines = 0;
     if ((r = exr_get_scanlines_per_chunk(ctx, part, &lines)) || lines < 1) {
         error_set(err, path, 0, "cannot write OpenEXR: %s", exr_why(&s, r));
         goto done;
@@ -584,31 +652,7 @@ int exrfile_write(const char *path, const image *im, int half, error *err)
         error_set(err, path, 0, "out of memory writing OpenEXR");
         goto done;
     }
-    for (int y = 0; y < im->h; y += lines) {
-        exr_chunk_info_t ci;
-        r = exr_write_scanline_chunk_info(ctx, part, y, &ci);
-        if (r == EXR_ERR_SUCCESS)
-            r = enc_ready ? exr_encoding_update(ctx, part, &ci, &enc)
-                          : exr_encoding_initialize(ctx, part, &ci, &enc);
-        if (r != EXR_ERR_SUCCESS) goto fail;
-        enc_ready = 1;
-        for (int c = 0; c < enc.channel_count; c++) {
-            exr_coding_channel_info_t *ch = &enc.channels[c];
-            int k = ch->channel_name[0] == 'R' ? 0 : ch->channel_name[0] == 'G' ? 1 : 2;
-            ch->encode_from_ptr = (const uint8_t *)(image_px(im, 0, y) + k);
-            ch->user_pixel_stride = 3 * (int32_t)sizeof(float);
-            ch->user_line_stride = 3 * (int32_t)sizeof(float) * im->w;
-            ch->user_data_type = EXR_PIXEL_FLOAT;
-            ch->user_bytes_per_element = (int16_t)sizeof(float);
-        }
-        if ((r = exr_encoding_choose_default_routines(ctx, part, &enc))) goto fail;
-        if (enc.compress_fn) { /* see raw_guard */
-            guard.compress = enc.compress_fn;
-            enc.compress_fn = guarded_compress;
-            enc.encoding_user_data = &guard;
-        }
-        if ((r = exr_encoding_run(ctx, part, &enc))) goto fail;
-    }
+    if ((r = write_chunks(ctx, part, im, lines, &guard, &enc, &enc_ready))) goto fail;
     if (enc_ready) exr_encoding_destroy(ctx, &enc);
     enc_ready = 0;
     r = exr_finish(&ctx); /* writes the chunk offset table */
@@ -632,5 +676,60 @@ done:
     if (rc != 0 && tmp[0]) fileio_tmp_abandon(tmp);
     free(guard.copy);
     writing = NULL;
+    return rc;
+}
+
+/* ---- the envtex attributes ----------------------------------------------------------------- */
+
+/* A string attribute `name` into out (cut to `size` - 1 bytes): 0 present, 1 absent, -1 error. */
+static int get_text(exr_context_t ctx, const char *name, char *out, size_t size)
+{
+    int32_t len = 0;
+    const char *str = NULL;
+    exr_result_t r = exr_attr_get_string(ctx, 0, name, &len, &str);
+    if (r == EXR_ERR_NO_ATTR_BY_NAME) return 1;
+    if (r != EXR_ERR_SUCCESS || !str || len < 0) return -1;
+    size_t n = (size_t)len < size - 1 ? (size_t)len : size - 1;
+    memcpy(out, str, n);
+    out[n] = '\0';
+    return 0;
+}
+
+/* The attributes themselves, from a context open on the file. */
+static int read_attrs(exr_context_t ctx, exrfile_attrs *at, const char *path, error *err)
+{
+    int32_t spp = 0;
+    exr_result_t r = exr_attr_get_int(ctx, 0, "envtex:spp", &spp);
+    if (r == EXR_ERR_SUCCESS && spp < 1)
+        return error_set(err, path, 0, "envtex:spp is %d, not a sample count >= 1", (int)spp);
+    if (r != EXR_ERR_SUCCESS && r != EXR_ERR_NO_ATTR_BY_NAME)
+        return error_set(err, path, 0, "envtex:spp is not an int attribute");
+    at->spp = r == EXR_ERR_SUCCESS ? (int)spp : 0;
+    char seed[32], *end = NULL;
+    int got = get_text(ctx, "envtex:seed", seed, sizeof seed);
+    if (got == 0) {
+        errno = 0;
+        unsigned long long v = strtoull(seed, &end, 10);
+        if (errno || end == seed || *end || seed[0] == '-')
+            return error_set(err, path, 0, "envtex:seed '%s' is not a whole number", seed);
+        at->seed = (uint64_t)v;
+        at->has_seed = 1;
+    }
+    if (got < 0 || get_text(ctx, "envtex:integrator", at->integrator, sizeof at->integrator) < 0 ||
+        get_text(ctx, "envtex:scene", at->scene, sizeof at->scene) < 0)
+        return error_set(err, path, 0, "an envtex attribute is not a string");
+    return 0;
+}
+
+int exrfile_read_attrs(const char *path, exrfile_attrs *at, error *err)
+{
+    memset(at, 0, sizeof *at);
+    exr_stream s = {.fd = -1, .size = 0, .msg = ""};
+    exr_context_t ctx = NULL;
+    if (open_for_read(path, &s, &ctx, err)) return -1;
+    int rc = read_attrs(ctx, at, path, err);
+    if (rc) memset(at, 0, sizeof *at);
+    exr_finish(&ctx);
+    close(s.fd);
     return rc;
 }
