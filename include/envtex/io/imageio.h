@@ -28,6 +28,7 @@
 #include "envtex/core/budget.h"
 #include "envtex/core/error.h"
 #include "envtex/core/image.h"
+#include "envtex/io/exrfile.h"
 #include "envtex/io/tonemap.h"
 
 /* Read any supported image into *out (linear RGB; PNG colour is decoded from sRGB, or with the
@@ -68,6 +69,12 @@ int imageio_write_as(const char *path, imageio_format format, const image *im, c
 #define IMAGEIO_SET_MAX 6
 int imageio_write_set(int n, const char *const *paths, const image *const *images,
                       const tonemap_params *const *tms, const imageio_format *formats, error *err);
+
+/* imageio_write_set with the attributes `at` (exrfile.h) in the header of each OpenEXR file of
+ * the set; other formats have no place for them.  at may be NULL: imageio_write_set. */
+int imageio_write_set_attrs(int n, const char *const *paths, const image *const *images,
+                            const tonemap_params *const *tms, const imageio_format *formats,
+                            const exrfile_attrs *at, error *err);
 
 /* 1 if `path` ends in an extension imageio_write knows, else 0. */
 int imageio_can_write(const char *path);
