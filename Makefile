@@ -7,6 +7,7 @@
 #   make bench      benchmarks (medians of repeated runs)
 #   make update-golden   re-render the golden references (look at them before committing)
 #   make docs-images     re-render the pictures in docs/images/ from data/scenes/
+#   make grade SUBMISSIONS=dir   build, test and render each student's tree: out/grade/ (CSV, HTML)
 #   make starter STEPS="latlong cdf"   an assignment starter tree with those steps as stubs (or all)
 #   make test STEP=cdf   only the tests of one lecture step (tests/steps)
 #   make deps       install the Debian packages envtex needs (apt-get, as root or via sudo)
@@ -118,6 +119,14 @@ asan:
 update-golden: $(BUILD)/envtex $(TOOL_BIN)
 	@BUILD=$(BUILD) ENVTEX=$(BUILD)/envtex tests/golden/update
 
+# a class's grades: make grade SUBMISSIONS=dir [GRADE_OUT=out/grade] (docs/grading.md)
+GRADE_OUT ?= out/grade
+grade: $(BUILD)/envtex
+	@[ -n "$(SUBMISSIONS)" ] || { echo "envtex: make grade needs SUBMISSIONS=DIR, a folder of" \
+		"student trees or tarballs" >&2; exit 1; }
+	@ENVTEX=$(BUILD)/envtex tools/grade/run "$(SUBMISSIONS)" "$(GRADE_OUT)"
+.PHONY: grade
+
 # assignment starter kits (docs/teaching.md)
 starter:
 	@BUILD=$(BUILD) STEPS="$(STEPS)" tools/starter/make-starter
@@ -177,6 +186,11 @@ $(BUILD)/fuzz/fuzz_%: tests/fuzz/fuzz_%.c tests/fuzz/fuzz.c tests/fuzz/replay.c 
 		$(BUILD)/libenvtex.a $(LDFLAGS) $(PKG_LIBS)
 
 test check-all: $(FUZZ_REPLAY_BIN)
+
+# envtex and every program make test runs, built and not run: tools/grade builds a submission with
+# it, then runs make test; tools/grade-timing times it against make test.
+programs: $(BUILD)/envtex $(UNIT_BIN) $(TOOL_BIN) $(FUZZ_REPLAY_BIN)
+.PHONY: programs
 
 # `make fuzz [FUZZ_SECONDS=60] [FUZZ_TARGETS="scene exr"]`: libFuzzer, one target at a time,
 # each for FUZZ_SECONDS, under FUZZ_LIMITS.  New inputs go to build-fuzz/corpus/NAME, crashes to
