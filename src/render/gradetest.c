@@ -25,8 +25,10 @@ double gradetest_z_for_alpha(double a)
     double lo = 0, hi = 40;
     for (int i = 0; i < 200; i++) {
         double m = 0.5 * (lo + hi);
-        if (erfc(m / sqrt(2.0)) > a) lo = m;
-        else hi = m;
+        if (erfc(m / sqrt(2.0)) > a)
+            lo = m;
+        else
+            hi = m;
     }
     return 0.5 * (lo + hi);
 }
@@ -37,8 +39,8 @@ int gradetest_run(const image *img, const image *ref, const image *var, const gr
     memset(out, 0, sizeof *out);
     if (fail_map) fail_map->w = fail_map->h = 0, fail_map->px = NULL;
     if (img->w != ref->w || img->h != ref->h || var->w != ref->w || var->h != ref->h)
-        return error_set(err, NULL, 0, "sizes differ: image %dx%d, reference %dx%d, variance %dx%d", img->w,
-                         img->h, ref->w, ref->h, var->w, var->h);
+        return error_set(err, NULL, 0, "sizes differ: image %dx%d, reference %dx%d, variance %dx%d",
+                         img->w, img->h, ref->w, ref->h, var->w, var->h);
     if (!(p->img_spp > 0) || !(p->ref_spp > 0) || !(p->var_spp >= 0))
         return error_set(err, NULL, 0, "sample counts must be > 0");
     if (fail_map && image_alloc(fail_map, img->w, img->h, err)) return -1;
@@ -55,8 +57,10 @@ int gradetest_run(const image *img, const image *ref, const image *var, const gr
             double v = rgb_avg(image_get(var, x, y)), r = rgb_avg(image_get(ref, x, y));
             if (!isfinite(r) || !isfinite(v) || v < 0) {
                 if (fail_map) image_free(fail_map);
-                return error_set(err, NULL, 0, "reference or variance pixel (%d, %d) is not a finite, "
-                                 "non-negative number", x, y);
+                return error_set(err, NULL, 0,
+                                 "reference or variance pixel (%d, %d) is not a finite, "
+                                 "non-negative number",
+                                 x, y);
             }
         }
     for (int y = 0; y < img->h; y++)
@@ -68,7 +72,8 @@ int gradetest_run(const image *img, const image *ref, const image *var, const gr
             double v = 0;
             for (int j = y - 1; j <= y + 1; j++)
                 for (int i = x - 1; i <= x + 1; i++)
-                    if (i >= 0 && j >= 0 && i < img->w && j < img->h) v = fmax(v, rgb_avg(image_get(var, i, j)));
+                    if (i >= 0 && j >= 0 && i < img->w && j < img->h)
+                        v = fmax(v, rgb_avg(image_get(var, i, j)));
             double v0 = rgb_avg(image_get(var, x, y));
             rgb mark = rgb_gray(0.2);
             if (!isfinite(a)) {

@@ -23,7 +23,7 @@
  *
  *     gradetest_params p = gradetest_defaults();
  *     gradetest_result r;
- *     if (gradetest_run(&img, &ref, &var, &p, &r, NULL, &err)) ...   // sizes differ, NaN variance...
+ *     if (gradetest_run(&img, &ref, &var, &p, &r, NULL, &err)) ...   // sizes differ, ...
  *     puts(r.pass ? "PASS" : "FAIL");
  */
 #ifndef ENVTEX_GRADETEST_H
@@ -58,8 +58,9 @@ typedef struct gradetest_result {
 } gradetest_result;
 
 /* Run the test: 0 with the verdict in *out (pass or fail), or -1 with *err set when it cannot
- * run (sizes differ, a sample count <= 0 (var_spp < 0), a reference or variance pixel whose channel average is
- * not finite or is negative, out of memory; fail_map then holds nothing).  `fail_map` (may be
+ * run (sizes differ, a sample count <= 0 (var_spp < 0), a reference or variance pixel whose
+ * channel average is not finite or is negative, out of memory; fail_map then holds nothing).
+ * `fail_map` (may be
  * NULL) receives a w x h image: red where a pixel failed with img too bright, blue where too
  * dark, magenta where img is NaN or Inf, grey elsewhere (allocated; free with image_free). */
 int gradetest_run(const image *img, const image *ref, const image *var, const gradetest_params *p,
