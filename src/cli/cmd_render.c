@@ -255,17 +255,21 @@ static void verbose_report(const render_args *a, const scene *sc, const render_s
 }
 
 /* The image and its variance, one output: a failure writing either leaves both targets
- * untouched (the image was once committed before a full disk refused the variance). */
-static int write_outputs(const render_args *a, const scene *sc, const image *img,
-                         const image *var, error *err)
+ * untouched (the image was once committed before a full disk refused the variance).  An
+ * OpenEXR output records how it was made (exrfile.h): compare --test reads the sample counts. */
+static int write_outputs(const render_args *a, const scene *sc, const render_stats *st,
+                         const image *img, const image *var, error *err)
 {
+    exrfile_attrs at = {.spp = st->spp, .has_seed = 1, .seed = a->ro.seed};
+    snprintf(at.integrator, sizeof at.integrator, "%s", scene_integrator_name(sc->integrator));
+    snprintf(at.scene, sizeof at.scene, "%s", a->scene_path);
     tonemap_params tm = tonemap_defaults();
     tm.gamma = sc->gamma;
     const char *paths[2] = {a->out_path, a->var_path};
     const image *images[2] = {img, var};
     const tonemap_params *tms[2] = {&tm, NULL};
     const imageio_format formats[2] = {a->out_format, IMAGEIO_UNKNOWN};
-    return imageio_write_set(a->var_path ? 2 : 1, paths, images, tms, formats, err);
+    return imageio_write_set_attrs(a->var_path ? 2 : 1, paths, images, tms, formats, &at, err);
 }
 
 int cmd_render(int argc, char **argv)
@@ -315,7 +319,7 @@ int cmd_render(int argc, char **argv)
     if (st.nonfinite_variance)
         fprintf(stderr, "envtex: warning: %s: %ld pixels of the variance image are NaN or Inf\n",
                 a.var_path, st.nonfinite_variance);
-    if (write_outputs(&a, &sc, &img, &var, &err)) goto done;
+    if (write_outputs(&a, &sc, &st, &img, &var, &err)) goto done;
     printf("time_s=%.3f spp=%d rays=%lld mrays_per_s=%.3f nonfinite=%ld build_s=%.3f",
            st.seconds, st.spp, st.rays, st.seconds > 0 ? st.rays / st.seconds / 1e6 : 0.0,
            st.nonfinite_pixels, st.build_seconds);

@@ -48,7 +48,8 @@ static void stream_on_write_error(exr_const_context_t ctxt, exr_result_t code, c
 {
     (void)ctxt;
     if (!writing || writing->msg[0]) return; /* keep the first */
-    snprintf(writing->msg, sizeof writing->msg, "%s", msg ? msg : exr_get_default_error_message(code));
+    snprintf(writing->msg, sizeof writing->msg, "%s",
+             msg ? msg : exr_get_default_error_message(code));
 }
 
 static int64_t stream_read(exr_const_context_t ctxt, void *ud, void *buffer, uint64_t sz,
@@ -86,7 +87,8 @@ static int64_t stream_write(exr_const_context_t ctxt, void *ud, const void *buff
         ssize_t n = pwrite(s->fd, p + done, (size_t)(sz - done), (off_t)(offset + done));
         if (n < 0 && errno == EINTR) continue;
         if (n <= 0) {
-            error_cb(ctxt, EXR_ERR_WRITE_IO, "write error: %s", n < 0 ? strerror(errno) : "no progress");
+            error_cb(ctxt, EXR_ERR_WRITE_IO, "write error: %s",
+                     n < 0 ? strerror(errno) : "no progress");
             return -1;
         }
         done += (uint64_t)n;
@@ -185,8 +187,7 @@ static int pick_channels(const exr_attr_chlist_t *cl, exr_pick *pk, const char *
                              e->name.str, e->x_sampling, e->y_sampling);
         if (e->pixel_type != EXR_PIXEL_HALF && e->pixel_type != EXR_PIXEL_FLOAT &&
             e->pixel_type != EXR_PIXEL_UINT)
-            return error_set(err, path, 0, "channel %s has an unknown pixel type",
-                             e->name.str);
+            return error_set(err, path, 0, "channel %s has an unknown pixel type", e->name.str);
     }
     return 0;
 }
@@ -203,14 +204,17 @@ typedef struct exr_target {
 /* Decode the chunk `ci` whose top-left pixel is (x0, y0) in file coordinates into t->buf and copy
  * it into the image, clipped to the display window. */
 static int decode_chunk(exr_context_t ctx, const exr_chunk_info_t *ci, int x0, int y0,
-                        exr_decode_pipeline_t *dec, int *dec_ready, exr_target *t,
-                        exr_stream *s, const char *path, error *err)
+                        exr_decode_pipeline_t *dec, int *dec_ready, exr_target *t, exr_stream *s,
+                        const char *path, error *err)
 {
     exr_result_t r = *dec_ready ? exr_decoding_update(ctx, 0, ci, dec)
                                 : exr_decoding_initialize(ctx, 0, ci, dec);
     if (r != EXR_ERR_SUCCESS) goto fail;
     *dec_ready = 1;
-    if (ci->width > t->buf_w) { r = EXR_ERR_CORRUPT_CHUNK; goto fail; }
+    if (ci->width > t->buf_w) {
+        r = EXR_ERR_CORRUPT_CHUNK;
+        goto fail;
+    }
     for (int c = 0; c < dec->channel_count; c++) {
         exr_coding_channel_info_t *ch = &dec->channels[c];
         ch->decode_to_ptr = NULL;
@@ -244,7 +248,8 @@ static int decode_chunk(exr_context_t ctx, const exr_chunk_info_t *ci, int x0, i
         if (!t->pick.grey) {
             memcpy(dst, src, n * 3 * sizeof *dst);
         } else {
-            for (size_t i = 0; i < n; i++) dst[3 * i] = dst[3 * i + 1] = dst[3 * i + 2] = src[3 * i];
+            for (size_t i = 0; i < n; i++)
+                dst[3 * i] = dst[3 * i + 1] = dst[3 * i + 2] = src[3 * i];
         }
     }
     return 0;
@@ -274,15 +279,19 @@ static int check_claims(exr_context_t ctx, exr_storage_t storage, exr_compressio
     for (long ty = 0; ty < nty; ty++)
         for (long tx = 0; tx < ntx; tx++) {
             exr_chunk_info_t ci;
-            exr_result_t r = storage == EXR_STORAGE_TILED
-                                 ? exr_read_tile_chunk_info(ctx, 0, (int)tx, (int)ty, 0, 0, &ci)
-                                 : exr_read_scanline_chunk_info(ctx, 0, (int)(dw->min.y + ty * lines), &ci);
+            exr_result_t r =
+                storage == EXR_STORAGE_TILED
+                    ? exr_read_tile_chunk_info(ctx, 0, (int)tx, (int)ty, 0, 0, &ci)
+                    : exr_read_scanline_chunk_info(ctx, 0, (int)(dw->min.y + ty * lines), &ci);
             if (r != EXR_ERR_SUCCESS)
-                return error_set(err, path, 0, "bad OpenEXR chunk %ld of %ld: %s", ty * ntx + tx + 1,
-                                 ntx * nty, exr_why(s, r));
-            if (ci.data_offset > (uint64_t)s->size || ci.packed_size > (uint64_t)s->size - ci.data_offset)
-                return error_set(err, path, 0, "truncated OpenEXR file: chunk %ld of %ld ends past the end of the file",
-                                 ty * ntx + tx + 1, ntx * nty);
+                return error_set(err, path, 0, "bad OpenEXR chunk %ld of %ld: %s",
+                                 ty * ntx + tx + 1, ntx * nty, exr_why(s, r));
+            if (ci.data_offset > (uint64_t)s->size ||
+                ci.packed_size > (uint64_t)s->size - ci.data_offset)
+                return error_set(
+                    err, path, 0,
+                    "truncated OpenEXR file: chunk %ld of %ld ends past the end of the file",
+                    ty * ntx + tx + 1, ntx * nty);
             packed += (double)ci.packed_size;
             unpacked += (double)ci.unpacked_size;
             double chunk = (double)ci.packed_size + (double)ci.unpacked_size;
@@ -290,8 +299,170 @@ static int check_claims(exr_context_t ctx, exr_storage_t storage, exr_compressio
         }
     double most = comp == EXR_COMPRESSION_NONE ? packed : EXR_MAX_EXPANSION * packed;
     if (unpacked > most)
-        return error_set(err, path, 0, "corrupt or truncated OpenEXR file: %ld x %ld pixels need %.0f bytes, "
-                         "more than its %.0f bytes of chunks can hold", data_w, data_h, unpacked, packed);
+        return error_set(err, path, 0,
+                         "corrupt or truncated OpenEXR file: %ld x %ld pixels need %.0f bytes, "
+                         "more than its %.0f bytes of chunks can hold",
+                         data_w, data_h, unpacked, packed);
+    return 0;
+}
+
+/* Open `path` and start an OpenEXRCore read context on it (the header is parsed): 0, or -1 with
+ * *err set and nothing left open.  `s` must outlive *ctx (the library keeps a pointer to it). */
+static int open_for_read(const char *path, exr_stream *s, exr_context_t *ctx, error *err)
+{
+    *ctx = NULL;
+    s->fd = infile_open(path, NULL, err);
+    if (s->fd < 0) return -1;
+    struct stat st;
+    if (fstat(s->fd, &st) != 0) {
+        error_set(err, path, 0, "cannot open: %s", strerror(errno));
+        goto fail;
+    }
+    s->size = (int64_t)st.st_size;
+
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    init.error_handler_fn = stream_on_error;
+    init.user_data = s;
+    init.read_fn = stream_read;
+    init.size_fn = stream_size;
+    init.max_image_width = init.max_image_height = (int)IMAGE_MAX_SIDE;
+    init.max_tile_width = init.max_tile_height = (int)IMAGE_MAX_SIDE;
+    /* A damaged chunk table is an error, not something to rebuild by scanning the file. */
+    init.flags = EXR_CONTEXT_FLAG_DISABLE_CHUNK_RECONSTRUCTION;
+    exr_result_t r = exr_start_read(ctx, path, &init);
+    if (r == EXR_ERR_SUCCESS) return 0;
+    error_set(err, path, 0, "not a readable OpenEXR file: %s", exr_why(s, r));
+    if (*ctx) exr_finish(ctx);
+    *ctx = NULL;
+fail:
+    close(s->fd);
+    s->fd = -1;
+    return -1;
+}
+
+/* Part 0's layout as the header gives it, checked: sizes in long so that a hostile window
+ * cannot overflow before the check. */
+typedef struct exr_layout {
+    exr_storage_t storage;
+    exr_compression_t comp;
+    exr_attr_box2i_t dw;
+    long disp_w, disp_h, data_w, data_h;
+    int32_t tile_w, tile_h; /* tiled: level 0's tile size; scanline: 0 */
+    int32_t lines;          /* rows a chunk decodes (a scanline block, or a tile's height) */
+} exr_layout;
+
+/* The storage, compression, channels (into t->pick) and windows (t->disp) of part 0: what
+ * envtex can decode, or -1 with *err saying why not. */
+static int read_header(exr_context_t ctx, exr_stream *s, exr_layout *L, exr_target *t,
+                       const char *path, error *err)
+{
+    const exr_attr_chlist_t *chans = NULL;
+    exr_result_t r;
+    if ((r = exr_get_storage(ctx, 0, &L->storage)) || (r = exr_get_compression(ctx, 0, &L->comp)) ||
+        (r = exr_get_channels(ctx, 0, &chans)) || (r = exr_get_data_window(ctx, 0, &L->dw)) ||
+        (r = exr_get_display_window(ctx, 0, &t->disp)) || !chans)
+        return error_set(err, path, 0, "OpenEXR header is incomplete: %s", exr_why(s, r));
+    if (L->storage != EXR_STORAGE_SCANLINE && L->storage != EXR_STORAGE_TILED)
+        return error_set(err, path, 0, "deep OpenEXR images are not supported");
+    if (L->comp == EXR_COMPRESSION_DWAA || L->comp == EXR_COMPRESSION_DWAB)
+        return error_set(err, path, 0,
+                         "%s compression: OpenEXR 3.1's C API cannot decode DWAA/DWAB; re-save "
+                         "the file with ZIP compression (e.g. `oiiotool in.exr --compression zip "
+                         "-o out.exr`, or from any image editor)",
+                         L->comp == EXR_COMPRESSION_DWAA ? "DWAA" : "DWAB");
+    if (pick_channels(chans, &t->pick, path, err)) return -1;
+    L->disp_w = (long)t->disp.max.x - t->disp.min.x + 1;
+    L->disp_h = (long)t->disp.max.y - t->disp.min.y + 1;
+    L->data_w = (long)L->dw.max.x - L->dw.min.x + 1;
+    L->data_h = (long)L->dw.max.y - L->dw.min.y + 1;
+    if (image_check_size(L->disp_w, L->disp_h, path, err))
+        return error_prefix(err, "display window");
+    if (image_check_size(L->data_w, L->data_h, path, err)) return error_prefix(err, "data window");
+    return 0;
+}
+
+/* Chunk geometry: scanline blocks of L->lines rows, or tiles of level 0; sets t->buf_w. */
+static int read_chunk_geometry(exr_context_t ctx, exr_stream *s, exr_layout *L, exr_target *t,
+                               const char *path, error *err)
+{
+    exr_result_t r;
+    L->tile_w = L->tile_h = L->lines = 0;
+    if (L->storage == EXR_STORAGE_TILED) {
+        if ((r = exr_get_tile_sizes(ctx, 0, 0, 0, &L->tile_w, &L->tile_h)) || L->tile_w < 1 ||
+            L->tile_h < 1)
+            return error_set(err, path, 0, "bad OpenEXR tile description: %s", exr_why(s, r));
+        t->buf_w = (int)(L->tile_w < L->data_w ? L->tile_w : L->data_w);
+        L->lines = (int32_t)(L->tile_h < L->data_h ? L->tile_h : L->data_h);
+        return 0;
+    }
+    if ((r = exr_get_scanlines_per_chunk(ctx, 0, &L->lines)) || L->lines < 1)
+        return error_set(err, path, 0, "bad OpenEXR compression block size: %s", exr_why(s, r));
+    t->buf_w = (int)L->data_w;
+    if (L->lines > L->data_h) L->lines = (int32_t)L->data_h;
+    return 0;
+}
+
+/* What the header claims must fit in the file (check_claims) and in the budget: the image
+ * (float RGB), our chunk buffer (the same) and the library's buffers for the largest chunk.
+ * On success *image_bytes and *scratch_bytes are charged to `mem`; on failure nothing is. */
+static int charge_claims(exr_context_t ctx, exr_stream *s, const exr_layout *L, const exr_target *t,
+                         budget *mem, double *image_bytes, double *scratch_bytes, const char *path,
+                         error *err)
+{
+    double largest_chunk;
+    *image_bytes = *scratch_bytes = 0;
+    if (check_claims(ctx, L->storage, L->comp, &L->dw, L->tile_w, L->tile_h, L->lines, s,
+                     &largest_chunk, path, err))
+        return -1;
+    long disp = L->disp_w * L->disp_h, data = L->data_w * L->data_h;
+    if (disp > data && disp > EXR_MAX_PADDING_PIXELS)
+        return error_set(err, path, 0,
+                         "display window %ld x %ld is far larger than the data "
+                         "window %ld x %ld (envtex pads a data window with at most %ld pixels "
+                         "of black)",
+                         L->disp_w, L->disp_h, L->data_w, L->data_h, EXR_MAX_PADDING_PIXELS);
+    double img = (double)L->disp_w * L->disp_h * IMAGE_TEXEL_BYTES;
+    double scratch = (double)t->buf_w * L->lines * IMAGE_TEXEL_BYTES + largest_chunk;
+    if (budget_charge(mem, img + scratch, path, 0, err,
+                      "%ld x %ld texels x %d bytes, and %.0f bytes to decode a chunk", L->disp_w,
+                      L->disp_h, IMAGE_TEXEL_BYTES, scratch))
+        return -1;
+    *image_bytes = img;
+    *scratch_bytes = scratch;
+    return 0;
+}
+
+/* Decode every chunk of part 0 into t->im, in file order. */
+static int decode_all(exr_context_t ctx, exr_stream *s, const exr_layout *L, exr_target *t,
+                      exr_decode_pipeline_t *dec, int *dec_ready, const char *path, error *err)
+{
+    exr_chunk_info_t ci;
+    exr_result_t r;
+    const exr_attr_box2i_t *dw = &L->dw;
+    if (L->storage == EXR_STORAGE_TILED) {
+        long ntx = (L->data_w + L->tile_w - 1) / L->tile_w;
+        long nty = (L->data_h + L->tile_h - 1) / L->tile_h;
+        for (long ty = 0; ty < nty; ty++)
+            for (long tx = 0; tx < ntx; tx++) {
+                r = exr_read_tile_chunk_info(ctx, 0, (int)tx, (int)ty, 0, 0, &ci);
+                if (r != EXR_ERR_SUCCESS)
+                    return error_set(err, path, 0, "bad OpenEXR tile (%ld, %ld): %s", tx, ty,
+                                     exr_why(s, r));
+                if (decode_chunk(ctx, &ci, (int)(dw->min.x + tx * L->tile_w),
+                                 (int)(dw->min.y + ty * L->tile_h), dec, dec_ready, t, s, path,
+                                 err))
+                    return -1;
+            }
+        return 0;
+    }
+    for (long y = dw->min.y; y <= dw->max.y; y += L->lines) {
+        r = exr_read_scanline_chunk_info(ctx, 0, (int)y, &ci);
+        if (r != EXR_ERR_SUCCESS)
+            return error_set(err, path, 0, "bad OpenEXR scanline block at y = %ld: %s", y,
+                             exr_why(s, r));
+        if (decode_chunk(ctx, &ci, dw->min.x, ci.start_y, dec, dec_ready, t, s, path, err))
+            return -1;
+    }
     return 0;
 }
 
@@ -304,133 +475,26 @@ int exrfile_read(const char *path, image *out, budget *mem, error *err)
     exr_context_t ctx = NULL;
     exr_decode_pipeline_t dec = EXR_DECODE_PIPELINE_INITIALIZER;
     exr_target t = {0};
+    exr_layout L;
     image im = {0};
-    exr_result_t r;
     double image_bytes = 0, scratch_bytes = 0; /* charged to the budget */
 
-    s.fd = infile_open(path, NULL, err);
-    if (s.fd < 0) return -1;
-    struct stat st;
-    if (fstat(s.fd, &st) != 0) {
-        error_set(err, path, 0, "cannot open: %s", strerror(errno));
+    if (open_for_read(path, &s, &ctx, err)) return -1;
+    if (read_header(ctx, &s, &L, &t, path, err) ||
+        read_chunk_geometry(ctx, &s, &L, &t, path, err) ||
+        charge_claims(ctx, &s, &L, &t, mem, &image_bytes, &scratch_bytes, path, err))
+        goto done;
+    if (image_alloc(&im, (int)L.disp_w, (int)L.disp_h, err)) {
+        error_prefix(err, "%s", path);
         goto done;
     }
-    s.size = (int64_t)st.st_size;
-
-    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
-    init.error_handler_fn = stream_on_error;
-    init.user_data = &s;
-    init.read_fn = stream_read;
-    init.size_fn = stream_size;
-    init.max_image_width = init.max_image_height = (int)IMAGE_MAX_SIDE;
-    init.max_tile_width = init.max_tile_height = (int)IMAGE_MAX_SIDE;
-    /* A damaged chunk table is an error, not something to rebuild by scanning the file. */
-    init.flags = EXR_CONTEXT_FLAG_DISABLE_CHUNK_RECONSTRUCTION;
-    r = exr_start_read(&ctx, path, &init);
-    if (r != EXR_ERR_SUCCESS) {
-        error_set(err, path, 0, "not a readable OpenEXR file: %s", exr_why(&s, r));
-        goto done;
-    }
-
-    exr_storage_t storage;
-    exr_compression_t comp;
-    const exr_attr_chlist_t *chans = NULL;
-    exr_attr_box2i_t dw;
-    if ((r = exr_get_storage(ctx, 0, &storage)) || (r = exr_get_compression(ctx, 0, &comp)) ||
-        (r = exr_get_channels(ctx, 0, &chans)) || (r = exr_get_data_window(ctx, 0, &dw)) ||
-        (r = exr_get_display_window(ctx, 0, &t.disp)) || !chans) {
-        error_set(err, path, 0, "OpenEXR header is incomplete: %s", exr_why(&s, r));
-        goto done;
-    }
-    if (storage != EXR_STORAGE_SCANLINE && storage != EXR_STORAGE_TILED) {
-        error_set(err, path, 0, "deep OpenEXR images are not supported");
-        goto done;
-    }
-    if (comp == EXR_COMPRESSION_DWAA || comp == EXR_COMPRESSION_DWAB) {
-        error_set(err, path, 0,
-                  "%s compression: OpenEXR 3.1's C API cannot decode DWAA/DWAB; re-save the "
-                  "file with ZIP compression (e.g. `oiiotool in.exr --compression zip -o "
-                  "out.exr`, or from any image editor)",
-                  comp == EXR_COMPRESSION_DWAA ? "DWAA" : "DWAB");
-        goto done;
-    }
-    if (pick_channels(chans, &t.pick, path, err)) goto done;
-
-    /* sizes in long so a hostile window cannot overflow before the check */
-    long disp_w = (long)t.disp.max.x - t.disp.min.x + 1, disp_h = (long)t.disp.max.y - t.disp.min.y + 1;
-    long data_w = (long)dw.max.x - dw.min.x + 1, data_h = (long)dw.max.y - dw.min.y + 1;
-    if (image_check_size(disp_w, disp_h, path, err)) { error_prefix(err, "display window"); goto done; }
-    if (image_check_size(data_w, data_h, path, err)) { error_prefix(err, "data window"); goto done; }
-
-    /* chunk geometry: scanline blocks of `lines` rows, or tiles of level 0 */
-    int32_t tile_w = 0, tile_h = 0, lines = 0;
-    if (storage == EXR_STORAGE_TILED) {
-        if ((r = exr_get_tile_sizes(ctx, 0, 0, 0, &tile_w, &tile_h)) || tile_w < 1 || tile_h < 1) {
-            error_set(err, path, 0, "bad OpenEXR tile description: %s", exr_why(&s, r));
-            goto done;
-        }
-        t.buf_w = (int)(tile_w < data_w ? tile_w : data_w);
-        lines = (int32_t)(tile_h < data_h ? tile_h : data_h);
-    } else {
-        if ((r = exr_get_scanlines_per_chunk(ctx, 0, &lines)) || lines < 1) {
-            error_set(err, path, 0, "bad OpenEXR compression block size: %s", exr_why(&s, r));
-            goto done;
-        }
-        t.buf_w = (int)data_w;
-        if (lines > data_h) lines = (int32_t)data_h;
-    }
-    double largest_chunk;
-    if (check_claims(ctx, storage, comp, &dw, tile_w, tile_h, lines, &s, &largest_chunk, path, err))
-        goto done;
-    if (disp_w * disp_h > data_w * data_h && disp_w * disp_h > EXR_MAX_PADDING_PIXELS) {
-        error_set(err, path, 0, "display window %ld x %ld is far larger than the data window %ld x %ld "
-                  "(envtex pads a data window with at most %ld pixels of black)",
-                  disp_w, disp_h, data_w, data_h, EXR_MAX_PADDING_PIXELS);
-        goto done;
-    }
-    /* the image (float RGB), our chunk buffer (the same) and the library's buffers for the
-     * largest chunk, as the header claims them */
-    image_bytes = (double)disp_w * disp_h * IMAGE_TEXEL_BYTES;
-    scratch_bytes = (double)t.buf_w * lines * IMAGE_TEXEL_BYTES + largest_chunk;
-    if (budget_charge(mem, image_bytes + scratch_bytes, path, 0, err,
-                      "%ld x %ld texels x %d bytes, and %.0f bytes to decode a chunk", disp_w,
-                      disp_h, IMAGE_TEXEL_BYTES, scratch_bytes)) {
-        image_bytes = scratch_bytes = 0; /* nothing charged */
-        goto done;
-    }
-    if (image_alloc(&im, (int)disp_w, (int)disp_h, err)) { error_prefix(err, "%s", path); goto done; }
     t.im = &im;
-    t.buf = malloc((size_t)t.buf_w * (size_t)lines * 3 * sizeof *t.buf);
+    t.buf = malloc((size_t)t.buf_w * (size_t)L.lines * 3 * sizeof *t.buf);
     if (!t.buf) {
-        error_set(err, path, 0, "out of memory for a %d x %d OpenEXR chunk", t.buf_w, (int)lines);
+        error_set(err, path, 0, "out of memory for a %d x %d OpenEXR chunk", t.buf_w, (int)L.lines);
         goto done;
     }
-
-    exr_chunk_info_t ci;
-    if (storage == EXR_STORAGE_TILED) {
-        long ntx = (data_w + tile_w - 1) / tile_w, nty = (data_h + tile_h - 1) / tile_h;
-        for (long ty = 0; ty < nty; ty++)
-            for (long tx = 0; tx < ntx; tx++) {
-                r = exr_read_tile_chunk_info(ctx, 0, (int)tx, (int)ty, 0, 0, &ci);
-                if (r != EXR_ERR_SUCCESS) {
-                    error_set(err, path, 0, "bad OpenEXR tile (%ld, %ld): %s", tx, ty, exr_why(&s, r));
-                    goto done;
-                }
-                if (decode_chunk(ctx, &ci, (int)(dw.min.x + tx * tile_w), (int)(dw.min.y + ty * tile_h),
-                                 &dec, &dec_ready, &t, &s, path, err))
-                    goto done;
-            }
-    } else {
-        for (long y = dw.min.y; y <= dw.max.y; y += lines) {
-            r = exr_read_scanline_chunk_info(ctx, 0, (int)y, &ci);
-            if (r != EXR_ERR_SUCCESS) {
-                error_set(err, path, 0, "bad OpenEXR scanline block at y = %ld: %s", y, exr_why(&s, r));
-                goto done;
-            }
-            if (decode_chunk(ctx, &ci, dw.min.x, ci.start_y, &dec, &dec_ready, &t, &s, path, err))
-                goto done;
-        }
-    }
+    if (decode_all(ctx, &s, &L, &t, &dec, &dec_ready, path, err)) goto done;
     *out = im;
     im.px = NULL;
     rc = 0;
@@ -467,14 +531,91 @@ static exr_result_t guarded_compress(exr_encode_pipeline_t *p)
     if (r == EXR_ERR_SUCCESS && p->compressed_bytes >= n) {
         /* stored uncompressed: the bytes written must be the raw ones */
         memcpy(p->packed_buffer, g->copy, n);
-        if (p->compressed_buffer && p->compressed_buffer != p->packed_buffer && p->compressed_alloc_size >= n)
+        if (p->compressed_buffer && p->compressed_buffer != p->packed_buffer &&
+            p->compressed_alloc_size >= n)
             memcpy(p->compressed_buffer, g->copy, n);
         p->compressed_bytes = n;
     }
     return r;
 }
 
+/* Set the envtex attributes of `at` that are known on part 0 (before the header is written). */
+static exr_result_t set_attrs(exr_context_t ctx, int part, const exrfile_attrs *at)
+{
+    exr_result_t r = EXR_ERR_SUCCESS;
+    char text[EXRFILE_TEXT_MAX];
+    if (!at) return r;
+    if (at->spp > 0) r = exr_attr_set_int(ctx, part, "envtex:spp", at->spp);
+    if (r == EXR_ERR_SUCCESS && at->has_seed) {
+        snprintf(text, sizeof text, "%llu", (unsigned long long)at->seed);
+        r = exr_attr_set_string(ctx, part, "envtex:seed", text);
+    }
+    if (r == EXR_ERR_SUCCESS && at->integrator[0]) {
+        snprintf(text, sizeof text, "%s", at->integrator);
+        r = exr_attr_set_string(ctx, part, "envtex:integrator", text);
+    }
+    if (r == EXR_ERR_SUCCESS && at->scene[0]) {
+        snprintf(text, sizeof text, "%s", at->scene);
+        r = exr_attr_set_string(ctx, part, "envtex:scene", text);
+    }
+    return r;
+}
+
+/* One scanline part "rgb": the required attributes, R, G, B of `ptype`, `at`, then the header. */
+static exr_result_t write_header(exr_context_t ctx, const image *im, exr_pixel_type_t ptype,
+                                 const exrfile_attrs *at, int *part)
+{
+    static const char *const names[3] = {"R", "G", "B"};
+    exr_result_t r = exr_add_part(ctx, "rgb", EXR_STORAGE_SCANLINE, part);
+    if (r == EXR_ERR_SUCCESS)
+        r = exr_initialize_required_attr_simple(ctx, *part, im->w, im->h, EXR_COMPRESSION_ZIP);
+    for (int k = 0; k < 3 && r == EXR_ERR_SUCCESS; k++)
+        r = exr_add_channel(ctx, *part, names[k], ptype, EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
+    if (r == EXR_ERR_SUCCESS) r = set_attrs(ctx, *part, at);
+    if (r == EXR_ERR_SUCCESS) r = exr_write_header(ctx);
+    return r;
+}
+
+/* Encode and write im's rows in blocks of `lines`, in increasing y (see raw_guard). */
+static exr_result_t write_chunks(exr_context_t ctx, int part, const image *im, int32_t lines,
+                                 raw_guard *guard, exr_encode_pipeline_t *enc, int *enc_ready)
+{
+    exr_result_t r = EXR_ERR_SUCCESS;
+    for (int y = 0; y < im->h && r == EXR_ERR_SUCCESS; y += lines) {
+        exr_chunk_info_t ci;
+        r = exr_write_scanline_chunk_info(ctx, part, y, &ci);
+        if (r == EXR_ERR_SUCCESS)
+            r = *enc_ready ? exr_encoding_update(ctx, part, &ci, enc)
+                           : exr_encoding_initialize(ctx, part, &ci, enc);
+        if (r != EXR_ERR_SUCCESS) return r;
+        *enc_ready = 1;
+        for (int c = 0; c < enc->channel_count; c++) {
+            exr_coding_channel_info_t *ch = &enc->channels[c];
+            int k = ch->channel_name[0] == 'R' ? 0 : ch->channel_name[0] == 'G' ? 1 : 2;
+            ch->encode_from_ptr = (const uint8_t *)(image_px(im, 0, y) + k);
+            ch->user_pixel_stride = 3 * (int32_t)sizeof(float);
+            ch->user_line_stride = 3 * (int32_t)sizeof(float) * im->w;
+            ch->user_data_type = EXR_PIXEL_FLOAT;
+            ch->user_bytes_per_element = (int16_t)sizeof(float);
+        }
+        if ((r = exr_encoding_choose_default_routines(ctx, part, enc))) return r;
+        if (enc->compress_fn) { /* see raw_guard */
+            guard->compress = enc->compress_fn;
+            enc->compress_fn = guarded_compress;
+            enc->encoding_user_data = guard;
+        }
+        r = exr_encoding_run(ctx, part, enc);
+    }
+    return r;
+}
+
 int exrfile_write(const char *path, const image *im, int half, error *err)
+{
+    return exrfile_write_attrs(path, im, half, NULL, err);
+}
+
+int exrfile_write_attrs(const char *path, const image *im, int half, const exrfile_attrs *at,
+                        error *err)
 {
     if (!im || !im->px || image_check_size(im->w, im->h, path, err))
         return error_set(err, path, 0, "cannot write an empty or invalid image");
@@ -483,32 +624,24 @@ int exrfile_write(const char *path, const image *im, int half, error *err)
     exr_context_t ctx = NULL;
     exr_encode_pipeline_t enc = EXR_ENCODE_PIPELINE_INITIALIZER;
     raw_guard guard = {NULL, NULL, 0};
-    int enc_ready = 0, rc = -1;
+    int enc_ready = 0, rc = -1, part = 0;
+    int32_t lines = 0;
     exr_result_t r;
 
     s.fd = fileio_tmp_open(path, tmp, err);
     if (s.fd < 0) return -1;
-
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
     init.error_handler_fn = stream_on_write_error; /* not stream_on_error: see `writing` */
     init.user_data = &s;
     init.write_fn = stream_write;
     writing = &s;
     r = exr_start_write(&ctx, path, EXR_WRITE_FILE_DIRECTLY, &init);
-    int part = 0;
-    if (r == EXR_ERR_SUCCESS) r = exr_add_part(ctx, "rgb", EXR_STORAGE_SCANLINE, &part);
     if (r == EXR_ERR_SUCCESS)
-        r = exr_initialize_required_attr_simple(ctx, part, im->w, im->h, EXR_COMPRESSION_ZIP);
-    exr_pixel_type_t ptype = half ? EXR_PIXEL_HALF : EXR_PIXEL_FLOAT;
-    static const char *const names[3] = {"R", "G", "B"};
-    for (int k = 0; k < 3 && r == EXR_ERR_SUCCESS; k++)
-        r = exr_add_channel(ctx, part, names[k], ptype, EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
-    if (r == EXR_ERR_SUCCESS) r = exr_write_header(ctx);
+        r = write_header(ctx, im, half ? EXR_PIXEL_HALF : EXR_PIXEL_FLOAT, at, &part);
     if (r != EXR_ERR_SUCCESS) {
         error_set(err, path, 0, "cannot write OpenEXR header: %s", exr_why(&s, r));
         goto done;
     }
-    int32_t lines = 0;
     if ((r = exr_get_scanlines_per_chunk(ctx, part, &lines)) || lines < 1) {
         error_set(err, path, 0, "cannot write OpenEXR: %s", exr_why(&s, r));
         goto done;
@@ -519,31 +652,7 @@ int exrfile_write(const char *path, const image *im, int half, error *err)
         error_set(err, path, 0, "out of memory writing OpenEXR");
         goto done;
     }
-    for (int y = 0; y < im->h; y += lines) {
-        exr_chunk_info_t ci;
-        r = exr_write_scanline_chunk_info(ctx, part, y, &ci);
-        if (r == EXR_ERR_SUCCESS)
-            r = enc_ready ? exr_encoding_update(ctx, part, &ci, &enc)
-                          : exr_encoding_initialize(ctx, part, &ci, &enc);
-        if (r != EXR_ERR_SUCCESS) goto fail;
-        enc_ready = 1;
-        for (int c = 0; c < enc.channel_count; c++) {
-            exr_coding_channel_info_t *ch = &enc.channels[c];
-            int k = ch->channel_name[0] == 'R' ? 0 : ch->channel_name[0] == 'G' ? 1 : 2;
-            ch->encode_from_ptr = (const uint8_t *)(image_px(im, 0, y) + k);
-            ch->user_pixel_stride = 3 * (int32_t)sizeof(float);
-            ch->user_line_stride = 3 * (int32_t)sizeof(float) * im->w;
-            ch->user_data_type = EXR_PIXEL_FLOAT;
-            ch->user_bytes_per_element = (int16_t)sizeof(float);
-        }
-        if ((r = exr_encoding_choose_default_routines(ctx, part, &enc))) goto fail;
-        if (enc.compress_fn) { /* see raw_guard */
-            guard.compress = enc.compress_fn;
-            enc.compress_fn = guarded_compress;
-            enc.encoding_user_data = &guard;
-        }
-        if ((r = exr_encoding_run(ctx, part, &enc))) goto fail;
-    }
+    if ((r = write_chunks(ctx, part, im, lines, &guard, &enc, &enc_ready))) goto fail;
     if (enc_ready) exr_encoding_destroy(ctx, &enc);
     enc_ready = 0;
     r = exr_finish(&ctx); /* writes the chunk offset table */
@@ -567,5 +676,60 @@ done:
     if (rc != 0 && tmp[0]) fileio_tmp_abandon(tmp);
     free(guard.copy);
     writing = NULL;
+    return rc;
+}
+
+/* ---- the envtex attributes ----------------------------------------------------------------- */
+
+/* A string attribute `name` into out (cut to `size` - 1 bytes): 0 present, 1 absent, -1 error. */
+static int get_text(exr_context_t ctx, const char *name, char *out, size_t size)
+{
+    int32_t len = 0;
+    const char *str = NULL;
+    exr_result_t r = exr_attr_get_string(ctx, 0, name, &len, &str);
+    if (r == EXR_ERR_NO_ATTR_BY_NAME) return 1;
+    if (r != EXR_ERR_SUCCESS || !str || len < 0) return -1;
+    size_t n = (size_t)len < size - 1 ? (size_t)len : size - 1;
+    memcpy(out, str, n);
+    out[n] = '\0';
+    return 0;
+}
+
+/* The attributes themselves, from a context open on the file. */
+static int read_attrs(exr_context_t ctx, exrfile_attrs *at, const char *path, error *err)
+{
+    int32_t spp = 0;
+    exr_result_t r = exr_attr_get_int(ctx, 0, "envtex:spp", &spp);
+    if (r == EXR_ERR_SUCCESS && spp < 1)
+        return error_set(err, path, 0, "envtex:spp is %d, not a sample count >= 1", (int)spp);
+    if (r != EXR_ERR_SUCCESS && r != EXR_ERR_NO_ATTR_BY_NAME)
+        return error_set(err, path, 0, "envtex:spp is not an int attribute");
+    at->spp = r == EXR_ERR_SUCCESS ? (int)spp : 0;
+    char seed[32], *end = NULL;
+    int got = get_text(ctx, "envtex:seed", seed, sizeof seed);
+    if (got == 0) {
+        errno = 0;
+        unsigned long long v = strtoull(seed, &end, 10);
+        if (errno || end == seed || *end || seed[0] == '-')
+            return error_set(err, path, 0, "envtex:seed '%s' is not a whole number", seed);
+        at->seed = (uint64_t)v;
+        at->has_seed = 1;
+    }
+    if (got < 0 || get_text(ctx, "envtex:integrator", at->integrator, sizeof at->integrator) < 0 ||
+        get_text(ctx, "envtex:scene", at->scene, sizeof at->scene) < 0)
+        return error_set(err, path, 0, "an envtex attribute is not a string");
+    return 0;
+}
+
+int exrfile_read_attrs(const char *path, exrfile_attrs *at, error *err)
+{
+    memset(at, 0, sizeof *at);
+    exr_stream s = {.fd = -1, .size = 0, .msg = ""};
+    exr_context_t ctx = NULL;
+    if (open_for_read(path, &s, &ctx, err)) return -1;
+    int rc = read_attrs(ctx, at, path, err);
+    if (rc) memset(at, 0, sizeof *at);
+    exr_finish(&ctx);
+    close(s.fd);
     return rc;
 }

@@ -90,11 +90,12 @@ static imageio_format format_of_extension(const char *path)
 
 int imageio_can_write(const char *path) { return format_of_extension(path) != IMAGEIO_UNKNOWN; }
 
-int imageio_write_as(const char *path, imageio_format format, const image *im,
-                     const tonemap_params *tm, error *err)
+/* imageio_write_as, with `at` in the header of an OpenEXR file (NULL: none) */
+static int write_as(const char *path, imageio_format format, const image *im,
+                    const tonemap_params *tm, const exrfile_attrs *at, error *err)
 {
     switch (format != IMAGEIO_UNKNOWN ? format : format_of_extension(path)) {
-    case IMAGEIO_EXR: return exrfile_write(path, im, 0, err);
+    case IMAGEIO_EXR: return exrfile_write_attrs(path, im, 0, at, err);
     case IMAGEIO_PNG: return pngfile_write(path, im, tm, err);
     case IMAGEIO_PFM: return pfm_write(path, im, err);
     case IMAGEIO_RGBE: return rgbe_write(path, im, err);
@@ -103,6 +104,12 @@ int imageio_write_as(const char *path, imageio_format format, const image *im,
                          "cannot tell the image format from the name; use .exr, .png, "
                          ".pfm or .hdr");
     }
+}
+
+int imageio_write_as(const char *path, imageio_format format, const image *im,
+                     const tonemap_params *tm, error *err)
+{
+    return write_as(path, format, im, tm, NULL, err);
 }
 
 int imageio_write(const char *path, const image *im, const tonemap_params *tm, error *err)
@@ -115,13 +122,20 @@ int imageio_write(const char *path, const image *im, const tonemap_params *tm, e
 int imageio_write_set(int n, const char *const *paths, const image *const *images,
                       const tonemap_params *const *tms, const imageio_format *formats, error *err)
 {
+    return imageio_write_set_attrs(n, paths, images, tms, formats, NULL, err);
+}
+
+int imageio_write_set_attrs(int n, const char *const *paths, const image *const *images,
+                            const tonemap_params *const *tms, const imageio_format *formats,
+                            const exrfile_attrs *at, error *err)
+{
     assert(n >= 1 && n <= IMAGEIO_SET_MAX);
     imageio_format fmt[IMAGEIO_SET_MAX]; /* decided by the targets' names, not the temporaries' */
     for (int k = 0; k < n; k++)
         fmt[k] =
             formats && formats[k] != IMAGEIO_UNKNOWN ? formats[k] : format_of_extension(paths[k]);
     if (n == 1) /* atomic already */
-        return imageio_write_as(paths[0], fmt[0], images[0], tms ? tms[0] : NULL, err);
+        return write_as(paths[0], fmt[0], images[0], tms ? tms[0] : NULL, at, err);
     char part[IMAGEIO_SET_MAX][ERROR_FILE_MAX], tag[32];
     snprintf(tag, sizeof tag, ".partial-%ld", (long)getpid());
     for (int k = 0; k < n; k++) { /* "sky_px.exr" -> "sky_px.partial-PID.exr": same format */
@@ -138,7 +152,7 @@ int imageio_write_set(int n, const char *const *paths, const image *const *image
     }
     int done = 0;
     for (; done < n; done++)
-        if (imageio_write_as(part[done], fmt[done], images[done], tms ? tms[done] : NULL, err))
+        if (write_as(part[done], fmt[done], images[done], tms ? tms[done] : NULL, at, err))
             break;
     if (done < n) {
         for (int k = 0; k < done; k++) unlink(part[k]);

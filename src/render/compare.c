@@ -1,4 +1,5 @@
-/* compare.c - image metrics, thresholds and difference pictures (see include/envtex/render/compare.h). */
+/* compare.c - image metrics, thresholds and difference pictures (see
+ * include/envtex/render/compare.h). */
 #include "envtex/render/compare.h"
 
 #include <math.h>
@@ -20,7 +21,10 @@ static int same_size(const image *a, const image *ref, error *err)
 
 /* The largest `cap` values of a stream, kept in a min-heap: v[0] is the least of them, the one
  * a larger newcomer replaces.  O(log cap) a value, no allocation after the first. */
-typedef struct largest { double *v; long n, cap; } largest;
+typedef struct largest {
+    double *v;
+    long n, cap;
+} largest;
 
 static void largest_sift_down(largest *t, long i)
 {
@@ -86,8 +90,9 @@ int compare_metrics(const image *a, const image *ref, compare_result *out, error
             double rel_px = 0.0;
             for (int k = 0; k < 3; k++) {
                 double d = (double)p[k] - (double)q[k];
-                se += d * d;                                                        /* (a - ref)^2 */
-                rel_px += d * d / ((double)q[k] * q[k] + COMPARE_RELMSE_EPSILON); /* / (ref^2 + eps) */
+                se += d * d; /* (a - ref)^2 */
+                rel_px +=
+                    d * d / ((double)q[k] * q[k] + COMPARE_RELMSE_EPSILON); /* / (ref^2 + eps) */
                 if (fabs(d) > max_abs) {
                     max_abs = fabs(d);
                     out->max_x = x;
@@ -108,7 +113,8 @@ int compare_metrics(const image *a, const image *ref, compare_result *out, error
     double mse = se / (3.0 * (double)used);
     out->rmse = sqrt(mse);
     out->relmse = rel / (3.0 * (double)used);
-    out->relmse_trim = fmax(rel - rel_top, 0.0) / (3.0 * (double)(used - trim)); /* rounding: >= 0 */
+    out->relmse_trim =
+        fmax(rel - rel_top, 0.0) / (3.0 * (double)(used - trim)); /* rounding: >= 0 */
     out->max_abs = max_abs;
     out->psnr = mse > 0.0 ? -10.0 * log10(mse) : INFINITY; /* 10 log10(peak^2 / mse), peak 1 */
     return 0;
@@ -170,13 +176,15 @@ int compare_thresholds(const image *a, const image *ref, const compare_threshold
     size_t at = 0;
     int n;
     if (bad_percent) {
-        n = snprintf(v->why + at, sizeof v->why - at, "%ld of %ld pixels (%.3g%% > %g%%) differ by more than %g; ",
-                     v->failed, v->pixels, v->failed_percent, p->fail_percent, p->fail_thresh);
+        n = snprintf(v->why + at, sizeof v->why - at,
+                     "%ld of %ld pixels (%.3g%% > %g%%) differ by more than %g; ", v->failed,
+                     v->pixels, v->failed_percent, p->fail_percent, p->fail_thresh);
         if (n > 0 && (size_t)n < sizeof v->why - at) at += (size_t)n;
     }
     if (v->hard_failed) {
-        n = snprintf(v->why + at, sizeof v->why - at, "%ld pixels differ by more than the hard limit %g; ",
-                     v->hard_failed, p->hard_thresh);
+        n = snprintf(v->why + at, sizeof v->why - at,
+                     "%ld pixels differ by more than the hard limit %g; ", v->hard_failed,
+                     p->hard_thresh);
         if (n > 0 && (size_t)n < sizeof v->why - at) at += (size_t)n;
     }
     if (v->nonfinite) {
@@ -207,13 +215,16 @@ int compare_diff_image(const image *a, const image *ref, image *out, error *err)
             const float *pa = image_px(a, x, y), *pr = image_px(ref, x, y);
             float *o = image_px(out, x, y);
             if (!image_px_is_finite(pa) || !image_px_is_finite(pr)) {
-                for (int k = 0; k < 3; k++) o[k] = (float)tonemap_srgb_decode(diff_nonfinite[k] / 255.0);
+                for (int k = 0; k < 3; k++)
+                    o[k] = (float)tonemap_srgb_decode(diff_nonfinite[k] / 255.0);
                 continue;
             }
             double d = 0.0;
             for (int k = 0; k < 3; k++) d = fmax(d, fabs((double)pa[k] - (double)pr[k]));
             /* t in [0, 4]: log10(d / dmin), clamped; d = 0 is below dmin, so no log of 0 */
-            double t = d <= COMPARE_DIFF_MIN ? 0.0 : d >= COMPARE_DIFF_MAX ? decades : log10(d / COMPARE_DIFF_MIN);
+            double t = d <= COMPARE_DIFF_MIN   ? 0.0
+                       : d >= COMPARE_DIFF_MAX ? decades
+                                               : log10(d / COMPARE_DIFF_MIN);
             int i = (int)t;
             if (i > 3) i = 3;
             double f = t - i; /* between stop i and i + 1 */

@@ -11,6 +11,7 @@ gradetest_params gradetest_defaults(void)
     p.max_fail_fraction = 0.005;
     p.global_z = 5;
     p.img_spp = p.ref_spp = 1;
+    p.var_spp = 0;
     p.rel_floor = 1e-4;
     return p;
 }
@@ -24,8 +25,10 @@ double gradetest_z_for_alpha(double a)
     double lo = 0, hi = 40;
     for (int i = 0; i < 200; i++) {
         double m = 0.5 * (lo + hi);
-        if (erfc(m / sqrt(2.0)) > a) lo = m;
-        else hi = m;
+        if (erfc(m / sqrt(2.0)) > a)
+            lo = m;
+        else
+            hi = m;
     }
     return 0.5 * (lo + hi);
 }
@@ -36,23 +39,28 @@ int gradetest_run(const image *img, const image *ref, const image *var, const gr
     memset(out, 0, sizeof *out);
     if (fail_map) fail_map->w = fail_map->h = 0, fail_map->px = NULL;
     if (img->w != ref->w || img->h != ref->h || var->w != ref->w || var->h != ref->h)
-        return error_set(err, NULL, 0, "sizes differ: image %dx%d, reference %dx%d, variance %dx%d", img->w,
-                         img->h, ref->w, ref->h, var->w, var->h);
-    if (!(p->img_spp > 0) || !(p->ref_spp > 0))
+        return error_set(err, NULL, 0, "sizes differ: image %dx%d, reference %dx%d, variance %dx%d",
+                         img->w, img->h, ref->w, ref->h, var->w, var->h);
+    if (!(p->img_spp > 0) || !(p->ref_spp > 0) || !(p->var_spp >= 0))
         return error_set(err, NULL, 0, "sample counts must be > 0");
     if (fail_map && image_alloc(fail_map, img->w, img->h, err)) return -1;
     long n = (long)img->w * img->h;
     out->pixels = n;
     out->z_threshold = gradetest_z_for_alpha(p->alpha / (double)n); /* Bonferroni: alpha / N */
-    double ratio = p->ref_spp / p->img_spp;
+    /* V var_spp is the variance of one sample; var of (img - ref) = V (var_spp / img_spp +
+     * var_spp / ref_spp), which with var_spp = ref_spp is V (ref_spp / img_spp + 1) */
+    double var_spp = p->var_spp > 0 ? p->var_spp : p->ref_spp;
+    double ratio = var_spp / p->img_spp + var_spp / p->ref_spp;
     double sum_diff = 0, sum_var = 0; /* the global test: the image total */
     for (int y = 0; y < img->h; y++)
         for (int x = 0; x < img->w; x++) {
             double v = rgb_avg(image_get(var, x, y)), r = rgb_avg(image_get(ref, x, y));
             if (!isfinite(r) || !isfinite(v) || v < 0) {
                 if (fail_map) image_free(fail_map);
-                return error_set(err, NULL, 0, "reference or variance pixel (%d, %d) is not a finite, "
-                                 "non-negative number", x, y);
+                return error_set(err, NULL, 0,
+                                 "reference or variance pixel (%d, %d) is not a finite, "
+                                 "non-negative number",
+                                 x, y);
             }
         }
     for (int y = 0; y < img->h; y++)
@@ -64,7 +72,8 @@ int gradetest_run(const image *img, const image *ref, const image *var, const gr
             double v = 0;
             for (int j = y - 1; j <= y + 1; j++)
                 for (int i = x - 1; i <= x + 1; i++)
-                    if (i >= 0 && j >= 0 && i < img->w && j < img->h) v = fmax(v, rgb_avg(image_get(var, i, j)));
+                    if (i >= 0 && j >= 0 && i < img->w && j < img->h)
+                        v = fmax(v, rgb_avg(image_get(var, i, j)));
             double v0 = rgb_avg(image_get(var, x, y));
             rgb mark = rgb_gray(0.2);
             if (!isfinite(a)) {
@@ -72,11 +81,11 @@ int gradetest_run(const image *img, const image *ref, const image *var, const gr
                 out->failed++;
                 mark = rgb_make(1, 0, 1);
             } else {
-                /* var of (img - ref) = VAR ratio + VAR, plus the rounding floor */
+                /* var of (img - ref), plus the rounding floor */
                 double floor_sd = p->rel_floor * fmax(fabs(r), 1e-3);
-                double z = (a - r) / sqrt(v * (ratio + 1) + floor_sd * floor_sd);
+                double z = (a - r) / sqrt(v * ratio + floor_sd * floor_sd);
                 sum_diff += a - r;
-                sum_var += v0 * (ratio + 1) + floor_sd * floor_sd;
+                sum_var += v0 * ratio + floor_sd * floor_sd;
                 if (fabs(z) > out->z_threshold) {
                     out->failed++;
                     mark = z > 0 ? rgb_make(1, 0, 0) : rgb_make(0, 0.3, 1);

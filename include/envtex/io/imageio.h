@@ -15,6 +15,7 @@
 #include "envtex/core/budget.h"
 #include "envtex/core/error.h"
 #include "envtex/core/image.h"
+#include "envtex/io/exrfile.h"
 #include "envtex/io/tonemap.h"
 
 /* An image into *out (linear RGB; grey replicated, alpha dropped), owning no pixels before;
@@ -41,6 +42,12 @@ int imageio_write_as(const char *path, imageio_format format, const image *im,
 #define IMAGEIO_SET_MAX 6
 int imageio_write_set(int n, const char *const *paths, const image *const *images,
                       const tonemap_params *const *tms, const imageio_format *formats, error *err);
+
+/* imageio_write_set with the attributes `at` (exrfile.h) in the header of each OpenEXR file of
+ * the set; other formats have no place for them.  at may be NULL: imageio_write_set. */
+int imageio_write_set_attrs(int n, const char *const *paths, const image *const *images,
+                            const tonemap_params *const *tms, const imageio_format *formats,
+                            const exrfile_attrs *at, error *err);
 
 /* 1 if imageio_write knows the extension of `path`, else 0. */
 int imageio_can_write(const char *path);

@@ -5,11 +5,12 @@
  * z-test of the student's mean against the reference mean, knowing the variance of the mean:
  *
  *   z = (img - ref) / sqrt(var_img + var_ref + floor^2)     per pixel, on the channel average
- *   var_img = V * ref_spp / img_spp      (the same estimator with a different sample count)
- *   var_ref = V                          (the reference's own variance of the mean)
+ *   var_img = V * var_spp / img_spp      (the same estimator at the image's sample count)
+ *   var_ref = V * var_spp / ref_spp      (and at the reference's)
  *
- * VAR is what `envtex render --variance` writes: the per-pixel sample variance over spp
- * divided by spp; V is its largest value in the pixel's 3 x 3 neighbourhood (an estimate from
+ * VAR is what `envtex render --variance` writes: the per-pixel sample variance of a render of
+ * var_spp samples divided by var_spp (usually the reference's render, var_spp = ref_spp);
+ * V is its largest value in the pixel's 3 x 3 neighbourhood (an estimate from
  * few samples is 0 wherever they happened to agree, e.g. at an object's edge).  Two-sided
  * p-values are compared with alpha / N (Bonferroni over the N pixels); the render passes if at
  * most `max_fail_fraction` of the pixels fail (variance estimates are themselves noisy, and
@@ -22,7 +23,7 @@
  *
  *     gradetest_params p = gradetest_defaults();
  *     gradetest_result r;
- *     if (gradetest_run(&img, &ref, &var, &p, &r, NULL, &err)) ...   // sizes differ, NaN variance...
+ *     if (gradetest_run(&img, &ref, &var, &p, &r, NULL, &err)) ...   // sizes differ, ...
  *     puts(r.pass ? "PASS" : "FAIL");
  */
 #ifndef ENVTEX_GRADETEST_H
@@ -35,7 +36,8 @@ typedef struct gradetest_params {
     double alpha;             /* family-wise significance, default 0.01 */
     double max_fail_fraction; /* pixels allowed to fail, default 0.005 (0.5%) */
     double global_z;          /* bound on |Z| of the image total, default 5 */
-    double img_spp, ref_spp;  /* sample counts (only their ratio matters); default equal */
+    double img_spp, ref_spp;  /* sample counts (only their ratios matter); default equal */
+    double var_spp;           /* VAR's render's sample count; 0 (default): VAR is REF's */
     /* Absolute floor added to the standard deviation so a pixel of zero variance (a constant
      * background) tolerates float rounding, relative to the reference value: 1e-4. */
     double rel_floor;
@@ -56,8 +58,9 @@ typedef struct gradetest_result {
 } gradetest_result;
 
 /* Run the test: 0 with the verdict in *out (pass or fail), or -1 with *err set when it cannot
- * run (sizes differ, a sample count <= 0, a reference or variance pixel whose channel average is
- * not finite or is negative, out of memory; fail_map then holds nothing).  `fail_map` (may be
+ * run (sizes differ, a sample count <= 0 (var_spp < 0), a reference or variance pixel whose
+ * channel average is not finite or is negative, out of memory; fail_map then holds nothing).
+ * `fail_map` (may be
  * NULL) receives a w x h image: red where a pixel failed with img too bright, blue where too
  * dark, magenta where img is NaN or Inf, grey elsewhere (allocated; free with image_free). */
 int gradetest_run(const image *img, const image *ref, const image *var, const gradetest_params *p,

@@ -66,6 +66,9 @@ typedef struct tchan {
     const void *data;      /* data-window sized, planar, row-major */
 } tchan;
 
+/* When set, write_test_exr calls it on the part before writing the header (extra attributes). */
+static exr_result_t (*test_header_hook)(exr_context_t ctx, int part);
+
 static exr_result_t write_test_exr(const char *path, int tiled, exr_compression_t comp,
                                    exr_attr_box2i_t disp, exr_attr_box2i_t dw, const tchan *ch,
                                    int nch)
@@ -83,6 +86,7 @@ static exr_result_t write_test_exr(const char *path, int tiled, exr_compression_
     if (!r && tiled) r = exr_set_tile_descriptor(ctx, part, 16, 16, EXR_TILE_ONE_LEVEL, EXR_TILE_ROUND_DOWN);
     for (int c = 0; c < nch && !r; c++)
         r = exr_add_channel(ctx, part, ch[c].name, ch[c].type, EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
+    if (!r && test_header_hook) r = test_header_hook(ctx, part);
     if (!r) r = exr_write_header(ctx);
     int dww = dw.max.x - dw.min.x + 1, dwh = dw.max.y - dw.min.y + 1;
     int32_t lines = 16;
@@ -623,6 +627,109 @@ START_TEST(test_failed_exr_write_leaves_the_old_file_byte_identical)
 }
 END_TEST
 
+/* ---- the envtex attributes: what a render records about itself ---------------------------- */
+
+START_TEST(test_render_attributes_roundtrip_through_the_header)
+{
+    make_dir();
+    image im = {0}, back = {0};
+    error err = {0};
+    fill_test_image(&im, 13, 7);
+    exrfile_attrs at = {.spp = 1024, .has_seed = 1, .seed = 0xfedcba9876543210ull};
+    strcpy(at.integrator, "pathtracer");
+    strcpy(at.scene, "data/scenes/lecture/mirror ball.test");
+    ck_assert_msg(exrfile_write_attrs(in_dir("a.exr"), &im, 0, &at, &err) == 0, "%s", err.msg);
+    exrfile_attrs got;
+    memset(&got, 0x5a, sizeof got);
+    ck_assert_msg(exrfile_read_attrs(in_dir("a.exr"), &got, &err) == 0, "%s", err.msg);
+    ck_assert_int_eq(got.spp, 1024);
+    ck_assert_int_eq(got.has_seed, 1);
+    ck_assert(got.seed == 0xfedcba9876543210ull); /* all 64 bits: a string, not an int */
+    ck_assert_str_eq(got.integrator, "pathtracer");
+    ck_assert_str_eq(got.scene, "data/scenes/lecture/mirror ball.test");
+    /* the pixels are those exrfile_write writes */
+    ck_assert_msg(exrfile_read(in_dir("a.exr"), &back, NULL, &err) == 0, "%s", err.msg);
+    ck_assert_int_eq(memcmp(back.px, im.px, sizeof(float) * 3 * 13 * 7), 0);
+    image_free(&back);
+    image_free(&im);
+    remove_dir();
+}
+END_TEST
+
+START_TEST(test_a_file_without_attributes_reads_them_as_unknown)
+{
+    make_dir();
+    image im = {0};
+    error err = {0};
+    fill_test_image(&im, 4, 3);
+    ck_assert_int_eq(exrfile_write(in_dir("plain.exr"), &im, 1, &err), 0);
+    exrfile_attrs got;
+    ck_assert_msg(exrfile_read_attrs(in_dir("plain.exr"), &got, &err) == 0, "%s", err.msg);
+    ck_assert_int_eq(got.spp, 0);
+    ck_assert_int_eq(got.has_seed, 0);
+    ck_assert_str_eq(got.integrator, "");
+    ck_assert_str_eq(got.scene, "");
+    /* only the known fields are written: spp alone */
+    exrfile_attrs only = {.spp = 7};
+    ck_assert_int_eq(exrfile_write_attrs(in_dir("spp.exr"), &im, 1, &only, &err), 0);
+    ck_assert_int_eq(exrfile_read_attrs(in_dir("spp.exr"), &got, &err), 0);
+    ck_assert_int_eq(got.spp, 7);
+    ck_assert_int_eq(got.has_seed, 0);
+    ck_assert_str_eq(got.scene, "");
+    /* not an OpenEXR file: an error naming it */
+    FILE *f = fopen(in_dir("not.exr"), "wb");
+    ck_assert_ptr_nonnull(f);
+    fputs("PF\n1 1\n-1\n", f);
+    fclose(f);
+    ck_assert_int_eq(exrfile_read_attrs(in_dir("not.exr"), &got, &err), -1);
+    ck_assert_str_eq(err.file, in_dir("not.exr"));
+    ck_assert_int_eq(got.spp, 0);
+    image_free(&im);
+    remove_dir();
+}
+END_TEST
+
+static exr_result_t spp_as_float(exr_context_t ctx, int part)
+{
+    return exr_attr_set_float(ctx, part, "envtex:spp", 64.0f);
+}
+static exr_result_t spp_zero(exr_context_t ctx, int part)
+{
+    return exr_attr_set_int(ctx, part, "envtex:spp", 0);
+}
+static exr_result_t seed_not_a_number(exr_context_t ctx, int part)
+{
+    exr_result_t r = exr_attr_set_int(ctx, part, "envtex:spp", 16);
+    return r ? r : exr_attr_set_string(ctx, part, "envtex:seed", "-3");
+}
+
+START_TEST(test_an_attribute_that_is_not_a_sample_count_is_refused)
+{
+    make_dir();
+    float *v = planar(2, 2, 0);
+    tchan ch[3] = {{"R", EXR_PIXEL_FLOAT, v}, {"G", EXR_PIXEL_FLOAT, v}, {"B", EXR_PIXEL_FLOAT, v}};
+    exr_result_t (*hooks[3])(exr_context_t, int) = {spp_as_float, spp_zero, seed_not_a_number};
+    const char *why[3] = {"not an int", "not a sample count", "not a whole number"};
+    for (int k = 0; k < 3; k++) {
+        test_header_hook = hooks[k];
+        exr_result_t r = write_test_exr(in_dir("t.exr"), 0, EXR_COMPRESSION_NONE, box(0, 0, 1, 1),
+                                        box(0, 0, 1, 1), ch, 3);
+        test_header_hook = NULL;
+        ck_assert_int_eq(r, 0);
+        exrfile_attrs got;
+        error err = {0};
+        ck_assert_int_eq(exrfile_read_attrs(in_dir("t.exr"), &got, &err), -1);
+        ck_assert_msg(strstr(err.msg, why[k]), "case %d: %s", k, err.msg);
+        ck_assert_int_eq(got.spp, 0);
+        image im = {0}; /* the pixels still read */
+        ck_assert_msg(exrfile_read(in_dir("t.exr"), &im, NULL, &err) == 0, "%s", err.msg);
+        image_free(&im);
+    }
+    free(v);
+    remove_dir();
+}
+END_TEST
+
 Suite *exrfile_suite(void)
 {
     Suite *s = suite_create("exrfile");
@@ -644,6 +751,9 @@ Suite *exrfile_suite(void)
     tcase_add_test(tc, test_corrupted_exr_bytes_never_crash);
     tcase_add_test(tc, test_missing_files_and_folders_are_clear_errors);
     tcase_add_test(tc, test_failed_exr_write_leaves_the_old_file_byte_identical);
+    tcase_add_test(tc, test_render_attributes_roundtrip_through_the_header);
+    tcase_add_test(tc, test_a_file_without_attributes_reads_them_as_unknown);
+    tcase_add_test(tc, test_an_attribute_that_is_not_a_sample_count_is_refused);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -239,6 +239,35 @@ START_TEST(test_gradetest_pixel_z_uses_both_variances_scaled_by_the_spp_ratio)
 }
 END_TEST
 
+/* A VAR of var_spp samples (the image's own --variance, not the reference's): V var_spp is the
+ * variance of one sample, so var of (img - ref) = V (var_spp / img_spp + var_spp / ref_spp). */
+START_TEST(test_gradetest_variance_of_another_render_is_scaled_by_its_own_spp)
+{
+    image img, ref, var;
+    synthetic(1.0, 0.01, &img, &ref, &var);
+    gradetest_params p = gradetest_defaults();
+    p.img_spp = 64;
+    p.ref_spp = 1024;
+    p.var_spp = 64; /* VAR is the image's: var_img = V, var_ref = V / 16 */
+    p.global_z = 1e9;
+    double thr = gradetest_z_for_alpha(p.alpha / (SW * SH));
+    double floor_sd = p.rel_floor * 1.0;
+    double sd = sqrt(0.01 * (1 + 1.0 / 16) + floor_sd * floor_sd);
+    image_set(&img, 3, 5, rgb_gray(1.0 + 0.999 * thr * sd));
+    ck_assert_int_eq(run_ok(&img, &ref, &var, &p, NULL).failed, 0);
+    image_set(&img, 3, 5, rgb_gray(1.0 + 1.001 * thr * sd));
+    ck_assert_int_eq(run_ok(&img, &ref, &var, &p, NULL).failed, 1);
+    /* var_spp 0 is the reference's: V (1024 / 64 + 1), far wider, so the same pixel passes */
+    p.var_spp = 0;
+    ck_assert_int_eq(run_ok(&img, &ref, &var, &p, NULL).failed, 0);
+    p.var_spp = -1;
+    gradetest_result r;
+    error err = {0};
+    ck_assert_int_eq(gradetest_run(&img, &ref, &var, &p, &r, NULL, &err), -1);
+    free3(&img, &ref, &var);
+}
+END_TEST
+
 /* Where the variance is 0 (a constant background) only the floor rel_floor max(|ref|, 1e-3)
  * stands between float rounding and a failure, including where the reference is black. */
 START_TEST(test_gradetest_zero_variance_pixels_get_the_relative_floor)
@@ -404,6 +433,7 @@ static Suite *gradetest_suite(void)
     tcase_add_test(tc, test_gradetest_fails_nan_pixels_and_refuses_mismatched_sizes);
     tcase_add_test(tc, test_gradetest_z_threshold_inverts_the_normal_tail);
     tcase_add_test(tc, test_gradetest_pixel_z_uses_both_variances_scaled_by_the_spp_ratio);
+    tcase_add_test(tc, test_gradetest_variance_of_another_render_is_scaled_by_its_own_spp);
     tcase_add_test(tc, test_gradetest_zero_variance_pixels_get_the_relative_floor);
     tcase_add_test(tc, test_gradetest_pixel_variance_is_the_neighbourhood_largest);
     tcase_add_test(tc, test_gradetest_image_total_catches_a_thin_bias_with_own_variances);
