@@ -73,8 +73,8 @@ rgb analyticdirect_radiance_diff(integrator *it, ray r, const ray_diff *rd, rng 
     (void)g;
     scene_hit sh;
     integrator_intersect_diff(it, &r, rd, &sh); /* the footprint filters kd and emission maps */
-    if (sh.kind == 0) return envmap_radiance(&it->env, r.d);
-    if (sh.kind == 2) return lights_quad_radiance(&it->ls, sh.light, r.d);
+    if (sh.kind == SCENE_HIT_NOTHING) return envmap_radiance(&it->env, r.d);
+    if (sh.kind == SCENE_HIT_LIGHT) return lights_quad_radiance(&it->ls, sh.light, r.d);
     const surface *s = &sh.s;
     rgb L = s->emission;
     for (int i = 0; i < it->sc->n_lights; i++) {

@@ -113,21 +113,21 @@ void integrator_intersect_diff(integrator *it, const ray *r, const ray_diff *rd,
 {
     it->rays++;
     ray rr = *r;
-    out->kind = 0;
+    out->kind = SCENE_HIT_NOTHING;
     if (bvh_intersect(it->accel, &rr, &out->h)) {
-        out->kind = 1;
+        out->kind = SCENE_HIT_GEOMETRY;
         rr.tmax = out->h.t;
     }
     int k;
     double t;
     /* (n_quads tested here: a scene without quad lights pays no call a ray) */
     if (it->has_lights && it->ls.n_quads > 0 && lights_intersect_quad(&it->ls, &rr, &k, &t)) {
-        out->kind = 2;
+        out->kind = SCENE_HIT_LIGHT;
         out->light = k;
         out->t = t;
         return;
     }
-    if (out->kind != 1) return;
+    if (out->kind != SCENE_HIT_GEOMETRY) return;
     /* the shading frame, turned towards the ray's origin (two-sided surfaces) */
     const hit *h = &out->h;
     surface *s = &out->s;

@@ -27,7 +27,7 @@ rgb pathtracer_radiance_diff(integrator *it, ray r, const ray_diff *rd0, rng *g)
         /* light found by following the path: counted unless next-event estimation has
          * already counted it (nee on), or weighted against it (mis) */
         int counts = last_delta || nee == NEE_OFF; /* NEE never samples from a delta bounce */
-        if (sh.kind == 0) {
+        if (sh.kind == SCENE_HIT_NOTHING) {
             rgb Le;
             if (specular_chain) {
                 Le = bounce > 0 && sc->envmiss == ENVMISS_BLACK ? rgb_gray(0) : envmap_radiance(&it->env, r.d);
@@ -49,7 +49,7 @@ rgb pathtracer_radiance_diff(integrator *it, ray r, const ray_diff *rd0, rng *g)
             }
             return rgb_fma(L, beta, Le);
         }
-        if (sh.kind == 2) {
+        if (sh.kind == SCENE_HIT_LIGHT) {
             rgb Le = lights_quad_radiance(&it->ls, sh.light, r.d);
             if (!counts) {
                 if (nee == NEE_MIS) {

@@ -64,8 +64,15 @@ void integrator_free(integrator *it);
 
 /* ---- shared by the integrators ---------------------------------------------------------- */
 
+/* What a ray met first. */
+typedef enum scene_hit_kind {
+    SCENE_HIT_NOTHING,  /* the ray escaped: the environment */
+    SCENE_HIT_GEOMETRY, /* h and s valid */
+    SCENE_HIT_LIGHT     /* a quad light: light and t valid */
+} scene_hit_kind;
+
 typedef struct scene_hit {
-    int kind;        /* 0: nothing, 1: geometry (h, s valid), 2: a quad light (light, t valid) */
+    scene_hit_kind kind;
     hit h;
     surface s;
     int light;

@@ -798,7 +798,7 @@ START_TEST(test_integrators_shading_frame_faces_the_ray)
     scene_hit sh;
     ray out = {vec3_make(0, 0, 5), vec3_make(0, 0, -1), 0, INFINITY};
     integrator_intersect(&rg.it, &out, &sh);
-    ck_assert_int_eq(sh.kind, 1);
+    ck_assert_int_eq(sh.kind, SCENE_HIT_GEOMETRY);
     ck_assert_int_eq(sh.s.entering, 1);
     ck_assert(sh.s.ng.z > 0.999 && sh.s.n.z > 0.999);
     ray in = {vec3_make(0, 0, 0), vec3_make(0, 0, 1), 0, INFINITY};
@@ -809,7 +809,7 @@ START_TEST(test_integrators_shading_frame_faces_the_ray)
      * from above going +x sees ng but would see n from behind (a smooth-shaded silhouette) */
     ray tri = {vec3_make(-0.5, -0.3, -2.9), vec3_normalize(vec3_make(0.9, 0, -0.2)), 0, INFINITY};
     integrator_intersect(&rg.it, &tri, &sh);
-    ck_assert_int_eq(sh.kind, 1);
+    ck_assert_int_eq(sh.kind, SCENE_HIT_GEOMETRY);
     ck_assert(vec3_dot(sh.s.n, tri.d) < 0);
     ck_assert(sh.s.n.x == sh.s.ng.x && sh.s.n.y == sh.s.ng.y && sh.s.n.z == sh.s.ng.z);
     rig_free(&rg);

@@ -54,9 +54,9 @@ static void trace3(rig *r, double x, double y, hits *out)
     ray ry = {vec3_add(out->r.o, out->rd.doy), vec3_add(out->r.d, out->rd.ddy), 0, INFINITY};
     integrator_intersect_diff(&r->it, &rx, NULL, &out->hx);
     integrator_intersect_diff(&r->it, &ry, NULL, &out->hy);
-    ck_assert_int_eq(out->h0.kind, 1);
-    ck_assert_int_eq(out->hx.kind, 1);
-    ck_assert_int_eq(out->hy.kind, 1);
+    ck_assert_int_eq(out->h0.kind, SCENE_HIT_GEOMETRY);
+    ck_assert_int_eq(out->hx.kind, SCENE_HIT_GEOMETRY);
+    ck_assert_int_eq(out->hy.kind, SCENE_HIT_GEOMETRY);
     ck_assert(out->h0.s.has_diff);
 }
 
