@@ -1,4 +1,4 @@
-/* integrator.c - the shared context of the integrators (see include/envtex/integrators/integrator.h). */
+/* integrator.c - the shared context of the integrators (integrator.h). */
 #include "envtex/integrators/integrator.h"
 
 #include <string.h>
@@ -59,7 +59,8 @@ int integrator_init(integrator *it, const scene *sc, const bvh *accel, budget *m
     int samples_lights = sc->integrator == INTEGRATOR_DIRECT ||
                          (sc->integrator == INTEGRATOR_PATHTRACER && sc->nee != NEE_OFF);
     /* The envmap lights the scene unless `envmiss black` makes it a background only. */
-    int env_lights = it->env.present && sc->envmiss == ENVMISS_ENVMAP && sc->integrator != INTEGRATOR_ANALYTICDIRECT;
+    int env_lights = it->env.present && sc->envmiss == ENVMISS_ENVMAP &&
+                     sc->integrator != INTEGRATOR_ANALYTICDIRECT;
     if (env_lights) {
         /* tables only for an integrator that samples the envmap; otherwise just the
          * piecewise-constant lookup, without a pass over the texels */
@@ -68,7 +69,8 @@ int integrator_init(integrator *it, const scene *sc, const bvh *accel, budget *m
                            : envlight_build_lookup(&it->el, &it->env, mem, err)) {
             /* about the scene's `envmap` (its transform, most often): reported at its line */
             char why[ERROR_MSG_MAX];
-            snprintf(why, sizeof why, "%s", err->msg); /* err->msg cannot be an argument of error_set on err */
+            /* err->msg cannot be an argument of error_set on err */
+            snprintf(why, sizeof why, "%s", err->msg);
             return error_set(err, sc->path, sc->envmap.line, "envmap %s: %s", sc->envmap.path, why);
         }
         it->has_envlight = 1;
@@ -80,17 +82,19 @@ int integrator_init(integrator *it, const scene *sc, const bvh *accel, budget *m
         return -1;
     }
     it->has_lights = 1;
-    if (sc->integrator == INTEGRATOR_PATHTRACER && sc->nee == NEE_MIS && lights_env_index(&it->ls) >= 0 &&
-        it->el.mode != ENVSAMPLING_MEDIANCUT) {
+    if (sc->integrator == INTEGRATOR_PATHTRACER && sc->nee == NEE_MIS &&
+        lights_env_index(&it->ls) >= 0 && it->el.mode != ENVSAMPLING_MEDIANCUT) {
         /* MIS: sample the envmap at a fraction of its picks (lights.h); auto: the fraction that
          * minimizes variance x time for diffuse surfaces under this map (envlight.h) */
-        double c = sc->envsamplefraction >= 0 ? sc->envsamplefraction
-                                              : envlight_mis_fraction(&it->el, INTEGRATOR_MIS_LIGHT_COST, NULL);
+        double c = sc->envsamplefraction >= 0
+                       ? sc->envsamplefraction
+                       : envlight_mis_fraction(&it->el, INTEGRATOR_MIS_LIGHT_COST, NULL);
         lights_set_env_fraction(&it->ls, c);
         it->env_fraction = it->ls.env_fraction;
     }
     /* nothing to sample: no light, or the envmap alone (index 0) at c = 0 */
-    it->nee = it->ls.n == 0 || (lights_env_index(&it->ls) == 0 && it->env_fraction == 0) ? NEE_OFF : sc->nee;
+    int nothing = it->ls.n == 0 || (lights_env_index(&it->ls) == 0 && it->env_fraction == 0);
+    it->nee = nothing ? NEE_OFF : sc->nee;
     it->build_seconds = (double)(clock() - t0) / CLOCKS_PER_SEC;
     return 0;
 }
@@ -169,8 +173,9 @@ int integrator_stratum(int j, int m, double *xi1, double *xi2)
     return 1;
 }
 
-int integrator_light_sample(integrator *it, const surface *s, vec3 wo, int k, double xi1, double xi2,
-                            double xi3, int stratified, light_sample *l, rgb *f_li_cos)
+int integrator_light_sample(integrator *it, const surface *s, vec3 wo, int k, double xi1,
+                            double xi2, double xi3, int stratified, light_sample *l,
+                            rgb *f_li_cos)
 {
     if (!lights_sample(&it->ls, k, s->p, s->ng, xi1, xi2, xi3, stratified, l)) return 0;
     double cos_i = vec3_dot(s->n, l->wi);
