@@ -1,16 +1,13 @@
-/* brdf.h - the course's BRDFs at a shading point, their sampling and pdfs (CSE 168 hw4,
- * ../shared/FORMAT.md): modified Phong, GGX, and the delta BRDFs mirror and glass.
+/* brdf.h - the course's BRDFs (CSE 168 hw4, ../shared/FORMAT.md), their sampling and pdfs:
  *   Phong: f = kd / pi + ks (s + 2) / (2 pi) max(r . wi, 0)^s,  r = wo mirrored
- *   GGX:   f = kd / pi + F G D / (4 |n.wi| |n.wo|), Smith G, Schlick F = ks + (1 - ks)(1 - wi.h)^5,
- *          alpha = roughness clamped by sampling_ggx_alpha (finite f, pdfs, weights)
- * BRDF sampling picks the specular lobe with probability t = avg(ks) / (avg(ks) + avg(kd)),
- * GGX at least 0.25 (ks = kd = 0: GGX 1, Phong 0), else the cosine-weighted diffuse lobe.
+ *   GGX:   f = kd / pi + F G D / (4 |n.wi| |n.wo|), Smith G, Schlick F, alpha clamped
+ *   mirror and glass: deltas
+ * Sampling picks the specular lobe with probability t = avg(ks) / (avg(ks) + avg(kd)) (GGX:
+ * at least 0.25), else the cosine lobe.
  *
- *     brdf_sample_result r;
- *     if (brdf_sample(&s, wo, SAMPLING_BRDF, xi1, xi2, xi3, &r)) throughput *= r.weight;
+ *     if (brdf_sample(&s, wo, SAMPLING_BRDF, xi1, xi2, xi3, &r)) beta = rgb_mul(beta, r.weight);
  *
- * Directions: world-space unit vectors AWAY from the surface (wo to the viewer, wi to the
- * light); pdfs per steradian.
+ * wo, wi: world unit vectors away from the surface; pdfs per steradian.
  */
 #ifndef ENVTEX_BRDF_H
 #define ENVTEX_BRDF_H

@@ -1,16 +1,12 @@
-/* integrator.h - which renderer runs (`integrator raytracer|analyticdirect|direct|pathtracer|
- * prefiltered`) and the context they share, built once per render with only what the scene
- * needs: the light set for all but `raytracer`, the envmap's sampling tables only where it is
- * sampled.
+/* integrator.h - which renderer runs (`integrator ...`) and the context the integrators share,
+ * built once per render with only what the scene needs.
  *
- *     integrator it;
  *     if (integrator_init(&it, sc, &accel, &mem, &err)) ...
  *     rgb L = render_radiance(&it, camera_ray(&cam, x, y), &r);   // render.h
  *     integrator_free(&it);
  *
- * Along camera rays and mirror / glass chains the envmap is looked up bilinearly; after any
- * other bounce it is envlight.h's piecewise-constant light, so that light and BRDF sampling
- * estimate the same integral (docs/environment-lighting.md).
+ * Camera rays and mirror / glass chains see the envmap bilinearly; other bounces see the
+ * piecewise-constant light of envlight.h (docs/environment-lighting.md).
  */
 #ifndef ENVTEX_INTEGRATOR_H
 #define ENVTEX_INTEGRATOR_H

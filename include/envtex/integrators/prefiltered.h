@@ -1,14 +1,11 @@
-/* prefiltered.h - `integrator prefiltered`: the environment's light read from illumination maps
- * instead of integrated (slide 44; Miller & Hoffman 1984, Ramamoorthi & Hanrahan 2001).  Camera
- * rays, mirrors and glass are the ray tracer's; at any other hit
- *     I = emission + kd x irr(n) + ks x (n . r) phong_S(r)     (brdf phong, shininess S)
- * irr = E / pi at the shading normal, phong_S the Phong-lobe map at the view's mirror direction
- * r, both in the envmap frame, bilinear, times its scale.  No shadows, no other lights or
- * `ambient` (the scene warns), no `brdf ggx`; black maps under `envmiss black` or no envmap.
- * Why (n . r) and the error: docs/illumination-maps.md and docs/design-notes.md.
+/* prefiltered.h - `integrator prefiltered` (slide 44; Miller & Hoffman 1984, Ramamoorthi &
+ * Hanrahan 2001): the environment's light read from illumination maps.  Camera rays, mirrors
+ * and glass are the ray tracer's; at any other (brdf phong) hit, with the maps bilinear in the
+ * envmap frame:
+ *     I = emission + kd irr(n) + ks (n . r) phong_S(r),   irr = E / pi, r the mirror direction
+ * No shadows, other lights, `ambient` or `brdf ggx` (docs/design-notes.md).
  *
- *     raytracer_init(&it->rt, sc, accel); prefiltered_init(&it->pf, &it->rt, &err);
- *     rgb L = raytracer_trace(&it->rt, camera_ray(&cam, x, y));  ...  prefiltered_free(it->pf);
+ *     prefiltered_init(&it->pf, &it->rt, &err);  ...  prefiltered_free(it->pf);
  */
 #ifndef ENVTEX_PREFILTERED_H
 #define ENVTEX_PREFILTERED_H
@@ -34,10 +31,9 @@ typedef struct prefiltered {
     double build_seconds;      /* CPU time of building the maps */
 } prefiltered;
 
-/* Build the maps (the exact irradiance map or sh9's 9 coefficients; a Phong map per distinct
- * shininess) and make rt shade with them.  *out is allocated (prefiltered_free).  -1 with *err,
- * nothing allocated: `brdf ggx`, an envmap transform not a rotation (times a uniform scale), a
- * shininess over PREFILTER_MAX_SHININESS, a map too costly (prefilter.h), out of memory. */
+/* Build the maps and make rt shade with them; *out allocated (prefiltered_free).  -1 with *err,
+ * nothing allocated: `brdf ggx`, an envmap transform not a (scaled) rotation, a shininess over
+ * PREFILTER_MAX_SHININESS, a map too costly (prefilter.h), out of memory. */
 int prefiltered_init(prefiltered **out, raytracer *rt, error *err);
 
 /* Free the maps (NULL is fine). */

@@ -1,16 +1,12 @@
-/* texshade.h - texture maps at a ray hit: where the hit is in texture space, the pixel's
- * footprint there, and what the material's maps make of it (slides 25-46).  Every integrator
- * calls texshade_surface at each hit.
+/* texshade.h - texture maps at a ray hit (slides 25-46): the hit's (s, t) and footprint, and
+ * what the material's maps make of the surface.  Every integrator calls it at each hit.
  *
- *     surface s;  ... s.p, s.ng, s.n, s.entering set from the hit ...
- *     brdf_surface_from_material(&s, &sc->materials[h.material]);
- *     texshade_surface(sc, &h, &r, &rd, &s);     // differentials, then the maps
+ *     brdf_surface_from_material(&s, &sc->materials[h.material]);  // s's frame set from h
+ *     texshade_surface(sc, &h, &r, &rd, &s);                       // differentials, maps
  *
- * diffusemap -> kd, specularmap -> ks, roughnessmap -> GGX alpha (channel mean), emissionmap ->
- * emission, bumpmap -> n (bump.h; displacementmap acted before rendering).  (s, t): a sphere
- * maps q = (P_object - center) / radius (spherical by default); a triangle interpolates its st
- * (or maps P_object).  Footprints from raydiff_at_hit; none without differentials (texture.h's
- * fallback).  Nothing allocates.  Details: docs/texture-mapping.md, section 11.
+ * A sphere maps q = (P_object - center) / radius (default spherical); a triangle interpolates
+ * its st (or maps P_object).  No differentials: no footprint (texture.h).  No malloc.  Details:
+ * docs/texture-mapping.md, section 11.
  */
 #ifndef ENVTEX_TEXSHADE_H
 #define ENVTEX_TEXSHADE_H
@@ -19,8 +15,7 @@
 #include "envtex/geometry/ray.h"
 #include "envtex/scene/scene.h"
 
-/* A triangle with |e1|^2 |e2|^2 - (e1.e2)^2 below this fraction of |e1|^2 |e2|^2 has no
- * footprint (zero, not huge) */
+/* Gram determinant of a triangle's edges, relative, below which it has no footprint */
 #define TEXSHADE_DEGENERATE_EPS 1e-12
 
 /* Where a hit is in texture space. */
@@ -54,8 +49,9 @@ void texshade_point_at(const scene *sc, const hit *h, const surface *s, texshade
  * mapping's; where singular, an orthonormal basis of the tangent plane). */
 void texshade_tangents(const scene *sc, const hit *h, texshade_point *tp);
 
-/* texshade_differentials, then the maps applied to s (a bumped s->n stays on s->ng's side);
- * s holds the hit's frame and brdf_surface_from_material's values on entry. */
+/* texshade_differentials, then the maps: diffusemap -> kd, specularmap -> ks, roughnessmap ->
+ * roughness, emissionmap -> emission, bumpmap -> s->n (kept on s->ng's side).  s holds the
+ * hit's frame and the material's values on entry. */
 void texshade_surface(const scene *sc, const hit *h, const ray *r, const ray_diff *rd,
                       surface *s);
 

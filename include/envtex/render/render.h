@@ -1,15 +1,10 @@
 /* render.h - from a scene to an image: build what the scene needs (nothing else), run its
  * integrator over every pixel, report what was built and what it cost.
  *
- *     render_opts o = render_defaults();
- *     o.seed = 7;
- *     image img; render_stats st;
- *     if (render_scene(sc, &o, &img, &st, &err)) ...
- *     ... image_free(&img);
+ *     if (render_scene(sc, &opts, &img, &stats, &err)) ...   // opts = render_defaults()
  *
- * Deterministic: pixel (x, y) draws from stream y * width + x of `seed`, so the image depends
- * only on the scene, spp and seed.  spp = 1: the pixel centre; more: jittered in the pixel and
- * averaged (a box filter).
+ * Deterministic: pixel (x, y) draws from stream y * width + x of `seed`.  spp = 1: the pixel
+ * centre; more: jittered in the pixel and averaged (a box filter).
  */
 #ifndef ENVTEX_RENDER_H
 #define ENVTEX_RENDER_H
@@ -37,8 +32,7 @@ typedef struct render_opts {
     void *warn_ctx;
     budget *mem;               /* charged before the displaced geometry, BVH and envmap tables
                                 * are built (NULL: none) */
-    image *variance;           /* if not NULL: each pixel's variance of the mean s^2 / spp
-                                * (spp >= 2; allocated here, image_free) */
+    image *variance;           /* not NULL: gets the variance of each pixel's mean (image_free) */
 } render_opts;
 
 typedef struct render_stats {

@@ -1,12 +1,9 @@
-/* bump.h - bump mapping (Blinn 1978): the shading normal perturbed by a height texture's
- * derivatives, the surface unmoved.  Slide 42: "perturb the normal, not the geometry".
+/* bump.h - bump mapping (Blinn 1978, slide 42): perturb the normal, not the geometry.
  *
- *     texture_height_derivs(tex, &q, &h, &dh_ds, &dh_dt);      // texture.h
  *     bump_normal(hit.ns, hit.ng, dp_ds, dp_dt, dh_ds, dh_dt, strength, &ns);
  *
- * n' = dP/ds x dP/dt + k dh/ds (n x dP/dt) + k dh/dt (dP/ds x n), normalized, on n's side, with
- * the tangents first projected perpendicular to n (derivation: docs/texture-mapping.md,
- * section 11).  One space for every vector (world); k in its units per unit of height.
+ * n' = dP/ds x dP/dt + k dh/ds (n x dP/dt) + k dh/dt (dP/ds x n), tangents projected normal
+ * to n, normalized on n's side; one space for all (docs/texture-mapping.md, section 11).
  */
 #ifndef ENVTEX_BUMP_H
 #define ENVTEX_BUMP_H

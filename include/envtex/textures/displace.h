@@ -1,18 +1,12 @@
-/* displace.h - displacement mapping: tessellate, move each vertex along its normal by a height,
- * recompute the normals.  Slide 43: unlike a bump map it changes silhouettes and shadows.
+/* displace.h - displacement mapping (slide 43): tessellate, move each vertex along its normal
+ * by a height, recompute the normals; silhouettes and shadows change.
  *
- *     static double height(void *ctx, vec3 p, vec3 n, uv2 st) { return a texture's value; }
- *     displace_mesh m;
  *     if (displace_sphere(32, height, tex, 0.05, 0, &m, &err)) return -1;
- *     ... m.p[], m.n[] (object space), m.tris[i].v[3] and .st[3] ...
- *     displace_mesh_free(&m);
+ *     ... m.p[], m.n[] (object space), m.tris[i].v[3], .st[3] ...;  displace_mesh_free(&m);
  *
- * A vertex moves to p + scale height(ctx, p, n, st) n, n its normal before.  Rate N: a triangle
- * becomes N^2 (the grid b = (i, j) / N); the unit sphere 4N(N-1) of a UV sphere, N bands in theta,
- * 2N segments in phi, shared seam and poles (no cracks), s = phi / 2 pi, t = 1 - theta / pi, each
- * triangle its own corner st (no seam).  Normals after: area-weighted (kept where the sum is 0).
- * Triangles counted against max_tris (0: DISPLACE_MAX_TRIS) before allocating.  Counter-
- * clockwise; the callback must not fail.  Details: docs/texture-mapping.md, section 11.
+ * Vertex p moves to p + scale height(ctx, p, n, st) n.  Rate N: a triangle becomes N^2, the
+ * unit sphere a UV sphere of 4N(N-1) (N bands, 2N segments, s = phi / 2 pi, t = 1 - theta / pi,
+ * no crack or seam).  Normals after: area-weighted.  Counter-clockwise.  docs/texture-mapping.md.
  */
 #ifndef ENVTEX_DISPLACE_H
 #define ENVTEX_DISPLACE_H
@@ -39,9 +33,9 @@ typedef struct displace_mesh {
     long n_tris;
 } displace_mesh;
 
-/* Tessellate and displace triangle p (normals n, NULL: geometric) at rate 1..DISPLACE_MAX_RATE.
- * The callback sees q (NULL: p) interpolated as p is, bit-equal along shared edges.  0, or -1
- * with *err (rate, max_tris, zero area without normals, memory) and *out owning nothing. */
+/* Triangle p (normals n, NULL: geometric) at rate 1..DISPLACE_MAX_RATE; the callback sees q
+ * (NULL: p) interpolated as p, bit-equal on shared edges.  0, or -1 with *err (rate, over
+ * max_tris (0: DISPLACE_MAX_TRIS), zero area without normals, memory), *out owning nothing. */
 int displace_triangle(const vec3 p[3], const vec3 q[3], const vec3 n[3], const uv2 st[3], int rate,
                       displace_height_fn height, void *ctx, double scale, long max_tris,
                       displace_mesh *out, error *err);

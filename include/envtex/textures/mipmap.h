@@ -1,16 +1,12 @@
 /* mipmap.h - the image pyramid (Williams 1983): trilinear lookups for a scalar footprint, EWA
- * (Heckbert 1989) for an anisotropic one.  Slides 36-39: prefilter the texture at a pyramid of
- * resolutions, pick the level that matches the footprint, blend the two nearest.
+ * (Heckbert 1989) for an anisotropic one.  Slides 36-39: pick the level that matches the
+ * footprint, blend the two nearest.
  *
- *     mipmap m;
  *     if (mipmap_build(&m, &img, WRAP_REPEAT, &err)) return -1;  // img must outlive m
- *     rgb a = mipmap_lookup_trilinear(&m, st, 0.01);             // 1% of the texture wide
- *     rgb b = mipmap_lookup_ewa(&m, st, dst_dx, dst_dy);
- *     mipmap_free(&m);
+ *     rgb c = mipmap_lookup_trilinear(&m, st, 0.01);             // 1% of the texture wide
  *
- * (s, t) and wrap modes as texlookup.h.  Level l+1 is max(1, W_l / 2) x max(1, H_l / 2) (sizes
- * rounded down) to 1 x 1, each texel the mean of level l's bilinear surface over its area, so
- * each level keeps the mean (docs/texture-mapping.md, section 11).
+ * (s, t) and wraps as texlookup.h.  Level l+1 is max(1, W_l / 2) x max(1, H_l / 2), rounded
+ * down, to 1 x 1; each keeps the mean of the one below (docs/texture-mapping.md, section 11).
  */
 #ifndef ENVTEX_MIPMAP_H
 #define ENVTEX_MIPMAP_H
@@ -41,7 +37,7 @@ typedef struct mipmap {
  * nothing to free. */
 int mipmap_build(mipmap *m, const image *base, wrap_mode wrap, error *err);
 
-/* Bytes a w x h base's pyramid keeps (levels 1..) and needs while building, for a budget. */
+/* Bytes a w x h base's pyramid keeps (levels 1..) and needs while building. */
 typedef struct mipmap_cost {
     double levels, scratch; /* bytes */
 } mipmap_cost;
@@ -60,14 +56,12 @@ const image *mipmap_level(const mipmap *m, int l);
 double mipmap_level_for_footprint(const mipmap *m, double width_in_texels);
 
 /* Trilinear, footprint_width in texture units of the longer side.  L = level for footprint_width
- * max(W, H), l = floor(L), f = L - l:  c = (1 - f) bilinear(l, st) + f bilinear(l + 1, st).
- * Continuous in footprint and st; at most one texel wide: bilinear on the base.  No malloc. */
+ * max(W, H), l = floor(L), f = L - l:  c = (1 - f) bilinear(l, st) + f bilinear(l + 1, st). */
 rgb mipmap_lookup_trilinear(const mipmap *m, uv2 st, double footprint_width);
 
-/* EWA over the footprint with axes dst_dx, dst_dy (change of st per pixel step), measured in
- * level-0 texels; the minor axis lengthened to major / MIPMAP_MAX_ANISOTROPY if shorter.  The
- * level of the minor axis and the next are filtered, blended as trilinear.  Zero axes: bilinear
- * on level 0; NaN, infinite or top-level axes: the texture's mean.  Bounded work, no malloc. */
+/* EWA over the footprint's axes dst_dx, dst_dy (change of st per pixel), in level-0 texels,
+ * the minor one at least major / MIPMAP_MAX_ANISOTROPY; the minor's level and the next blended
+ * as trilinear.  Zero axes: bilinear on level 0; NaN, infinite or texture-wide: its mean. */
 rgb mipmap_lookup_ewa(const mipmap *m, uv2 st, uv2 dst_dx, uv2 dst_dy);
 
 #endif

@@ -1,14 +1,11 @@
-/* texlookup.h - an image read as a texture: wrap modes, nearest and bilinear lookups.  Slides
- * 25-46: "tiling" (repeat / clamp / mirror), magnification by bilinear interpolation.
+/* texlookup.h - an image read as a texture: wrap modes, nearest and bilinear lookups (slides
+ * 25-46: tiling, magnification by bilinear interpolation).
  *
  *     rgb c = texlookup_bilinear(&img, (uv2){s, t}, WRAP_REPEAT);
- *     wrap_mode w;
- *     if (texlookup_wrap_parse("mirror", &w)) ...;     // the scene file's names
  *
- * (s, t) = (st.u, st.v) as OpenGL and OBJ `vt`: (0, 0) the bottom-left, t up, [0, 1]^2 the
- * image once.  Texel (i, j), j from the BOTTOM row (image row H - 1 - j), covers [i/W, (i+1)/W]
- * x [j/H, (j+1)/H].  Wrap modes act on texel indices.  Lookups are pure and allocation free;
- * any finite coordinate is safe (large ones are wrapped in double before any int).
+ * (s, t) as OpenGL and OBJ `vt`: (0, 0) bottom-left, t up, [0, 1]^2 the image once.  Texel
+ * (i, j), j from the BOTTOM row (image row H - 1 - j), covers [i/W, (i+1)/W] x [j/H, (j+1)/H].
+ * Pure, allocation free, safe for any finite coordinate (wrapped in double first).
  */
 #ifndef ENVTEX_TEXLOOKUP_H
 #define ENVTEX_TEXLOOKUP_H
@@ -16,8 +13,8 @@
 #include "envtex/core/image.h"
 #include "envtex/core/vec.h"
 
-/* Index i outside [0, n):  repeat i mod n;  clamp min(max(i, 0), n-1);  mirror: period 2n,
- * ... 1 0 | 0 1 .. n-1 | n-1 n-2 ... (GL_MIRRORED_REPEAT) */
+/* Outside [0, n): repeat i mod n; clamp min(max(i, 0), n-1); mirror reflects with period 2n,
+ * ... 1 0 | 0 1 ... n-1 | n-1 n-2 ... (GL_MIRRORED_REPEAT) */
 typedef enum wrap_mode { WRAP_REPEAT = 0, WRAP_CLAMP = 1, WRAP_MIRROR = 2 } wrap_mode;
 
 /* Any int i wrapped into [0, n), n >= 1 (assert); never overflows. */
@@ -40,8 +37,7 @@ static inline rgb texlookup_texel(const image *im, int i, int j, wrap_mode wrap)
     return image_get(im, x, im->h - 1 - y);
 }
 
-/* Nearest texel: (floor(s W), floor(t H)) wrapped (s = 1 reads column 0 under repeat).
- * im non-empty. */
+/* Nearest texel: (floor(s W), floor(t H)) wrapped.  im non-empty. */
 rgb texlookup_nearest(const image *im, uv2 st, wrap_mode wrap);
 
 /* Bilinear: x = s W - 1/2, i0 = floor(x), fx = x - i0 (likewise y, j0, fy from t H),
@@ -49,7 +45,7 @@ rgb texlookup_nearest(const image *im, uv2 st, wrap_mode wrap);
  * exact at texel centres.  im non-empty; a non-finite coordinate reads a border texel. */
 rgb texlookup_bilinear(const image *im, uv2 st, wrap_mode wrap);
 
-/* Below this |x|, floor(x) + 1 fits an int; above it indices are wrapped in double. */
+/* Below this |x|, floor(x) + 1 fits an int */
 #define TEXLOOKUP_INT_SAFE 0x1p30
 
 /* floor(x), exact, for |x| < TEXLOOKUP_INT_SAFE */
@@ -67,9 +63,8 @@ typedef struct texlookup_axis {
 
 texlookup_axis texlookup_bilinear_axis_far(double x, int n, wrap_mode wrap);
 
-/* One axis of a bilinear lookup over n texels, x = s n - 1/2; a non-finite x reads a border
- * texel with weight 1.  Inline: both texels inside, or repeat with n a power of two; the rest
- * is texlookup_bilinear_axis_far. */
+/* One axis over n texels, x = s n - 1/2 (non-finite: a border texel); inline for texels inside
+ * or a tiled power-of-two texture, else texlookup_bilinear_axis_far. */
 static inline texlookup_axis texlookup_bilinear_axis(double x, int n, wrap_mode wrap)
 {
     if (fabs(x) < TEXLOOKUP_INT_SAFE) { /* false for NaN and infinities */

@@ -1,20 +1,12 @@
-/* texmapping.h - where (s, t) comes from: the lecture's parameterizations.  Slides 25-31:
- * coordinates at the vertices interpolated with barycentric weights ("uv"), and the planar,
- * cylindrical, spherical and cube mappings of an object-space point, with seams and poles.
+/* texmapping.h - where (s, t) comes from (slides 25-31): vertex coordinates interpolated with
+ * barycentric weights ("uv"), or a planar, cylindrical, spherical or cube mapping of a point.
  *
- *     uv2 st = texmapping_point(TEXMAPPING_SPHERICAL, q);   // q: object space, see below
- *     uv2 dx, dy;                                           // the footprint, for mip-mapping
- *     texmapping_differentials(TEXMAPPING_SPHERICAL, q, dq_dx, dq_dy, &dx, &dy);
- *     uv2 st2 = texmapping_uv_interpolate(tri_st, b1, b2);  // "uv"
+ *     uv2 st = texmapping_point(TEXMAPPING_SPHERICAL, q);   // q in object space
+ *     texmapping_differentials(TEXMAPPING_SPHERICAL, q, dq_dx, dq_dy, &dst_dx, &dst_dy);
  *
- * Frame: about the ORIGIN, +z up (the envmap's), phi = atan2(y, x) in [0, 2 pi), theta from +z;
- * for a sphere q = (P_object - center) / radius.  (s, t) as texlookup.h, outside [0, 1] left to
- * the wrap mode.  planar (x, y); cylindrical (phi / 2 pi, z); spherical (phi / 2 pi, 1 - theta
- * / pi); cube: the face of the largest |component| (ties x, y, z), each face the whole image:
- *     face 0 +x: right +y, up +z    1 -x: -y, +z    2 +y: -x, +z    3 -y: +x, +z
- *     face 4 +z: right +x, up +y    5 -z: +x, -y       (seen from outside)
- * s jumps 1 -> 0 at phi = 0 (continuous under repeat); differentials wrap it.  At a pole s = 0
- * (0.5 if x is -0.0); q = 0 maps to (0, 0.5) or face 0's centre.  Pure, allocation free.
+ * Frame: about the origin, +z up (the envmap's), phi = atan2(y, x) in [0, 2 pi), theta from +z;
+ * a sphere maps q = (P_object - center) / radius.  (s, t) as texlookup.h.  s jumps 1 -> 0 at
+ * phi = 0 (no crack under repeat); poles and q = 0 give finite s, t.  Pure, allocation free.
  */
 #ifndef ENVTEX_TEXMAPPING_H
 #define ENVTEX_TEXMAPPING_H
@@ -45,7 +37,9 @@ uv2 texmapping_planar(vec3 q);      /* (x, y) */
 uv2 texmapping_cylindrical(vec3 q); /* (phi / 2 pi, z), s in [0, 1) */
 uv2 texmapping_spherical(vec3 q);   /* (phi / 2 pi, 1 - theta / pi), s in [0, 1), t in [0, 1] */
 
-/* Cube mapping: (s, t) in [0, 1]^2 on the face (0..5, above) put in *face (may be NULL). */
+/* Cube mapping: the face of the largest |component| (ties x, y, z) into *face (may be NULL),
+ * (s, t) in [0, 1]^2 on it, each face the whole image (right, up seen from outside):
+ *     0 +x: +y, +z   1 -x: -y, +z   2 +y: -x, +z   3 -y: +x, +z   4 +z: +x, +y   5 -z: +x, -y */
 uv2 texmapping_cube(vec3 q, int *face);
 
 /* q projected on face `face` (assert 0..5): ((1 + r / |a|) / 2, (1 + u / |a|) / 2), r, u its

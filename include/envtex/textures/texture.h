@@ -1,22 +1,15 @@
-/* texture.h - a texture and its filtered evaluation: images (with a mip pyramid when a filter
- * needs one), the 2D checkerboard, and Perlin's solid textures.  Slides 25-46: filtering,
- * procedural and solid textures, textures that drive BRDF parameters and bump maps.
+/* texture.h - a texture and its filtered evaluation: images (with their mip pyramid), the
+ * checkerboard and Perlin's solid textures (slides 25-46).
  *
- *     texture tx;
  *     texture_init_image(&tx, &img, WRAP_REPEAT);       // img must outlive tx
- *     if (texture_prepare(&tx, TEXFILTER_TRILINEAR, &mem, &err)) return -1;  // the pyramid
+ *     if (texture_prepare(&tx, TEXFILTER_TRILINEAR, &mem, &err)) return -1;
  *     texture_query q = {.st = st, .dst_dx = dx, .dst_dy = dy, .filter = TEXFILTER_TRILINEAR};
  *     rgb kd = texture_eval(&tx, &q);
  *     texture_free(&tx);
  *
- * Kinds (docs/scene-format.md): image ((s, t) as texlookup.h); checker (c0 where floor(f s) +
- * floor(f t) is even); the solids perlin, fbm, turbulence, marble, wood (perlin.h), evaluated
- * at the OBJECT-space point as (1 - v) c0 + v c1, v clamped to [0, 1].
- * Filters: nearest and bilinear read a point; trilinear reads the mip level of the footprint
- * w = sqrt(|dst/dx| |dst/dy|) in texels (a checker: the exact box filter; solids: octaves
- * band-limited by max(|dP/dx|, |dP/dy|)); ewa is mipmap_lookup_ewa (others: as trilinear).
- * Zero derivatives mean no footprint: the sharpest value, never a blur.  Evaluation is pure
- * and allocation free.  docs/texture-mapping.md, section 11, has the details.
+ * Solids are evaluated at the object-space point: (1 - v) c0 + v c1, v in [0, 1] (perlin.h).
+ * The checker is c0 where floor(f s) + floor(f t) is even.  Evaluation is pure and allocation
+ * free.  Details: docs/texture-mapping.md, section 11.
  */
 #ifndef ENVTEX_TEXTURE_H
 #define ENVTEX_TEXTURE_H
@@ -45,13 +38,13 @@ typedef enum texture_filter {
     TEXFILTER_EWA
 } texture_filter;
 
-/* Parameters of the solid textures; zero the fields a kind does not use (they are checked). */
+/* The solids' parameters; zero those a kind does not use (they are checked). */
 typedef struct texture_solid_params {
-    double scale;     /* > 0: the noise of scale P (features 1 / scale object units wide) */
+    double scale;     /* > 0: the noise of scale P */
     int octaves;      /* fbm, turbulence, marble: 1 .. PERLIN_MAX_OCTAVES */
-    double frequency; /* marble: vein phase in radians per unit of scale P along x */
-    double amplitude; /* marble: radians per unit of turbulence; wood: ring wobble, in rings */
-    double rings;     /* wood: rings per unit of radius (of scale P) */
+    double frequency; /* marble: radians per unit of scale P along x */
+    double amplitude; /* marble: radians per unit of turbulence; wood: rings */
+    double rings;     /* wood: rings per unit of radius */
     rgb c0, c1;       /* colours at v = 0 and v = 1 */
 } texture_solid_params;
 
@@ -60,7 +53,7 @@ typedef struct texture {
     /* image */
     const image *img; /* the caller's, kept alive and unchanged */
     wrap_mode wrap;
-    mipmap mip;       /* built by texture_prepare for trilinear / EWA; owned */
+    mipmap mip;       /* owned, built by texture_prepare */
     int has_mip;
     /* checker */
     double frequency; /* squares per unit of s and t, > 0 */
@@ -72,17 +65,17 @@ typedef struct texture {
 /* Where and how to evaluate (zeroed: valid, nearest, no footprint); p is in object space. */
 typedef struct texture_query {
     uv2 st;              /* texture coordinates (image, checker) */
-    uv2 dst_dx, dst_dy;  /* (ds/dx, dt/dx) and (ds/dy, dt/dy): change of st per pixel step */
+    uv2 dst_dx, dst_dy;  /* change of st per pixel step in x and y */
     vec3 p;              /* object-space point (solids) */
-    vec3 dp_dx, dp_dy;   /* its change per pixel step (solids' footprint) */
+    vec3 dp_dx, dp_dy;   /* its change per pixel step */
     vec3 dp_ds, dp_dt;   /* tangents dP/ds, dP/dt (solids' bump); zero: no bump */
     texture_filter filter;
 } texture_query;
 
-/* Bump: an image's smallest half step, in texels (bilinear slopes are exact between centres) */
+/* Bump: an image's smallest half step, in texels */
 #define TEXTURE_BUMP_MIN_TEXELS 0.5
 
-/* Bump: the checker's and solids' smallest half step, in features (a square, a noise cell) */
+/* Bump: the checker's and solids' smallest half step, in squares or noise cells */
 #define TEXTURE_BUMP_MIN_FEATURE 1e-3
 
 /* An image texture of img (non-empty, assert; kept unchanged until texture_free), no pyramid. */
@@ -106,7 +99,10 @@ void texture_free(texture *t);
 /* 1 if `filter` needs texture_prepare first (an image for trilinear or EWA, not yet built). */
 int texture_needs_prepare(const texture *t, texture_filter filter);
 
-/* The colour at q filtered by q->filter (above); trilinear or EWA images prepared (assert). */
+/* The colour at q by q->filter: nearest, bilinear read a point; trilinear the mip level of
+ * w = sqrt(|dst/dx| |dst/dy|) texels (checker: a box filter; solids: octaves band-limited by
+ * max(|dP/dx|, |dP/dy|)); ewa mipmap_lookup_ewa (others as trilinear).  Zero derivatives:
+ * read at the point (images bilinearly).  Images prepared for trilinear or EWA (assert). */
 rgb texture_eval(const texture *t, const texture_query *q);
 
 /* The mean of the channels (bump, roughness and displacement maps). */
