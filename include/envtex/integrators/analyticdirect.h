@@ -1,10 +1,9 @@
-/* analyticdirect.h - `integrator analyticdirect` (CSE 168 hw2): the exact, unshadowed direct
- * light of quad lights on diffuse surfaces from the polygon's irradiance vector (Lambert, Arvo):
+/* analyticdirect.h - `integrator analyticdirect` (CSE 168 hw2): quad lights' exact, unshadowed
+ * light on diffuse surfaces by the irradiance vector (Arvo):
  *   Phi(p) = 1/2 sum_i theta_i Gamma_i,   L = Le + kd / pi L_light (Phi(p) . n)
  * theta_i the angle between v_i - p and v_{i+1} - p, Gamma_i the unit normal of their plane.
  *
- *     double E = analyticdirect_irradiance(&sc->lights[k], p, n);  // a LIGHT_QUAD, unit n
- *     rgb Lo = rgb_scale(rgb_mul(kd, l->color), E / M_PI);
+ *     double E = analyticdirect_irradiance(&sc->lights[k], p, n);  // Phi . n, clipped
  */
 #ifndef ENVTEX_ANALYTICDIRECT_H
 #define ENVTEX_ANALYTICDIRECT_H

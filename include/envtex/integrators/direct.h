@@ -1,9 +1,8 @@
 /* direct.h - direct lighting by light sampling: `integrator direct` (CSE 168 hw2) and the path
  * tracer's next-event estimation.  At the first non-delta hit (mirrors and glass are followed):
  *   L = Le + sum over lights of (1/N) sum_j f(wo, wi_j) cos(theta_j) Li(wi_j) V / pdf(wi_j)
- * N = `lightsamples` for a quad light and the envmap (`lightstratify on`: a grid per light),
- * 1 for a point or directional light.  `lightselection power`: N samples in all, each of one
- * light picked by power (lights.h).
+ * N = `lightsamples` (`lightstratify on`: on a grid), 1 for a point or directional light;
+ * `lightselection power`: N samples in all, lights picked by power (lights.h).
  */
 #ifndef ENVTEX_DIRECT_H
 #define ENVTEX_DIRECT_H

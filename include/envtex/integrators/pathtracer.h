@@ -1,11 +1,11 @@
-/* pathtracer.h - `integrator pathtracer` (CSE 168 hw3-hw4, slides 16-23): paths from the camera
- * bounce by `importancesampling`; one that reaches a light carries L = Le prod (f cos / pdf).
- * `maxdepth` bounces at most (-1: INTEGRATOR_UNLIMITED_DEPTH, with `russianroulette on`:
- * survival = the throughput's largest component, at most 1; a zero throughput ends a path).
- * `nexteventestimation`: off, light found by hitting it; on, direct_lighting at each non-delta
- * bounce (a light then hit adds nothing); mis, both by the power heuristic, the BRDF ray's pdf
- * against lightsamples x lights_selection_prob(k) x pdf_k.  All three converge alike (tested).
- * Emissive geometry always counts when hit.  Directions below ng end the path.
+/* pathtracer.h - `integrator pathtracer` (CSE 168 hw3-hw4, slides 16-23): a path bounces by
+ * `importancesampling`, at most `maxdepth` times (-1: with `russianroulette on`, survival =
+ * the throughput's largest component); reaching a light it carries Le prod (f cos / pdf).
+ * `nexteventestimation on` adds direct_lighting at each non-delta bounce and drops light then
+ * hit; `mis` weighs both by the power heuristic.  Emissive geometry counts when hit; a
+ * direction below ng ends the path.  docs/design-notes.md.
+ *
+ *     rgb L = pathtracer_radiance(&it, camera_ray(&cam, x, y), &rng);
  */
 #ifndef ENVTEX_PATHTRACER_H
 #define ENVTEX_PATHTRACER_H
