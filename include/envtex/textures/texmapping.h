@@ -21,10 +21,10 @@ typedef enum texmapping_kind {
     TEXMAPPING_CUBE
 } texmapping_kind;
 
-/* Tangents: central differences over this step times max(|q|, 1) (errors ~1e-10) */
+/* Tangents: central differences over this step times max(|q|, 1) */
 #define TEXMAPPING_TANGENT_STEP 1e-6
 
-/* |det| of the (s, t) Jacobian (per unit q^2) below which it is singular: a pole, edge-on */
+/* |det| of the (s, t) Jacobian, per unit q^2, below which it is singular */
 #define TEXMAPPING_SINGULAR_EPS 1e-12
 
 /* "uv", "planar", "cylindrical", "spherical" or "cube" into *out: 0, or -1 if unknown. */
@@ -42,8 +42,8 @@ uv2 texmapping_spherical(vec3 q);   /* (phi / 2 pi, 1 - theta / pi), s in [0, 1)
  *     0 +x: +y, +z   1 -x: -y, +z   2 +y: -x, +z   3 -y: +x, +z   4 +z: +x, +y   5 -z: +x, -y */
 uv2 texmapping_cube(vec3 q, int *face);
 
-/* q projected on face `face` (assert 0..5): ((1 + r / |a|) / 2, (1 + u / |a|) / 2), r, u its
- * right and up components, a its axis one; a = 0 gives (0.5, 0.5). */
+/* q on face `face` (assert 0..5): ((1 + r / |a|) / 2, (1 + u / |a|) / 2), r, u, a: q's right,
+ * up and axis components; a = 0: (0.5, 0.5). */
 uv2 texmapping_cube_face(vec3 q, int face);
 
 /* The mapping k (not TEXMAPPING_UV, assert) of q. */
@@ -60,14 +60,12 @@ double texmapping_wrap_delta(double d);
 void texmapping_differentials(texmapping_kind k, vec3 q, vec3 dq_dx, vec3 dq_dy, uv2 *dst_dx,
                               uv2 *dst_dy);
 
-/* Tangents dq/ds, dq/dt of mapping k (not UV, assert) at q, unit normal n (q's space): in the
- * tangent plane, moving by dq/ds raises s by 1.  0, or -1 where the Jacobian is singular (a
- * pole, edge-on, q = 0), the outputs then vec3_basis(n). */
+/* dq/ds, dq/dt of mapping k (not UV, assert) at q, unit normal n: in the tangent plane, dq/ds
+ * raises s by 1.  0, or -1 where singular (a pole, edge-on, q = 0): then vec3_basis(n). */
 int texmapping_tangents(texmapping_kind k, vec3 q, vec3 n, vec3 *dq_ds, vec3 *dq_dt);
 
-/* A triangle's tangents: [dp/ds dp/dt] = [p1-p0 p2-p0] [st1-st0 st2-st0]^-1.  0, or -1 for
- * degenerate st (relative |det| <= TEXMAPPING_SINGULAR_EPS), outputs then an orthonormal basis
- * of its plane, or a zero-area triangle (zero). */
+/* [dp/ds dp/dt] = [p1-p0 p2-p0] [st1-st0 st2-st0]^-1.  0, or -1: degenerate st (relative |det|
+ * <= TEXMAPPING_SINGULAR_EPS; an orthonormal basis of the plane) or zero area (zero). */
 int texmapping_triangle_tangents(const vec3 p[3], const uv2 st[3], vec3 *dp_ds, vec3 *dp_dt);
 
 /* A uv triangle's (s, t) differentials from dp/dx, dp/dy (p's space): dp = db1 (p1-p0) + db2
