@@ -109,8 +109,8 @@ rgb texture_eval(const texture *t, const texture_query *q);
 double texture_eval_scalar(const texture *t, const texture_query *q);
 
 /* h = texture_eval_scalar(t, q) and dh/ds, dh/dt by central differences of the filtered
- * texture, half step = half the footprint, at least the minimum above: in (s, t) for images and
- * the checker, (h(s + e) - h(s - e)) / 2e; along q's dP/ds, dP/dt for solids (zero: 0). */
+ * texture, (h(s + e) - h(s - e)) / 2e with e = max(0.5 (|ds/dx| + |ds/dy|), the minimum above)
+ * (likewise t); solids step along q's dP/ds, dP/dt (zero: 0). */
 void texture_height_derivs(const texture *t, const texture_query *q, double *h, double *dh_ds,
                            double *dh_dt);
 
