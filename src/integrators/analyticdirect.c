@@ -1,4 +1,4 @@
-/* analyticdirect.c - exact unshadowed quad-light irradiance (see include/envtex/integrators/analyticdirect.h). */
+/* analyticdirect.c - exact unshadowed quad-light irradiance (analyticdirect.h). */
 #include "envtex/integrators/analyticdirect.h"
 
 /* Clipping keeps a corner of height >= 0 and adds a crossing on an edge whose ends differ in
@@ -20,7 +20,8 @@ static vec3 polygon_irradiance_vector(const vec3 *v, int n, vec3 p)
         double theta = acos(fmax(-1.0, fmin(1.0, vec3_dot(a, b)))); /* theta_i */
         vec3 gamma = vec3_cross(a, b);                             /* Gamma_i, normalized below */
         double gl = vec3_length(gamma);
-        if (gl > 0) phi = vec3_madd(phi, gamma, 0.5 * theta / gl); /* Phi = 1/2 sum theta_i Gamma_i */
+        /* Phi = 1/2 sum theta_i Gamma_i */
+        if (gl > 0) phi = vec3_madd(phi, gamma, 0.5 * theta / gl);
     }
     return phi;
 }
@@ -66,15 +67,18 @@ double analyticdirect_irradiance(const scene_light *l, vec3 p, vec3 n)
     return fmax(0.0, vec3_dot(polygon_irradiance_vector(c, m, p), n));
 }
 
-rgb analyticdirect_radiance(integrator *it, ray r, rng *g) { return analyticdirect_radiance_diff(it, r, NULL, g); }
+rgb analyticdirect_radiance(integrator *it, ray r, rng *g)
+{
+    return analyticdirect_radiance_diff(it, r, NULL, g);
+}
 
 rgb analyticdirect_radiance_diff(integrator *it, ray r, const ray_diff *rd, rng *g)
 {
     (void)g;
     scene_hit sh;
     integrator_intersect_diff(it, &r, rd, &sh); /* the footprint filters kd and emission maps */
-    if (sh.kind == 0) return envmap_radiance(&it->env, r.d);
-    if (sh.kind == 2) return lights_quad_radiance(&it->ls, sh.light, r.d);
+    if (sh.kind == SCENE_HIT_NOTHING) return envmap_radiance(&it->env, r.d);
+    if (sh.kind == SCENE_HIT_LIGHT) return lights_quad_radiance(&it->ls, sh.light, r.d);
     const surface *s = &sh.s;
     rgb L = s->emission;
     for (int i = 0; i < it->sc->n_lights; i++) {

@@ -43,7 +43,8 @@ rgb brdf_eval(const surface *s, vec3 wo, vec3 wi)
     double D = sampling_ggx_d(a, vec3_dot(s->n, h));
     double G = ggx_g1(a, cos_i) * ggx_g1(a, cos_o);
     double m = pow(1 - fmax(0.0, vec3_dot(wi, h)), 5); /* Schlick: F = ks + (1 - ks) (1 - wi.h)^5 */
-    rgb F = rgb_make(s->ks.r + (1 - s->ks.r) * m, s->ks.g + (1 - s->ks.g) * m, s->ks.b + (1 - s->ks.b) * m);
+    rgb F = rgb_make(s->ks.r + (1 - s->ks.r) * m, s->ks.g + (1 - s->ks.g) * m,
+                     s->ks.b + (1 - s->ks.b) * m);
     double den = 4 * cos_i * cos_o; /* underflows to 0 only at grazing (cosines ~1e-162), where */
     if (!(den > 0)) return f;       /* G is 0 too: the specular term's limit there is 0, not 0/0 */
     return rgb_madd(f, F, G * D / den);
@@ -75,7 +76,9 @@ static double mixture_pdf(const surface *s, vec3 wo, vec3 wi)
             /* pdf(wi) = D(h) (n.h) / (4 |wi.h|) : the half-vector pdf through the reflection */
             vec3 h = vec3_normalize(vec3_add(wi, wo));
             double wih = fabs(vec3_dot(wi, h));
-            if (wih > 0) pdf += t * sampling_ggx_d(s->roughness, vec3_dot(s->n, h)) * vec3_dot(s->n, h) / (4 * wih);
+            if (wih > 0)
+                pdf += t * sampling_ggx_d(s->roughness, vec3_dot(s->n, h)) * vec3_dot(s->n, h) /
+                       (4 * wih);
         }
     }
     return pdf;
@@ -114,8 +117,8 @@ static int sample_delta(const surface *s, vec3 wo, double xi, brdf_sample_result
     return 1;
 }
 
-int brdf_sample(const surface *s, vec3 wo, sampling_kind strategy, double xi1, double xi2, double xi3,
-                brdf_sample_result *out)
+int brdf_sample(const surface *s, vec3 wo, sampling_kind strategy, double xi1, double xi2,
+                double xi3, brdf_sample_result *out)
 {
     if (brdf_is_delta(s)) return sample_delta(s, wo, xi3, out);
     out->is_delta = 0;

@@ -110,8 +110,9 @@ rgb direct_radiance_diff(integrator *it, ray r, const ray_diff *rd0, rng *g)
     for (int depth = 0;; depth++) {
         scene_hit sh;
         integrator_intersect_diff(it, &r, &rd, &sh);
-        if (sh.kind == 0) return rgb_fma(L, beta, escaped(it, r.d, depth));
-        if (sh.kind == 2) return rgb_fma(L, beta, lights_quad_radiance(&it->ls, sh.light, r.d));
+        if (sh.kind == SCENE_HIT_NOTHING) return rgb_fma(L, beta, escaped(it, r.d, depth));
+        if (sh.kind == SCENE_HIT_LIGHT)
+            return rgb_fma(L, beta, lights_quad_radiance(&it->ls, sh.light, r.d));
         vec3 wo = vec3_neg(vec3_normalize(r.d));
         L = rgb_fma(L, beta, sh.s.emission);
         if (!brdf_is_delta(&sh.s)) return rgb_fma(L, beta, direct_lighting(it, &sh.s, wo, g));

@@ -1,4 +1,4 @@
-/* integrator.c - the shared context of the integrators (see include/envtex/integrators/integrator.h). */
+/* integrator.c - the shared context of the integrators (integrator.h). */
 #include "envtex/integrators/integrator.h"
 
 #include <string.h>
@@ -71,7 +71,8 @@ int integrator_init(integrator *it, const scene *sc, const bvh *accel, budget *m
     int samples_lights = sc->integrator == INTEGRATOR_DIRECT ||
                          (sc->integrator == INTEGRATOR_PATHTRACER && sc->nee != NEE_OFF);
     /* The envmap lights the scene unless `envmiss black` makes it a background only. */
-    int env_lights = it->env.present && sc->envmiss == ENVMISS_ENVMAP && sc->integrator != INTEGRATOR_ANALYTICDIRECT;
+    int env_lights = it->env.present && sc->envmiss == ENVMISS_ENVMAP &&
+                     sc->integrator != INTEGRATOR_ANALYTICDIRECT;
     if (env_lights) {
         /* tables only for an integrator that samples the envmap; otherwise just the
          * piecewise-constant lookup, without a pass over the texels */
@@ -79,7 +80,8 @@ int integrator_init(integrator *it, const scene *sc, const bvh *accel, budget *m
                            : envlight_build_lookup(&it->el, &it->env, mem, err)) {
             /* about the scene's `envmap` (its transform, most often): reported at its line */
             char why[ERROR_MSG_MAX];
-            snprintf(why, sizeof why, "%s", err->msg); /* err->msg cannot be an argument of error_set on err */
+            /* err->msg cannot be an argument of error_set on err */
+            snprintf(why, sizeof why, "%s", err->msg);
             return error_set(err, sc->path, sc->envmap.line, "envmap %s: %s", sc->envmap.path, why);
         }
         it->has_envlight = 1;
@@ -91,17 +93,20 @@ int integrator_init(integrator *it, const scene *sc, const bvh *accel, budget *m
         return -1;
     }
     it->has_lights = 1;
-    if (sc->integrator == INTEGRATOR_PATHTRACER && sc->nee == NEE_MIS && lights_env_index(&it->ls) >= 0 &&
-        it->el.mode != ENVSAMPLING_MEDIANCUT && it->el.mode != ENVSAMPLING_SIS) {
+    if (sc->integrator == INTEGRATOR_PATHTRACER && sc->nee == NEE_MIS &&
+        lights_env_index(&it->ls) >= 0 && it->el.mode != ENVSAMPLING_MEDIANCUT &&
+        it->el.mode != ENVSAMPLING_SIS) {
         /* MIS: sample the envmap at a fraction of its picks (lights.h); auto: the fraction that
          * minimizes variance x time for diffuse surfaces under this map (misfraction.h) */
-        double c = sc->envsamplefraction >= 0 ? sc->envsamplefraction
-                                              : misfraction_choose(&it->el, INTEGRATOR_MIS_LIGHT_COST, NULL);
+        double c = sc->envsamplefraction >= 0
+                       ? sc->envsamplefraction
+                       : misfraction_choose(&it->el, INTEGRATOR_MIS_LIGHT_COST, NULL);
         lights_set_env_fraction(&it->ls, c);
         it->env_fraction = it->ls.env_fraction;
     }
     /* nothing to sample: no light, or the envmap alone (index 0) at c = 0 */
-    it->nee = it->ls.n == 0 || (lights_env_index(&it->ls) == 0 && it->env_fraction == 0) ? NEE_OFF : sc->nee;
+    int nothing = it->ls.n == 0 || (lights_env_index(&it->ls) == 0 && it->env_fraction == 0);
+    it->nee = nothing ? NEE_OFF : sc->nee;
     it->build_seconds = (double)(clock() - t0) / CLOCKS_PER_SEC;
     return 0;
 }
@@ -124,16 +129,16 @@ void integrator_intersect_diff(integrator *it, const ray *r, const ray_diff *rd,
 {
     it->rays++;
     ray rr = *r;
-    out->kind = 0;
+    out->kind = SCENE_HIT_NOTHING;
     int got = bvh_intersect(it->accel, &rr, &out->h);
     if (got == BVH_QUAD) { /* the quads are in the scene's BVH (lights_scene_bvh) */
-        out->kind = 2;
+        out->kind = SCENE_HIT_LIGHT;
         out->light = it->ls.quad_light[out->h.prim];
         out->t = out->h.t;
         return;
     }
     if (got) {
-        out->kind = 1;
+        out->kind = SCENE_HIT_GEOMETRY;
         rr.tmax = out->h.t;
     }
     int k;
@@ -141,12 +146,12 @@ void integrator_intersect_diff(integrator *it, const ray *r, const ray_diff *rd,
     /* quads outside the scene's BVH (bvh_build's): their own; a scene without pays no call */
     if (it->accel->prims_of.n_quads == 0 && it->has_lights && it->ls.n_quads > 0 &&
         lights_intersect_quad(&it->ls, &rr, &k, &t)) {
-        out->kind = 2;
+        out->kind = SCENE_HIT_LIGHT;
         out->light = k;
         out->t = t;
         return;
     }
-    if (out->kind != 1) return;
+    if (out->kind != SCENE_HIT_GEOMETRY) return;
     /* the shading frame, turned towards the ray's origin (two-sided surfaces) */
     const hit *h = &out->h;
     surface *s = &out->s;
@@ -189,8 +194,9 @@ int integrator_stratum(int j, int m, double *xi1, double *xi2)
     return 1;
 }
 
-int integrator_light_sample(integrator *it, const surface *s, vec3 wo, int k, double xi1, double xi2,
-                            double xi3, int stratified, light_sample *l, rgb *f_li_cos)
+int integrator_light_sample(integrator *it, const surface *s, vec3 wo, int k, double xi1,
+                            double xi2, double xi3, int stratified, light_sample *l,
+                            rgb *f_li_cos)
 {
     if (!lights_sample(&it->ls, k, s->p, s->ng, xi1, xi2, xi3, stratified, l)) return 0;
     double cos_i = vec3_dot(s->n, l->wi);

@@ -1,4 +1,4 @@
-/* raytracer.c - the Whitted integrator with reflection maps (see include/envtex/integrators/raytracer.h). */
+/* raytracer.c - the Whitted integrator with reflection maps (raytracer.h). */
 #include "envtex/integrators/raytracer.h"
 
 #include "envtex/reflection/fresnel.h"
@@ -118,7 +118,8 @@ static rgb trace(raytracer *rt, ray r, const ray_diff *rd, int depth, double wei
         vec3 tdir;
         if (F < 1 && weight * (1 - F) > RAYTRACER_MIN_WEIGHT && fresnel_refract(d, n, eta, &tdir)) {
             texshade_delta_diff(&s, rd, view, tdir, &next);
-            c = rgb_madd(c, trace(rt, ray_spawn(h.p, h.ng, tdir), &next, depth + 1, weight * (1 - F)), 1 - F);
+            rgb Lt = trace(rt, ray_spawn(h.p, h.ng, tdir), &next, depth + 1, weight * (1 - F));
+            c = rgb_madd(c, Lt, 1 - F);
         }
         return c;
     }
@@ -135,4 +136,7 @@ static rgb trace(raytracer *rt, ray r, const ray_diff *rd, int depth, double wei
 
 rgb raytracer_trace(raytracer *rt, ray r) { return trace(rt, r, NULL, 0, 1.0); }
 
-rgb raytracer_trace_diff(raytracer *rt, ray r, const ray_diff *rd) { return trace(rt, r, rd, 0, 1.0); }
+rgb raytracer_trace_diff(raytracer *rt, ray r, const ray_diff *rd)
+{
+    return trace(rt, r, rd, 0, 1.0);
+}

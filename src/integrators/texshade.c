@@ -140,7 +140,8 @@ void texshade_point_at(const scene *sc, const hit *h, const surface *s, texshade
     }
     tp->st = texmapping_point(tp->mapping, tp->q);
     if (has_db)
-        texmapping_differentials(tp->mapping, tp->q, tp->dq_dx, tp->dq_dy, &tp->dst_dx, &tp->dst_dy);
+        texmapping_differentials(tp->mapping, tp->q, tp->dq_dx, tp->dq_dy, &tp->dst_dx,
+                                 &tp->dst_dy);
 }
 
 void texshade_tangents(const scene *sc, const hit *h, texshade_point *tp)

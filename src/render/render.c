@@ -46,107 +46,144 @@ static double now_seconds(void)
     return ts.tv_sec + ts.tv_nsec * 1e-9;
 }
 
-int render_scene(const scene *sc, const render_opts *opts, image *out, render_stats *stats, error *err)
+/* The samples per pixel: the caller's, else the scene's, within the limits. */
+static int samples_per_pixel(const scene *sc, const render_opts *opts, int *out, error *err)
 {
-    render_opts def = render_defaults();
-    if (!opts) opts = &def;
-    memset(stats, 0, sizeof *stats);
-    out->w = out->h = 0;
-    out->px = NULL;
     int spp = opts->spp > 0 ? opts->spp : sc->spp;
     if (spp < 1 || spp > SCENE_MAX_SPP)
         return error_set(err, sc->path, 0, "spp %d is out of range [1, %d]", spp, SCENE_MAX_SPP);
-    if ((long long)sc->width * sc->height * spp > SCENE_MAX_CAMERA_SAMPLES)
-        return error_set(err, sc->path, 0, "size %d x %d at spp %d asks for %lld camera samples, over the limit of 2^34",
-                         sc->width, sc->height, spp, (long long)sc->width * sc->height * spp);
+    long long samples = (long long)sc->width * sc->height * spp;
+    if (samples > SCENE_MAX_CAMERA_SAMPLES)
+        return error_set(err, sc->path, 0,
+                         "size %d x %d at spp %d asks for %lld camera samples, over the limit of "
+                         "2^34",
+                         sc->width, sc->height, spp, samples);
     if (opts->variance && spp < 2)
-        return error_set(err, sc->path, 0, "a per-pixel variance needs at least 2 samples per pixel (spp is 1)");
+        return error_set(err, sc->path, 0,
+                         "a per-pixel variance needs at least 2 samples per pixel (spp is 1)");
+    *out = spp;
+    return 0;
+}
 
-    double t0 = now_seconds();
-    /* Displacement maps move geometry: render a displaced copy (the caller's scene is not
-     * touched; displacemap.h) */
+/* What a render builds before its first pixel: the displaced copy of the scene (if a map moves
+ * geometry), the BVH and the integrator's context.  Freed by release. */
+typedef struct built {
+    const scene *sc; /* the caller's scene, or &displaced */
     scene displaced;
-    int has_displaced = 0;
+    int has_displaced;
+    bvh accel;
+    integrator it;
+} built;
+
+static void release_displaced(built *b)
+{
+    if (b->has_displaced) displacemap_free(&b->displaced);
+}
+
+/* Build what sc needs, charged to mem.  0, or -1 with *err and nothing left to free. */
+static int build(const scene *sc, budget *mem, built *b, render_stats *stats, error *err)
+{
+    b->sc = sc;
+    b->has_displaced = 0;
+    /* displacement maps move geometry: render a displaced copy (the caller's scene is not
+     * touched; displacemap.h) */
     if (displacemap_needed(sc)) {
         displacemap_stats ds;
-        if (displacemap_apply(sc, 0, opts->mem, &displaced, &ds, err)) return -1;
-        has_displaced = 1;
+        if (displacemap_apply(sc, 0, mem, &b->displaced, &ds, err)) return -1;
+        b->has_displaced = 1;
         stats->displaced_spheres = ds.spheres;
         stats->displaced_triangles = ds.triangles;
         stats->displaced_result = ds.new_triangles;
         stats->displace_sphere_rate = ds.sphere_rate;
         stats->displace_triangle_rate = ds.triangle_rate;
-        sc = &displaced;
+        b->sc = &b->displaced;
     }
-    bvh accel;
-    if (lights_scene_bvh(&accel, sc, opts->mem, err)) { /* its quad lights too (lights.h) */
-        if (has_displaced) displacemap_free(&displaced);
+    if (lights_scene_bvh(&b->accel, b->sc, mem, err)) { /* its quad lights too (lights.h) */
+        release_displaced(b);
         return -1;
     }
-    integrator it;
-    if (integrator_init(&it, sc, &accel, opts->mem, err)) {
-        bvh_free(&accel);
-        if (has_displaced) displacemap_free(&displaced);
+    if (integrator_init(&b->it, b->sc, &b->accel, mem, err)) {
+        bvh_free(&b->accel);
+        release_displaced(b);
         return -1;
     }
-    stats->build_seconds = now_seconds() - t0;
-    if (image_alloc(out, sc->width, sc->height, err) ||
-        (opts->variance && image_alloc(opts->variance, sc->width, sc->height, err))) {
-        image_free(out);
-        integrator_free(&it);
-        bvh_free(&accel);
-        if (has_displaced) displacemap_free(&displaced);
-        return error_prefix(err, "%s: output image", sc->path);
-    }
+    return 0;
+}
 
-    if (opts->warn && it.el.fell_back && sc->envsampling != ENVSAMPLING_UNIFORM) {
-        /* the issue's "an all-zero map falls back to uniform with a warning": nothing to
-         * importance sample (a scene that asked for uniform directions loses nothing).  Only a
-         * light built for sampling measures the map, so only one can have fallen back (a
-         * lookup-only light, envlight_build_lookup, never sets fell_back). */
-        error w;
-        error_set(&w, sc->path, sc->envmap.line,
-                  "envmap %s is black (no texel above 0): 'envsampling %s' %s", sc->envmap.path,
-                  scene_envsampling_name(sc->envsampling),
-                  sc->envsampling == ENVSAMPLING_MEDIANCUT
-                      ? "has no energy to divide and cuts the map into strata of equal texel counts instead"
-                      : "has nothing to importance sample and samples uniform directions instead");
-        opts->warn(opts->warn_ctx, &w);
-    }
-    if (opts->start) opts->start(opts->start_ctx); /* nothing below refuses the render */
+static void release(built *b)
+{
+    integrator_free(&b->it);
+    bvh_free(&b->accel);
+    release_displaced(b);
+}
 
+/* An all-zero map that the scene importance samples falls back to uniform, with a warning (a
+ * scene that asked for uniform directions loses nothing).  Only a light built for sampling
+ * measures the map, so only one can have fallen back. */
+static void warn_if_black_envmap(const scene *sc, const integrator *it, const render_opts *opts)
+{
+    if (!opts->warn || !it->el.fell_back || sc->envsampling == ENVSAMPLING_UNIFORM) return;
+    int cut = sc->envsampling == ENVSAMPLING_MEDIANCUT;
+    error w;
+    error_set(&w, sc->path, sc->envmap.line,
+              "envmap %s is black (no texel above 0): 'envsampling %s' %s", sc->envmap.path,
+              scene_envsampling_name(sc->envsampling),
+              cut ? "has no energy to divide and cuts the map into strata of equal texel counts "
+                    "instead"
+                  : "has nothing to importance sample and samples uniform directions instead");
+    opts->warn(opts->warn_ctx, &w);
+}
+
+/* How camera rays are made: with differentials only where a texture map uses a footprint. */
+typedef struct pixel_sampler {
     camera cam;
-    camera_init(&cam, sc->eye, sc->center, sc->up, sc->fovy, sc->width, sc->height);
-    /* ray differentials only where a texture map uses a footprint: other scenes pay nothing */
-    int with_diff = texshade_scene_needs_differentials(sc);
-    double diff_scale = fmax(1.0 / sqrt((double)spp), RENDER_MIN_DIFF_SCALE);
+    int spp;
+    int with_diff;
+    double diff_scale;
+} pixel_sampler;
 
-    double t1 = now_seconds();
-    for (int y = 0; y < sc->height; y++) {
-        for (int x = 0; x < sc->width; x++) {
-            rng r;
-            rng_seed(&r, opts->seed, (uint64_t)y * (uint64_t)sc->width + (uint64_t)x);
-            /* Welford's running mean and sum of squared deviations, in double */
-            rgb mean = rgb_gray(0), m2 = rgb_gray(0);
-            for (int s = 0; s < spp; s++) {
-                double jx = 0.5, jy = 0.5;
-                if (spp > 1) {
-                    jx = rng_uniform(&r);
-                    jy = rng_uniform(&r);
-                }
-                rgb v;
-                if (with_diff) {
-                    ray_diff rd;
-                    ray cr = camera_ray_differential(&cam, x + jx, y + jy, diff_scale, &rd);
-                    v = render_radiance_diff(&it, cr, &rd, &r);
-                } else {
-                    v = render_radiance(&it, camera_ray(&cam, x + jx, y + jy), &r);
-                }
-                rgb d = rgb_make(v.r - mean.r, v.g - mean.g, v.b - mean.b);
-                mean = rgb_madd(mean, d, 1.0 / (s + 1));         /* mean += (v - mean) / n */
-                m2 = rgb_add(m2, rgb_make(d.r * (v.r - mean.r), d.g * (v.g - mean.g), d.b * (v.b - mean.b)));
-            }
-            rgb c = mean;
+/* One camera sample through (x + jx, y + jy) of the image plane. */
+static rgb sample_radiance(integrator *it, const pixel_sampler *ps, double px, double py, rng *r)
+{
+    if (!ps->with_diff) return render_radiance(it, camera_ray(&ps->cam, px, py), r);
+    ray_diff rd;
+    ray cr = camera_ray_differential(&ps->cam, px, py, ps->diff_scale, &rd);
+    return render_radiance_diff(it, cr, &rd, r);
+}
+
+/* Pixel (x, y): the mean of its spp samples (the box filter), and in *m2 the sum of their
+ * squared deviations, by Welford's running update in double.  Stream y * width + x of seed. */
+static rgb render_pixel(integrator *it, const pixel_sampler *ps, uint64_t seed, int x, int y,
+                        rgb *m2_out)
+{
+    rng r;
+    rng_seed(&r, seed, (uint64_t)y * (uint64_t)it->sc->width + (uint64_t)x);
+    rgb mean = rgb_gray(0), m2 = rgb_gray(0);
+    for (int s = 0; s < ps->spp; s++) {
+        double jx = 0.5, jy = 0.5; /* one sample: the pixel's centre */
+        if (ps->spp > 1) {
+            jx = rng_uniform(&r);
+            jy = rng_uniform(&r);
+        }
+        rgb v = sample_radiance(it, ps, x + jx, y + jy, &r);
+        rgb d = rgb_make(v.r - mean.r, v.g - mean.g, v.b - mean.b);
+        mean = rgb_madd(mean, d, 1.0 / (s + 1)); /* mean += (v - mean) / n */
+        m2 = rgb_add(m2, rgb_make(d.r * (v.r - mean.r), d.g * (v.g - mean.g),
+                                  d.b * (v.b - mean.b))); /* M2 += (v - mean_old)(v - mean) */
+    }
+    *m2_out = m2;
+    return mean;
+}
+
+/* Every pixel into out (and the variance of its mean into opts->variance). */
+static void render_pixels(integrator *it, const pixel_sampler *ps, const render_opts *opts,
+                          image *out, render_stats *stats)
+{
+    int w = it->sc->width, h = it->sc->height, spp = ps->spp;
+    for (int y = 0; y < h; y++) {
+        for (int x = 0; x < w; x++) {
+            rgb m2;
+            rgb c = render_pixel(it, ps, opts->seed, x, y, &m2);
             if (opts->variance) { /* variance of the mean: M2 / (n - 1) / n */
                 image_set(opts->variance, x, y, rgb_scale(m2, 1.0 / ((double)(spp - 1) * spp)));
                 stats->nonfinite_variance += !image_px_is_finite(image_px(opts->variance, x, y));
@@ -155,33 +192,70 @@ int render_scene(const scene *sc, const render_opts *opts, image *out, render_st
             /* counted as stored: a finite double above FLT_MAX becomes Inf in the float image */
             stats->nonfinite_pixels += !image_px_is_finite(image_px(out, x, y));
         }
-        if (opts->progress) opts->progress(opts->progress_ctx, y + 1, sc->height);
+        if (opts->progress) opts->progress(opts->progress_ctx, y + 1, h);
     }
+}
+
+/* What was built, for the summary line and --verbose. */
+static void record_built(const built *b, render_stats *stats)
+{
+    const integrator *it = &b->it;
+    stats->rays = it->rays + it->rt.rays;
+    stats->envlight_built = it->has_envlight;
+    stats->envlight_sampled = it->samples_env;
+    if (it->has_envlight) {
+        stats->envlight_mode = it->el.mode;
+        stats->envlight_seconds = it->el.build_seconds;
+        stats->envlight_bad_texels = it->el.n_bad;
+        stats->envlight_fell_back = it->el.fell_back;
+        stats->envlight_points = it->el.n_points;
+        stats->envlight_w = it->el.w;
+        stats->envlight_h = it->el.h;
+        stats->envlight_kappa = it->el.kappa;
+    }
+    stats->lights = it->has_lights ? it->ls.n : 0;
+    stats->env_fraction = it->env_fraction;
+    stats->nee = it->nee;
+    stats->prims = b->accel.n_prims;
+    stats->bvh_is_tree = b->accel.is_tree;
+    stats->bvh_nodes = b->accel.n_nodes;
+    stats->bvh_depth = b->accel.depth;
+}
+
+int render_scene(const scene *sc, const render_opts *opts, image *out, render_stats *stats,
+                 error *err)
+{
+    render_opts def = render_defaults();
+    if (!opts) opts = &def;
+    memset(stats, 0, sizeof *stats);
+    out->w = out->h = 0;
+    out->px = NULL;
+    pixel_sampler ps;
+    if (samples_per_pixel(sc, opts, &ps.spp, err)) return -1;
+
+    double t0 = now_seconds();
+    built b;
+    if (build(sc, opts->mem, &b, stats, err)) return -1;
+    sc = b.sc;
+    stats->build_seconds = now_seconds() - t0;
+    if (image_alloc(out, sc->width, sc->height, err) ||
+        (opts->variance && image_alloc(opts->variance, sc->width, sc->height, err))) {
+        image_free(out);
+        release(&b);
+        return error_prefix(err, "%s: output image", sc->path);
+    }
+    warn_if_black_envmap(sc, &b.it, opts);
+    if (opts->start) opts->start(opts->start_ctx); /* nothing below refuses the render */
+
+    camera_init(&ps.cam, sc->eye, sc->center, sc->up, sc->fovy, sc->width, sc->height);
+    ps.with_diff = texshade_scene_needs_differentials(sc); /* other scenes pay nothing */
+    ps.diff_scale = fmax(1.0 / sqrt((double)ps.spp), RENDER_MIN_DIFF_SCALE);
+    double t1 = now_seconds();
+    render_pixels(&b.it, &ps, opts, out, stats);
     stats->seconds = now_seconds() - t1;
-    stats->rays = it.rays + it.rt.rays;
-    stats->envlight_built = it.has_envlight;
-    stats->envlight_sampled = it.samples_env;
-    if (it.has_envlight) {
-        stats->envlight_mode = it.el.mode;
-        stats->envlight_seconds = it.el.build_seconds;
-        stats->envlight_bad_texels = it.el.n_bad;
-        stats->envlight_fell_back = it.el.fell_back;
-        stats->envlight_points = it.el.n_points;
-        stats->envlight_w = it.el.w;
-        stats->envlight_h = it.el.h;
-        stats->envlight_kappa = it.el.kappa;
-    }
-    stats->lights = it.has_lights ? it.ls.n : 0;
-    stats->env_fraction = it.env_fraction;
-    stats->nee = it.nee;
-    stats->spp = spp;
-    stats->prims = accel.n_prims;
-    stats->bvh_is_tree = accel.is_tree;
-    stats->ray_differentials = with_diff;
-    stats->bvh_nodes = accel.n_nodes;
-    stats->bvh_depth = accel.depth;
-    integrator_free(&it);
-    bvh_free(&accel);
-    if (has_displaced) displacemap_free(&displaced);
+    record_built(&b, stats);
+    stats->spp = ps.spp;
+    stats->ray_differentials = ps.with_diff;
+    release(&b);
     return 0;
 }

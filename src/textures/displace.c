@@ -61,8 +61,9 @@ static int recompute_normals(displace_mesh *m, error *err)
 /* The common end of a tessellation: move the vertices (displace_vertices), free their st
  * (vst) and callback points (vq, may be NULL), then recompute the normals.  On failure *out is
  * freed. */
-static int displace_and_renormalize(displace_mesh *out, uv2 *vst, vec3 *vq, displace_height_fn height,
-                                    void *ctx, double scale, error *err)
+static int displace_and_renormalize(displace_mesh *out, uv2 *vst, vec3 *vq,
+                                    displace_height_fn height, void *ctx, double scale,
+                                    error *err)
 {
     displace_vertices(out, vst, vq, height, ctx, scale);
     free(vst);

@@ -118,7 +118,8 @@ int mipmap_build(mipmap *m, const image *base, wrap_mode wrap, error *err)
     }
     for (int i = 0; i < MIPMAP_EWA_LUT_SIZE; i++) {
         double r2 = (double)i / (MIPMAP_EWA_LUT_SIZE - 1);
-        m->ewa_weight[i] = exp(-MIPMAP_EWA_ALPHA * r2) - exp(-MIPMAP_EWA_ALPHA); /* Gaussian, 0 at r = 1 */
+        /* a Gaussian, 0 at r = 1 */
+        m->ewa_weight[i] = exp(-MIPMAP_EWA_ALPHA * r2) - exp(-MIPMAP_EWA_ALPHA);
     }
     return 0;
 }

@@ -1,4 +1,4 @@
-/* perlin.c - Improved Noise and the solid textures built on it (see include/envtex/textures/perlin.h). */
+/* perlin.c - Improved Noise and the solid textures built on it (perlin.h). */
 #include "envtex/textures/perlin.h"
 
 #include <math.h>
@@ -66,8 +66,14 @@ static inline int fast_floor(double x)
 
 double perlin_noise(double x, double y, double z)
 {
-    /* STEP(perlin): Improved Noise (perlin.h): hash the 8 lattice corners with perm[] by his chain (perlin.h: A = p[X] + Y, AA = p[A] + Z, ...), dot each corner's gradient with the offset (grad), blend with fade(t) = 6t^5 - 15t^4 + 10t^3 (lerp); the cell of any finite x is lattice_cell(floor(x)) (fast_floor(x) & 255 below PERLIN_INT_SAFE), a NaN or infinite coordinate gives 0 (slides 44-46) */
-    /* STUB: (void)perm; (void)fade; (void)lerp; (void)grad; (void)lattice_cell; (void)fast_floor; (void)x; (void)y; (void)z; return 0.0; */
+    /* STEP(perlin): Improved Noise (perlin.h): hash the 8 lattice corners with perm[] by his
+     * chain (A = p[X] + Y, AA = p[A] + Z, ...: docs/texture-mapping.md, section 11), dot each
+     * corner's gradient with the offset (grad), blend with fade(t) = 6t^5 - 15t^4 + 10t^3
+     * (lerp); the cell of any finite x is lattice_cell(floor(x)) (fast_floor(x) & 255 below
+     * PERLIN_INT_SAFE), a NaN or infinite coordinate gives 0 (slides 44-46) */
+    /* STUB: (void)perm; (void)fade; (void)lerp; (void)grad; (void)lattice_cell;
+     * (void)fast_floor; (void)x; (void)y; (void)z;
+     * return 0.0; */
     unsigned X, Y, Z;
     if (fabs(x) < PERLIN_INT_SAFE && fabs(y) < PERLIN_INT_SAFE && fabs(z) < PERLIN_INT_SAFE) {
         /* the common case (NaN and infinities fail these comparisons and go below): floor by
@@ -95,7 +101,8 @@ double perlin_noise(double x, double y, double z)
     return lerp(w,
                 lerp(v, lerp(u, grad(perm[AA], x, y, z), grad(perm[BA], x - 1, y, z)),
                      lerp(u, grad(perm[AB], x, y - 1, z), grad(perm[BB], x - 1, y - 1, z))),
-                lerp(v, lerp(u, grad(perm[AA + 1], x, y, z - 1), grad(perm[BA + 1], x - 1, y, z - 1)),
+                lerp(v,
+                     lerp(u, grad(perm[AA + 1], x, y, z - 1), grad(perm[BA + 1], x - 1, y, z - 1)),
                      lerp(u, grad(perm[AB + 1], x, y - 1, z - 1),
                           grad(perm[BB + 1], x - 1, y - 1, z - 1))));
     /* END STEP(perlin) */

@@ -1,4 +1,4 @@
-/* texlookup.c - wrap modes, nearest and bilinear texture lookups (see include/envtex/textures/texlookup.h). */
+/* texlookup.c - wrap modes, nearest and bilinear texture lookups (texlookup.h). */
 #include "envtex/textures/texlookup.h"
 
 #include <assert.h>
@@ -110,8 +110,8 @@ rgb texlookup_bilinear(const image *im, uv2 st, wrap_mode wrap)
 {
     assert(im->w >= 1 && im->h >= 1);
     int w = im->w, h = im->h;
-    texlookup_axis ax = texlookup_bilinear_axis(st.u * w - 0.5, w, wrap); /* x = s W - 1/2, i0 = floor(x) */
-    texlookup_axis ay = texlookup_bilinear_axis(st.v * h - 0.5, h, wrap); /* y = t H - 1/2, j0 = floor(y) */
+    texlookup_axis ax = texlookup_bilinear_axis(st.u * w - 0.5, w, wrap); /* x = s W - 1/2 */
+    texlookup_axis ay = texlookup_bilinear_axis(st.v * h - 0.5, h, wrap); /* y = t H - 1/2 */
     int i0 = ax.i0, i1 = ax.i1, j0 = ay.i0, j1 = ay.i1;
     double fx = ax.f, fy = ay.f;
     const float *r0 = image_px(im, 0, h - 1 - j0); /* row of j0 (rows counted from the top) */

@@ -1,4 +1,4 @@
-/* texmapping.c - the lecture's (s, t) parameterizations (see include/envtex/textures/texmapping.h). */
+/* texmapping.c - the lecture's (s, t) parameterizations (texmapping.h). */
 #include "envtex/textures/texmapping.h"
 
 #include <assert.h>
@@ -40,7 +40,7 @@ uv2 texmapping_spherical(vec3 q)
 {
     /* theta = atan2(sqrt(x^2 + y^2), z): the angle from +z, exact near the poles (acos is not),
      * and atan2(0, 0) = 0 for q = 0 */
-    double theta = atan2(hypot(q.x, q.y), q.z); /* hypot: no overflow at 1e200, no underflow at 1e-200 */
+    double theta = atan2(hypot(q.x, q.y), q.z); /* hypot: no overflow, no underflow */
     if (q.x == 0 && q.y == 0 && q.z == 0) theta = 0.5 * M_PI;
     return (uv2){phi_s(q), 1.0 - theta / M_PI}; /* t = 1 - theta / pi */
 }

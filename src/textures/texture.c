@@ -1,4 +1,4 @@
-/* texture.c - texture objects and their filtered evaluation (see include/envtex/textures/texture.h). */
+/* texture.c - texture objects and their filtered evaluation (texture.h). */
 #include "envtex/textures/texture.h"
 
 #include <assert.h>
@@ -182,7 +182,8 @@ static double solid_value(const texture *t, vec3 p, double w)
     double v = 0;
     switch (t->kind) {
     case TEXTURE_PERLIN: /* one octave of lattice frequency 1 */
-        v = 0.5 + 0.5 * (w > 0 ? perlin_fbm_filtered(x, w, 1, 2.0, 0.5) : perlin_noise(x.x, x.y, x.z));
+        v = 0.5 + 0.5 * (w > 0 ? perlin_fbm_filtered(x, w, 1, 2.0, 0.5)
+                               : perlin_noise(x.x, x.y, x.z));
         break;
     case TEXTURE_FBM:
         v = 0.5 + 0.5 * perlin_fbm_filtered(x, w, s->octaves, 2.0, 0.5);

@@ -1,22 +1,13 @@
-/* brdf.h - the course's BRDFs at a shading point, their importance sampling and pdfs (CSE 168
- * hw4; ../shared/FORMAT.md): modified Phong, GGX, and the delta BRDFs mirror and glass.
+/* brdf.h - the course's BRDFs (CSE 168 hw4, ../shared/FORMAT.md), their sampling and pdfs:
+ *   Phong: f = kd / pi + ks (s + 2) / (2 pi) max(r . wi, 0)^s,  r = wo mirrored
+ *   GGX:   f = kd / pi + F G D / (4 |n.wi| |n.wo|), Smith G, Schlick F, alpha clamped
+ *   mirror and glass: deltas
+ * Sampling picks the specular lobe with probability t = avg(ks) / (avg(ks) + avg(kd)) (GGX:
+ * at least 0.25), else the cosine lobe.
  *
- *   Phong:  f = kd / pi + ks (s + 2) / (2 pi) max(r . wi, 0)^s,   r = mirror direction of wo
- *   GGX:    f = kd / pi + F G D / (4 |n.wi| |n.wo|),  Smith G = G1(wi) G1(wo),
- *           G1 = 2 / (1 + sqrt(1 + alpha^2 tan^2 theta)),  Schlick F = ks + (1 - ks)(1 - wi.h)^5
- *           alpha = roughness clamped by sampling_ggx_alpha (roughness 0 is the mirror limit,
- *           alpha = 2^-27), so any finite roughness >= 0 gives finite f, pdfs and weights
- *   BRDF sampling picks the specular lobe with probability t = avg(ks) / (avg(ks) + avg(kd)),
- *   else the cosine-weighted diffuse lobe.  GGX: t at least 0.25, as the course's scenes do, ks = 0
- *   included (F = (1 - wi.h)^5 there: the rim reflections of a `specular 0` surface); ks = kd = 0
- *   (t = 0/0): GGX t = 1 (the Fresnel lobe alone reflects), Phong t = 0 (f = 0: t is no matter).
+ *     if (brdf_sample(&s, wo, SAMPLING_BRDF, xi1, xi2, xi3, &r)) beta = rgb_mul(beta, r.weight);
  *
- *     surface s; ... (filled by the integrator from the hit and its material)
- *     brdf_sample_result r;
- *     if (brdf_sample(&s, wo, SAMPLING_BRDF, xi1, xi2, xi3, &r)) throughput *= r.weight;
- *
- * Directions are world-space unit vectors pointing AWAY from the surface (wo towards the viewer,
- * wi towards the light).  pdfs are per steradian.
+ * wo, wi: world unit vectors away from the surface; pdfs per steradian.
  */
 #ifndef ENVTEX_BRDF_H
 #define ENVTEX_BRDF_H
@@ -31,23 +22,25 @@ typedef struct surface {
     brdf_kind kind;
     rgb kd, ks, emission;
     double shininess, roughness, ior;
-    /* ray differentials at the hit (raydiff.h), filled by texshade_surface when the ray had
-     * them: what a perfect mirror or refraction carries on.  has_diff = 0: none. */
+    /* the hit's ray differentials (texshade_surface), has_diff = 0: none */
     int has_diff;
     vec3 dpdx, dpdy; /* change of p per pixel step (world) */
     vec3 dndx, dndy; /* change of the (unbumped) shading normal n per pixel step */
 } surface;
 
-/* Fill the BRDF part of *s from a material (texshade_surface then applies its texture maps). */
+/* The BRDF part of *s from a material (texshade_surface then applies its maps). */
 void brdf_surface_from_material(surface *s, const material *m);
 
 /* 1 for mirror and glass: no density, only brdf_sample can produce their directions. */
-static inline int brdf_is_delta(const surface *s) { return s->kind == BRDF_MIRROR || s->kind == BRDF_GLASS; }
+static inline int brdf_is_delta(const surface *s)
+{
+    return s->kind == BRDF_MIRROR || s->kind == BRDF_GLASS;
+}
 
 /* f(wo, wi); 0 below the surface and for delta BRDFs. */
 rgb brdf_eval(const surface *s, vec3 wo, vec3 wi);
 
-/* Probability that BRDF sampling picks the specular lobe (t above), in [0, 1]. */
+/* t above, in [0, 1]. */
 double brdf_specular_probability(const surface *s);
 
 /* pdf (per steradian) of brdf_sample producing wi with the given strategy; 0 for delta BRDFs. */
@@ -60,9 +53,8 @@ typedef struct brdf_sample_result {
     int is_delta;
 } brdf_sample_result;
 
-/* Sample wi for outgoing wo with `strategy` (hemisphere, cosine, or brdf); xi in [0,1).
- * Returns 0 if the sample carries nothing (below the surface, zero pdf): the path ends. */
-int brdf_sample(const surface *s, vec3 wo, sampling_kind strategy, double xi1, double xi2, double xi3,
-                brdf_sample_result *out);
+/* wi for wo by `strategy` (hemisphere, cosine, brdf), xi in [0, 1); 0 if it carries nothing. */
+int brdf_sample(const surface *s, vec3 wo, sampling_kind strategy, double xi1, double xi2,
+                double xi3, brdf_sample_result *out);
 
 #endif

@@ -1,16 +1,10 @@
-/* render.h - from a scene to an image: builds what the scene needs (and nothing else), runs the
- * scene's integrator over every pixel, and reports what it built and what it cost.
+/* render.h - from a scene to an image: build what the scene needs (nothing else), run its
+ * integrator over every pixel, report what was built and what it cost.
  *
- *     render_opts o = render_defaults();
- *     o.seed = 7;
- *     image img; render_stats st;
- *     if (render_scene(sc, &o, &img, &st, &err)) ...
- *     ... image_free(&img);
+ *     if (render_scene(sc, &opts, &img, &stats, &err)) ...   // opts = render_defaults()
  *
- * Deterministic: pixel (x, y) draws from random stream y * width + x of `seed`, so the image
- * depends only on the scene, spp and seed, and is bit-identical run to run on one build.
- * With spp = 1 the ray passes through the pixel centre; with spp > 1 each sample is jittered
- * uniformly within the pixel and the samples are averaged (a box filter).
+ * Deterministic: pixel (x, y) draws from stream y * width + x of `seed`.  spp = 1: the pixel
+ * centre; more: jittered in the pixel and averaged (a box filter).
  */
 #ifndef ENVTEX_RENDER_H
 #define ENVTEX_RENDER_H
@@ -30,24 +24,15 @@ typedef struct render_opts {
     uint64_t seed;             /* default 0 */
     render_progress_fn progress; /* called after each row (may be NULL) */
     void *progress_ctx;
-    render_start_fn start;     /* called once, when every check that can refuse the render has
-                                * passed and what it needs is built, before the first pixel (may
-                                * be NULL).  A refused render never calls it: a caller prints the
-                                * scene's warnings here, so a refused run prints its error alone */
+    render_start_fn start;     /* once everything is built, before the first pixel (may be
+                                * NULL); never for a refused render */
     void *start_ctx;
-    scene_warn_fn warn;        /* called for each warning of the render's own, before start (may
-                                * be NULL: dropped).  One so far: an envmap that is black (no
-                                * texel above 0) where the scene samples it by its values
-                                * (`envsampling cdf`, `cdf-sintheta`, `mediancut`), which then
-                                * falls back (envlight.h) */
+    scene_warn_fn warn;        /* the render's own warnings (a black sampled envmap), before
+                                * start (NULL: dropped) */
     void *warn_ctx;
-    budget *mem;               /* the run's memory budget (budget.h; NULL: none), charged before
-                                * each structure is built: the displaced geometry, the BVH, the
-                                * envmap's tables (the image and variance are not: SCENE_MAX_PIXELS
-                                * bounds them) */
-    image *variance;           /* if not NULL: receives the per-pixel variance of the mean,
-                                * s^2 / spp with s^2 the unbiased sample variance of the pixel's
-                                * samples (needs spp >= 2; allocated here, free with image_free) */
+    budget *mem;               /* charged before the displaced geometry, BVH and envmap tables
+                                * are built (NULL: none) */
+    image *variance;           /* not NULL: gets the variance of each pixel's mean (image_free) */
 } render_opts;
 
 typedef struct render_stats {
@@ -55,8 +40,7 @@ typedef struct render_stats {
     double build_seconds;      /* time to build acceleration structures and tables */
     long long rays;            /* rays traced, shadow rays included */
     int spp;
-    long nonfinite_pixels;     /* pixels with a NaN or Inf channel in the image as stored (float:
-                                * a radiance above FLT_MAX is Inf there) (should be 0) */
+    long nonfinite_pixels;     /* pixels stored with a NaN or Inf channel (should be 0) */
     long nonfinite_variance;   /* the same, in opts->variance (0 without one) */
     /* what was built */
     long prims;
@@ -66,8 +50,7 @@ typedef struct render_stats {
     int bvh_depth;
     int envlight_built;        /* environment sampling tables were built */
     int envlight_sampled;      /* the integrator samples the envmap as a light */
-    int envlight_mode;         /* envsampling_mode used (cdf and cdf-sintheta become uniform on a
-                                  black map; median cut keeps its mode, with equal strata) */
+    int envlight_mode;         /* envsampling_mode used (cdf: uniform on a black map) */
     double envlight_seconds;   /* time to build them */
     long envlight_bad_texels;  /* NaN / Inf / negative texel channels, treated as 0 */
     int envlight_fell_back;    /* the map was black: sampling fell back to uniform */
@@ -84,20 +67,18 @@ typedef struct render_stats {
 
 render_opts render_defaults(void);
 
-/* Render `sc` into *out (allocated here, width x height; free with image_free).  opts may be
- * NULL (render_defaults()); stats may not.  Returns 0, or -1 with *err set, naming the scene file:
- * spp out of [1, SCENE_MAX_SPP] or over SCENE_MAX_CAMERA_SAMPLES, a variance asked for at spp 1,
- * a displacement budget, BVH or envmap table that cannot be built or is beyond the memory
- * budget, out of memory.  On failure
- * *out (and opts->variance) hold nothing to free and opts->start was not called. */
-int render_scene(const scene *sc, const render_opts *opts, image *out, render_stats *stats, error *err);
+/* Render sc into *out (allocated, width x height; image_free).  opts NULL: render_defaults();
+ * stats not NULL.  0, or -1 with *err naming the scene: spp out of [1, SCENE_MAX_SPP] or over
+ * SCENE_MAX_CAMERA_SAMPLES, a variance at spp 1, displaced geometry, BVH or tables that cannot
+ * be built or exceed the budget, out of memory; then *out and opts->variance hold nothing and
+ * opts->start was not called. */
+int render_scene(const scene *sc, const render_opts *opts, image *out, render_stats *stats,
+                 error *err);
 
-/* Radiance along a camera ray by the scene's integrator (`integrator raytracer|analyticdirect|
- * direct|pathtracer`), in the context `it` built for it (integrator.h). */
+/* Radiance along a camera ray by the scene's integrator, in the context it (integrator.h). */
 rgb render_radiance(integrator *it, ray r, rng *g);
 
-/* The same with the camera ray's differentials (raydiff.h; NULL: none), which texture
- * filtering uses and perfect mirror / glass bounces carry on (docs/texture-mapping.md). */
+/* The same with the camera ray's differentials (NULL: none), for texture filtering. */
 rgb render_radiance_diff(integrator *it, ray r, const ray_diff *rd, rng *g);
 
 #endif

@@ -1,50 +1,15 @@
-/* texture.h - a texture object and its filtered evaluation: image textures (an image, a wrap
- * mode and, when a filter needs it, its mip pyramid), the 2D checkerboard, and the solid
- * (3D, procedural) textures of Perlin noise.  Lecture "Environment, Texture Maps", slides
- * 25-46: "naive texture mapping aliases badly", bilinear magnification, mip-mapped trilinear
- * minification, EWA, procedural and solid textures, textures that drive BRDF parameters and
- * bump maps.  Knows nothing of scenes: a query says where, and how large the pixel is there.
+/* texture.h - a texture and its filtered evaluation: images (with their mip pyramid), the
+ * checkerboard and Perlin's solid textures (slides 25-46).
  *
- *     texture tx;
  *     texture_init_image(&tx, &img, WRAP_REPEAT);       // img must outlive tx
- *     if (texture_prepare(&tx, TEXFILTER_TRILINEAR, &mem, &err)) return -1;  // builds the pyramid
- *     texture_query q = {0};
- *     q.st = st; q.dst_dx = dx; q.dst_dy = dy; q.filter = TEXFILTER_TRILINEAR;
+ *     if (texture_prepare(&tx, TEXFILTER_TRILINEAR, &mem, &err)) return -1;
+ *     texture_query q = {.st = st, .dst_dx = dx, .dst_dy = dy, .filter = TEXFILTER_TRILINEAR};
  *     rgb kd = texture_eval(&tx, &q);
  *     texture_free(&tx);
  *
- * Kinds and their parameters (docs/scene-format.md spells them in the scene file):
- *   image       (s, t) as texlookup.h: from the bottom-left, t up; the wrap mode decides what
- *               lies outside [0, 1]^2.
- *   checker     2D, in (s, t): `frequency` squares per unit of s and of t; colour c0 where
- *               floor(f s) + floor(f t) is even (the square at the origin), c1 where odd.
- *   perlin      solid: v = 0.5 + 0.5 noise(scale P)
- *   fbm         solid: v = 0.5 + 0.5 fbm(scale P, octaves, lacunarity 2, gain 0.5)
- *   turbulence  solid: v = turbulence(scale P, octaves, 2, 0.5)
- *   marble      solid: v = 0.5 + 0.5 sin(frequency x + amplitude turbulence(x, octaves)), x = scale P
- *   wood        solid: v = frac(rings r + amplitude noise(x)), r = distance of x = scale P from
- *               its y axis (perlin_wood)
- *   Solid textures are evaluated at the OBJECT-space point P (so they move with the object) and
- *   return (1 - v) c0 + v c1 with v clamped to [0, 1].
- *
- * Filters (texture_filter) and what each does without differentials (all derivatives zero):
- *   nearest    image: the texel containing (s, t); checker, solids: the point value.
- *   bilinear   image: texlookup_bilinear; checker, solids: the point value.
- *   trilinear  image: mip level from the footprint width w = sqrt(|dst/dx| |dst/dy|) in
- *              texels (each axis as (ds W, dt H): the side of the square of the footprint's
- *              area when the axes are perpendicular, their geometric mean always; a non-square
- *              image's s and t texels differ in texture units),
- *              mipmap_lookup_trilinear; checker: the exact box-filtered value over the box
- *              max(|ds/dx|, |ds/dy|) wide in s (likewise t); solids: octaves band-limited by
- *              the footprint max(|dP/dx|, |dP/dy|) (perlin.h's filtered sums).
- *   ewa        image: mipmap_lookup_ewa with both derivative vectors; checker and solids: as
- *              trilinear.
- *   Fallback: zero derivatives mean "no footprint known" (for example after a diffuse bounce):
- *   trilinear and EWA then read level 0 bilinearly, the checker and solids are point sampled.
- *   That is the sharpest answer, never a blur; a renderer that wants less aliasing there must
- *   supply a footprint (for example from the path's spread angle).
- *
- * Evaluation is pure and allocation free; texture_prepare allocates (the pyramid), once.
+ * Solids are evaluated at the object-space point: (1 - v) c0 + v c1, v in [0, 1] (perlin.h).
+ * The checker is c0 where floor(f s) + floor(f t) is even.  Evaluation is pure and allocation
+ * free.  Details: docs/texture-mapping.md, section 11.
  */
 #ifndef ENVTEX_TEXTURE_H
 #define ENVTEX_TEXTURE_H
@@ -73,23 +38,22 @@ typedef enum texture_filter {
     TEXFILTER_EWA
 } texture_filter;
 
-/* Parameters of the solid textures.  Fields a kind does not use are still checked
- * (texture_init_solid's ranges), so zero them; they are otherwise ignored. */
+/* The solids' parameters; zero those a kind does not use (they are checked). */
 typedef struct texture_solid_params {
-    double scale;     /* > 0: P is multiplied by it, so features are 1 / scale object units wide */
+    double scale;     /* > 0: the noise of scale P */
     int octaves;      /* fbm, turbulence, marble: 1 .. PERLIN_MAX_OCTAVES */
-    double frequency; /* marble: radians of vein phase per unit of scale P along x */
-    double amplitude; /* marble: radians per unit of turbulence; wood: ring wobble, in rings */
-    double rings;     /* wood: rings per unit of radius (of scale P) */
+    double frequency; /* marble: radians per unit of scale P along x */
+    double amplitude; /* marble: radians per unit of turbulence; wood: rings */
+    double rings;     /* wood: rings per unit of radius */
     rgb c0, c1;       /* colours at v = 0 and v = 1 */
 } texture_solid_params;
 
 typedef struct texture {
     texture_kind kind;
     /* image */
-    const image *img; /* referenced, not owned: the caller keeps it alive and unchanged */
+    const image *img; /* the caller's, kept alive and unchanged */
     wrap_mode wrap;
-    mipmap mip;       /* built by texture_prepare for trilinear / EWA; owned */
+    mipmap mip;       /* owned, built by texture_prepare */
     int has_mip;
     /* checker */
     double frequency; /* squares per unit of s and t, > 0 */
@@ -98,74 +62,55 @@ typedef struct texture {
     texture_solid_params solid;
 } texture;
 
-/* Where and how to evaluate.  A zero-initialized query is valid (st = 0, no differentials,
- * nearest).  Spaces: st is texture space; p and its derivatives are the object space of the
- * surface (the one solid textures live in). */
+/* Where and how to evaluate (zeroed: valid, nearest, no footprint); p is in object space. */
 typedef struct texture_query {
     uv2 st;              /* texture coordinates (image, checker) */
-    uv2 dst_dx, dst_dy;  /* (ds/dx, dt/dx) and (ds/dy, dt/dy): change of st per pixel step */
+    uv2 dst_dx, dst_dy;  /* change of st per pixel step in x and y */
     vec3 p;              /* object-space point (solids) */
-    vec3 dp_dx, dp_dy;   /* its change per pixel step (solids' footprint) */
-    vec3 dp_ds, dp_dt;   /* object-space surface tangents dP/ds, dP/dt (solids' bump
-                            derivatives, texture_height_derivs); zero: no bump from solids */
+    vec3 dp_dx, dp_dy;   /* its change per pixel step */
+    vec3 dp_ds, dp_dt;   /* tangents dP/ds, dP/dt (solids' bump); zero: no bump */
     texture_filter filter;
 } texture_query;
 
-/* Bump derivatives: an image texture's central difference spans at least this many texels on
- * each side (half a texel: with bilinear reconstruction the slope is exact between centres). */
+/* Bump: an image's smallest half step, in texels */
 #define TEXTURE_BUMP_MIN_TEXELS 0.5
 
-/* Bump derivatives of the checker and the solids: the smallest half step, as a fraction of one
- * feature (a square, or one noise lattice cell 1 / scale).  The checker is a step function,
- * so its bump is a ridge this wide at each edge when no footprint is known; the noise is
- * smooth, so 1e-3 of a cell gives its slope to ~1e-6. */
+/* Bump: the checker's and solids' smallest half step, in squares or noise cells */
 #define TEXTURE_BUMP_MIN_FEATURE 1e-3
 
-/* An image texture reading `img` (non-empty, assert) with `wrap`.  References img: it must
- * stay allocated and unchanged until texture_free.  No pyramid yet (texture_prepare). */
+/* An image texture of img (non-empty, assert; kept unchanged until texture_free), no pyramid. */
 void texture_init_image(texture *t, const image *img, wrap_mode wrap);
 
-/* A checkerboard with `frequency` squares per unit of s and t.  Returns 0, or -1 with *err
- * set when frequency is not finite and > 0. */
+/* A checkerboard, `frequency` squares per unit of s and t: 0, or -1 with *err unless finite > 0. */
 int texture_init_checker(texture *t, rgb c0, rgb c1, double frequency, error *err);
 
-/* A solid texture of `kind` (TEXTURE_PERLIN .. TEXTURE_WOOD).  Returns 0, or -1 with *err set
- * when a parameter is out of range: scale must be finite and > 0; octaves in
- * [1, PERLIN_MAX_OCTAVES] for fbm, turbulence, marble; frequency, amplitude and rings finite
- * (rings >= 0, frequency >= 0). */
+/* A solid texture (TEXTURE_PERLIN .. TEXTURE_WOOD): 0, or -1 with *err unless scale > 0,
+ * octaves in [1, PERLIN_MAX_OCTAVES] (fbm, turbulence, marble), all finite, rings and
+ * frequency >= 0. */
 int texture_init_solid(texture *t, texture_kind kind, const texture_solid_params *sp, error *err);
 
-/* Get t ready for evaluations with `filter`: builds the mip pyramid of an image texture the
- * first time trilinear or EWA is asked for (once; later calls are free).  Other kinds and
- * filters need nothing.  What it builds is charged to `mem` first (budget.h, mipmap_cost_of;
- * NULL: no budget) and stays charged; the building scratch is released.  Returns 0, or -1 with
- * *err set (the budget, out of memory). */
+/* Ready t for `filter`: an image's pyramid, built once for trilinear or EWA and charged to mem
+ * first (NULL: no budget; the scratch is released).  0, or -1 with *err (budget, memory). */
 int texture_prepare(texture *t, texture_filter filter, budget *mem, error *err);
 
-/* Free what t owns (its pyramid; not the image) and zero it.  Safe on a zeroed texture. */
+/* Free the pyramid (not the image), zero t.  Safe on a zeroed texture. */
 void texture_free(texture *t);
 
-/* 1 if evaluating with `filter` needs texture_prepare first (an image texture filtered by
- * trilinear or EWA, without its pyramid yet). */
+/* 1 if `filter` needs texture_prepare first (an image for trilinear or EWA, not yet built). */
 int texture_needs_prepare(const texture *t, texture_filter filter);
 
-/* The texture's colour for query q, filtered by q->filter (see the table above).  An image
- * texture evaluated with trilinear or EWA must have been prepared for it (assert). */
+/* The colour at q by q->filter: nearest, bilinear read a point; trilinear the mip level of
+ * w = sqrt(|dst/dx| |dst/dy|) texels (checker: a box filter; solids: octaves band-limited by
+ * max(|dP/dx|, |dP/dy|)); ewa mipmap_lookup_ewa (others as trilinear).  Zero derivatives:
+ * read at the point (images bilinearly).  Images prepared for trilinear or EWA (assert). */
 rgb texture_eval(const texture *t, const texture_query *q);
 
-/* The scalar value for bump, roughness and displacement maps: the mean of the three channels. */
+/* The mean of the channels (bump, roughness and displacement maps). */
 double texture_eval_scalar(const texture *t, const texture_query *q);
 
-/* Height h = texture_eval_scalar(t, q) and its derivatives along s and t, for bump mapping.
- *   image, checker: central differences in (s, t) with half steps
- *       es = max(0.5 (|ds/dx| + |ds/dy|), minimum), et likewise from dt,
- *     minimum = TEXTURE_BUMP_MIN_TEXELS / W (H for t) for images and TEXTURE_BUMP_MIN_FEATURE /
- *     frequency for the checker: dh/ds = (h(s + es) - h(s - es)) / (2 es).
- *   solids: central differences along the object-space tangents dP/ds, dP/dt of the query:
- *       dh/ds = (h(P + e dP/ds) - h(P - e dP/ds)) / (2 e),  e |dP/ds| = max(half the footprint
- *     0.5 (|dP/dx| + |dP/dy|), TEXTURE_BUMP_MIN_FEATURE / scale);  a zero tangent gives 0.
- * Every sample uses the query's filter and footprint, so the derivative is of the filtered
- * texture ("scaled to the footprint"): a distant bump map flattens instead of sparkling. */
+/* h = texture_eval_scalar(t, q) and dh/ds, dh/dt by central differences of the filtered
+ * texture, (h(s + e) - h(s - e)) / 2e with e = max(0.5 (|ds/dx| + |ds/dy|), the minimum above)
+ * (likewise t); solids step along q's dP/ds, dP/dt (zero: 0). */
 void texture_height_derivs(const texture *t, const texture_query *q, double *h, double *dh_ds,
                            double *dh_dt);
 
@@ -173,8 +118,7 @@ void texture_height_derivs(const texture *t, const texture_query *q, double *h, 
 int texture_filter_parse(const char *name, texture_filter *out);
 const char *texture_filter_name(texture_filter f); /* static string */
 
-/* "checker", "perlin", "fbm", "turbulence", "marble" or "wood" into *out: 0, or -1 (images
- * have no keyword). */
+/* "checker", "perlin", "fbm", "turbulence", "marble" or "wood": 0, or -1. */
 int texture_kind_parse(const char *name, texture_kind *out);
 const char *texture_kind_name(texture_kind k); /* static string; "image" for TEXTURE_IMAGE */
 

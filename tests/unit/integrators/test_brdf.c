@@ -111,11 +111,14 @@ START_TEST(test_brdf_samples_fit_brdf_pdf)
         double w = brdf_eval(&s, wo, bs.wi).g * bs.wi.z / p;
         weight_mismatch += !(fabs(bs.weight.g - w) <= PDF_REL_TOL * w);
     }
-    ck_assert_msg(pdf_mismatch == 0, "%s: %ld samples' pdf differs from brdf_pdf", c->name, pdf_mismatch);
-    ck_assert_msg(weight_mismatch == 0, "%s: %ld weights differ from f cos / pdf", c->name, weight_mismatch);
+    ck_assert_msg(pdf_mismatch == 0, "%s: %ld samples' pdf differs from brdf_pdf", c->name,
+                  pdf_mismatch);
+    ck_assert_msg(weight_mismatch == 0, "%s: %ld weights differ from f cos / pdf", c->name,
+                  weight_mismatch);
     chisq_result res = chisq_test(obs, prob, nb, N_SAMPLES);
-    ck_assert_msg(chisq_accept(&res, N_CHISQ_TESTS), "%s: X^2 = %g, dof %d, p = %g, stray %ld (rejected %ld, expected %g)",
-                  c->name, res.stat, res.dof, res.p, res.stray, obs[reject], prob[reject] * N_SAMPLES);
+    ck_assert_msg(chisq_accept(&res, N_CHISQ_TESTS),
+                  "%s: X^2 = %g, dof %d, p = %g, stray %ld (rejected %ld, expected %g)", c->name,
+                  res.stat, res.dof, res.p, res.stray, obs[reject], prob[reject] * N_SAMPLES);
 }
 END_TEST
 
@@ -159,8 +162,10 @@ START_TEST(test_brdf_phong_albedo_never_exceeds_kd_plus_ks)
                     sum += M_PI * brdf_eval(&s, wo, wi).r;
                 }
             double albedo = sum / (G * G);
-            ck_assert_msg(albedo <= 1.0 + 2e-3, "phong s=%g at %g deg: albedo %g > kd + ks", shin[si], view[vi], albedo);
-            ck_assert_msg(albedo >= 0.4 - 1e-3, "phong s=%g at %g deg: albedo %g < kd", shin[si], view[vi], albedo);
+            ck_assert_msg(albedo <= 1.0 + 2e-3, "phong s=%g at %g deg: albedo %g > kd + ks",
+                          shin[si], view[vi], albedo);
+            ck_assert_msg(albedo >= 0.4 - 1e-3, "phong s=%g at %g deg: albedo %g < kd", shin[si],
+                          view[vi], albedo);
         }
     brdf_case d = {"", BRDF_PHONG, SAMPLING_BRDF, 0.7, 0.0, 1, 0, 0};
     surface s = make_surface(&d);
@@ -215,17 +220,20 @@ START_TEST(test_brdf_ggx_with_ks_zero_reflects_schlicks_fresnel)
             for (int i = 0; i < N; i++) {
                 brdf_sample_result bs;
                 double w = 0;
-                if (brdf_sample(&s, wo, SAMPLING_BRDF, rng_uniform(&r), rng_uniform(&r), rng_uniform(&r), &bs))
+                if (brdf_sample(&s, wo, SAMPLING_BRDF, rng_uniform(&r), rng_uniform(&r),
+                                rng_uniform(&r), &bs))
                     w = bs.weight.g;
                 sum += w;
                 sum2 += w * w;
             }
             double mean = sum / N, se = sqrt(fmax(0, sum2 / N - mean * mean) / (N - 1));
-            double co = wo.z, tan2 = (1 - co * co) / (co * co), g1 = 2 / (1 + sqrt(1 + a * a * tan2));
+            double co = wo.z, tan2 = (1 - co * co) / (co * co),
+                   g1 = 2 / (1 + sqrt(1 + a * a * tan2));
             double want = kds[ki] + g1 * g1 * pow(1 - co, 5);
             /* within 3%: at 85 degrees some of the lobe falls below the horizon (-1.9%) */
             ck_assert_msg(fabs(mean - want) < 4 * se + 0.03 * want + 1e-4,
-                          "kd %g at %g deg: albedo %.5f, want %.5f (SE %.5f)", kds[ki], view[vi], mean, want, se);
+                          "kd %g at %g deg: albedo %.5f, want %.5f (SE %.5f)", kds[ki], view[vi],
+                          mean, want, se);
         }
 }
 END_TEST
@@ -295,7 +303,8 @@ START_TEST(test_brdf_mirror_like_ggx_finds_every_specular_sample_under_any_norma
         surface s = make_surface(&c);
         for (int k = 0; k < 4000; k++) {
             s.n = s.ng = sampling_uniform_sphere(rng_uniform(&r), rng_uniform(&r));
-            vec3 wo = sampling_to_world(sampling_cosine_hemisphere(rng_uniform(&r), rng_uniform(&r)), s.n);
+            vec3 wo = sampling_to_world(
+                sampling_cosine_hemisphere(rng_uniform(&r), rng_uniform(&r)), s.n);
             double cos_o = vec3_dot(wo, s.n);
             if (!(cos_o > 1e-3)) continue;
             vec3 mirror = vec3_reflect(vec3_neg(wo), s.n);
@@ -343,7 +352,8 @@ START_TEST(test_brdf_ggx_with_extreme_roughness_is_finite_and_reaches_its_limits
             if (wo.z > 1e-3 && wi.z > 1e-3) bad += !(fabs(f - 0.5 / M_PI) <= 1e-20);
             bad += !isfinite(f) || !(isfinite(pdf) && pdf > 0);
             brdf_sample_result bs;
-            if (brdf_sample(&s, wo, SAMPLING_BRDF, rng_uniform(&r), rng_uniform(&r), rng_uniform(&r), &bs))
+            if (brdf_sample(&s, wo, SAMPLING_BRDF, rng_uniform(&r), rng_uniform(&r),
+                            rng_uniform(&r), &bs))
                 bad += !rgb_is_finite(bs.weight) || !isfinite(bs.pdf);
             /* wi = n exactly: tan = 0 in G1, where an unclamped alpha^2 = Inf gives Inf * 0 */
             if (wo.z > 1e-3) bad += !(fabs(brdf_eval(&s, wo, s.n).r - 0.5 / M_PI) <= 1e-20);
@@ -377,9 +387,11 @@ START_TEST(test_brdf_ggx_with_extreme_roughness_is_finite_and_reaches_its_limits
     for (int k = 0; k < 500; k++) {
         vec3 wo2 = sampling_cosine_hemisphere(rng_uniform(&r), rng_uniform(&r));
         vec3 wi = sampling_cosine_hemisphere(rng_uniform(&r), rng_uniform(&r));
-        bad += !rgb_is_finite(brdf_eval(&s, wo2, wi)) || !isfinite(brdf_pdf(&s, wo2, wi, SAMPLING_BRDF));
+        bad += !rgb_is_finite(brdf_eval(&s, wo2, wi)) ||
+               !isfinite(brdf_pdf(&s, wo2, wi, SAMPLING_BRDF));
         brdf_sample_result bs;
-        if (brdf_sample(&s, wo2, SAMPLING_BRDF, rng_uniform(&r), rng_uniform(&r), rng_uniform(&r), &bs))
+        if (brdf_sample(&s, wo2, SAMPLING_BRDF, rng_uniform(&r), rng_uniform(&r), rng_uniform(&r),
+                        &bs))
             bad += !rgb_is_finite(bs.weight) || !isfinite(bs.pdf);
     }
     ck_assert_int_eq(bad, 0);
@@ -422,9 +434,11 @@ START_TEST(test_brdf_delta_surfaces_reflect_and_refract_exactly)
     ck_assert_int_eq(bad, 0);
     /* Fresnel at 50 degrees, n = 1.5 (unpolarized): Rs = 0.1147, Rp = 0.0186 -> F = 0.0667 */
     double ci = cos(50 * M_PI / 180), ct = sqrt(1 - pow(sin(50 * M_PI / 180) / 1.5, 2));
-    double rs = pow((ci - 1.5 * ct) / (ci + 1.5 * ct), 2), rp = pow((1.5 * ci - ct) / (1.5 * ci + ct), 2);
+    double rs = pow((ci - 1.5 * ct) / (ci + 1.5 * ct), 2),
+           rp = pow((1.5 * ci - ct) / (1.5 * ci + ct), 2);
     double F = 0.5 * (rs + rp), se = sqrt(F * (1 - F) / n);
-    ck_assert_msg(fabs((double)refl / n - F) < 4 * se, "reflected %g, want F = %g", (double)refl / n, F);
+    ck_assert_msg(fabs((double)refl / n - F) < 4 * se, "reflected %g, want F = %g",
+                  (double)refl / n, F);
 }
 END_TEST
 
@@ -449,13 +463,14 @@ START_TEST(test_brdf_glass_leaving_the_ball_refracts_with_one_over_ior)
         double F = 0.5 * (rs * rs + rp * rp);
         ck_assert_near(F, fresnel_dielectric(ci, eta), 1e-12);
         ck_assert(brdf_sample(&s, wo, SAMPLING_BRDF, 0.5, 0.5, F * (1 - 1e-6), &bs));
-        ck_assert_msg(vec3_length(vec3_sub(bs.wi, mirror)) < 1e-12, "%g deg: xi3 below F = %g did not reflect",
-                      below[i], F);
+        ck_assert_msg(vec3_length(vec3_sub(bs.wi, mirror)) < 1e-12,
+                      "%g deg: xi3 below F = %g did not reflect", below[i], F);
         ck_assert(brdf_sample(&s, wo, SAMPLING_BRDF, 0.5, 0.5, F * (1 + 1e-6), &bs));
         double st = sqrt(bs.wi.x * bs.wi.x + bs.wi.y * bs.wi.y);
-        ck_assert_msg(bs.wi.z < 0 && fabs(st - si / eta) < 1e-12, "%g deg: sin_t %g, want %g (wi.z %g)", below[i],
-                      st, si / eta, bs.wi.z);
-        ck_assert(fabs(bs.wi.x * wo.y - bs.wi.y * wo.x) < 1e-12 && bs.wi.x * wo.x <= 0); /* plane, far side */
+        ck_assert_msg(bs.wi.z < 0 && fabs(st - si / eta) < 1e-12,
+                      "%g deg: sin_t %g, want %g (wi.z %g)", below[i], st, si / eta, bs.wi.z);
+        ck_assert(fabs(bs.wi.x * wo.y - bs.wi.y * wo.x) < 1e-12 &&
+                  bs.wi.x * wo.x <= 0); /* plane, far side */
         ck_assert(bs.is_delta && bs.weight.r == 1 && bs.weight.g == 1 && bs.weight.b == 1);
     }
     for (int i = 0; i < 3; i++) {

@@ -1,5 +1,6 @@
-/* test_integrators.c - direct, path tracing, analytic direct (include/envtex/integrators/integrator.h,
- * direct.h, pathtracer.h, analyticdirect.h) against known answers.
+/* test_integrators.c - direct, path tracing, analytic direct
+ * (include/envtex/integrators/integrator.h, direct.h, pathtracer.h, analyticdirect.h) against known
+ * answers.
  *
  *   - White furnace: a diffuse sphere of albedo rho alone in a constant environment L is rho L
  *     everywhere (it is convex: every bounce leaves), with every strategy and envmap sampler;
@@ -36,7 +37,7 @@
                            * a correct estimator fails one comparison with probability 6e-5 */
 #define FURNACE_TOL 0.005 /* issue 4: rho L within 0.5% */
 
-/* ---- scenes ----------------------------------------------------------------------------------- */
+/* ---- scenes ---------------------------------------------------------------------------------- */
 static void load(scene *sc, const char *text)
 {
     scene_load_opts o = scene_load_defaults();
@@ -148,7 +149,7 @@ static stats stats_towards(const char *base, const char *mode, vec3 target, long
     return st;
 }
 
-/* ---- white furnace ---------------------------------------------------------------------------- */
+/* ---- white furnace --------------------------------------------------------------------------- */
 
 /* a sphere filling the whole frame: every pixel sees its interior */
 #define FURNACE_SCENE                       \
@@ -165,19 +166,31 @@ static stats stats_towards(const char *base, const char *mode, vec3 target, long
 #define DI_STRAT "integrator direct\nspp 16\nlightsamples 16\nlightstratify on\n"
 typedef struct strategy { const char *name; const char *lines; } strategy;
 static const strategy strategies[] = {
-    {"pathtracer, nee off, hemisphere", "integrator pathtracer\nspp 256\nnexteventestimation off\nimportancesampling hemisphere\n"},
-    {"pathtracer, nee off, cosine", "integrator pathtracer\nspp 16\nnexteventestimation off\nimportancesampling cosine\n"},
-    {"pathtracer, nee off, brdf", "integrator pathtracer\nspp 16\nnexteventestimation off\nimportancesampling brdf\n"},
-    {"pathtracer, nee on, cdf", "integrator pathtracer\nspp 256\nlightsamples 8\nnexteventestimation on\nenvsampling cdf\n"},
-    {"pathtracer, nee on, cdf alias", PT_STRAT "nexteventestimation on\nenvsampling cdf\nenvsampler alias\n"},
-    {"pathtracer, nee on, cdf-sintheta", PT_STRAT "nexteventestimation on\nenvsampling cdf-sintheta\n"},
+    {"pathtracer, nee off, hemisphere",
+     "integrator pathtracer\nspp 256\nnexteventestimation off\nimportancesampling hemisphere\n"},
+    {"pathtracer, nee off, cosine",
+     "integrator pathtracer\nspp 16\nnexteventestimation off\nimportancesampling cosine\n"},
+    {"pathtracer, nee off, brdf",
+     "integrator pathtracer\nspp 16\nnexteventestimation off\nimportancesampling brdf\n"},
+    {"pathtracer, nee on, cdf",
+     "integrator pathtracer\nspp 256\nlightsamples 8\nnexteventestimation on\nenvsampling cdf\n"},
+    {"pathtracer, nee on, cdf alias",
+     PT_STRAT "nexteventestimation on\nenvsampling cdf\nenvsampler alias\n"},
+    {"pathtracer, nee on, cdf-sintheta",
+     PT_STRAT "nexteventestimation on\nenvsampling cdf-sintheta\n"},
     {"pathtracer, nee on, uniform", PT_STRAT "nexteventestimation on\nenvsampling uniform\n"},
     {"pathtracer, mis, brdf", PT_STRAT "nexteventestimation mis\nimportancesampling brdf\n"},
-    {"pathtracer, mis, hemisphere, cdf-sintheta alias", PT_STRAT "nexteventestimation mis\nimportancesampling hemisphere\nenvsampling cdf-sintheta\nenvsampler alias\nenvsamplefraction 1\n"},
-    {"pathtracer, mis, cosine, uniform", PT_STRAT "nexteventestimation mis\nimportancesampling cosine\nenvsampling uniform\n"},
-    /* under a constant map auto gives c = 0 (cosine sampling is exact there): force light samples */
-    {"pathtracer, mis, brdf, envsamplefraction 1", PT_STRAT "nexteventestimation mis\nimportancesampling brdf\nenvsamplefraction 1\n"},
-    {"pathtracer, mis, cosine, envsamplefraction 0.3", "integrator pathtracer\nspp 256\nlightsamples 4\nlightstratify on\nnexteventestimation mis\nimportancesampling cosine\nenvsamplefraction 0.3\n"},
+    {"pathtracer, mis, hemisphere, cdf-sintheta alias",
+     PT_STRAT "nexteventestimation mis\nimportancesampling hemisphere\nenvsampling "
+              "cdf-sintheta\nenvsampler alias\nenvsamplefraction 1\n"},
+    {"pathtracer, mis, cosine, uniform",
+     PT_STRAT "nexteventestimation mis\nimportancesampling cosine\nenvsampling uniform\n"},
+    /* under a constant map auto gives c = 0 (cosine sampling is exact): force light samples */
+    {"pathtracer, mis, brdf, envsamplefraction 1",
+     PT_STRAT "nexteventestimation mis\nimportancesampling brdf\nenvsamplefraction 1\n"},
+    {"pathtracer, mis, cosine, envsamplefraction 0.3",
+     "integrator pathtracer\nspp 256\nlightsamples 4\nlightstratify on\nnexteventestimation "
+     "mis\nimportancesampling cosine\nenvsamplefraction 0.3\n"},
     {"direct, cdf", DI_STRAT "envsampling cdf\n"},
     {"direct, cdf-sintheta alias", DI_STRAT "envsampling cdf-sintheta\nenvsampler alias\n"},
     {"direct, uniform", DI_STRAT "envsampling uniform\n"},
@@ -196,9 +209,10 @@ START_TEST(test_integrators_diffuse_furnace_gives_rho_times_L_with_every_strateg
     render(&sc, 1 + (uint64_t)_i, &im);
     double mean, se;
     pixel_stats(&im, 1, &mean, &se, NULL);
-    ck_assert_msg(fabs(mean - 0.5) < FURNACE_TOL * 0.5, "%s: %.5f, want 0.5 (SE %.5f)", st->name, mean, se);
-    ck_assert_msg(Z_SE * se < 2 * FURNACE_TOL * 0.5, "%s: SE %.5f too large for the test to mean anything",
-                  st->name, se);
+    ck_assert_msg(fabs(mean - 0.5) < FURNACE_TOL * 0.5, "%s: %.5f, want 0.5 (SE %.5f)", st->name,
+                  mean, se);
+    ck_assert_msg(Z_SE * se < 2 * FURNACE_TOL * 0.5,
+                  "%s: SE %.5f too large for the test to mean anything", st->name, se);
     image_free(&im);
     scene_free(&sc);
 }
@@ -209,7 +223,8 @@ END_TEST
 START_TEST(test_integrators_diffuse_furnace_with_median_cut_is_close)
 {
     scene sc;
-    load(&sc, FURNACE_SCENE "integrator direct\nspp 16\nlightsamples 16\nenvsampling mediancut 256\n");
+    load(&sc,
+         FURNACE_SCENE "integrator direct\nspp 16\nlightsamples 16\nenvsampling mediancut 256\n");
     set_env(&sc, GENENV_CONSTANT, 64, 1);
     image im;
     render(&sc, 3, &im);
@@ -224,11 +239,13 @@ END_TEST
 /* a perfect mirror in a constant environment: exactly ks L in every pixel */
 START_TEST(test_integrators_mirror_furnace_is_exactly_ks_times_L)
 {
-    const char *integ[2] = {"integrator pathtracer\nnexteventestimation mis\n", "integrator direct\n"};
+    const char *integ[2] = {"integrator pathtracer\nnexteventestimation mis\n",
+                            "integrator direct\n"};
     for (int i = 0; i < 2; i++) {
         char text[1024];
         snprintf(text, sizeof text,
-                 "size 8 8\ncamera 0 0 4  0 0 0  0 1 0  16\nspp 2\n%sbrdf mirror\nspecular 0.8 0.6 0.3\nsphere 0 0 0 1\n",
+                 "size 8 8\ncamera 0 0 4  0 0 0  0 1 0  16\nspp 2\n%sbrdf mirror\nspecular 0.8 0.6 "
+                 "0.3\nsphere 0 0 0 1\n",
                  integ[i]);
         scene sc;
         load(&sc, text);
@@ -280,7 +297,8 @@ START_TEST(test_integrators_glossy_furnace_never_exceeds_L)
             n++;
         }
         double mean = s / n, se = sqrt(fmax(0, s2 / n - mean * mean) / (n - 1));
-        ck_assert_msg(mean <= 1 + Z_SE * se, "material %d: mean %.4f > L = 1 (SE %.4f)", i, mean, se);
+        ck_assert_msg(mean <= 1 + Z_SE * se, "material %d: mean %.4f > L = 1 (SE %.4f)", i, mean,
+                      se);
         ck_assert_msg(mean > 0.3, "material %d: mean %.4f: light lost", i, mean);
         image_free(&im);
         scene_free(&sc);
@@ -288,7 +306,7 @@ START_TEST(test_integrators_glossy_furnace_never_exceeds_L)
 }
 END_TEST
 
-/* ---- direct light against the brute-force sum over texels -------------------------------------- */
+/* ---- direct light against the brute-force sum over texels ------------------------------------ */
 
 typedef struct cos_ctx { vec3 n; } cos_ctx;
 static double clamped_cos(void *ctx, vec3 w) { return fmax(0, vec3_dot(((cos_ctx *)ctx)->n, w)); }
@@ -313,9 +331,9 @@ static rgb brute_force_irradiance(const image *map, vec3 n)
  * normal tilted, every sampling mode: within Z_SE SE of kd / pi E */
 START_TEST(test_integrators_direct_lighting_matches_the_sum_over_texels)
 {
-    const char *modes[] = {"envsampling cdf\n", "envsampling cdf\nenvsampler alias\n", "envsampling cdf-sintheta\n",
-                           "envsampling cdf-sintheta\nenvsampler alias\nlightstratify on\n",
-                           "envsampling uniform\n"};
+    const char *modes[] = {
+        "envsampling cdf\n", "envsampling cdf\nenvsampler alias\n", "envsampling cdf-sintheta\n",
+        "envsampling cdf-sintheta\nenvsampler alias\nlightstratify on\n", "envsampling uniform\n"};
     int m = _i;
     char text[1024];
     snprintf(text, sizeof text,
@@ -350,16 +368,17 @@ START_TEST(test_integrators_direct_lighting_matches_the_sum_over_texels)
     double w[3] = {want.r, want.g, want.b};
     for (int k = 0; k < 3; k++) {
         double mean = sum[k] / N, se = sqrt(fmax(0, sum2[k] / N - mean * mean) / (N - 1));
-        ck_assert_msg(fabs(mean - w[k]) < Z_SE * se + 1e-9 * w[k], "%s channel %d: %.6f, want %.6f (SE %.6f)",
-                      modes[m], k, mean, w[k], se);
-        ck_assert_msg(se < 0.01 * w[k], "%s channel %d: SE %.6f is too large to test", modes[m], k, se);
+        ck_assert_msg(fabs(mean - w[k]) < Z_SE * se + 1e-9 * w[k],
+                      "%s channel %d: %.6f, want %.6f (SE %.6f)", modes[m], k, mean, w[k], se);
+        ck_assert_msg(se < 0.01 * w[k], "%s channel %d: SE %.6f is too large to test", modes[m], k,
+                      se);
     }
     rig_free(&rg);
     scene_free(&sc);
 }
 END_TEST
 
-/* ---- NEE off / on / mis ------------------------------------------------------------------------ */
+/* ---- NEE off / on / mis ---------------------------------------------------------------------- */
 
 /* a floor with a sphere on it; one pixel's ray hits the floor beside the sphere */
 static const char *nee_scene =
@@ -390,8 +409,10 @@ static void assert_agree_with_the_first(const stats *st, const char *const *mode
 {
     ck_assert_msg(st[0].mean > 0.05, "the pixel is dark: %g", st[0].mean);
     for (int i = 1; i < n; i++)
-        ck_assert_msg(fabs(st[i].mean - st[0].mean) < Z_SE * sqrt(st[i].se * st[i].se + st[0].se * st[0].se),
-                      "%s: %.5f vs nee off %.5f (SE %.5f, %.5f)", modes[i], st[i].mean, st[0].mean, st[i].se, st[0].se);
+        ck_assert_msg(fabs(st[i].mean - st[0].mean) <
+                          Z_SE * sqrt(st[i].se * st[i].se + st[0].se * st[0].se),
+                      "%s: %.5f vs nee off %.5f (SE %.5f, %.5f)", modes[i], st[i].mean, st[0].mean,
+                      st[i].se, st[0].se);
 }
 
 START_TEST(test_integrators_nee_off_on_and_mis_agree_under_a_quad_light)
@@ -414,12 +435,14 @@ END_TEST
 
 START_TEST(test_integrators_nee_off_on_and_mis_agree_under_a_sun_map)
 {
-    const char *modes[] = {"nexteventestimation off\nimportancesampling cosine\n",
-                           "nexteventestimation on\nimportancesampling cosine\n",
-                           "nexteventestimation mis\nimportancesampling brdf\n",
-                           "nexteventestimation mis\nimportancesampling brdf\nenvsampling cdf-sintheta\nenvsampler alias\n",
-                           /* the envmap sampled at 30% of its light samples: still unbiased (lights.h) */
-                           "nexteventestimation mis\nimportancesampling brdf\nenvsamplefraction 0.3\n"};
+    const char *modes[] = {
+        "nexteventestimation off\nimportancesampling cosine\n",
+        "nexteventestimation on\nimportancesampling cosine\n",
+        "nexteventestimation mis\nimportancesampling brdf\n",
+        "nexteventestimation mis\nimportancesampling brdf\nenvsampling cdf-sintheta\nenvsampler "
+        "alias\n",
+        /* the envmap sampled at 30% of its light samples: still unbiased (lights.h) */
+        "nexteventestimation mis\nimportancesampling brdf\nenvsamplefraction 0.3\n"};
     long ns[] = {400000, 60000, 60000, 60000, 60000};
     stats st[5];
     for (int i = 0; i < 5; i++) st[i] = nee_run(modes[i], 1, 60 + (uint64_t)i, ns[i]);
@@ -433,15 +456,17 @@ END_TEST
  * off, on and MIS must all give it: a shadow ray that passed through B would see all of A. */
 START_TEST(test_integrators_quad_lights_block_shadow_rays_as_they_block_brdf_rays)
 {
-    const char *base = "size 4 4\ncamera 0 -4 2  0 0 0  0 0 1  40\nmaxdepth 1\nintegrator pathtracer\n"
-                       "diffuse 0.6 0.6 0.6\n"
-                       "vertex -10 -10 0\nvertex 10 -10 0\nvertex 10 10 0\nvertex -10 10 0\ntri 0 1 2\ntri 0 2 3\n"
-                       "quadLight -2 -2 3  4 0 0  0 4 0  5 5 5\n"        /* A: ac x ab = -z, emits down */
-                       "quadLight -0.5 -0.5 1  0 1 0  1 0 0  5 5 5\n";   /* B: emits up, its back on the floor */
-    const char *modes[] = {"nexteventestimation off\nimportancesampling cosine\n", "nexteventestimation on\n",
-                           "nexteventestimation mis\nimportancesampling brdf\n",
-                           "lightselection power\nnexteventestimation on\n",
-                           "lightselection power\nnexteventestimation mis\nimportancesampling brdf\n"};
+    const char *base =
+        "size 4 4\ncamera 0 -4 2  0 0 0  0 0 1  40\nmaxdepth 1\nintegrator pathtracer\n"
+        "diffuse 0.6 0.6 0.6\n"
+        "vertex -10 -10 0\nvertex 10 -10 0\nvertex 10 10 0\nvertex -10 10 0\ntri 0 1 2\ntri 0 2 3\n"
+        "quadLight -2 -2 3  4 0 0  0 4 0  5 5 5\n"      /* A: ac x ab = -z, emits down */
+        "quadLight -0.5 -0.5 1  0 1 0  1 0 0  5 5 5\n"; /* B: emits up, its back on the floor */
+    const char *modes[] = {
+        "nexteventestimation off\nimportancesampling cosine\n", "nexteventestimation on\n",
+        "nexteventestimation mis\nimportancesampling brdf\n",
+        "lightselection power\nnexteventestimation on\n",
+        "lightselection power\nnexteventestimation mis\nimportancesampling brdf\n"};
     long ns[] = {400000, 40000, 40000, 20000, 20000};
     scene_light A = {0}, S = {0};
     A.pos = vec3_make(-2, -2, 3);
@@ -452,11 +477,13 @@ START_TEST(test_integrators_quad_lights_block_shadow_rays_as_they_block_brdf_ray
     S.ac = vec3_make(0, 3, 0);
     vec3 n = vec3_make(0, 0, 1), o = vec3_make(0, 0, 0);
     double want = 0.6 / M_PI * 5 *
-                  (vec3_dot(analyticdirect_irradiance_vector(&A, o), n) - vec3_dot(analyticdirect_irradiance_vector(&S, o), n));
+                  (vec3_dot(analyticdirect_irradiance_vector(&A, o), n) -
+                   vec3_dot(analyticdirect_irradiance_vector(&S, o), n));
     ck_assert(want > 0.1);
     for (int i = 0; i < 5; i++) {
         stats st = stats_towards(base, modes[i], o, ns[i], 150 + (uint64_t)i);
-        ck_assert_msg(fabs(st.mean - want) < Z_SE * st.se, "%s: %.5f, want %.5f (SE %.5f)", modes[i], st.mean, want, st.se);
+        ck_assert_msg(fabs(st.mean - want) < Z_SE * st.se, "%s: %.5f, want %.5f (SE %.5f)",
+                      modes[i], st.mean, want, st.se);
         ck_assert_msg(st.se < 0.01 * want, "%s: SE %.5f too large to test", modes[i], st.se);
     }
 }
@@ -468,17 +495,19 @@ END_TEST
  * floor either (it did: NEE off saw the light, NEE on did not). */
 START_TEST(test_integrators_brdf_rays_never_pass_below_the_geometric_surface)
 {
-    const char *base = "size 4 4\ncamera 0 3 3  0 0 0  0 1 0  45\nmaxdepth 1\nintegrator pathtracer\n"
-                       "vertexnormal -2 0 -2  0.5 1 0.5\nvertexnormal 2 0 -2  -0.5 1 0.5\n"
-                       "vertexnormal 2 0 2  -0.5 1 -0.5\nvertexnormal -2 0 2  0.5 1 -0.5\n"
-                       "diffuse 0.6 0.6 0.6\ntrinormal 0 2 1\ntrinormal 0 3 2\n"
-                       "quadLight -1 -0.3 -1  2 0 0  0 0 2  3 3 3\n"; /* ac x ab = +y: emits up */
+    const char *base =
+        "size 4 4\ncamera 0 3 3  0 0 0  0 1 0  45\nmaxdepth 1\nintegrator pathtracer\n"
+        "vertexnormal -2 0 -2  0.5 1 0.5\nvertexnormal 2 0 -2  -0.5 1 0.5\n"
+        "vertexnormal 2 0 2  -0.5 1 -0.5\nvertexnormal -2 0 2  0.5 1 -0.5\n"
+        "diffuse 0.6 0.6 0.6\ntrinormal 0 2 1\ntrinormal 0 3 2\n"
+        "quadLight -1 -0.3 -1  2 0 0  0 0 2  3 3 3\n"; /* ac x ab = +y: emits up */
     const char *modes[] = {"nexteventestimation off\nimportancesampling cosine\n",
                            "nexteventestimation off\nimportancesampling hemisphere\n",
                            "nexteventestimation mis\nimportancesampling brdf\n"};
     for (int i = 0; i < 3; i++) {
         stats st = stats_towards(base, modes[i], vec3_make(0.8, 0, 0.6), 20000, 160 + (uint64_t)i);
-        ck_assert_msg(st.mean == 0, "%s: %.6f (SE %.6f), want 0: light through the floor", modes[i], st.mean, st.se);
+        ck_assert_msg(st.mean == 0, "%s: %.6f (SE %.6f), want 0: light through the floor", modes[i],
+                      st.mean, st.se);
     }
 }
 END_TEST
@@ -489,8 +518,9 @@ END_TEST
  * quad is still sampled: MIS stays on. */
 START_TEST(test_integrators_mis_with_env_fraction_zero_is_brdf_sampling)
 {
-    const char *modes[] = {"nexteventestimation off\nimportancesampling brdf\n",
-                           "nexteventestimation mis\nimportancesampling brdf\nenvsamplefraction 0\n"};
+    const char *modes[] = {
+        "nexteventestimation off\nimportancesampling brdf\n",
+        "nexteventestimation mis\nimportancesampling brdf\nenvsamplefraction 0\n"};
     image im[2] = {{0}, {0}};
     for (int i = 0; i < 2; i++) {
         char text[2048];
@@ -503,8 +533,8 @@ START_TEST(test_integrators_mis_with_env_fraction_zero_is_brdf_sampling)
     ck_assert_int_eq(im[0].w * im[0].h, im[1].w * im[1].h);
     double sum = 0;
     for (long k = 0; k < (long)im[0].w * im[0].h * 3; k++) {
-        ck_assert_msg(im[0].px[k] == im[1].px[k], "value %ld: %.9g (nee off) vs %.9g (mis, c = 0)", k,
-                      im[0].px[k], im[1].px[k]);
+        ck_assert_msg(im[0].px[k] == im[1].px[k], "value %ld: %.9g (nee off) vs %.9g (mis, c = 0)",
+                      k, im[0].px[k], im[1].px[k]);
         sum += im[0].px[k];
     }
     ck_assert_msg(sum > 0, "the image is black");
@@ -512,7 +542,8 @@ START_TEST(test_integrators_mis_with_env_fraction_zero_is_brdf_sampling)
     image_free(&im[1]);
 
     char text[2048];
-    snprintf(text, sizeof text, "%sintegrator pathtracer\nquadLight -1 -1 3  2 0 0  0 2 0  5 5 5\n%s", nee_scene,
+    snprintf(text, sizeof text,
+             "%sintegrator pathtracer\nquadLight -1 -1 3  2 0 0  0 2 0  5 5 5\n%s", nee_scene,
              modes[1]);
     scene sc;
     load_under_sun(&sc, text);
@@ -528,7 +559,8 @@ START_TEST(test_integrators_mis_with_env_fraction_zero_is_brdf_sampling)
         snprintf(text, sizeof text, "%sintegrator %s\n", nee_scene, others[k]);
         load_under_sun(&sc, text);
         rig_init(&rg, &sc);
-        ck_assert_msg(rg.it.env_fraction == 1, "%s: env_fraction %g", others[k], rg.it.env_fraction);
+        ck_assert_msg(rg.it.env_fraction == 1, "%s: env_fraction %g", others[k],
+                      rg.it.env_fraction);
         rig_free(&rg);
         scene_free(&sc);
     }
@@ -542,7 +574,8 @@ START_TEST(test_integrators_measure_the_envmap_only_when_they_sample_it)
 {
     const char *modes[] = {"integrator pathtracer\nnexteventestimation off\n",
                            "integrator pathtracer\nnexteventestimation on\nenvsampling uniform\n",
-                           "integrator pathtracer\nnexteventestimation mis\n", "integrator direct\n"};
+                           "integrator pathtracer\nnexteventestimation mis\n",
+                           "integrator direct\n"};
     for (int k = 0; k < 4; k++) {
         char text[2048];
         snprintf(text, sizeof text, "%s%s", nee_scene, modes[k]);
@@ -551,7 +584,8 @@ START_TEST(test_integrators_measure_the_envmap_only_when_they_sample_it)
         rig rg;
         rig_init(&rg, &sc);
         ck_assert(rg.it.has_envlight);
-        ck_assert_msg(k == 0 ? rg.it.el.power == 0 && !rg.it.samples_env : rg.it.el.power > 0 && rg.it.samples_env,
+        ck_assert_msg(k == 0 ? rg.it.el.power == 0 && !rg.it.samples_env
+                             : rg.it.el.power > 0 && rg.it.samples_env,
                       "%s: power %g", modes[k], rg.it.el.power);
         rig_free(&rg);
         scene_free(&sc);
@@ -581,14 +615,16 @@ END_TEST
  * which is all the agreement tests above exercise. */
 START_TEST(test_integrators_nee_and_mis_agree_with_two_quad_lights_and_several_samples)
 {
-    const char *lights = "quadLight -0.5 -0.4 1  3 0 0  0 3 0  1 1 1\n"   /* large and near: emits down */
-                         "quadLight 1 -2 2  1 0 0  0 1 0  20 20 20\n";     /* smaller, brighter */
-    const char *modes[] = {"nexteventestimation off\nimportancesampling cosine\n",
-                           "nexteventestimation on\nlightsamples 3\n",
-                           "nexteventestimation mis\nimportancesampling brdf\nlightsamples 3\n",
-                           "nexteventestimation mis\nimportancesampling brdf\nlightsamples 4\nlightstratify on\n",
-                           "lightselection power\nnexteventestimation on\nlightsamples 3\n",
-                           "lightselection power\nnexteventestimation mis\nimportancesampling brdf\nlightsamples 3\n"};
+    const char *lights =
+        "quadLight -0.5 -0.4 1  3 0 0  0 3 0  1 1 1\n" /* large and near: emits down */
+        "quadLight 1 -2 2  1 0 0  0 1 0  20 20 20\n";  /* smaller, brighter */
+    const char *modes[] = {
+        "nexteventestimation off\nimportancesampling cosine\n",
+        "nexteventestimation on\nlightsamples 3\n",
+        "nexteventestimation mis\nimportancesampling brdf\nlightsamples 3\n",
+        "nexteventestimation mis\nimportancesampling brdf\nlightsamples 4\nlightstratify on\n",
+        "lightselection power\nnexteventestimation on\nlightsamples 3\n",
+        "lightselection power\nnexteventestimation mis\nimportancesampling brdf\nlightsamples 3\n"};
     long ns[] = {400000, 10000, 10000, 10000, 20000, 20000};
     stats st[6];
     for (int i = 0; i < 6; i++) {
@@ -605,13 +641,15 @@ END_TEST
  * each envmap sample with probability c under `all`, each pick of it under `power`). */
 START_TEST(test_integrators_nee_and_mis_agree_with_quad_lights_beside_the_envmap_in_both_selections)
 {
-    const char *lights = "quadLight -1 -1 3  2 0 0  0 2 0  2 2 2\nquadLight 1 -2 2  1 0 0  0 1 0  20 20 20\n";
-    const char *modes[] = {"nexteventestimation off\nimportancesampling cosine\n",
-                           "nexteventestimation on\nlightsamples 2\n",
-                           "nexteventestimation mis\nimportancesampling brdf\nlightsamples 2\nenvsamplefraction 0.3\n",
-                           "lightselection power\nnexteventestimation on\nlightsamples 2\n",
-                           ("lightselection power\nnexteventestimation mis\nimportancesampling brdf\nlightsamples 2\n"
-                            "envsamplefraction 0.3\n")};
+    const char *lights =
+        "quadLight -1 -1 3  2 0 0  0 2 0  2 2 2\nquadLight 1 -2 2  1 0 0  0 1 0  20 20 20\n";
+    const char *modes[] = {
+        "nexteventestimation off\nimportancesampling cosine\n",
+        "nexteventestimation on\nlightsamples 2\n",
+        "nexteventestimation mis\nimportancesampling brdf\nlightsamples 2\nenvsamplefraction 0.3\n",
+        "lightselection power\nnexteventestimation on\nlightsamples 2\n",
+        ("lightselection power\nnexteventestimation mis\nimportancesampling brdf\nlightsamples 2\n"
+         "envsamplefraction 0.3\n")};
     long ns[] = {200000, 10000, 10000, 30000, 30000};
     stats st[5];
     for (int i = 0; i < 5; i++) {
@@ -630,20 +668,22 @@ START_TEST(test_integrators_with_one_light_both_selections_render_the_same_image
 {
     const char *setups[] = {("quadLight -1 -1 3  2 0 0  0 2 0  5 5 5\nnexteventestimation mis\n"
                              "importancesampling brdf\nlightsamples 3\nlightstratify on\n"),
-                            "nexteventestimation mis\nimportancesampling brdf\nlightsamples 2\nenvsamplefraction 0.5\n"};
+                            "nexteventestimation mis\nimportancesampling brdf\nlightsamples "
+                            "2\nenvsamplefraction 0.5\n"};
     for (int i = 0; i < 2; i++) {
         image im[2];
         for (int mode = 0; mode < 2; mode++) {
             char text[2048];
-            snprintf(text, sizeof text, "%sintegrator pathtracer\nspp 4\n%s%s", nee_scene, setups[i],
-                     mode ? "lightselection power\n" : "");
+            snprintf(text, sizeof text, "%sintegrator pathtracer\nspp 4\n%s%s", nee_scene,
+                     setups[i], mode ? "lightselection power\n" : "");
             scene sc;
             load(&sc, text);
             if (i == 1) set_env(&sc, GENENV_SUN, 64, 300);
             render(&sc, 9, &im[mode]);
             scene_free(&sc);
         }
-        ck_assert_msg(memcmp(im[0].px, im[1].px, sizeof(float) * 3 * (size_t)(im[0].w * im[0].h)) == 0,
+        ck_assert_msg(memcmp(im[0].px, im[1].px, sizeof(float) * 3 * (size_t)(im[0].w * im[0].h)) ==
+                          0,
                       "setup %d: the selections' images differ", i);
         image_free(&im[0]);
         image_free(&im[1]);
@@ -660,15 +700,16 @@ END_TEST
  * times it (what the test tells apart); both have the same mean. */
 START_TEST(test_integrators_every_light_leaves_no_fireflies_on_veachs_wall)
 {
-    const char *base = "size 4 4\ncamera 0 4 14  0 4.5 -4  0 1 0  40\nintegrator pathtracer\nmaxdepth 1\n"
-                       "nexteventestimation mis\nimportancesampling brdf\n"
-                       "quadLight -3.775 5 -3.4  0 0 0.05  0.05 0 0  254.6 254.6 254.6\n"
-                       "quadLight -1.325 5 -3.4  0 0 0.15  0.15 0 0  28.29 28.29 28.29\n"
-                       "quadLight 1.025 5 -3.4  0 0 0.45  0.45 0 0  3.144 3.144 3.144\n"
-                       "quadLight 3.075 5 -3.4  0 0 1.35  1.35 0 0  0.3493 0.3493 0.3493\n"
-                       "quadLight -5 20 -2  0 0 10  10 0 0  4.775 4.775 4.775\n"
-                       "diffuse 0.3 0.3 0.3\nvertex -12 0 -4\nvertex 12 0 -4\nvertex 12 14 -4\nvertex -12 14 -4\n"
-                       "tri 0 1 2\ntri 0 2 3\n";
+    const char *base =
+        "size 4 4\ncamera 0 4 14  0 4.5 -4  0 1 0  40\nintegrator pathtracer\nmaxdepth 1\n"
+        "nexteventestimation mis\nimportancesampling brdf\n"
+        "quadLight -3.775 5 -3.4  0 0 0.05  0.05 0 0  254.6 254.6 254.6\n"
+        "quadLight -1.325 5 -3.4  0 0 0.15  0.15 0 0  28.29 28.29 28.29\n"
+        "quadLight 1.025 5 -3.4  0 0 0.45  0.45 0 0  3.144 3.144 3.144\n"
+        "quadLight 3.075 5 -3.4  0 0 1.35  1.35 0 0  0.3493 0.3493 0.3493\n"
+        "quadLight -5 20 -2  0 0 10  10 0 0  4.775 4.775 4.775\n"
+        "diffuse 0.3 0.3 0.3\nvertex -12 0 -4\nvertex 12 0 -4\nvertex 12 14 -4\nvertex -12 14 -4\n"
+        "tri 0 1 2\ntri 0 2 3\n";
     const char *modes[] = {"", "lightselection power\n"};
     double peak[2];
     stats st[2];
@@ -696,9 +737,11 @@ START_TEST(test_integrators_every_light_leaves_no_fireflies_on_veachs_wall)
         rig_free(&rg);
         scene_free(&sc);
     }
-    ck_assert_msg(peak[0] < 4, "every light: an estimate %.1f times the mean %.4f", peak[0], st[0].mean);
+    ck_assert_msg(peak[0] < 4, "every light: an estimate %.1f times the mean %.4f", peak[0],
+                  st[0].mean);
     ck_assert_msg(peak[1] > 20, "by power: the largest estimate only %.1f times the mean", peak[1]);
-    ck_assert_msg(fabs(st[0].mean - st[1].mean) < Z_SE * sqrt(st[0].se * st[0].se + st[1].se * st[1].se),
+    ck_assert_msg(fabs(st[0].mean - st[1].mean) <
+                      Z_SE * sqrt(st[0].se * st[0].se + st[1].se * st[1].se),
                   "means %.5f (all), %.5f (power)", st[0].mean, st[1].mean);
 }
 END_TEST
@@ -718,20 +761,23 @@ START_TEST(test_integrators_a_delta_light_among_others_adds_exactly_its_light)
         stats st[2];
         for (int i = 0; i < 2; i++) {
             char text[2048];
-            snprintf(text, sizeof text, "%s%smaxdepth 1\nlightsamples 2\n%s%s", nee_scene, integ[k], quad, i ? point : "");
+            snprintf(text, sizeof text, "%s%smaxdepth 1\nlightsamples 2\n%s%s", nee_scene, integ[k],
+                     quad, i ? point : "");
             scene sc;
             load(&sc, text);
             rig rg;
             rig_init(&rg, &sc);
-            ray r = {sc.eye, vec3_normalize(vec3_sub(vec3_make(0.9, -0.6, 0), sc.eye)), 0, INFINITY};
+            ray r = {sc.eye, vec3_normalize(vec3_sub(vec3_make(0.9, -0.6, 0), sc.eye)), 0,
+                     INFINITY};
             st[i] = radiance_stats(&rg, r, 1, k < 2 ? 40000 : 20000, 180 + (uint64_t)(2 * k + i));
             rig_free(&rg);
             scene_free(&sc);
         }
         double want = 0.6 / M_PI * 1.0; /* kd / pi I cos, cos = 1 */
         double got = st[1].mean - st[0].mean, se = sqrt(st[0].se * st[0].se + st[1].se * st[1].se);
-        ck_assert_msg(fabs(got - want) < Z_SE * se, "%s: the point light adds %.5f, want %.5f (SE %.5f)", integ[k], got,
-                      want, se);
+        ck_assert_msg(fabs(got - want) < Z_SE * se,
+                      "%s: the point light adds %.5f, want %.5f (SE %.5f)", integ[k], got, want,
+                      se);
         ck_assert_msg(se < 0.05 * want, "%s: SE %.5f too large to test", integ[k], se);
     }
 }
@@ -744,19 +790,23 @@ END_TEST
  * with maxdepth 0 the mirror has no bounce to show it. */
 START_TEST(test_integrators_lights_seen_directly_and_in_a_mirror_count_with_every_nee_mode)
 {
-    const char *base = "size 4 4\ncamera 0 -4 2  0 0 0  0 0 1  40\nmaxdepth 2\n"
-                       "brdf mirror\ndiffuse 0 0 0\nspecular 0.8 0.8 0.8\n"
-                       "vertex -10 -10 0\nvertex 10 -10 0\nvertex 10 10 0\nvertex -10 10 0\ntri 0 1 2\ntri 0 2 3\n"
-                       "quadLight -1 -1 3  2 0 0  0 2 0  5 5 5\n";
-    const char *modes[] = {"integrator pathtracer\nnexteventestimation off\n", "integrator pathtracer\nnexteventestimation on\n",
-                           "integrator pathtracer\nnexteventestimation mis\n", "integrator direct\n"};
+    const char *base =
+        "size 4 4\ncamera 0 -4 2  0 0 0  0 0 1  40\nmaxdepth 2\n"
+        "brdf mirror\ndiffuse 0 0 0\nspecular 0.8 0.8 0.8\n"
+        "vertex -10 -10 0\nvertex 10 -10 0\nvertex 10 10 0\nvertex -10 10 0\ntri 0 1 2\ntri 0 2 3\n"
+        "quadLight -1 -1 3  2 0 0  0 2 0  5 5 5\n";
+    const char *modes[] = {"integrator pathtracer\nnexteventestimation off\n",
+                           "integrator pathtracer\nnexteventestimation on\n",
+                           "integrator pathtracer\nnexteventestimation mis\n",
+                           "integrator direct\n"};
     for (int i = 0; i < 4; i++) {
         /* (0, -2.4, 0) reflects the eye's ray to the light's centre (0, 0, 3) */
         stats direct = stats_towards(base, modes[i], vec3_make(0, 0, 3), 64, 190);
         stats mirror = stats_towards(base, modes[i], vec3_make(0, -2.4, 0), 64, 191);
-        ck_assert_msg(direct.mean == 5 && direct.se == 0, "%s: the light seen directly: %g", modes[i], direct.mean);
-        ck_assert_msg(fabs(mirror.mean - 4) < 1e-12 && mirror.se == 0, "%s: the light in the mirror: %g", modes[i],
-                      mirror.mean);
+        ck_assert_msg(direct.mean == 5 && direct.se == 0, "%s: the light seen directly: %g",
+                      modes[i], direct.mean);
+        ck_assert_msg(fabs(mirror.mean - 4) < 1e-12 && mirror.se == 0,
+                      "%s: the light in the mirror: %g", modes[i], mirror.mean);
         char mode0[256];
         snprintf(mode0, sizeof mode0, "%smaxdepth 0\n", modes[i]);
         stats none = stats_towards(base, mode0, vec3_make(0, -2.4, 0), 16, 192);
@@ -770,17 +820,20 @@ END_TEST
  * light gives the same answer with NEE off, on and MIS. */
 START_TEST(test_integrators_nee_uses_the_shading_normal_like_brdf_sampling)
 {
-    const char *base = "size 4 4\ncamera 0 -4 2  0 0 0  0 0 1  40\nmaxdepth 1\nintegrator pathtracer\n"
-                       "diffuse 0.6 0.6 0.6\n"
-                       "vertexnormal -10 -10 0  0.364 0 1\nvertexnormal 10 -10 0  0.364 0 1\n"
-                       "vertexnormal 10 10 0  0.364 0 1\nvertexnormal -10 10 0  0.364 0 1\n"
-                       "trinormal 0 1 2\ntrinormal 0 2 3\n"
-                       "quadLight -1 -1 3  2 0 0  0 2 0  5 5 5\n";
-    const char *modes[] = {"nexteventestimation off\nimportancesampling cosine\n", "nexteventestimation on\n",
+    const char *base =
+        "size 4 4\ncamera 0 -4 2  0 0 0  0 0 1  40\nmaxdepth 1\nintegrator pathtracer\n"
+        "diffuse 0.6 0.6 0.6\n"
+        "vertexnormal -10 -10 0  0.364 0 1\nvertexnormal 10 -10 0  0.364 0 1\n"
+        "vertexnormal 10 10 0  0.364 0 1\nvertexnormal -10 10 0  0.364 0 1\n"
+        "trinormal 0 1 2\ntrinormal 0 2 3\n"
+        "quadLight -1 -1 3  2 0 0  0 2 0  5 5 5\n";
+    const char *modes[] = {"nexteventestimation off\nimportancesampling cosine\n",
+                           "nexteventestimation on\n",
                            "nexteventestimation mis\nimportancesampling brdf\n"};
     long ns[] = {400000, 40000, 40000};
     stats st[3];
-    for (int i = 0; i < 3; i++) st[i] = stats_towards(base, modes[i], vec3_make(0.9, -0.6, 0), ns[i], 200 + (uint64_t)i);
+    for (int i = 0; i < 3; i++)
+        st[i] = stats_towards(base, modes[i], vec3_make(0.9, -0.6, 0), ns[i], 200 + (uint64_t)i);
     assert_agree_with_the_first(st, modes, 3);
 }
 END_TEST
@@ -792,14 +845,15 @@ START_TEST(test_integrators_shading_frame_faces_the_ray)
 {
     scene sc;
     load(&sc, "size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\nsphere 0 0 0 1\n"
-              "vertexnormal -1 -1 -3  0.866 0 0.5\nvertexnormal 1 -1 -3  0.866 0 0.5\nvertexnormal 0 1 -3  0.866 0 0.5\n"
+              "vertexnormal -1 -1 -3  0.866 0 0.5\nvertexnormal 1 -1 -3  0.866 0 0.5\nvertexnormal "
+              "0 1 -3  0.866 0 0.5\n"
               "trinormal 0 1 2\n");
     rig rg;
     rig_init(&rg, &sc);
     scene_hit sh;
     ray out = {vec3_make(0, 0, 5), vec3_make(0, 0, -1), 0, INFINITY};
     integrator_intersect(&rg.it, &out, &sh);
-    ck_assert_int_eq(sh.kind, 1);
+    ck_assert_int_eq(sh.kind, SCENE_HIT_GEOMETRY);
     ck_assert_int_eq(sh.s.entering, 1);
     ck_assert(sh.s.ng.z > 0.999 && sh.s.n.z > 0.999);
     ray in = {vec3_make(0, 0, 0), vec3_make(0, 0, 1), 0, INFINITY};
@@ -810,7 +864,7 @@ START_TEST(test_integrators_shading_frame_faces_the_ray)
      * from above going +x sees ng but would see n from behind (a smooth-shaded silhouette) */
     ray tri = {vec3_make(-0.5, -0.3, -2.9), vec3_normalize(vec3_make(0.9, 0, -0.2)), 0, INFINITY};
     integrator_intersect(&rg.it, &tri, &sh);
-    ck_assert_int_eq(sh.kind, 1);
+    ck_assert_int_eq(sh.kind, SCENE_HIT_GEOMETRY);
     ck_assert(vec3_dot(sh.s.n, tri.d) < 0);
     ck_assert(sh.s.n.x == sh.s.ng.x && sh.s.n.y == sh.s.ng.y && sh.s.n.z == sh.s.ng.z);
     rig_free(&rg);
@@ -844,8 +898,12 @@ START_TEST(test_integrators_envmiss_black_keeps_the_envmap_out_of_reflections)
             rgb Ls = render_radiance(&rg.it, sky, &g), Lb = render_radiance(&rg.it, ball, &g);
             ck_assert_msg(Ls.g > 0, "%s %s: the background is black", integ[k], modes[i]);
             if (k < 3) {
-                if (i == 0) ck_assert_msg(fabs(Lb.g - 0.8 * Ls.g) < 1e-6 * Ls.g, "%s: the mirror shows %g", integ[k], Lb.g);
-                else ck_assert_msg(Lb.g == 0, "%s, envmiss black: the mirror shows %g", integ[k], Lb.g);
+                if (i == 0)
+                    ck_assert_msg(fabs(Lb.g - 0.8 * Ls.g) < 1e-6 * Ls.g, "%s: the mirror shows %g",
+                                  integ[k], Lb.g);
+                else
+                    ck_assert_msg(Lb.g == 0, "%s, envmiss black: the mirror shows %g", integ[k],
+                                  Lb.g);
             }
             rig_free(&rg);
             scene_free(&sc);
@@ -894,23 +952,25 @@ START_TEST(test_integrators_strata_grid_and_the_samples_left_over)
 }
 END_TEST
 
-/* ---- stratification ---------------------------------------------------------------------------- */
+/* ---- stratification -------------------------------------------------------------------------- */
 
 /* direct_lighting with 16 light samples: a 4 x 4 grid of strata has clearly lower variance than
  * 16 independent samples, for a quad light and for the envmap sampled through alias tables
  * (stratified inputs must go through CDF inversion) */
 START_TEST(test_integrators_lightstratify_lowers_the_variance)
 {
-    const char *setups[] = {"quadLight -1 -1 3  2 0 0  0 2 0  5 5 5\n", "envsampling cdf\nenvsampler alias\n",
+    const char *setups[] = {"quadLight -1 -1 3  2 0 0  0 2 0  5 5 5\n",
+                            "envsampling cdf\nenvsampler alias\n",
                             "envsampling cdf-sintheta\nenvsampler binary\n"};
     for (int i = 0; i < 3; i++) {
         double var[2];
         for (int strat = 0; strat < 2; strat++) {
             char text[1024];
-            snprintf(text, sizeof text,
-                     "size 4 4\ncamera 0 -5 0  0 0 0  0 0 1  30\nintegrator direct\nlightsamples 16\n"
-                     "lightstratify %s\n%sdiffuse 0.5 0.5 0.5\nsphere 0 0 -100 1\n",
-                     strat ? "on" : "off", setups[i]);
+            snprintf(
+                text, sizeof text,
+                "size 4 4\ncamera 0 -5 0  0 0 0  0 0 1  30\nintegrator direct\nlightsamples 16\n"
+                "lightstratify %s\n%sdiffuse 0.5 0.5 0.5\nsphere 0 0 -100 1\n",
+                strat ? "on" : "off", setups[i]);
             scene sc;
             load(&sc, text);
             if (i > 0) set_env(&sc, GENENV_SKY, 64, 1);
@@ -935,12 +995,13 @@ START_TEST(test_integrators_lightstratify_lowers_the_variance)
             rig_free(&rg);
             scene_free(&sc);
         }
-        ck_assert_msg(var[1] < 0.5 * var[0], "setup %d: stratified variance %g, independent %g", i, var[1], var[0]);
+        ck_assert_msg(var[1] < 0.5 * var[0], "setup %d: stratified variance %g, independent %g", i,
+                      var[1], var[0]);
     }
 }
 END_TEST
 
-/* ---- analytic direct --------------------------------------------------------------------------- */
+/* ---- analytic direct ------------------------------------------------------------------------- */
 
 /* The quad light both analytic tests use: emitting mostly towards -z. */
 static scene_light analytic_test_quad(void)
@@ -957,7 +1018,8 @@ static scene_light analytic_test_quad(void)
 
 /* Integrals over the area of quad l seen from p (a 400 x 400 midpoint sum of cos_l / d^2 dA):
  * *phi = of w (the irradiance vector), *above = of max(0, n . w), *below = of min(0, n . w). */
-static void analytic_numeric(const scene_light *l, vec3 p, vec3 n, vec3 *phi, double *above, double *below)
+static void analytic_numeric(const scene_light *l, vec3 p, vec3 n, vec3 *phi, double *above,
+                             double *below)
 {
     enum { G = 400 };
     vec3 nl = vec3_normalize(vec3_cross(l->ac, l->ab));
@@ -966,11 +1028,13 @@ static void analytic_numeric(const scene_light *l, vec3 p, vec3 n, vec3 *phi, do
     *above = *below = 0;
     for (int a = 0; a < G; a++)
         for (int b = 0; b < G; b++) {
-            vec3 q = vec3_add(l->pos, vec3_add(vec3_scale(l->ab, (a + 0.5) / G), vec3_scale(l->ac, (b + 0.5) / G)));
+            vec3 q = vec3_add(l->pos, vec3_add(vec3_scale(l->ab, (a + 0.5) / G),
+                                               vec3_scale(l->ac, (b + 0.5) / G)));
             vec3 d = vec3_sub(q, p);
             double d2 = vec3_length2(d);
             vec3 w = vec3_scale(d, 1 / sqrt(d2));
-            double dw = fabs(vec3_dot(w, nl)) / d2 * area / (G * G), c = vec3_dot(n, w); /* cos_l / d^2 dA */
+            double dw = fabs(vec3_dot(w, nl)) / d2 * area / (G * G),
+                   c = vec3_dot(n, w); /* cos_l / d^2 dA */
             *phi = vec3_madd(*phi, w, dw);
             *above += fmax(0, c) * dw;
             *below += fmin(0, c) * dw;
@@ -991,7 +1055,8 @@ START_TEST(test_integrators_irradiance_vector_matches_a_numerical_integral)
         analytic_numeric(&l, p, nl, &num, &above, &below);
         vec3 phi = analyticdirect_irradiance_vector(&l, p);
         ck_assert_msg(vec3_length(vec3_sub(phi, num)) < 1e-4 * vec3_length(num),
-                      "p %d: Phi (%g %g %g), numerical (%g %g %g)", i, phi.x, phi.y, phi.z, num.x, num.y, num.z);
+                      "p %d: Phi (%g %g %g), numerical (%g %g %g)", i, phi.x, phi.y, phi.z, num.x,
+                      num.y, num.z);
     }
 }
 END_TEST
@@ -1029,7 +1094,8 @@ START_TEST(test_integrators_analytic_irradiance_clips_at_the_horizon_and_is_zero
               "vertex -5 -5 3\nvertex 5 -5 3\nvertex 5 5 3\nvertex -5 5 3\ntri 0 1 2\ntri 0 2 3\n"
               "quadLight -1 -1 2  2 0 0  0 2 0  3 3 3\nintegrator analyticdirect\n");
     render(&sc, 0, &im);
-    ck_assert_msg(im.px[0] == 0 && im.px[1] == 0 && im.px[2] == 0, "the floor behind the light is %g", im.px[1]);
+    ck_assert_msg(im.px[0] == 0 && im.px[1] == 0 && im.px[2] == 0,
+                  "the floor behind the light is %g", im.px[1]);
     image_free(&im);
     scene_free(&sc);
 }
@@ -1060,7 +1126,8 @@ START_TEST(test_integrators_analytic_irradiance_in_the_lights_own_plane)
         double E = analyticdirect_irradiance(&l, p, n);
         ck_require_msg(isfinite(E) && E >= 0, "case %d: E = %g", k, E);
         if (s < -0.01 || s > 1.01 || t < -0.01 || t > 1.01) {
-            ck_require_msg(E < 1e-6, "case %d: (s, t) = (%g, %g) outside the light: E = %g", k, s, t, E);
+            ck_require_msg(E < 1e-6, "case %d: (s, t) = (%g, %g) outside the light: E = %g", k, s,
+                           t, E);
             outside++;
         }
     }
@@ -1073,9 +1140,11 @@ END_TEST
  * floor above a down-facing light get nothing */
 START_TEST(test_integrators_analyticdirect_matches_direct_and_is_zero_behind_the_light)
 {
-    const char *base = "size 1 1\ncamera 0.2 0.1 1  0.2 0.1 0  0 1 0  1\ndiffuse 0.6 0.6 0.6\n"
-                       "vertex -5 -5 0\nvertex 5 -5 0\nvertex 5 5 0\nvertex -5 5 0\ntri 0 1 2\ntri 0 2 3\n";
-    const char *down = "quadLight -1 -1 2  2 0 0  0 2 0  3 3 3\n"; /* ac x ab = -z: emits down, on the floor */
+    const char *base =
+        "size 1 1\ncamera 0.2 0.1 1  0.2 0.1 0  0 1 0  1\ndiffuse 0.6 0.6 0.6\n"
+        "vertex -5 -5 0\nvertex 5 -5 0\nvertex 5 5 0\nvertex -5 5 0\ntri 0 1 2\ntri 0 2 3\n";
+    const char *down =
+        "quadLight -1 -1 2  2 0 0  0 2 0  3 3 3\n"; /* ac x ab = -z: emits down, on the floor */
     const char *up = "quadLight -1 -1 2  0 2 0  2 0 0  3 3 3\n";   /* emits up, away from it */
     char text[1024];
     scene sc;
@@ -1084,7 +1153,9 @@ START_TEST(test_integrators_analyticdirect_matches_direct_and_is_zero_behind_the
     load(&sc, text);
     render(&sc, 0, &im);
     scene_light *l = &sc.lights[0];
-    double want = 0.6 / M_PI * 3 * vec3_dot(analyticdirect_irradiance_vector(l, vec3_make(0.2, 0.1, 0)), vec3_make(0, 0, 1));
+    double want =
+        0.6 / M_PI * 3 *
+        vec3_dot(analyticdirect_irradiance_vector(l, vec3_make(0.2, 0.1, 0)), vec3_make(0, 0, 1));
     ck_assert(want > 0.1);
     ck_assert_near(im.px[1], want, 1e-5 * want);
     image_free(&im);
@@ -1112,7 +1183,8 @@ START_TEST(test_integrators_analyticdirect_matches_direct_and_is_zero_behind_the
         sum2 += v * v;
     }
     double mean = sum / N, se = sqrt((sum2 / N - mean * mean) / (N - 1));
-    ck_assert_msg(fabs(mean - want) < Z_SE * se, "direct %.5f, analytic %.5f (SE %.5f)", mean, want, se);
+    ck_assert_msg(fabs(mean - want) < Z_SE * se, "direct %.5f, analytic %.5f (SE %.5f)", mean, want,
+                  se);
     rig_free(&rg);
     scene_free(&sc);
     /* behind the light: the floor below an up-facing quad */
@@ -1125,15 +1197,18 @@ START_TEST(test_integrators_analyticdirect_matches_direct_and_is_zero_behind_the
 }
 END_TEST
 
-/* ---- Russian roulette -------------------------------------------------------------------------- */
+/* ---- Russian roulette ------------------------------------------------------------------------ */
 
 /* radiance_stats of the path tracer at the centre of a closed sphere of radius 5 (`cfg`, then the
  * sphere's `material`), along one ray; *rays: the rays it traced */
-static stats inside_a_sphere(const char *cfg, const char *material, long n, uint64_t seed, long long *rays)
+static stats inside_a_sphere(const char *cfg, const char *material, long n, uint64_t seed,
+                             long long *rays)
 {
     char text[1024];
-    snprintf(text, sizeof text, "size 4 4\ncamera 0 0 0  0 0 -1  0 1 0  40\nintegrator pathtracer\n%s%ssphere 0 0 0 5\n",
-             cfg, material);
+    snprintf(
+        text, sizeof text,
+        "size 4 4\ncamera 0 0 0  0 0 -1  0 1 0  40\nintegrator pathtracer\n%s%ssphere 0 0 0 5\n",
+        cfg, material);
     scene sc;
     load(&sc, text);
     rig rg;
@@ -1155,8 +1230,10 @@ START_TEST(test_integrators_russian_roulette_keeps_the_mean)
                          "maxdepth -1\nrussianroulette on\nimportancesampling hemisphere\n",
                          "maxdepth -1\nrussianroulette on\nimportancesampling cosine\n"};
     for (int i = 0; i < 3; i++) {
-        stats st = inside_a_sphere(cfg[i], "diffuse 0.5 0.5 0.5\nemission 0.5 0.5 0.5\n", 40000, 90 + (uint64_t)i, NULL);
-        ck_assert_msg(fabs(st.mean - 1) < Z_SE * st.se + 1e-9, "%s: %.5f, want 1 (SE %.5f)", cfg[i], st.mean, st.se);
+        stats st = inside_a_sphere(cfg[i], "diffuse 0.5 0.5 0.5\nemission 0.5 0.5 0.5\n", 40000,
+                                   90 + (uint64_t)i, NULL);
+        ck_assert_msg(fabs(st.mean - 1) < Z_SE * st.se + 1e-9, "%s: %.5f, want 1 (SE %.5f)", cfg[i],
+                      st.mean, st.se);
         ck_assert(st.se < 0.01);
     }
 }
@@ -1172,9 +1249,14 @@ START_TEST(test_integrators_maxdepth_counts_bounces_exactly)
         want += term;
         term *= 0.5;
         char cfg[256];
-        snprintf(cfg, sizeof cfg, "maxdepth %d\nrussianroulette off\nnexteventestimation off\nimportancesampling cosine\n", d);
-        stats st = inside_a_sphere(cfg, "diffuse 0.5 0.5 0.5\nemission 0.5 0.5 0.5\n", 200, 97, NULL);
-        ck_assert_msg(fabs(st.mean - want) < 1e-12 && st.se < 1e-12, "maxdepth %d: %.15f, want %.15f", d, st.mean, want);
+        snprintf(cfg, sizeof cfg,
+                 "maxdepth %d\nrussianroulette off\nnexteventestimation off\nimportancesampling "
+                 "cosine\n",
+                 d);
+        stats st =
+            inside_a_sphere(cfg, "diffuse 0.5 0.5 0.5\nemission 0.5 0.5 0.5\n", 200, 97, NULL);
+        ck_assert_msg(fabs(st.mean - want) < 1e-12 && st.se < 1e-12,
+                      "maxdepth %d: %.15f, want %.15f", d, st.mean, want);
     }
 }
 END_TEST
@@ -1187,10 +1269,12 @@ START_TEST(test_integrators_roulette_survives_by_the_largest_component)
 {
     enum { N = 4000 };
     long long rays = 0;
-    inside_a_sphere("maxdepth -1\nrussianroulette on\nnexteventestimation off\nimportancesampling cosine\n",
-                    "diffuse 0.9 0.1 0.1\nemission 0.5 0.5 0.5\n", N, 98, &rays);
+    inside_a_sphere(
+        "maxdepth -1\nrussianroulette on\nnexteventestimation off\nimportancesampling cosine\n",
+        "diffuse 0.9 0.1 0.1\nemission 0.5 0.5 0.5\n", N, 98, &rays);
     double per_path = (double)rays / N, se = sqrt(90.0 / N); /* geometric: variance 0.9 / 0.1^2 */
-    ck_assert_msg(fabs(per_path - 10) < Z_SE * se, "%.3f rays a path, want 10 (SE %.3f)", per_path, se);
+    ck_assert_msg(fabs(per_path - 10) < Z_SE * se, "%.3f rays a path, want 10 (SE %.3f)", per_path,
+                  se);
 }
 END_TEST
 
@@ -1204,12 +1288,16 @@ START_TEST(test_integrators_a_path_stops_at_zero_throughput_without_roulette)
                          "importancesampling brdf\nbrdf phong\nshininess 30\n"};
     for (int i = 0; i < 3; i++) {
         char text[256];
-        snprintf(text, sizeof text, "maxdepth -1\nrussianroulette off\nnexteventestimation off\n%s", cfg[i]);
+        snprintf(text, sizeof text, "maxdepth -1\nrussianroulette off\nnexteventestimation off\n%s",
+                 cfg[i]);
         enum { N = 1000 };
         long long rays = 0;
-        stats st = inside_a_sphere(text, "diffuse 0 0 0\nspecular 0 0 0\nemission 0.5 0.5 0.5\n", N, 95 + (uint64_t)i, &rays);
-        ck_assert_msg(st.mean == 0.5 && st.se == 0, "%s: %.6f (SE %.6f), want 0.5 exactly", cfg[i], st.mean, st.se);
-        ck_assert_msg(rays <= 2 * N, "%s: %lld rays for %d paths, want at most 2 a path", cfg[i], rays, N);
+        stats st = inside_a_sphere(text, "diffuse 0 0 0\nspecular 0 0 0\nemission 0.5 0.5 0.5\n", N,
+                                   95 + (uint64_t)i, &rays);
+        ck_assert_msg(st.mean == 0.5 && st.se == 0, "%s: %.6f (SE %.6f), want 0.5 exactly", cfg[i],
+                      st.mean, st.se);
+        ck_assert_msg(rays <= 2 * N, "%s: %lld rays for %d paths, want at most 2 a path", cfg[i],
+                      rays, N);
     }
 }
 END_TEST
@@ -1262,8 +1350,9 @@ END_TEST
  * ray tracer. */
 START_TEST(test_integrators_path_traced_glass_agrees_with_the_ray_tracers)
 {
-    const char *base = "size 64 48\nmaxdepth 8\ncamera 0 -4.5 1.5  0 0 1  0 0 1  30\nambient 0 0 0\n"
-                       "brdf glass\nior 1.5\nsphere 0 0 1 1\n";
+    const char *base =
+        "size 64 48\nmaxdepth 8\ncamera 0 -4.5 1.5  0 0 1  0 0 1  30\nambient 0 0 0\n"
+        "brdf glass\nior 1.5\nsphere 0 0 1 1\n";
     const char *integ[] = {"integrator raytracer\nspp 16\n", "integrator pathtracer\nspp 64\n"};
     image im[2], var = {0};
     for (int k = 0; k < 2; k++) {
@@ -1284,8 +1373,9 @@ START_TEST(test_integrators_path_traced_glass_agrees_with_the_ray_tracers)
     gradetest_result r;
     error err = {0};
     ck_assert_int_eq(gradetest_run(&im[1], &im[0], &var, &p, &r, NULL, &err), 0);
-    ck_assert_msg(r.pass, "path tracer against ray tracer: %ld of %ld pixels fail, image total Z = %.2f: %s",
-                  r.failed, r.pixels, r.mean_z, r.why);
+    ck_assert_msg(
+        r.pass, "path tracer against ray tracer: %ld of %ld pixels fail, image total Z = %.2f: %s",
+        r.failed, r.pixels, r.mean_z, r.why);
     image_free(&im[0]);
     image_free(&im[1]);
     image_free(&var);
@@ -1297,7 +1387,8 @@ Suite *integrators_suite(void)
     Suite *s = suite_create("integrators");
     TCase *tc = tcase_create("furnace");
     tcase_set_timeout(tc, 120); /* generous for sanitizer builds */
-    tcase_add_loop_test(tc, test_integrators_diffuse_furnace_gives_rho_times_L_with_every_strategy, 0, N_STRATEGIES);
+    tcase_add_loop_test(tc, test_integrators_diffuse_furnace_gives_rho_times_L_with_every_strategy,
+                        0, N_STRATEGIES);
     tcase_add_test(tc, test_integrators_diffuse_furnace_with_median_cut_is_close);
     tcase_add_test(tc, test_integrators_mirror_furnace_is_exactly_ks_times_L);
     tcase_add_test(tc, test_integrators_glossy_furnace_never_exceeds_L);
@@ -1308,7 +1399,8 @@ Suite *integrators_suite(void)
     tcase_add_test(tc, test_integrators_lightstratify_lowers_the_variance);
     tcase_add_test(tc, test_integrators_irradiance_vector_matches_a_numerical_integral);
     tcase_add_test(tc, test_integrators_analyticdirect_matches_direct_and_is_zero_behind_the_light);
-    tcase_add_test(tc, test_integrators_analytic_irradiance_clips_at_the_horizon_and_is_zero_behind_the_light);
+    tcase_add_test(
+        tc, test_integrators_analytic_irradiance_clips_at_the_horizon_and_is_zero_behind_the_light);
     tcase_add_test(tc, test_integrators_analytic_irradiance_in_the_lights_own_plane);
     suite_add_tcase(s, tc);
     tc = tcase_create("paths");
@@ -1324,12 +1416,15 @@ Suite *integrators_suite(void)
     tcase_add_test(tc, test_integrators_measure_the_envmap_only_when_they_sample_it);
     tcase_add_test(tc, test_integrators_power_heuristic_values);
     tcase_add_test(tc, test_integrators_nee_and_mis_agree_with_two_quad_lights_and_several_samples);
-    tcase_add_test(tc, test_integrators_nee_and_mis_agree_with_quad_lights_beside_the_envmap_in_both_selections);
+    tcase_add_test(
+        tc,
+        test_integrators_nee_and_mis_agree_with_quad_lights_beside_the_envmap_in_both_selections);
     tcase_add_test(tc, test_integrators_with_one_light_both_selections_render_the_same_image);
     tcase_add_test(tc, test_integrators_every_light_leaves_no_fireflies_on_veachs_wall);
     tcase_add_test(tc, test_integrators_path_traced_glass_agrees_with_the_ray_tracers);
     tcase_add_test(tc, test_integrators_a_delta_light_among_others_adds_exactly_its_light);
-    tcase_add_test(tc, test_integrators_lights_seen_directly_and_in_a_mirror_count_with_every_nee_mode);
+    tcase_add_test(tc,
+                   test_integrators_lights_seen_directly_and_in_a_mirror_count_with_every_nee_mode);
     tcase_add_test(tc, test_integrators_nee_uses_the_shading_normal_like_brdf_sampling);
     tcase_add_test(tc, test_integrators_shading_frame_faces_the_ray);
     tcase_add_test(tc, test_integrators_envmiss_black_keeps_the_envmap_out_of_reflections);

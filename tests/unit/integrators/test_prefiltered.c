@@ -117,13 +117,17 @@ START_TEST(test_lights_in_a_prefiltered_scene_are_warned_about_at_the_first)
     scene sc;
     warnings ws;
     error err = {0};
-    ck_assert_int_eq(load(&sc, HEAD "integrator prefiltered\nsphere 0 0 0 1\n"
-                                    "quadLight 0 2 0 1 0 0 0 0 1 5 5 5\npoint 0 3 0 1 1 1\n", &ws, &err), 0);
+    ck_assert_int_eq(load(&sc,
+                          HEAD "integrator prefiltered\nsphere 0 0 0 1\n"
+                               "quadLight 0 2 0 1 0 0 0 0 1 5 5 5\npoint 0 3 0 1 1 1\n",
+                          &ws, &err),
+                     0);
     ck_assert_int_eq(ws.n, 1);
     ck_assert_int_eq(ws.last.line, 5); /* the quad light, before the point light */
     ck_assert_ptr_nonnull(strstr(ws.last.msg, "'prefiltered' integrator"));
     scene_free(&sc);
-    ck_assert_int_eq(load(&sc, HEAD "directional 0 1 0 1 1 1\nintegrator prefiltered\n", &ws, &err), 0);
+    ck_assert_int_eq(load(&sc, HEAD "directional 0 1 0 1 1 1\nintegrator prefiltered\n", &ws, &err),
+                     0);
     ck_assert_int_eq(ws.n, 1);
     ck_assert_int_eq(ws.last.line, 3);
     scene_free(&sc);
@@ -152,7 +156,8 @@ START_TEST(test_a_diffuse_or_phong_sphere_in_a_constant_environment_is_kd_plus_k
             render_ok(&sc, &im);
             /* the centre pixels see the sphere head on: (kd + ks (n . r)) L with n . r ~ 1,
              * ambient ignored; a corner the environment itself */
-            rgb c = image_get(&im, 12, 12), k = phong ? rgb_make(0.5, 0.6, 0.7) : rgb_make(0.6, 0.4, 0.2);
+            rgb c = image_get(&im, 12, 12),
+                k = phong ? rgb_make(0.5, 0.6, 0.7) : rgb_make(0.6, 0.4, 0.2);
             /* (pixel 12's centre is half a pixel off the axis: n . r = 0.998) */
             ck_assert_double_eq_tol(c.r, 2 * k.r, 5e-3);
             ck_assert_double_eq_tol(c.g, 2 * k.g, 5e-3);
@@ -167,7 +172,8 @@ END_TEST
 START_TEST(test_a_phong_lobe_is_ks_times_the_cosine_at_its_axis_times_its_map)
 {
     scene sc;
-    load_ok(&sc, HEAD "integrator prefiltered\nspecular 0.5 0.25 1\nshininess 40\nsphere 0 0 0 1\n");
+    load_ok(&sc,
+            HEAD "integrator prefiltered\nspecular 0.5 0.25 1\nshininess 40\nsphere 0 0 0 1\n");
     set_env(&sc, GENENV_CONSTANT, 512, 2);
     rig r;
     error err = {0};
@@ -227,8 +233,9 @@ START_TEST(test_the_maps_follow_the_envmaps_transform)
     /* the sun at envmap +z; `rotate 1 0 0 -90` turns it to world +y */
     for (int m = 0; m < 2; m++) {
         scene sc;
-        load_ok(&sc, m ? HEAD "integrator prefiltered\nprefilter sh9\npushTransform\nrotate 1 0 0 -90\n"
-                            "envmap x.exr\npopTransform\ndiffuse 1 1 1\nsphere 0 0 0 1\n"
+        load_ok(&sc, m ? HEAD
+                         "integrator prefiltered\nprefilter sh9\npushTransform\nrotate 1 0 0 -90\n"
+                         "envmap x.exr\npopTransform\ndiffuse 1 1 1\nsphere 0 0 0 1\n"
                        : HEAD "integrator prefiltered\npushTransform\nrotate 1 0 0 -90\n"
                               "envmap x.exr\npopTransform\ndiffuse 1 1 1\nsphere 0 0 0 1\n");
         set_env(&sc, GENENV_SUN, 128, 1);
@@ -238,16 +245,18 @@ START_TEST(test_the_maps_follow_the_envmaps_transform)
         const prefiltered *pf = r.it.pf;
         ck_assert_ptr_nonnull(pf);
         rgb up = prefiltered_irradiance(pf, vec3_make(0, 1, 0));
-        rgb z = prefiltered_irradiance(pf, vec3_make(0, 0, 1)), down = prefiltered_irradiance(pf, vec3_make(0, -1, 0));
+        rgb z = prefiltered_irradiance(pf, vec3_make(0, 0, 1)),
+            down = prefiltered_irradiance(pf, vec3_make(0, -1, 0));
         ck_assert(up.g > 3 * z.g && z.g > down.g);
         /* and exactly the map made in the envmap's frame, at the turned normal */
         convert_env env = envmap_view(&r.it.rt.env);
         image ref = {0};
         prefilter_sh9 sh;
-        ck_assert_int_eq(m ? prefilter_sh9_project(&env, &sh, &err) ||
-                                 prefilter_irradiance_sh9(&sh, PREFILTERED_IRRADIANCE_WIDTH, &ref, &err)
-                           : prefilter_irradiance_exact(&env, PREFILTERED_IRRADIANCE_WIDTH, &ref, &err),
-                         0);
+        ck_assert_int_eq(
+            m ? prefilter_sh9_project(&env, &sh, &err) ||
+                    prefilter_irradiance_sh9(&sh, PREFILTERED_IRRADIANCE_WIDTH, &ref, &err)
+              : prefilter_irradiance_exact(&env, PREFILTERED_IRRADIANCE_WIDTH, &ref, &err),
+            0);
         const vec3 world[] = {{0.3, 0.9, -0.2}, {-0.7, 0.1, 0.7}, {0, 0, -1}};
         for (int i = 0; i < 3; i++) {
             vec3 n = vec3_normalize(world[i]), e = mat4_dir(&sc.envmap.inv, n);
@@ -299,16 +308,18 @@ START_TEST(test_ggx_and_an_envmap_that_is_not_turned_are_refused)
     ck_assert_int_eq(rig_init(&r, &sc, &err), -1);
     ck_assert_ptr_nonnull(strstr(err.msg, "'brdf ggx'"));
     scene_free(&sc);
-    load_ok(&sc, HEAD "integrator prefiltered\npushTransform\nscale 1 1 3\nenvmap x.exr\npopTransform\n"
-                      "diffuse 1 1 1\nsphere 0 0 0 1\n");
+    load_ok(&sc,
+            HEAD "integrator prefiltered\npushTransform\nscale 1 1 3\nenvmap x.exr\npopTransform\n"
+                 "diffuse 1 1 1\nsphere 0 0 0 1\n");
     set_env(&sc, GENENV_SKY, 32, 1);
     ck_assert_int_eq(rig_init(&r, &sc, &err), -1);
     ck_assert_int_eq(err.line, 6); /* the envmap line */
     ck_assert_ptr_nonnull(strstr(err.msg, "not a rotation"));
     scene_free(&sc);
     /* a rotation times a uniform scale is fine */
-    load_ok(&sc, HEAD "integrator prefiltered\npushTransform\nscale 2 2 2\nrotate 0 0 1 30\nenvmap x.exr\n"
-                      "popTransform\ndiffuse 1 1 1\nsphere 0 0 0 1\n");
+    load_ok(&sc, HEAD
+            "integrator prefiltered\npushTransform\nscale 2 2 2\nrotate 0 0 1 30\nenvmap x.exr\n"
+            "popTransform\ndiffuse 1 1 1\nsphere 0 0 0 1\n");
     set_env(&sc, GENENV_SKY, 32, 1);
     ck_assert_int_eq(rig_init(&r, &sc, &err), 0);
     rig_free(&r);
@@ -318,9 +329,10 @@ END_TEST
 
 START_TEST(test_without_the_envmaps_light_only_emission_and_mirrors_remain)
 {
-    const char *texts[] = {HEAD "integrator prefiltered\nenvmiss black\n"
-                                "diffuse 1 1 1\nemission 0.25 0 0\nsphere 0 0 0 1\n",
-                           HEAD "integrator prefiltered\ndiffuse 1 1 1\nemission 0.25 0 0\nsphere 0 0 0 1\n"};
+    const char *texts[] = {
+        HEAD "integrator prefiltered\nenvmiss black\n"
+             "diffuse 1 1 1\nemission 0.25 0 0\nsphere 0 0 0 1\n",
+        HEAD "integrator prefiltered\ndiffuse 1 1 1\nemission 0.25 0 0\nsphere 0 0 0 1\n"};
     for (int i = 0; i < 2; i++) {
         scene sc;
         load_ok(&sc, texts[i]);
@@ -340,9 +352,10 @@ END_TEST
 START_TEST(test_one_phong_map_per_distinct_shininess)
 {
     scene sc;
-    load_ok(&sc, HEAD "integrator prefiltered\nspecular 0.5 0.5 0.5\nshininess 10\nsphere -1 0 0 0.4\n"
-                      "diffuse 0.2 0.2 0.2\nsphere 0 0 0 0.4\nshininess 50\nsphere 1 0 0 0.4\n"
-                      "specular 0 0 0\nshininess 7\nsphere 0 1 0 0.4\n");
+    load_ok(&sc,
+            HEAD "integrator prefiltered\nspecular 0.5 0.5 0.5\nshininess 10\nsphere -1 0 0 0.4\n"
+                 "diffuse 0.2 0.2 0.2\nsphere 0 0 0 0.4\nshininess 50\nsphere 1 0 0 0.4\n"
+                 "specular 0 0 0\nshininess 7\nsphere 0 1 0 0.4\n");
     set_env(&sc, GENENV_SKY, 64, 1);
     rig r;
     error err = {0};
@@ -363,8 +376,10 @@ START_TEST(test_sh9_and_exact_agree_on_a_smooth_sky)
     image im[2];
     for (int m = 0; m < 2; m++) {
         scene sc;
-        load_ok(&sc, m ? HEAD "integrator prefiltered\nprefilter sh9\ndiffuse 0.8 0.8 0.8\nsphere 0 0 0 1\n"
-                       : HEAD "integrator prefiltered\ndiffuse 0.8 0.8 0.8\nsphere 0 0 0 1\n");
+        load_ok(&sc,
+                m ? HEAD
+                    "integrator prefiltered\nprefilter sh9\ndiffuse 0.8 0.8 0.8\nsphere 0 0 0 1\n"
+                  : HEAD "integrator prefiltered\ndiffuse 0.8 0.8 0.8\nsphere 0 0 0 1\n");
         set_env(&sc, GENENV_SKY, 256, 1);
         render_ok(&sc, &im[m]);
         scene_free(&sc);
@@ -389,7 +404,8 @@ Suite *prefiltered_suite(void)
     tcase_set_timeout(tc, 60);
     tcase_add_test(tc, test_the_scene_chooses_the_integrator_and_the_irradiance_method);
     tcase_add_test(tc, test_lights_in_a_prefiltered_scene_are_warned_about_at_the_first);
-    tcase_add_test(tc, test_a_diffuse_or_phong_sphere_in_a_constant_environment_is_kd_plus_ks_times_L);
+    tcase_add_test(tc,
+                   test_a_diffuse_or_phong_sphere_in_a_constant_environment_is_kd_plus_ks_times_L);
     tcase_add_test(tc, test_a_phong_lobe_is_ks_times_the_cosine_at_its_axis_times_its_map);
     tcase_add_test(tc, test_mirrors_and_glass_are_the_ray_tracers_to_the_bit);
     tcase_add_test(tc, test_the_maps_follow_the_envmaps_transform);

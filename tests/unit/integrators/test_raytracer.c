@@ -17,7 +17,8 @@ static void load(scene *sc, const char *text)
     scene_load_opts o = scene_load_defaults();
     o.load_images = 0;
     error err = {0};
-    if (scene_load_string(text, "test", &o, sc, &err)) ck_abort_msg("scene: line %d: %s", err.line, err.msg);
+    if (scene_load_string(text, "test", &o, sc, &err))
+        ck_abort_msg("scene: line %d: %s", err.line, err.msg);
 }
 
 /* Give the scene an environment made by genenv (envmap frame = world frame, scale 1). */
@@ -65,8 +66,8 @@ static rgb pixel(fixture *f, int x, int y)
 static void assert_rgb_near(rgb a, rgb b, double tol)
 {
     ck_assert_msg(fabs(a.r - b.r) <= tol && fabs(a.g - b.g) <= tol && fabs(a.b - b.b) <= tol,
-                  "(%.12g, %.12g, %.12g) != (%.12g, %.12g, %.12g) within %g", a.r, a.g, a.b, b.r, b.g,
-                  b.b, tol);
+                  "(%.12g, %.12g, %.12g) != (%.12g, %.12g, %.12g) within %g", a.r, a.g, a.b, b.r,
+                  b.g, b.b, tol);
 }
 
 /* The orientation scene: world z up, camera on -y looking at a mirror ball at the origin. */
@@ -87,9 +88,12 @@ START_TEST(test_raytracer_mirror_ball_reflects_the_axes_environment_the_right_wa
     /* the centre pixel reflects straight back to the camera, towards -y: (0.5, 0, 0.5) */
     assert_rgb_near(pixel(&f, 32, 32), rgb_make(0.5, 0, 0.5), 0.01);
     /* right of centre the ball reflects towards +x (red), above centre towards +z (blue) */
-    rgb right = pixel(&f, 44, 32), left = pixel(&f, 20, 32), up = pixel(&f, 32, 20), down = pixel(&f, 32, 44);
-    ck_assert_msg(right.r > 0.7 && left.r < 0.3, "phi runs the wrong way: right %g, left %g", right.r, left.r);
-    ck_assert_msg(up.b > 0.7 && down.b < 0.3, "the map is upside down: up %g, down %g", up.b, down.b);
+    rgb right = pixel(&f, 44, 32), left = pixel(&f, 20, 32), up = pixel(&f, 32, 20),
+        down = pixel(&f, 32, 44);
+    ck_assert_msg(right.r > 0.7 && left.r < 0.3, "phi runs the wrong way: right %g, left %g",
+                  right.r, left.r);
+    ck_assert_msg(up.b > 0.7 && down.b < 0.3, "the map is upside down: up %g, down %g", up.b,
+                  down.b);
     ck_assert_near(right.b, 0.5, 0.01);
     ck_assert_near(up.r, 0.5, 0.01);
     /* background along the view (+y) is green; the left edge looks a little towards -x */
@@ -120,9 +124,10 @@ START_TEST(test_raytracer_every_mirror_ball_pixel_shows_the_reflected_direction)
             }
             rgb want = rgb_make((dir.x + 1) / 2, (dir.y + 1) / 2, (dir.z + 1) / 2);
             rgb got = pixel(&f, x, y);
-            if (!(fabs(got.r - want.r) < 0.005 && fabs(got.g - want.g) < 0.005 && fabs(got.b - want.b) < 0.005))
-                ck_abort_msg("pixel (%d, %d): (%g, %g, %g), want (%g, %g, %g)", x, y, got.r, got.g, got.b,
-                             want.r, want.g, want.b);
+            if (!(fabs(got.r - want.r) < 0.005 && fabs(got.g - want.g) < 0.005 &&
+                  fabs(got.b - want.b) < 0.005))
+                ck_abort_msg("pixel (%d, %d): (%g, %g, %g), want (%g, %g, %g)", x, y, got.r, got.g,
+                             got.b, want.r, want.g, want.b);
         }
     ck_assert_int_gt(on_ball, 500);
     fixture_end(&f);
@@ -229,7 +234,8 @@ START_TEST(test_raytracer_envmiss_black_removes_the_escaping_light_between_mirro
     for (int y = 0; y < 33; y++)
         for (int x = 0; x < 33; x++) {
             rgb ca = pixel(&a, x, y), cb = pixel(&b, x, y);
-            if (cb.r > ca.r + 1e-15) ck_abort_msg("black misses made pixel (%d, %d) brighter", x, y);
+            if (cb.r > ca.r + 1e-15)
+                ck_abort_msg("black misses made pixel (%d, %d) brighter", x, y);
             /* an oblique ray escapes after k bounces: the envmap adds ks^k * 1 */
             if (ca.r > cb.r + 1e-6) differ++;
         }
@@ -267,7 +273,8 @@ START_TEST(test_raytracer_whitted_lighting_matches_the_hand_computation)
     vec3 hv = vec3_normalize(vec3_make(1 / s2, 0, 1 + 1 / s2));
     double spec = 0.2 * pow(hv.z, 10); /* ks (N.H)^s */
     rgb kd = rgb_make(0.5, 0.4, 0.3);
-    rgb point = rgb_scale(rgb_mul(rgb_make(1, 0.8, 0.6), rgb_add(rgb_scale(kd, ndotl), rgb_gray(spec))), 1 / atten);
+    rgb point = rgb_scale(
+        rgb_mul(rgb_make(1, 0.8, 0.6), rgb_add(rgb_scale(kd, ndotl), rgb_gray(spec))), 1 / atten);
     /* directional light along the normal: N.L = N.H = 1, no attenuation */
     rgb dir = rgb_scale(rgb_add(kd, rgb_gray(0.2)), 0.3);
     rgb want = rgb_add(rgb_add(rgb_make(0.1, 0.05, 0.02), point), dir);
@@ -297,9 +304,10 @@ END_TEST
 START_TEST(test_raytracer_light_behind_the_surface_adds_nothing)
 {
     fixture f;
-    load(&f.sc, "size 65 65\ncamera 0 0 5  0 0 0  0 1 0  30\n"
-                "directional 0 0 -1  1 1 1\npoint 0 0 -3  1 1 1\n"
-                "ambient 0.1 0.2 0.3\ndiffuse 1 1 1\nspecular 1 1 1\nshininess 1\nsphere 0 0 0 1\n");
+    load(&f.sc,
+         "size 65 65\ncamera 0 0 5  0 0 0  0 1 0  30\n"
+         "directional 0 0 -1  1 1 1\npoint 0 0 -3  1 1 1\n"
+         "ambient 0.1 0.2 0.3\ndiffuse 1 1 1\nspecular 1 1 1\nshininess 1\nsphere 0 0 0 1\n");
     fixture_start(&f);
     assert_rgb_near(pixel(&f, 32, 32), rgb_make(0.1, 0.2, 0.3), 0);
     fixture_end(&f);
@@ -469,7 +477,8 @@ Suite *raytracer_suite(void)
     Suite *s = suite_create("raytracer");
     TCase *tc = tcase_create("core");
     tcase_set_timeout(tc, 60); /* generous for sanitizer builds; the tests take well under 1 s */
-    tcase_add_test(tc, test_raytracer_mirror_ball_reflects_the_axes_environment_the_right_way_round);
+    tcase_add_test(tc,
+                   test_raytracer_mirror_ball_reflects_the_axes_environment_the_right_way_round);
     tcase_add_test(tc, test_raytracer_every_mirror_ball_pixel_shows_the_reflected_direction);
     tcase_add_test(tc, test_raytracer_envmiss_black_darkens_reflections_but_not_the_background);
     tcase_add_test(tc, test_raytracer_maxdepth_0_shows_no_reflection);
@@ -479,7 +488,8 @@ Suite *raytracer_suite(void)
     tcase_add_test(tc, test_raytracer_whitted_lighting_matches_the_hand_computation);
     tcase_add_test(tc, test_raytracer_shadowed_point_is_ambient_only);
     tcase_add_test(tc, test_raytracer_light_behind_the_surface_adds_nothing);
-    tcase_add_test(tc, test_raytracer_a_light_just_below_an_open_floor_still_gives_the_courses_highlight);
+    tcase_add_test(
+        tc, test_raytracer_a_light_just_below_an_open_floor_still_gives_the_courses_highlight);
     tcase_add_test(tc, test_raytracer_blinn_phong_highlight_with_huge_shininess_never_exceeds_ks);
     tcase_add_test(tc, test_raytracer_glass_ball_in_a_constant_environment_conserves_energy);
     tcase_add_test(tc, test_raytracer_glass_ball_refracts_the_view_upside_down);

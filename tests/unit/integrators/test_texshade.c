@@ -1,9 +1,9 @@
-/* test_texshade.c - texture maps at a ray hit (include/envtex/integrators/texshade.h), checked against finite
- * differences: a camera ray with differentials scaled to 1e-3 of a pixel and its neighbour ray
- * (o + do/dx, d + dd/dx) hit the surface a first-order step apart, so every derivative texshade
- * computes (dp, dn, dst, dq, and the tangents dp/ds, dp/dt) must match the difference of what the
- * two hits give, to about that step's square.  Each scene has a transform, so the object space
- * that mappings and solid textures see differs from the world. */
+/* test_texshade.c - texture maps at a ray hit (include/envtex/integrators/texshade.h), checked
+ * against finite differences: a camera ray with differentials scaled to 1e-3 of a pixel and its
+ * neighbour ray (o + do/dx, d + dd/dx) hit the surface a first-order step apart, so every
+ * derivative texshade computes (dp, dn, dst, dq, and the tangents dp/ds, dp/dt) must match the
+ * difference of what the two hits give, to about that step's square.  Each scene has a transform,
+ * so the object space that mappings and solid textures see differs from the world. */
 #include "envtex/integrators/texshade.h"
 
 #include <string.h>
@@ -55,23 +55,26 @@ static void trace3(rig *r, double x, double y, hits *out)
     ray ry = {vec3_add(out->r.o, out->rd.doy), vec3_add(out->r.d, out->rd.ddy), 0, INFINITY};
     integrator_intersect_diff(&r->it, &rx, NULL, &out->hx);
     integrator_intersect_diff(&r->it, &ry, NULL, &out->hy);
-    ck_assert_int_eq(out->h0.kind, 1);
-    ck_assert_int_eq(out->hx.kind, 1);
-    ck_assert_int_eq(out->hy.kind, 1);
+    ck_assert_int_eq(out->h0.kind, SCENE_HIT_GEOMETRY);
+    ck_assert_int_eq(out->hx.kind, SCENE_HIT_GEOMETRY);
+    ck_assert_int_eq(out->hy.kind, SCENE_HIT_GEOMETRY);
     ck_assert(out->h0.s.has_diff);
 }
 
 static void assert_vec_near(vec3 got, vec3 want, double scale, const char *what)
 {
     double e = vec3_length(vec3_sub(got, want));
-    ck_assert_msg(e <= FD_REL * scale, "%s: (%.6g, %.6g, %.6g), finite difference (%.6g, %.6g, %.6g): error %.3g of %.3g",
-                  what, got.x, got.y, got.z, want.x, want.y, want.z, e, scale);
+    ck_assert_msg(
+        e <= FD_REL * scale,
+        "%s: (%.6g, %.6g, %.6g), finite difference (%.6g, %.6g, %.6g): error %.3g of %.3g", what,
+        got.x, got.y, got.z, want.x, want.y, want.z, e, scale);
 }
 
 static void assert_uv_near(uv2 got, uv2 want, double scale, const char *what)
 {
     double e = hypot(got.u - want.u, got.v - want.v);
-    ck_assert_msg(e <= FD_REL * scale, "%s: (%.6g, %.6g), finite difference (%.6g, %.6g): error %.3g of %.3g", what,
+    ck_assert_msg(e <= FD_REL * scale,
+                  "%s: (%.6g, %.6g), finite difference (%.6g, %.6g): error %.3g of %.3g", what,
                   got.u, got.v, want.u, want.v, e, scale);
 }
 
@@ -101,7 +104,8 @@ static void check_point(rig *r, double x, double y, const char *what)
     texshade_point_at(&r->sc, &H.hx.h, sx, &tx);
     texshade_point_at(&r->sc, &H.hy.h, sy, &ty);
     uv2 fst = uv_sub(tx.st, t0.st);
-    ck_assert_msg(fabs(fst.u) < 0.25 && fabs(fst.v) < 0.25, "%s: a seam between the neighbours", what);
+    ck_assert_msg(fabs(fst.u) < 0.25 && fabs(fst.v) < 0.25, "%s: a seam between the neighbours",
+                  what);
     snprintf(msg, sizeof msg, "%s: dst/dx", what);
     assert_uv_near(t0.dst_dx, fst, hypot(fst.u, fst.v), msg);
     snprintf(msg, sizeof msg, "%s: dst/dy", what);
@@ -127,7 +131,8 @@ static void check_point(rig *r, double x, double y, const char *what)
 START_TEST(test_texshade_sphere_under_a_transform_matches_finite_differences)
 {
     rig r;
-    rig_load(&r, CAMERA "pushTransform\ntranslate 0.3 0.2 0\nrotate 1 0 0 30\nscale 2 2 2\nsphere 0 0 0 0.5\npopTransform\n");
+    rig_load(&r, CAMERA "pushTransform\ntranslate 0.3 0.2 0\nrotate 1 0 0 30\nscale 2 2 2\nsphere "
+                        "0 0 0 0.5\npopTransform\n");
     const double px[][2] = {{40, 25}, {28, 38}, {35, 30}};
     for (int i = 0; i < 3; i++) {
         check_point(&r, px[i][0], px[i][1], "sphere");
@@ -138,22 +143,24 @@ START_TEST(test_texshade_sphere_under_a_transform_matches_finite_differences)
         ck_assert_int_eq(tp.mapping, TEXMAPPING_SPHERICAL);
         /* q = M^-1 p: the object-space point, at distance 0.5 from the object's centre */
         ck_assert_near(vec3_length(tp.q), 0.5, 1e-9);
-        ck_assert_msg(fabs(vec3_length(H.h0.s.p) - 1) > 1e-3, "the world point should not be the object point");
+        ck_assert_msg(fabs(vec3_length(H.h0.s.p) - 1) > 1e-3,
+                      "the world point should not be the object point");
     }
     rig_free(&r);
 }
 END_TEST
 
-/* An ellipsoid (scale 2 1 1): its normal field is the inverse transpose's, (x/4, y, z) up to length,
- * and dn/dx follows it; seen from inside (the camera in the ellipsoid) s->n is -ns and dn/dx is
- * turned with it. */
+/* An ellipsoid (scale 2 1 1): its normal field is the inverse transpose's, (x/4, y, z) up to
+ * length, and dn/dx follows it; seen from inside (the camera in the ellipsoid) s->n is -ns and
+ * dn/dx is turned with it. */
 START_TEST(test_texshade_normal_derivatives_of_an_ellipsoid_outside_and_inside)
 {
     rig r;
     rig_load(&r, CAMERA "pushTransform\nscale 2 1 1\nsphere 0 0 0 1\npopTransform\n");
     check_point(&r, 38, 27, "ellipsoid");
     rig_free(&r);
-    rig_load(&r, "size 64 64\ncamera 0.1 0.1 0.2  0.6 0.3 1  0 1 0  60\npushTransform\nscale 2 1 1\nsphere 0 0 0 1\npopTransform\n");
+    rig_load(&r, "size 64 64\ncamera 0.1 0.1 0.2  0.6 0.3 1  0 1 0  60\npushTransform\nscale 2 1 "
+                 "1\nsphere 0 0 0 1\npopTransform\n");
     hits H;
     trace3(&r, 36, 29, &H);
     ck_assert_int_eq(H.h0.s.entering, 0);
@@ -167,9 +174,12 @@ END_TEST
 START_TEST(test_texshade_mapped_triangle_with_vertex_normals_matches_finite_differences)
 {
     rig r;
-    rig_load(&r, CAMERA "texmapping planar\npushTransform\ntranslate 0.2 -0.1 0\nrotate 0 1 0 20\nscale 1.5 1 1\n"
-                        "vertexnormal -1 -1 0  -0.3 -0.2 1\nvertexnormal 1 -1 0  0.4 -0.1 1\nvertexnormal 0 1 0  0 0.5 1\n"
-                        "trinormal 0 1 2\npopTransform\n");
+    rig_load(
+        &r, CAMERA
+        "texmapping planar\npushTransform\ntranslate 0.2 -0.1 0\nrotate 0 1 0 20\nscale 1.5 1 1\n"
+        "vertexnormal -1 -1 0  -0.3 -0.2 1\nvertexnormal 1 -1 0  0.4 -0.1 1\nvertexnormal 0 1 0  0 "
+        "0.5 1\n"
+        "trinormal 0 1 2\npopTransform\n");
     check_point(&r, 33, 35, "planar triangle");
     hits H;
     trace3(&r, 33, 35, &H);
@@ -180,8 +190,8 @@ START_TEST(test_texshade_mapped_triangle_with_vertex_normals_matches_finite_diff
     double a = -20 * M_PI / 180;
     vec3 q = vec3_make(cos(a) * p.x + sin(a) * p.z, p.y, -sin(a) * p.x + cos(a) * p.z);
     q.x /= 1.5;
-    ck_assert_msg(vec3_length(vec3_sub(tp.q, q)) < 1e-9, "q = (%g, %g, %g), want (%g, %g, %g)", tp.q.x, tp.q.y, tp.q.z,
-                  q.x, q.y, q.z);
+    ck_assert_msg(vec3_length(vec3_sub(tp.q, q)) < 1e-9, "q = (%g, %g, %g), want (%g, %g, %g)",
+                  tp.q.x, tp.q.y, tp.q.z, q.x, q.y, q.z);
     ck_assert_near(tp.st.u, q.x, 1e-9); /* planar: (s, t) = (x, y) */
     ck_assert_near(tp.st.v, q.y, 1e-9);
     rig_free(&r);
@@ -192,8 +202,10 @@ END_TEST
 START_TEST(test_texshade_uv_triangle_matches_finite_differences)
 {
     rig r;
-    rig_load(&r, CAMERA "pushTransform\nrotate 1 0 0 -25\nvertextex -1 -1 0  0.1 0.2\nvertextex 1 -1 0  0.9 0.1\n"
-                        "vertextex 0 1 0  0.4 0.95\ntritex 0 1 2\npopTransform\n");
+    rig_load(
+        &r, CAMERA
+        "pushTransform\nrotate 1 0 0 -25\nvertextex -1 -1 0  0.1 0.2\nvertextex 1 -1 0  0.9 0.1\n"
+        "vertextex 0 1 0  0.4 0.95\ntritex 0 1 2\npopTransform\n");
     check_point(&r, 30, 36, "uv triangle");
     rig_free(&r);
 }
@@ -217,7 +229,8 @@ START_TEST(test_texshade_procedural_bump_tilts_the_normal_both_ways)
             east = fmax(east, fabs(vec3_dot(dn, vec3_normalize(tp.dp_ds))));
             north = fmax(north, fabs(vec3_dot(dn, vec3_normalize(tp.dp_dt))));
         }
-    ck_assert_msg(east > 1e-3 && north > 1e-3, "the bumps tilt the normal east by at most %g, north by %g", east, north);
+    ck_assert_msg(east > 1e-3 && north > 1e-3,
+                  "the bumps tilt the normal east by at most %g, north by %g", east, north);
     rig_free(&r);
 }
 END_TEST
@@ -243,7 +256,8 @@ END_TEST
 START_TEST(test_texshade_refraction_out_of_glass_uses_the_inverse_index)
 {
     rig r;
-    rig_load(&r, "size 64 64\ncamera 0.1 0.1 0  0.3 0.2 1  0 1 0  40\nbrdf glass\nior 1.5\nsphere 0 0 0 1\n");
+    rig_load(&r, "size 64 64\ncamera 0.1 0.1 0  0.3 0.2 1  0 1 0  40\nbrdf glass\nior 1.5\nsphere "
+                 "0 0 0 1\n");
     hits H;
     trace3(&r, 30, 33, &H);
     const surface *s = &H.h0.s;
@@ -267,7 +281,8 @@ static Suite *texshade_suite(void)
     tcase_set_timeout(tc, 60);
     tcase_add_test(tc, test_texshade_sphere_under_a_transform_matches_finite_differences);
     tcase_add_test(tc, test_texshade_normal_derivatives_of_an_ellipsoid_outside_and_inside);
-    tcase_add_test(tc, test_texshade_mapped_triangle_with_vertex_normals_matches_finite_differences);
+    tcase_add_test(tc,
+                   test_texshade_mapped_triangle_with_vertex_normals_matches_finite_differences);
     tcase_add_test(tc, test_texshade_uv_triangle_matches_finite_differences);
     tcase_add_test(tc, test_texshade_procedural_bump_tilts_the_normal_both_ways);
     tcase_add_test(tc, test_texshade_uv_on_a_sphere_is_spherical);

@@ -18,7 +18,8 @@ static void load(scene *sc, const char *text)
     scene_load_opts o = scene_load_defaults();
     o.load_images = 0;
     error err = {0};
-    if (scene_load_string(text, "render.test", &o, sc, &err)) ck_abort_msg("scene: line %d: %s", err.line, err.msg);
+    if (scene_load_string(text, "render.test", &o, sc, &err))
+        ck_abort_msg("scene: line %d: %s", err.line, err.msg);
 }
 
 /* the scene's envmap: a 128 x 64 generated map (value: a constant map's radiance) */
@@ -35,7 +36,10 @@ static void set_env_value(scene *sc, genenv_kind kind, double value)
     sc->envmap.xf = sc->envmap.inv = mat4_identity();
 }
 
-static void set_env(scene *sc, genenv_kind kind) { set_env_value(sc, kind, genenv_defaults().value); }
+static void set_env(scene *sc, genenv_kind kind)
+{
+    set_env_value(sc, kind, genenv_defaults().value);
+}
 
 /* A mirror ball and a diffuse ball under a light, in the axes environment: edges everywhere, so
  * jittered samples change pixels. */
@@ -123,7 +127,8 @@ START_TEST(test_render_spp_1_traces_through_pixel_centres)
         for (int x = 0; x < 24; x++) {
             rgb want = raytracer_trace(&rt, camera_ray(&cam, x + 0.5, y + 0.5));
             rgb got = image_get(&img, x, y);
-            ck_assert_msg(got.r == (float)want.r && got.g == (float)want.g && got.b == (float)want.b,
+            ck_assert_msg(got.r == (float)want.r && got.g == (float)want.g &&
+                              got.b == (float)want.b,
                           "pixel (%d, %d) is not the pixel-centre ray", x, y);
         }
     bvh_free(&accel);
@@ -168,7 +173,8 @@ START_TEST(test_render_of_a_constant_environment_is_that_constant)
     image img;
     render_stats st;
     render(&sc, 5, 3, &img, &st);
-    for (int i = 0; i < 8 * 6 * 3; i++) ck_assert_msg(img.px[i] == 1.25f, "px[%d] = %g", i, img.px[i]);
+    for (int i = 0; i < 8 * 6 * 3; i++)
+        ck_assert_msg(img.px[i] == 1.25f, "px[%d] = %g", i, img.px[i]);
     ck_assert_int_eq(st.prims, 0);
     image_free(&img);
     scene_free(&sc);
@@ -211,15 +217,23 @@ static void keep_warning(void *ctx, const error *w)
  * map that is not black. */
 START_TEST(test_render_warns_once_when_a_black_envmap_falls_back)
 {
-    static const struct { const char *lines; double value; int warns; const char *words; } cases[] = {
-        {"integrator direct\n", 0, 1, "'envsampling cdf' has nothing to importance sample and samples uniform"},
-        {"integrator direct\nenvsampling cdf-sintheta\n", 0, 1, "'envsampling cdf-sintheta' has nothing"},
-        {"integrator direct\nenvsampling mediancut 4\n", 0, 1, "'envsampling mediancut' has no energy to divide"},
+    static const struct {
+        const char *lines;
+        double value;
+        int warns;
+        const char *words;
+    } cases[] = {
+        {"integrator direct\n", 0, 1,
+         "'envsampling cdf' has nothing to importance sample and samples uniform"},
+        {"integrator direct\nenvsampling cdf-sintheta\n", 0, 1,
+         "'envsampling cdf-sintheta' has nothing"},
+        {"integrator direct\nenvsampling mediancut 4\n", 0, 1,
+         "'envsampling mediancut' has no energy to divide"},
         {"integrator pathtracer\nnexteventestimation mis\n", 0, 1, "envmap black.exr is black"},
         {"integrator direct\nenvsampling uniform\n", 0, 0, NULL}, /* asked for uniform */
-        {"integrator pathtracer\n", 0, 0, NULL},                    /* NEE off: looked up only */
+        {"integrator pathtracer\n", 0, 0, NULL},                  /* NEE off: looked up only */
         {"integrator raytracer\n", 0, 0, NULL},
-        {"integrator direct\n", 0.5, 0, NULL},                      /* not black */
+        {"integrator direct\n", 0.5, 0, NULL}, /* not black */
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         scene sc;
@@ -236,12 +250,13 @@ START_TEST(test_render_warns_once_when_a_black_envmap_falls_back)
         image img;
         render_stats st;
         ck_assert_msg(render_scene(&sc, &o, &img, &st, &err) == 0, "case %zu: %s", i, err.msg);
-        ck_assert_msg(warnings_seen == cases[i].warns, "case %zu: %d warnings, want %d", i, warnings_seen,
-                      cases[i].warns);
+        ck_assert_msg(warnings_seen == cases[i].warns, "case %zu: %d warnings, want %d", i,
+                      warnings_seen, cases[i].warns);
         if (cases[i].warns) {
             ck_assert_str_eq(last_warning.file, "render.test");
             ck_assert_int_eq(last_warning.line, 3); /* the envmap line */
-            ck_assert_msg(strstr(last_warning.msg, cases[i].words), "case %zu: %s", i, last_warning.msg);
+            ck_assert_msg(strstr(last_warning.msg, cases[i].words), "case %zu: %s", i,
+                          last_warning.msg);
         }
         image_free(&img);
         scene_free(&sc);
@@ -280,7 +295,8 @@ START_TEST(test_render_replays_as_documented_mean_variance_and_differential_scal
     scene sc;
     load(&sc, "size 6 5\ncamera 0 1 3  0 0 -4  0 1 0  50\nambient 0 0 0\ndiffuse 0 0 0\n"
               "texture c checker 2  0 0 0  1 0.5 0.25\nemissionmap c\ntexfilter trilinear\n"
-              "vertextex -8 0 4  0 0\nvertextex 8 0 4  8 0\nvertextex 8 0 -40  8 22\nvertextex -8 0 -40  0 22\n"
+              "vertextex -8 0 4  0 0\nvertextex 8 0 4  8 0\nvertextex 8 0 -40  8 22\nvertextex -8 "
+              "0 -40  0 22\n"
               "tritex 0 1 2\ntritex 0 2 3\n");
     const int spps[2] = {16, 256};
     for (int k = 0; k < 2; k++) {
@@ -318,10 +334,11 @@ START_TEST(test_render_replays_as_documented_mean_variance_and_differential_scal
                 for (int s = 0; s < spp; s++) ss += (v[s] - mean) * (v[s] - mean);
                 double want_var = ss / ((double)(spp - 1) * spp);
                 double got = image_get(&img, x, y).g, got_var = image_get(&var, x, y).g;
-                ck_assert_msg(fabs(got - mean) <= 1e-6 * fmax(mean, 1e-3), "spp %d, pixel (%d, %d): %.9g, replayed %.9g",
-                              spp, x, y, got, mean);
-                ck_assert_msg(fabs(got_var - want_var) <= 1e-5 * want_var + 1e-12, "spp %d, pixel (%d, %d): variance %.9g, replayed %.9g",
-                              spp, x, y, got_var, want_var);
+                ck_assert_msg(fabs(got - mean) <= 1e-6 * fmax(mean, 1e-3),
+                              "spp %d, pixel (%d, %d): %.9g, replayed %.9g", spp, x, y, got, mean);
+                ck_assert_msg(fabs(got_var - want_var) <= 1e-5 * want_var + 1e-12,
+                              "spp %d, pixel (%d, %d): variance %.9g, replayed %.9g", spp, x, y,
+                              got_var, want_var);
                 spread = fmax(spread, want_var);
             }
         ck_assert_msg(spread > 1e-4, "spp %d: no pixel varies: the test sees no jitter", spp);

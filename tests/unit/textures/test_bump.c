@@ -6,10 +6,13 @@
 #include "unit.h"
 
 /* a macro, so that a failure names the test's own line and expressions */
-#define ck_vec_near(a, b, tol) do { \
-        vec3 a_ = (a), b_ = (b); \
-        ck_assert_msg(vec3_length(vec3_sub(a_, b_)) <= (tol), "%s = (%.12g %.12g %.12g), want %s = (%.12g %.12g %.12g)", \
-                      #a, a_.x, a_.y, a_.z, #b, b_.x, b_.y, b_.z); } while (0)
+#define ck_vec_near(a, b, tol)                                                                     \
+    do {                                                                                           \
+        vec3 a_ = (a), b_ = (b);                                                                   \
+        ck_assert_msg(vec3_length(vec3_sub(a_, b_)) <= (tol),                                      \
+                      "%s = (%.12g %.12g %.12g), want %s = (%.12g %.12g %.12g)", #a, a_.x, a_.y,   \
+                      a_.z, #b, b_.x, b_.y, b_.z);                                                 \
+    } while (0)
 
 static const vec3 Z = {0, 0, 1};
 
@@ -73,7 +76,8 @@ START_TEST(test_a_huge_bump_stays_on_the_geometric_side)
     vec3 out;
     /* ng tilted away from n: a strong slope would push n' below the surface */
     vec3 ng = vec3_normalize(vec3_make(0.5, 0, 1));
-    ck_assert_int_eq(bump_normal(Z, ng, vec3_make(1, 0, 0), vec3_make(0, 1, 0), 1e6, 0, 1, &out), 0);
+    ck_assert_int_eq(bump_normal(Z, ng, vec3_make(1, 0, 0), vec3_make(0, 1, 0), 1e6, 0, 1, &out),
+                     0);
     ck_assert_msg(vec3_dot(out, ng) >= BUMP_MIN_COS * (1 - 1e-9), "n'.ng = %g", vec3_dot(out, ng));
     ck_assert_near(vec3_length(out), 1, 1e-12);
 }
@@ -111,7 +115,8 @@ START_TEST(test_degenerate_tangents_and_nan_give_the_normal_back)
     vec3 out;
     ck_assert_int_eq(bump_normal(Z, Z, vec3_make(1, 0, 0), vec3_make(2, 0, 0), 1, 1, 1, &out), -1);
     ck_vec_near(out, Z, 0);
-    ck_assert_int_eq(bump_normal(Z, Z, vec3_make(1, 0, 0), vec3_make(0, 1, 0), NAN, 1, 1, &out), -1);
+    ck_assert_int_eq(bump_normal(Z, Z, vec3_make(1, 0, 0), vec3_make(0, 1, 0), NAN, 1, 1, &out),
+                     -1);
     ck_vec_near(out, Z, 0);
     ck_assert_int_eq(bump_normal(Z, Z, vec3_make(0, 0, 0), vec3_make(0, 1, 0), 1, 1, 1, &out), -1);
 }

@@ -26,7 +26,8 @@ START_TEST(test_a_triangle_at_rate_n_has_n_squared_triangles_wound_like_the_orig
     displace_mesh m;
     error err = {0};
     double h = 0;
-    ck_assert_int_eq(displace_triangle(tri_p, NULL, NULL, tri_st, 5, constant, &h, 1, 0, &m, &err), 0);
+    ck_assert_int_eq(displace_triangle(tri_p, NULL, NULL, tri_st, 5, constant, &h, 1, 0, &m, &err),
+                     0);
     ck_assert_int_eq(m.n_tris, 25);
     ck_assert_int_eq(m.n_verts, 21);
     double area = 0;
@@ -57,13 +58,16 @@ START_TEST(test_the_height_callback_sees_the_corners_q_interpolated_like_p)
     displace_mesh m;
     error err = {0};
     for (int with_q = 0; with_q < 2; with_q++) {
-        ck_assert_int_eq(displace_triangle(tri_p, with_q ? q : NULL, NULL, tri_st, 4, height_x, NULL, 1, 0, &m, &err), 0);
+        ck_assert_int_eq(displace_triangle(tri_p, with_q ? q : NULL, NULL, tri_st, 4, height_x,
+                                           NULL, 1, 0, &m, &err),
+                         0);
         for (long k = 0; k < m.n_verts; k++) {
             /* the grid's barycentrics from the undisplaced point (tri_p is a right triangle) */
             double b1 = m.p[k].x / 2, b2 = m.p[k].y / 2;
             ck_assert(m.p[k].z >= 0);
             double want = with_q ? 20 * (1 - b1 - b2) + 10 * b1 + 10 * b2 : m.p[k].x;
-            ck_assert_msg(fabs(m.p[k].z - want) < 1e-12, "q %d, vertex %ld: height %g, want %g", with_q, k, m.p[k].z, want);
+            ck_assert_msg(fabs(m.p[k].z - want) < 1e-12, "q %d, vertex %ld: height %g, want %g",
+                          with_q, k, m.p[k].z, want);
         }
         displace_mesh_free(&m);
     }
@@ -75,7 +79,8 @@ START_TEST(test_a_constant_height_lifts_a_flat_triangle_along_its_normal)
     displace_mesh m;
     error err = {0};
     double h = 0.5;
-    ck_assert_int_eq(displace_triangle(tri_p, NULL, NULL, tri_st, 3, constant, &h, 0.2, 0, &m, &err), 0);
+    ck_assert_int_eq(
+        displace_triangle(tri_p, NULL, NULL, tri_st, 3, constant, &h, 0.2, 0, &m, &err), 0);
     for (long k = 0; k < m.n_verts; k++) {
         ck_assert_near(m.p[k].z, 0.1, 1e-15); /* scale * h */
         ck_assert_near(m.n[k].z, 1, 1e-15);
@@ -89,7 +94,8 @@ START_TEST(test_a_ramp_height_tilts_the_recomputed_normals)
     /* z = scale * s = 0.5 * x / 2 on the plane: normal (-0.25, 0, 1) normalized */
     displace_mesh m;
     error err = {0};
-    ck_assert_int_eq(displace_triangle(tri_p, NULL, NULL, tri_st, 4, height_s, NULL, 0.5, 0, &m, &err), 0);
+    ck_assert_int_eq(
+        displace_triangle(tri_p, NULL, NULL, tri_st, 4, height_s, NULL, 0.5, 0, &m, &err), 0);
     vec3 want = vec3_normalize(vec3_make(-0.25, 0, 1));
     for (long k = 0; k < m.n_verts; k++)
         ck_assert_msg(vec3_length(vec3_sub(m.n[k], want)) < 1e-12, "vertex %ld", k);
@@ -208,7 +214,8 @@ START_TEST(test_a_triangles_height_sees_the_interpolated_st_and_normal)
     seen c = {st, n, 0, 0};
     displace_mesh m;
     error err = {0};
-    ck_assert_int_eq(displace_triangle(tri_p, NULL, n, st, 4, check_triangle_vertex, &c, 1, 0, &m, &err), 0);
+    ck_assert_int_eq(
+        displace_triangle(tri_p, NULL, n, st, 4, check_triangle_vertex, &c, 1, 0, &m, &err), 0);
     ck_assert_int_eq(c.calls, m.n_verts);
     ck_assert_msg(c.err < 1e-15, "the callback saw st or n off by %g", c.err);
     displace_mesh_free(&m);
@@ -255,14 +262,14 @@ START_TEST(test_the_sphere_maps_s_and_t_as_documented_at_vertices_and_corners)
         for (int k = 0; k < 3; k++) {
             vec3 p = m.p[tr->v[k]];
             uv2 want = sphere_st(p), got = tr->st[k];
-            ck_assert_msg(fabs(got.v - want.v) < 1e-12, "triangle %ld corner %d: t %g, want %g", i, k,
-                          got.v, want.v);
+            ck_assert_msg(fabs(got.v - want.v) < 1e-12, "triangle %ld corner %d: t %g, want %g", i,
+                          k, got.v, want.v);
             if (fabs(p.z) >= 1) { /* a pole: the middle of the other two corners' s */
                 double mid = 0.5 * (tr->st[(k + 1) % 3].u + tr->st[(k + 2) % 3].u);
                 ck_assert_msg(fabs(got.u - mid) < 1e-12, "pole corner s %g, want %g", got.u, mid);
             } else if (!(fabs(got.u - want.u) < 1e-12)) {
-                ck_assert_msg(want.u == 0 && got.u == 1, "triangle %ld corner %d: s %g, want %g", i, k,
-                              got.u, want.u);
+                ck_assert_msg(want.u == 0 && got.u == 1, "triangle %ld corner %d: s %g, want %g", i,
+                              k, got.u, want.u);
             }
         }
     }
@@ -285,8 +292,9 @@ START_TEST(test_cancelling_corner_normals_fall_back_to_corner_0s)
     vec3 seen_n = {0, 0, 0};
     displace_mesh m;
     error err = {0};
-    ck_assert_int_eq(displace_triangle(tri_p, NULL, n, tri_st, 2, record_normal_at_edge_middle, &seen_n, 1,
-                                       0, &m, &err), 0);
+    ck_assert_int_eq(displace_triangle(tri_p, NULL, n, tri_st, 2, record_normal_at_edge_middle,
+                                       &seen_n, 1, 0, &m, &err),
+                     0);
     ck_assert_msg(seen_n.x == 1 && seen_n.y == 0 && seen_n.z == 0, "(%g %g %g)", seen_n.x, seen_n.y,
                   seen_n.z);
     displace_mesh_free(&m);
@@ -298,7 +306,8 @@ START_TEST(test_exactly_max_tris_triangles_is_allowed)
 {
     displace_mesh m;
     error err = {0};
-    ck_assert_int_eq(displace_triangle(tri_p, NULL, NULL, tri_st, 100, NULL, NULL, 1, 10000, &m, &err), 0);
+    ck_assert_int_eq(
+        displace_triangle(tri_p, NULL, NULL, tri_st, 100, NULL, NULL, 1, 10000, &m, &err), 0);
     ck_assert_int_eq(m.n_tris, 10000);
     displace_mesh_free(&m);
     ck_assert_int_eq(displace_sphere(10, NULL, NULL, 1, 4 * 10 * 9, &m, &err), 0);
@@ -311,14 +320,17 @@ START_TEST(test_limits_and_bad_input_are_errors_before_allocation)
 {
     displace_mesh m;
     error err = {0};
-    ck_assert_int_eq(displace_triangle(tri_p, NULL, NULL, tri_st, 100, NULL, NULL, 1, 9999, &m, &err), -1);
+    ck_assert_int_eq(
+        displace_triangle(tri_p, NULL, NULL, tri_st, 100, NULL, NULL, 1, 9999, &m, &err), -1);
     ck_assert_ptr_null(m.p);
-    ck_assert_int_eq(displace_triangle(tri_p, NULL, NULL, tri_st, 0, NULL, NULL, 1, 0, &m, &err), -1);
+    ck_assert_int_eq(displace_triangle(tri_p, NULL, NULL, tri_st, 0, NULL, NULL, 1, 0, &m, &err),
+                     -1);
     ck_assert_int_eq(displace_sphere(1, NULL, NULL, 1, 0, &m, &err), -1);
     ck_assert_int_eq(displace_sphere(DISPLACE_MAX_RATE, NULL, NULL, 1, 1000, &m, &err), -1);
     ck_assert_ptr_null(m.tris);
     const vec3 line[3] = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};
-    ck_assert_int_eq(displace_triangle(line, NULL, NULL, tri_st, 2, NULL, NULL, 1, 0, &m, &err), -1);
+    ck_assert_int_eq(displace_triangle(line, NULL, NULL, tri_st, 2, NULL, NULL, 1, 0, &m, &err),
+                     -1);
     const vec3 nz[3] = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
     ck_assert_int_eq(displace_triangle(line, NULL, nz, tri_st, 2, NULL, NULL, 1, 0, &m, &err), 0);
     /* every facet of a line has zero area: the vertices keep their normals (displace.h) */

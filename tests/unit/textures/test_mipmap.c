@@ -31,7 +31,8 @@ static image random_image(int w, int h)
     image im = new_image(w, h);
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++)
-            image_set(&im, x, y, rgb_make(rng_uniform(0.1, 1), rng_uniform(0, 5), rng_uniform(0, 0.01)));
+            image_set(&im, x, y,
+                      rgb_make(rng_uniform(0.1, 1), rng_uniform(0, 5), rng_uniform(0, 0.01)));
     return im;
 }
 
@@ -40,7 +41,8 @@ static image checker_image(int w, int h, int cell)
 {
     image im = new_image(w, h);
     for (int j = 0; j < h; j++)
-        for (int i = 0; i < w; i++) image_set(&im, i, h - 1 - j, rgb_gray((i / cell + j / cell) % 2));
+        for (int i = 0; i < w; i++)
+            image_set(&im, i, h - 1 - j, rgb_gray((i / cell + j / cell) % 2));
     return im;
 }
 
@@ -175,7 +177,8 @@ START_TEST(test_repeat_blends_the_opposite_border_at_every_level_and_clamp_does_
         image_set(&im, 0, y, rgb_make(1, 0, 0));
         image_set(&im, 15, y, rgb_make(0, 0, 1));
     }
-    mipmap rep = build(&im, WRAP_REPEAT), cla = build(&im, WRAP_CLAMP), mir = build(&im, WRAP_MIRROR);
+    mipmap rep = build(&im, WRAP_REPEAT), cla = build(&im, WRAP_CLAMP),
+           mir = build(&im, WRAP_MIRROR);
     for (int l = 1; l < mipmap_levels(&rep); l++) {
         const image *r = mipmap_level(&rep, l);
         if (r->w < 2) break;
@@ -224,7 +227,8 @@ START_TEST(test_trilinear_below_one_texel_is_bilinear_on_the_base)
         for (int k = 0; k < 200; k++) {
             uv2 st = {rng_uniform(-2, 3), rng_uniform(-2, 3)};
             rgb want = texlookup_bilinear(&im, st, all_modes[md]);
-            rgb a = mipmap_lookup_trilinear(&m, st, 0.0), b = mipmap_lookup_trilinear(&m, st, 1.0 / 13);
+            rgb a = mipmap_lookup_trilinear(&m, st, 0.0),
+                b = mipmap_lookup_trilinear(&m, st, 1.0 / 13);
             /* trilinear blends in float (mipmap.h): a few float ulps of texels in [0, 1) */
             ck_rgb_near(a, want, 1e-6);
             ck_rgb_near(b, want, 1e-6);
@@ -244,7 +248,8 @@ START_TEST(test_trilinear_measures_a_tall_images_footprint_by_its_longer_side)
     mipmap m = build(&im, WRAP_REPEAT);
     for (int k = 0; k < 50; k++) {
         uv2 st = {rng_uniform(0, 1), rng_uniform(0, 1)};
-        ck_rgb_near(mipmap_lookup_trilinear(&m, st, 0.25), texlookup_bilinear(mipmap_level(&m, 2), st, WRAP_REPEAT), 1e-6);
+        ck_rgb_near(mipmap_lookup_trilinear(&m, st, 0.25),
+                    texlookup_bilinear(mipmap_level(&m, 2), st, WRAP_REPEAT), 1e-6);
     }
     mipmap_free(&m);
     image_free(&im);
@@ -283,7 +288,8 @@ START_TEST(test_trilinear_blend_weight_is_the_level_fraction)
     uv2 centre = {0.25, 0.25};
     for (int k = 1; k < 4000; k++) {
         /* texels in (1, 2): w4 = texels^4 in (1, 16), every mantissa and exponents 0 to 3 */
-        double texels = k < 3000 ? 1 + k / 3000.0 : exp2(0.25 * (4 - (k - 2999) * 1e-4)); /* up to 2^-1e-4 below 2 */
+        double texels = k < 3000 ? 1 + k / 3000.0
+                                 : exp2(0.25 * (4 - (k - 2999) * 1e-4)); /* up to 2^-1e-4 below 2 */
         double f = 2 * mipmap_lookup_trilinear(&m, centre, texels / 2).g;
         double want = log2(texels);
         if (!(fabs(f - want) <= 1e-12))
@@ -417,8 +423,9 @@ START_TEST(test_ewa_of_a_checkerboard_with_a_large_footprint_is_its_average)
             ck_assert_near(mipmap_lookup_ewa(&b, st, (uv2){INFINITY, 0}, (uv2){0, 2}).r, 0.5, 1e-6);
             ck_assert_near(mipmap_lookup_ewa(&b, st, (uv2){NAN, 0}, (uv2){0, 2}).r, 0.5, 1e-6);
             /* a 1-texel checker is gone (exactly 1/2) from level 1 up: 4 texels, level 2 */
-            ck_assert_near(mipmap_lookup_ewa(&a, st, (uv2){4.0 / 64, 1.0 / 64}, (uv2){-1.0 / 64, 4.0 / 64}).r,
-                           0.5, 1e-6);
+            ck_assert_near(
+                mipmap_lookup_ewa(&a, st, (uv2){4.0 / 64, 1.0 / 64}, (uv2){-1.0 / 64, 4.0 / 64}).r,
+                0.5, 1e-6);
         }
         mipmap_free(&a);
         mipmap_free(&b);
@@ -478,7 +485,8 @@ START_TEST(test_ewa_far_coordinates_read_like_near_ones)
 {
     image im = random_image(8, 8);
     uv2 dx = {0.05, 0}, dy = {0, 0.03}; /* axis aligned: clamp's far result is exact */
-    mipmap rep = build(&im, WRAP_REPEAT), cla = build(&im, WRAP_CLAMP), mir = build(&im, WRAP_MIRROR);
+    mipmap rep = build(&im, WRAP_REPEAT), cla = build(&im, WRAP_CLAMP),
+           mir = build(&im, WRAP_MIRROR);
     ck_rgb_near(mipmap_lookup_ewa(&rep, (uv2){0.3 + 1e6, 0.6 - 1e6}, dx, dy),
                 mipmap_lookup_ewa(&rep, (uv2){0.3, 0.6}, dx, dy), 1e-6);
     /* mirror's period is 2 (2n texels): s = 0.3 + an odd number of units is the mirrored 1.3 (far:
@@ -504,7 +512,8 @@ START_TEST(test_ewa_far_coordinates_read_like_near_ones)
             double x = far[k] * 3 - 0.5, r = fmod(x, period); /* the texel coordinate, reduced */
             if (r < 0) r += period;
             uv2 st = {far[k], 0.5}, near = {(r + 0.5) / 3, 0.5};
-            ck_rgb_near(mipmap_lookup_ewa(&m3, st, small, none), mipmap_lookup_ewa(&m3, near, small, none), 1e-3);
+            ck_rgb_near(mipmap_lookup_ewa(&m3, st, small, none),
+                        mipmap_lookup_ewa(&m3, near, small, none), 1e-3);
         }
         mipmap_free(&m3);
     }
@@ -543,8 +552,8 @@ START_TEST(test_ewa_ellipse_is_the_footprint_plus_one_texel)
             uv2 st = {(I0 + 0.5 - ox) / N, (J0 + 0.5 - oy) / N};
             double v = mipmap_lookup_ewa(&m, st, d0, d1).g;
             int inside = k % 2 == 0;
-            ck_assert_msg(inside ? v > 0 : v == 0, "%s, %g along and %g across: %g", turned ? "turned" : "aligned",
-                          along[k], across[k], v);
+            ck_assert_msg(inside ? v > 0 : v == 0, "%s, %g along and %g across: %g",
+                          turned ? "turned" : "aligned", along[k], across[k], v);
         }
     }
     mipmap_free(&m);
@@ -572,7 +581,8 @@ START_TEST(test_ewa_is_continuous_in_the_footprint)
             prev = c;
         }
     }
-    ck_assert_msg(worst < 0.05, "the colour jumps by %g between footprints 1e-3 apart in log2", worst);
+    ck_assert_msg(worst < 0.05, "the colour jumps by %g between footprints 1e-3 apart in log2",
+                  worst);
     mipmap_free(&m);
     image_free(&im);
 }
@@ -622,7 +632,8 @@ START_TEST(test_ewa_measures_a_non_square_images_footprint_in_texels)
     /* the same axes given the other way round (dst/dx along t): each axis's t by H, not W */
     rgb sa = mipmap_lookup_ewa(&a, sta, (uv2){0, 1.0 / 64}, (uv2){2.0 / 64, 0});
     rgb sb = mipmap_lookup_ewa(&b, stb, (uv2){0, 1.0 / 16}, (uv2){2.0 / 64, 0});
-    ck_assert_msg(fabs(sa.r - ca.r) < 1e-6 && fabs(sb.r - cb.r) < 1e-6, "axes swapped: %.9g and %.9g", sa.r, sb.r);
+    ck_assert_msg(fabs(sa.r - ca.r) < 1e-6 && fabs(sb.r - cb.r) < 1e-6,
+                  "axes swapped: %.9g and %.9g", sa.r, sb.r);
     mipmap_free(&a);
     mipmap_free(&b);
     image_free(&sq);

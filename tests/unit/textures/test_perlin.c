@@ -48,8 +48,9 @@ static double ref_noise(double xd, double yd, double zd)
         BA = ref_p(B) + Z, BB = ref_p(B + 1) + Z;
     return (double)ref_lerp(
         w,
-        ref_lerp(v, ref_lerp(u, ref_grad(ref_p(AA), x, y, z), ref_grad(ref_p(BA), x - 1, y, z)),
-                 ref_lerp(u, ref_grad(ref_p(AB), x, y - 1, z), ref_grad(ref_p(BB), x - 1, y - 1, z))),
+        ref_lerp(
+            v, ref_lerp(u, ref_grad(ref_p(AA), x, y, z), ref_grad(ref_p(BA), x - 1, y, z)),
+            ref_lerp(u, ref_grad(ref_p(AB), x, y - 1, z), ref_grad(ref_p(BB), x - 1, y - 1, z))),
         ref_lerp(v,
                  ref_lerp(u, ref_grad(ref_p(AA + 1), x, y, z - 1),
                           ref_grad(ref_p(BA + 1), x - 1, y, z - 1)),
@@ -74,10 +75,14 @@ static double rng_uniform(double lo, double hi)
 #define REF_TOL 1e-9
 
 /* perlin_noise at (x, y, z) agrees with the reference; a failure names the point */
-#define assert_matches_reference(x, y, z) do { \
-        double px_ = (x), py_ = (y), pz_ = (z), n_ = perlin_noise(px_, py_, pz_), r_ = ref_noise(px_, py_, pz_); \
-        ck_assert_msg(fabs(n_ - r_) <= REF_TOL, "perlin_noise(%.17g, %.17g, %.17g) = %.17g, Perlin's reference %.17g", \
-                      px_, py_, pz_, n_, r_); } while (0)
+#define assert_matches_reference(x, y, z)                                                          \
+    do {                                                                                           \
+        double px_ = (x), py_ = (y), pz_ = (z), n_ = perlin_noise(px_, py_, pz_),                  \
+               r_ = ref_noise(px_, py_, pz_);                                                      \
+        ck_assert_msg(fabs(n_ - r_) <= REF_TOL,                                                    \
+                      "perlin_noise(%.17g, %.17g, %.17g) = %.17g, Perlin's reference %.17g", px_,  \
+                      py_, pz_, n_, r_);                                                           \
+    } while (0)
 
 START_TEST(test_noise_reproduces_perlins_published_value)
 {
@@ -266,8 +271,10 @@ START_TEST(test_filtered_fbm_is_continuous_in_the_footprint)
             double next = w * ratio, limit = 6 * 3 * PERLIN_NOISE_BOUND * (next - w) * 1.01;
             double v = perlin_fbm_filtered(pts[k], next, 6, 2, 0.5);
             double vt = perlin_turbulence_filtered(pts[k], next, 6, 2, 0.5);
-            ck_assert_msg(fabs(v - prev) <= limit, "fbm jumps by %g at footprint %g", v - prev, next);
-            ck_assert_msg(fabs(vt - prev_t) <= limit, "turbulence jumps by %g at %g", vt - prev_t, next);
+            ck_assert_msg(fabs(v - prev) <= limit, "fbm jumps by %g at footprint %g", v - prev,
+                          next);
+            ck_assert_msg(fabs(vt - prev_t) <= limit, "turbulence jumps by %g at %g", vt - prev_t,
+                          next);
             prev = v;
             prev_t = vt;
         }

@@ -153,8 +153,10 @@ START_TEST(test_nearest_picks_the_texel_whose_square_holds_st)
         for (int i = 0; i < 4; i++) {
             rgb want = rgb_make(3 * i + 5 * j, i, j);
             /* anywhere inside the texel's square, including its lower-left corner */
-            ck_rgb_near(texlookup_nearest(&im, (uv2){(i + 0.5) / 4, (j + 0.5) / 3}, WRAP_REPEAT), want, 0);
-            ck_rgb_near(texlookup_nearest(&im, (uv2){(i + 0.01) / 4, (j + 0.99) / 3}, WRAP_REPEAT), want, 0);
+            ck_rgb_near(texlookup_nearest(&im, (uv2){(i + 0.5) / 4, (j + 0.5) / 3}, WRAP_REPEAT),
+                        want, 0);
+            ck_rgb_near(texlookup_nearest(&im, (uv2){(i + 0.01) / 4, (j + 0.99) / 3}, WRAP_REPEAT),
+                        want, 0);
             ck_rgb_near(texlookup_nearest(&im, (uv2){i / 4.0, j / 3.0}, WRAP_REPEAT), want, 0);
         }
     /* s = 1: the next tile (repeat), the last column (clamp, mirror) */
@@ -177,7 +179,8 @@ START_TEST(test_one_by_one_image_reads_its_texel_everywhere)
             for (int b = 0; b < 8; b++) {
                 uv2 st = {c[a], c[b]};
                 ck_rgb_near(texlookup_nearest(&im, st, all_modes[m]), rgb_make(0.25, 0.5, 0.75), 0);
-                ck_rgb_near(texlookup_bilinear(&im, st, all_modes[m]), rgb_make(0.25, 0.5, 0.75), 1e-15);
+                ck_rgb_near(texlookup_bilinear(&im, st, all_modes[m]), rgb_make(0.25, 0.5, 0.75),
+                            1e-15);
             }
     image_free(&im);
 }
@@ -189,8 +192,9 @@ START_TEST(test_bilinear_returns_each_texel_at_its_centre)
     for (int m = 0; m < 3; m++)
         for (int j = 0; j < 3; j++)
             for (int i = 0; i < 5; i++)
-                ck_rgb_near(texlookup_bilinear(&im, (uv2){(i + 0.5) / 5, (j + 0.5) / 3}, all_modes[m]),
-                            rgb_make(3 * i + 5 * j, i, j), 1e-12);
+                ck_rgb_near(
+                    texlookup_bilinear(&im, (uv2){(i + 0.5) / 5, (j + 0.5) / 3}, all_modes[m]),
+                    rgb_make(3 * i + 5 * j, i, j), 1e-12);
     image_free(&im);
 }
 END_TEST
@@ -215,13 +219,16 @@ START_TEST(test_bilinear_borders_follow_the_wrap_mode)
 {
     image im = ramp_image(4, 1); /* g = column index 0..3 */
     /* s = 0 is halfway between column 0 and column -1 */
-    ck_assert_near(texlookup_bilinear(&im, (uv2){0.0, 0.5}, WRAP_REPEAT).g, 1.5, 1e-12); /* (0 + 3) / 2 */
+    ck_assert_near(texlookup_bilinear(&im, (uv2){0.0, 0.5}, WRAP_REPEAT).g, 1.5,
+                   1e-12); /* (0 + 3) / 2 */
     ck_assert_near(texlookup_bilinear(&im, (uv2){0.0, 0.5}, WRAP_CLAMP).g, 0.0, 1e-12);
     ck_assert_near(texlookup_bilinear(&im, (uv2){0.0, 0.5}, WRAP_MIRROR).g, 0.0, 1e-12);
     /* s = 1 + 3/16: x = s W - 1/2 = 4.25, a quarter of the way from column 4 to column 5 */
-    ck_assert_near(texlookup_bilinear(&im, (uv2){1.1875, 0.5}, WRAP_REPEAT).g, 0.75 * 0 + 0.25 * 1, 1e-12);
+    ck_assert_near(texlookup_bilinear(&im, (uv2){1.1875, 0.5}, WRAP_REPEAT).g, 0.75 * 0 + 0.25 * 1,
+                   1e-12);
     ck_assert_near(texlookup_bilinear(&im, (uv2){1.1875, 0.5}, WRAP_CLAMP).g, 3.0, 1e-12);
-    ck_assert_near(texlookup_bilinear(&im, (uv2){1.1875, 0.5}, WRAP_MIRROR).g, 0.75 * 3 + 0.25 * 2, 1e-12);
+    ck_assert_near(texlookup_bilinear(&im, (uv2){1.1875, 0.5}, WRAP_MIRROR).g, 0.75 * 3 + 0.25 * 2,
+                   1e-12);
     /* the outer half texel is flat with clamp */
     ck_assert_near(texlookup_bilinear(&im, (uv2){0.01, 0.5}, WRAP_CLAMP).g, 0.0, 1e-12);
     image_free(&im);
@@ -234,8 +241,10 @@ START_TEST(test_thin_images_interpolate_only_along_their_length)
     for (int m = 0; m < 3; m++)
         for (int a = 0; a <= 20; a++) {
             double u = (0.5 + 5.0 * a / 20) / 6, x = u * 6 - 0.5;
-            ck_rgb_near(texlookup_bilinear(&col, (uv2){0.37, u}, all_modes[m]), rgb_make(5 * x, 0, x), 1e-12);
-            ck_rgb_near(texlookup_bilinear(&row, (uv2){u, -4.2}, all_modes[m]), rgb_make(3 * x, x, 0), 1e-12);
+            ck_rgb_near(texlookup_bilinear(&col, (uv2){0.37, u}, all_modes[m]),
+                        rgb_make(5 * x, 0, x), 1e-12);
+            ck_rgb_near(texlookup_bilinear(&row, (uv2){u, -4.2}, all_modes[m]),
+                        rgb_make(3 * x, x, 0), 1e-12);
         }
     image_free(&col);
     image_free(&row);
@@ -258,7 +267,8 @@ START_TEST(test_far_and_negative_coordinates_wrap_like_near_ones)
     ck_rgb_near(texlookup_bilinear(&im, (uv2){2 - 0.3, 2 + 0.45}, WRAP_MIRROR), m, 1e-12);
     ck_rgb_near(texlookup_bilinear(&im, (uv2){0.3 - 2e9, 0.45 + 2e9}, WRAP_MIRROR), m, 1e-5);
     /* clamp: the border texels, however far */
-    ck_rgb_near(texlookup_bilinear(&im, (uv2){-1e9, 1e9}, WRAP_CLAMP), rgb_make(0 + 5 * 2, 0, 2), 0);
+    ck_rgb_near(texlookup_bilinear(&im, (uv2){-1e9, 1e9}, WRAP_CLAMP), rgb_make(0 + 5 * 2, 0, 2),
+                0);
     ck_rgb_near(texlookup_bilinear(&im, (uv2){1e9, -1e9}, WRAP_CLAMP), rgb_make(3 * 4, 4, 0), 0);
     image_free(&im);
 }

@@ -245,7 +245,8 @@ END_TEST
  * v = (1 - a) v_point + a / 2. */
 START_TEST(test_wood_fades_by_a_smoothstep_of_the_footprint)
 {
-    texture_solid_params sp = {.scale = 1, .octaves = 1, .rings = 6, .amplitude = 0.7, .c0 = {0, 0, 0}, .c1 = {1, 1, 1}};
+    texture_solid_params sp = {
+        .scale = 1, .octaves = 1, .rings = 6, .amplitude = 0.7, .c0 = {0, 0, 0}, .c1 = {1, 1, 1}};
     texture tx;
     error err = {0};
     ck_assert_int_eq(texture_init_solid(&tx, TEXTURE_WOOD, &sp, &err), 0);
@@ -308,12 +309,14 @@ START_TEST(test_solids_fade_to_their_mean_under_a_huge_footprint)
         texture_query pq = q;
         pq.dp_dx = vec3_make(0, 0, 0);
         double point = texture_eval(&tx, &pq).r;
-        ck_assert_msg(fabs(point - mean[k]) > 1e-6, "%s: the test point is at the mean", texture_kind_name(tx.kind));
+        ck_assert_msg(fabs(point - mean[k]) > 1e-6, "%s: the test point is at the mean",
+                      texture_kind_name(tx.kind));
         const texture_filter unfiltered[2] = {TEXFILTER_NEAREST, TEXFILTER_BILINEAR};
         for (int f = 0; f < 2; f++) {
             q.filter = unfiltered[f];
             ck_assert_msg(texture_eval(&tx, &q).r == point, "%s, %s: %g, want the point value %g",
-                          texture_kind_name(tx.kind), texture_filter_name(q.filter), texture_eval(&tx, &q).r, point);
+                          texture_kind_name(tx.kind), texture_filter_name(q.filter),
+                          texture_eval(&tx, &q).r, point);
         }
     }
 }
@@ -331,16 +334,21 @@ START_TEST(test_procedural_textures_stay_in_range_for_every_parameter_the_parser
     const double scales[] = {1e-300, 1, 1e155, 1e200, big};
     const double params[] = {0, 4, 1e20, 1e200, big};
     const double amplitudes[] = {0, 8, -1e200, 1e200, big, -big};
-    const vec3 points[] = {{0.3, -1.2, 0.7}, {1.5, 0.2, -0.1}, {-1e200, 3, 1e-300}, {big, -big, 0.5}};
+    const vec3 points[] = {
+        {0.3, -1.2, 0.7}, {1.5, 0.2, -0.1}, {-1e200, 3, 1e-300}, {big, -big, 0.5}};
     const double footprints[] = {0, 1e-3, 1, 1e300};
     int bad = 0, n = 0;
     for (int kind = TEXTURE_PERLIN; kind <= TEXTURE_WOOD; kind++)
         for (int si = 0; si < 5; si++)
             for (int pi = 0; pi < 5; pi++)
                 for (int ai = 0; ai < 6; ai++) {
-                    texture_solid_params sp = {.scale = scales[si], .octaves = 6,
-                                               .frequency = params[pi], .amplitude = amplitudes[ai],
-                                               .rings = params[pi], .c0 = {0, 0, 0}, .c1 = {1, 1, 1}};
+                    texture_solid_params sp = {.scale = scales[si],
+                                               .octaves = 6,
+                                               .frequency = params[pi],
+                                               .amplitude = amplitudes[ai],
+                                               .rings = params[pi],
+                                               .c0 = {0, 0, 0},
+                                               .c1 = {1, 1, 1}};
                     texture tx;
                     error err = {0};
                     ck_assert_int_eq(texture_init_solid(&tx, (texture_kind)kind, &sp, &err), 0);
@@ -464,11 +472,13 @@ START_TEST(test_trilinear_measures_a_non_square_images_footprint_in_texels)
         q.dst_dx = (uv2){1.0 / w, 0};
         q.dst_dy = (uv2){0, 1.0 / h};
         double v = texture_eval_scalar(&t, &q);
-        ck_assert_msg(fabs(v - 1.0) < 1e-6, "%d x %d, one texel each way: %.9g, want 1 (level 0)", w, h, v);
+        ck_assert_msg(fabs(v - 1.0) < 1e-6, "%d x %d, one texel each way: %.9g, want 1 (level 0)",
+                      w, h, v);
         q.dst_dx = (uv2){4.0 / w, 0};
         q.dst_dy = (uv2){0, 4.0 / h};
         v = texture_eval_scalar(&t, &q);
-        ck_assert_msg(fabs(v - 0.5) < 1e-6, "%d x %d, four texels each way: %.9g, want 0.5", w, h, v);
+        ck_assert_msg(fabs(v - 0.5) < 1e-6, "%d x %d, four texels each way: %.9g, want 0.5", w, h,
+                      v);
         texture_free(&t);
         image_free(&im);
     }
@@ -490,7 +500,8 @@ Suite *texture_suite(void)
     tcase_add_test(tc, test_solid_parameters_are_checked);
     tcase_add_test(tc, test_solids_without_footprint_are_the_perlin_functions);
     tcase_add_test(tc, test_solids_fade_to_their_mean_under_a_huge_footprint);
-    tcase_add_test(tc, test_procedural_textures_stay_in_range_for_every_parameter_the_parser_accepts);
+    tcase_add_test(tc,
+                   test_procedural_textures_stay_in_range_for_every_parameter_the_parser_accepts);
     tcase_add_test(tc, test_scalar_is_the_channel_mean);
     tcase_add_test(tc, test_height_derivs_of_an_image_ramp_are_its_slope);
     tcase_add_test(tc, test_height_derivs_of_a_solid_agree_with_a_fine_difference);
