@@ -195,7 +195,7 @@ static void verbose_envmap(const scene *sc, const render_stats *st)
     if (st->envlight_built && sc->integrator == INTEGRATOR_PATHTRACER && sc->nee == NEE_MIS)
         fprintf(stderr, "envtex: MIS: the envmap is sampled at a fraction %.3g of its light "
                 "samples (%s; kappa = E[L^2]/E[L]^2 = %.4g)%s\n", st->env_fraction,
-                sc->envsamplefraction < 0 ? "auto: least variance x time, envlight.h"
+                sc->envsamplefraction < 0 ? "auto: least variance x time, misfraction.h"
                                           : "envsamplefraction",
                 st->envlight_kappa,
                 st->nee == NEE_OFF ? "; no other light, so paths run as BRDF sampling alone" : "");

@@ -23,7 +23,7 @@
 #define INTEGRATOR_UNLIMITED_DEPTH 1000
 
 /* An envmap light sample's cost over a BRDF sample's, for `envsamplefraction auto`
- * (envlight_mis_fraction; docs/design-notes.md) */
+ * (misfraction_choose; docs/design-notes.md) */
 #define INTEGRATOR_MIS_LIGHT_COST 0.6
 
 typedef struct integrator {

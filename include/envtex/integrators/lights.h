@@ -86,7 +86,7 @@ double lights_selection_prob(const lights *ls, int k);
  * sample's estimate f L cos w / (c P pdf) and a BRDF ray's weight p_b^2 / (p_b^2 + (c P pdf)^2).
  * The weights still sum to 1, so the estimator stays unbiased for any c; c = 0 leaves the
  * envmap to BRDF sampling alone.  The choice of c (pathtracer: `envsamplefraction`):
- *     auto: envlight_mis_fraction, the c that minimizes variance x time for diffuse surfaces
+ *     auto: misfraction_choose, the c that minimizes variance x time for diffuse surfaces
  *           under this map (a light sample costing INTEGRATOR_MIS_LIGHT_COST of a BRDF sample).
  * BRDF (cosine) sampling of an almost constant sky is already good, and a light sample there
  * adds a shadow ray for little: c = 0 (the generated sky).  Under a sun, a window or any of the
