@@ -7,8 +7,8 @@
  *   envtex render SCENE [-o OUT] [--spp N] [--seed N] [--ref REF] [--variance VAR] [--quiet]
  *                       [--verbose] [--strict]
  *   envtex compare A B [--diff D.png] [--fail-percent P] [--fail T] [--hard H]
- *   envtex compare --test IMG REF VAR [--img-spp N --ref-spp M] [--alpha A] [--max-fail F]
- *                                     [--diff MAP.png]
+ *   envtex compare --test IMG REF VAR [--img-spp N] [--ref-spp M] [--var-spp V]
+ *                                     [--alpha A] [--max-fail F] [--diff MAP.png]
  *   envtex tonemap IN OUT.png [--exposure EV] [--op clamp|reinhard|aces] [--gamma G]
  *   envtex convert IN OUT --to KIND [--from KIND] [--width W] [--samples K]
  *   (render, compare, tonemap and convert also take --memory-budget SIZE: budget.h)
@@ -30,8 +30,9 @@ static const char *usage_text =
     " [--variance VAR.exr]\n"
     "                           [--quiet] [--verbose] [--strict]\n"
     "       envtex compare A B [--diff DIFF.png] [--fail-percent P] [--fail T] [--hard H]\n"
-    "       envtex compare --test IMG REF VAR [--img-spp N --ref-spp M] [--alpha A]"
-    " [--max-fail F] [--diff MAP.png]\n"
+    "       envtex compare --test IMG REF VAR [--img-spp N] [--ref-spp M] [--var-spp V]\n"
+    "                      [--alpha A] [--max-fail F] [--diff MAP.png]"
+    "   (spp from the EXR files' envtex:spp)\n"
     "       envtex tonemap IN OUT.png [--exposure EV] [--op clamp|reinhard|aces] [--gamma G]\n"
     "       envtex convert IN OUT"
     " --to latlong|cube|cross|mirrorball|angular|cylindrical|equalarea\n"
