@@ -21,6 +21,7 @@
 #include "envtex/core/rng.h"
 #include "envtex/geometry/camera.h"
 #include "envtex/scene/scene.h"
+#include "envtex/scene/scene_load.h"
 
 static double cpu_seconds(void)
 {
