@@ -17,7 +17,6 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "envtex/io/exrattrs.h"
 #include "envtex/io/fileio.h"
 #include "envtex/io/infile.h"
 

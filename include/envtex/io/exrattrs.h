@@ -1,7 +1,7 @@
 /* exrattrs.h - the envtex attributes of an OpenEXR header (envtex:spp, envtex:seed,
  * envtex:integrator, envtex:scene): what a render records beside its pixels, so that compare
  * --test can read back the sample count.  Used by exrfile.c on a context it has open; the
- * public calls are exrfile_write_attrs and exrfile_read_attrs (exrfile.h).
+ * public calls are exrfile_write_attrs and exrfile_read_attrs (exrfile.h, which includes this).
  *
  *     r = exrattrs_set(ctx, part, &at);          // before exr_write_header
  *     if (exrattrs_get(ctx, &at, path, &err)) return -1;
@@ -12,9 +12,22 @@
 #define ENVTEX_EXRATTRS_H
 
 #include <openexr.h>
+#include <stdint.h>
 
 #include "envtex/core/error.h"
-#include "envtex/io/exrfile.h"
+
+/* What a render records about itself in its file's header, as OpenEXR attributes other readers
+ * show and ignore: envtex:spp (int), envtex:seed (string, decimal: a 64-bit seed), and
+ * envtex:integrator and envtex:scene (strings).  A field that is 0 / "" / has_seed == 0 is not
+ * written, and reads back so when the file does not have it. */
+#define EXRFILE_TEXT_MAX 256
+typedef struct exrfile_attrs {
+    int spp;      /* samples per pixel, >= 1; 0: unknown */
+    int has_seed; /* 1 when seed holds the render's seed */
+    uint64_t seed;
+    char integrator[EXRFILE_TEXT_MAX]; /* the scene's `integrator` name, "" unknown */
+    char scene[EXRFILE_TEXT_MAX];      /* the scene file as named on the command line */
+} exrfile_attrs;
 
 /* Set the known fields of `at` (NULL: none) on `part` of a write context whose header is not
  * yet written.  Returns OpenEXRCore's result; on failure some attributes may already be set. */

@@ -25,6 +25,7 @@
 #include "envtex/core/budget.h"
 #include "envtex/core/error.h"
 #include "envtex/core/image.h"
+#include "envtex/io/exrattrs.h"
 
 /* The 4 magic bytes that open every OpenEXR file: 76 2f 31 01. */
 #define EXRFILE_MAGIC "\x76\x2f\x31\x01"
@@ -40,19 +41,6 @@ int exrfile_read(const char *path, image *out, budget *mem, error *err);
 /* Write `im` to `path`: RGB float (half == 0) or half (half != 0: rounded to nearest, values
  * beyond the largest half become +-Inf), ZIP, scanline, atomic.  Nothing is left on failure. */
 int exrfile_write(const char *path, const image *im, int half, error *err);
-
-/* What a render records about itself in its file's header, as OpenEXR attributes other readers
- * show and ignore: envtex:spp (int), envtex:seed (string, decimal: a 64-bit seed), and
- * envtex:integrator and envtex:scene (strings).  A field that is 0 / "" / has_seed == 0 is not
- * written, and reads back so when the file does not have it. */
-#define EXRFILE_TEXT_MAX 256
-typedef struct exrfile_attrs {
-    int spp;      /* samples per pixel, >= 1; 0: unknown */
-    int has_seed; /* 1 when seed holds the render's seed */
-    uint64_t seed;
-    char integrator[EXRFILE_TEXT_MAX]; /* the scene's `integrator` name, "" unknown */
-    char scene[EXRFILE_TEXT_MAX];      /* the scene file as named on the command line */
-} exrfile_attrs;
 
 /* exrfile_write with `at`'s fields added to the header (at may be NULL: exrfile_write).
  * Strings are cut to EXRFILE_TEXT_MAX - 1 bytes. */
