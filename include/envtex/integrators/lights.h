@@ -1,27 +1,19 @@
-/* lights.h - the scene's lights for next-event estimation (CSE 168 hw2-hw4 and lecture slide
- * 17: "extend next-event estimation to envmaps"): quad lights, point and directional lights,
- * and the environment (envlight.h), one set that the sampling integrators share.
- *
- * Which lights a shading point samples (`lightselection`, direct.h): `all`, the course's, every
- * light (its own `lightsamples` samples; one for a point or directional light); or `power`, each
- * light sample of one light picked with probability proportional to its power, estimated as
- *   quad: pi A L_avg;  point: 4 pi I_avg;  directional: pi R^2 E_avg;  envmap: pi R^2 |L|
- * where R is the radius of the scene's bounding sphere (a distant light's power is what falls
- * on the scene).  lights_selection_prob gives the probability that one light sample is of
- * light k in the selection in use, which the estimate divides by and MIS weights with.  A quad
- * light emits on the side of ac x ab (FORMAT.md) and is opaque from both sides to every ray:
- * camera and BRDF rays stop at it (lights_intersect_quad), and it blocks shadow rays towards
- * other lights (integrator_occluded), so NEE and BRDF sampling agree.
- * Every camera, BRDF and shadow ray asks for the nearest quad, so the quads join the scene's
- * BVH (lights_scene_bvh, bvh.h): one traversal finds the nearest surface or quad, a ray tests
- * O(log n) of n quads, and a scene whose lights are all point or directional tests none.  The
- * lights keep a BVH of the quads alone too, for callers whose BVH has none (bvh_build).
+/* lights.h - the scene's lights for next-event estimation (CSE 168 hw2-hw4, lecture slide 17:
+ * "extend next-event estimation to envmaps"): quad, point and directional lights and the
+ * environment (envlight.h), one set the sampling integrators share.
  *
  *     lights ls;
  *     lights_build(&ls, sc, el, radius, &mem, &err);
  *     int k; double prob; lights_pick(&ls, xi, &k, &prob);     // lightselection power
  *     light_sample s;
  *     if (lights_sample(&ls, k, p, ng, xi1, xi2, xi3, stratified, &s)) ... trace s.shadow ...
+ *
+ * `lightselection` (direct.h): `all` samples every light (`lightsamples` each, one for a delta
+ * light); `power` picks one light per sample with probability proportional to its power:
+ *   quad: pi A L_avg;  point: 4 pi I_avg;  directional: pi R^2 E_avg;  envmap: pi R^2 |L|
+ * (R: the radius of the scene's bounding sphere).  A quad light emits on the side of ac x ab
+ * (FORMAT.md) and is opaque from both sides to every ray (camera, BRDF and shadow rays), so
+ * NEE and BRDF sampling agree; the quads join the scene's BVH (lights_scene_bvh).
  */
 #ifndef ENVTEX_LIGHTS_H
 #define ENVTEX_LIGHTS_H
@@ -39,8 +31,7 @@ typedef struct lights {
     light_selection selection; /* sc->lightselection */
     distrib1d choose;     /* pick a light by power */
     double radius;
-    double env_fraction;  /* c in [0, 1]: a pick of the envmap is sampled with probability c
-                           * (1 unless lights_set_env_fraction; see there) */
+    double env_fraction;  /* c in [0, 1]: lights_set_env_fraction (default 1) */
     /* a BVH over the quad lights alone; its quad j is light quad_light[j] (an index into
      * sc->lights; owned, NULL without quads), in the order of sc->lights */
     bvh quad_bvh;
@@ -78,27 +69,18 @@ double lights_pick_prob(const lights *ls, int k);
  * ray that finds light k against lightsamples x lights_selection_prob(k) x pdf_k. */
 double lights_selection_prob(const lights *ls, int k);
 
-/* Sample the envmap at only a fraction c of its samples (MIS only: with NEE alone the skipped
- * directions would be lost).  A light sample of the envmap (every one of its own samples under
- * `all`, a pick of it under `power`) is kept with probability c (lights_pick returns 0
- * otherwise: no light sample this time) and its selection probability P (1 or the pick's),
- * hence its pdf in the MIS weights, is multiplied by c on both sides: the light
- * sample's estimate f L cos w / (c P pdf) and a BRDF ray's weight p_b^2 / (p_b^2 + (c P pdf)^2).
- * The weights still sum to 1, so the estimator stays unbiased for any c; c = 0 leaves the
- * envmap to BRDF sampling alone.  The choice of c (pathtracer: `envsamplefraction`):
- *     auto: misfraction_choose, the c that minimizes variance x time for diffuse surfaces
- *           under this map (a light sample costing INTEGRATOR_MIS_LIGHT_COST of a BRDF sample).
- * BRDF (cosine) sampling of an almost constant sky is already good, and a light sample there
- * adds a shadow ray for little: c = 0 (the generated sky).  Under a sun, a window or any of the
- * HDR photographs measured, the variance of BRDF sampling alone is many times larger: c = 1. */
+/* Keep a light sample of the envmap with probability c in [0, 1] (MIS only: with NEE alone the
+ * skipped directions would be lost; lights_pick returns 0 for a dropped one).  The envmap's
+ * selection probability, hence its pdf in the MIS weights, is multiplied by c on both sides,
+ * so the estimate stays unbiased for any c; c = 0 leaves the envmap to BRDF sampling.  The
+ * pathtracer's `envsamplefraction auto` takes c from misfraction_choose. */
 void lights_set_env_fraction(lights *ls, double c);
 static inline int lights_env_index(const lights *ls) { return ls->env ? ls->n - 1 : -1; }
 
 /* Sample light k from shading point p (geometric normal ng, for the shadow ray's offset) with
- * (xi1, xi2) in [0,1)^2, possibly stratified, and xi3 in [0,1) (median cut jitter).
- * `stratified`: (xi1, xi2) come from a stratified grid (the envmap then uses CDF inversion even
- * with alias tables; median cut picks its stratum with xi1).  Returns 0 if the sample carries
- * nothing. */
+ * (xi1, xi2) in [0,1)^2 and xi3 in [0,1) (median cut jitter).  `stratified`: (xi1, xi2) come
+ * from a stratified grid (the envmap then inverts its CDF even with alias tables).  Returns 0
+ * if the sample carries nothing. */
 int lights_sample(const lights *ls, int k, vec3 p, vec3 ng, double xi1, double xi2, double xi3,
                   int stratified, light_sample *out);
 
