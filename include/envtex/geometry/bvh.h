@@ -6,21 +6,11 @@
  *     hit h; if (bvh_intersect(&b, &r, &h) == BVH_SURFACE) shade(&h);
  *     bvh_free(&b);
  *
- * Float finds, double decides.  Traversal tests the rays against float boxes and float
- * triangles (a corner and two edges, Moller-Trumbore); a triangle or quad that passes the float
- * test only becomes a candidate, and the double-precision test of triangle.h on the scene's own
- * corners decides whether it is hit and where.  So every hit (t, barycentrics, point) is the one
- * the double test gives, bit for bit.  The float tests are made conservative, never robustly
- * watertight: a watertight test needs the corners relative to the ray's origin, which the
- * layout of precomputed edges does not keep, and the double test closes cracks anyway
- * (TRIANGLE_EDGE_EPS).  Boxes are rounded outwards and padded (BVH_BOX_PAD_REL), slabs are
- * measured from float origins that bracket the double one and widened by BVH_SLAB_SLACK, so no
- * box culls a hit; the float triangle test widens by BVH_FILTER_EPS and leaves grazing rays
- * (BVH_GRAZING) to the double test, which covers its rounding for a triangle seen from up to
- * ~10^3 times its size.  A scene with at most BVH_MIN_PRIMS primitives gets no tree (one
- * leaf, tested linearly, no slab test).
- * The bvh keeps a pointer to nothing in the scene but reads its spheres and triangles on every
- * query: pass the same scene, unchanged, to every call.  Queries allocate nothing.
+ * Float finds, double decides: the float box and triangle tests are conservative filters, and
+ * triangle.h's double test on the scene's own corners decides, so every hit (t, barycentrics,
+ * point) is the double test's, bit for bit (docs/design-notes.md, "The float BVH").  At most
+ * BVH_MIN_PRIMS primitives: one leaf, tested linearly.  The bvh reads the scene's spheres and
+ * triangles on every query: pass the same scene, unchanged.  Queries allocate nothing.
  */
 #ifndef ENVTEX_BVH_H
 #define ENVTEX_BVH_H
@@ -40,26 +30,20 @@
 /* SAH: the cost of visiting a node, in units of a primitive's float test (design-notes.md) */
 #define BVH_TRAVERSAL_COST 2.0
 /* Each primitive's box grows by this times (its extent + its largest coordinate) before it is
- * rounded outwards to float: room for the double tests' edge tolerance (TRIANGLE_EDGE_EPS)
- * and rounding, far beyond both (~1e-12 relative), invisible. */
+ * rounded outwards to float: room for TRIANGLE_EDGE_EPS and rounding. */
 #define BVH_BOX_PAD_REL 0x1p-18
-/* The float slab test's rounding: the far end of each slab is widened by 2 gamma(3) =
- * 6 u / (1 - 3 u), u = 2^-24 (pbrt-v3, 3.9.2, "robust ray-bounds intersections"). */
+/* The far end of each float slab is widened by 2 gamma(3) = 6 u / (1 - 3 u), u = 2^-24. */
 #define BVH_SLAB_SLACK (6 * 0x1p-24f / (1 - 3 * 0x1p-24f))
 /* The float triangle test accepts barycentrics this far outside [0, 1] and t this fraction
- * beyond tmax: its rounding is ~ 3 u |s| / (|e| cos) (s = o - p0, from the origin split in two
- * floats; e: an edge; u = 2^-24), under 2^-7 while |s| / |e| stays below ~10^3 for cos >= 2^-5
- * (and |p0| / |e|, the corner's own rounding, below ~10^4).  A wider filter only sends more
- * near misses to the double test. */
+ * beyond tmax (enough while the origin is within ~10^3 triangle sizes, cos >= BVH_GRAZING). */
 #define BVH_FILTER_EPS 0x1p-7f
-/* ... when the ray is not grazing: below this |det| / (|e1| |pv|) (in L1 norms; ~ the cosine
- * of the ray and the plane's normal) the double test decides alone */
+/* Below this |det| / (|e1| |pv|) (L1 norms; ~ the ray's cosine) the double test decides alone */
 #define BVH_GRAZING 0x1p-5f
 
 enum { BVH_MISS = 0, BVH_SURFACE = 1, BVH_QUAD = 2 }; /* what bvh_intersect found */
 
-/* A node, 32 bytes (pbrt-v4's layout): its box, and either its primitives (a leaf) or its
- * second child (the first child is the next node: depth-first order). */
+/* A node (32 bytes): its box, and either its primitives (a leaf) or its second child (the first
+ * child is the next node: depth-first order). */
 typedef struct bvh_node {
     float box[2][3]; /* lower corner, upper corner */
     int32_t offset;  /* leaf: first index into prims and tris; inner: index of the second child */
