@@ -1,27 +1,17 @@
 /* sis.h - structured importance sampling (lecture slides 17-21: "reduce the environment to point
  * lights"; Agarwal, Ramamoorthi, Belongie and Jensen 2003), `envsampling sis N`.
  *
- * Three steps on a W x H lat-long map of luminance L (the average of the colour channels):
- *   1. the importance of a region of energy E = sum L d(omega) and solid angle Omega is
- *      Gamma = E^a Omega^b with a = 1, b = 1/4 (a = 1, b = 0 would be the cdf's illumination
- *      sampling, a = 0, b = 1 area stratification);
- *   2. hierarchical thresholding: layer i holds the texels with L >= t_i = i sigma (sigma: the
- *      standard deviation of L over the sphere), so layers nest and layer 0 is the whole map;
- *      a connected region R of layer i holds n_R = floor(N Gamma_R / Gamma_4pi) samples in all,
- *      those of the regions of layer i + 1 inside it included (the whole map: exactly N);
- *   3. hierarchical stratification: from the top layer down, each region adds its new samples by
- *      the Hochbaum-Shmoys farthest-point rule (the texel farthest from the samples it already
- *      holds; the first is its brightest texel), a 2-approximation of the k-center problem.
- * Every texel then belongs to its nearest sample (angular distance): the strata.  As a light
- * (sis_envlight_build, sis_pick), each stratum is a point light at its energy centroid carrying the
- * stratum's exact power sum L d(omega); only the shadow ray is jittered, to a texel chosen by
- * energy inside the stratum and a uniform point in (cos theta, phi) inside that texel.
- *
  *     sis_strata s;  // lum: w * h luminances, row-major; s.label[r * w + c]: a texel's stratum
  *     if (sis_stratify(lum, w, h, 64, NULL, &s, &err)) ...   else ... sis_strata_free(&s);
  *
+ * On a lat-long map of luminance L: a region's importance is Gamma = E^a Omega^b (energy E,
+ * solid angle Omega); layer i holds the texels with L >= i sigma, and each connected region R
+ * gets floor(N Gamma_R / Gamma_4pi) samples, its sub-regions' included, placed by the
+ * farthest-point rule; every texel belongs to its nearest sample: the strata (docs/sis.md).
+ * As a light, each stratum is a point light at its energy centroid with the stratum's power;
+ * only its shadow ray is jittered inside the stratum.
  * Frame and texels as latlong.h (row 0 the zenith); texels are adjacent across the phi seam,
- * and all of row 0 (of row H - 1) meet at the pole.  Versus the paper: docs/sis.md.
+ * and all of row 0 (of row H - 1) meet at the pole.
  */
 #ifndef ENVTEX_SIS_H
 #define ENVTEX_SIS_H
