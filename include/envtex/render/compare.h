@@ -1,6 +1,5 @@
 /* compare.h - comparing two images: error metrics, pass/fail thresholds for golden-image tests,
- * and a false-colour difference picture.  Used by the unit tests, the golden-image harness and
- * `envtex compare`.  (Lecture slide 10 is about HDR images; a renderer's tests compare them.)
+ * and a false-colour difference picture (the unit tests, the golden harness, `envtex compare`).
  *
  *     compare_result m;
  *     if (compare_metrics(&render, &ref, &m, &err)) return -1;   // sizes differ
@@ -23,15 +22,11 @@
 #include "envtex/core/error.h"
 #include "envtex/core/image.h"
 
-/* relMSE = mean of (a - ref)^2 / (ref^2 + COMPARE_RELMSE_EPSILON): the epsilon keeps black
- * reference pixels from dividing by zero, and 1e-2 (a reference value of 0.1) is the usual
- * choice in rendering papers, so near-black errors count about as much as absolute ones. */
+/* relMSE = mean of (a - ref)^2 / (ref^2 + COMPARE_RELMSE_EPSILON) */
 #define COMPARE_RELMSE_EPSILON 1e-2
 
 /* relmse_trim leaves out this fraction of the pixels, those with the largest errors (rounded
- * down: images under 1000 pixels leave out none).  One run's relMSE can be decided by a single
- * pixel: a path of probability 1e-7 that finds the sun through a glass ball adds thousands to
- * it.  Leaving out the top 0.1% is the usual robust variant in rendering papers' comparisons. */
+ * down: images under 1000 pixels leave out none). */
 #define COMPARE_RELMSE_TRIM 1e-3
 
 typedef struct compare_result {
@@ -54,7 +49,7 @@ typedef struct compare_result {
  * relmse_trim's list of the largest terms (8 bytes per 1000 pixels). */
 int compare_metrics(const image *a, const image *ref, compare_result *out, error *err);
 
-/* OpenImageIO testsuite's rule.  A pixel's difference is its largest channel |a - ref|.  The
+/* A pixel's difference is its largest channel |a - ref|.  The
  * pixel "fails" if that exceeds fail_thresh and, when fail_relative > 0, also exceeds
  * fail_relative * (|a| + |ref|) / 2 in that channel (relative mode: bright pixels may differ
  * more).  The images fail if more than fail_percent % of the pixels fail, or any pixel differs
@@ -66,8 +61,8 @@ typedef struct compare_thresholds_params {
     double hard_thresh;   /* no pixel may differ more; INFINITY: off */
 } compare_thresholds_params;
 
-/* Strict defaults, meant to be loosened per test: fail_thresh 0.004 (about one 8-bit step,
- * 1/255), fail_relative 0 (off), fail_percent 0.02 (%), hard_thresh INFINITY (off). */
+/* Strict defaults, loosened per test: fail_thresh 0.004, fail_relative 0 (off), fail_percent
+ * 0.02 (%), hard_thresh INFINITY (off). */
 compare_thresholds_params compare_thresholds_defaults(void);
 
 typedef struct compare_verdict {
@@ -93,9 +88,8 @@ int compare_thresholds(const image *a, const image *ref, const compare_threshold
 #define COMPARE_DIFF_MIN 1e-4
 #define COMPARE_DIFF_MAX 1.0
 
-/* Make the false-colour difference image of `a` against `ref` into *out (allocated; free with
- * image_free).  Its values are the palette colours decoded from sRGB to linear, so writing it
- * with the default tone mapping (imageio_write "x.png", NULL) shows exactly the palette.
+/* The false-colour difference image of `a` against `ref` into *out (allocated; free with
+ * image_free), in linear values that the default tone mapping writes as the palette exactly.
  * -1 with a message if the sizes differ. */
 int compare_diff_image(const image *a, const image *ref, image *out, error *err);
 
