@@ -1,5 +1,5 @@
-/* exrfile.h - OpenEXR images through OpenEXR's C API (OpenEXRCore 3.1).  Lecture slide 10 (HDR
- * images): OpenEXR stores linear radiance as half or float, which is why environment maps use it.
+/* exrfile.h - OpenEXR images (linear half or float radiance, lecture slide 10) through
+ * OpenEXRCore 3.1.
  *
  *     image sky = {0};
  *     if (exrfile_read("sky.exr", &sky, &mem, &err)) return -1;    // linear RGB float
@@ -8,14 +8,11 @@
  *     if (exrfile_write_attrs("img.exr", &sky, 0, &at, &err)) return -1;
  *     image_free(&sky);
  *
- * Reading takes part 0: scanline or tiled (level 0 of a mip/rip map), half, float or uint
- * samples, every compression OpenEXRCore 3.1 decodes (DWAA / DWAB are refused, saying how to
- * re-save the file).  Channels, matched case-sensitively: R, G, B; else Y alone (grey); else one
- * layer's "LAYER.R", "LAYER.G", "LAYER.B".  The image is the display window: data-window pixels
- * land at (x - display.min.x, y - display.min.y), the rest of the display window is 0.  Writing
- * makes one scanline part, R, G, B, ZIP, display window = data window = (0,0)-(w-1,h-1), atomic
- * (a temporary file beside the target, renamed over it when complete: fileio.h).
- * Errors name the file; a truncated, corrupt or hostile file is an error, never a crash.
+ * Reading takes part 0 (scanline, or level 0 of tiles), half, float or uint, any compression
+ * but DWAA / DWAB; channels R, G, B, else Y (grey), else one layer's "LAYER.R/G/B".  The image
+ * is the display window (pixels outside the data window are 0).  Writing: one scanline part,
+ * R, G, B, ZIP, windows (0,0)-(w-1,h-1), atomic (fileio.h).  Errors name the file; a corrupt
+ * or hostile file is an error, never a crash.
  */
 #ifndef ENVTEX_EXRFILE_H
 #define ENVTEX_EXRFILE_H
@@ -31,11 +28,10 @@
 #define EXRFILE_MAGIC "\x76\x2f\x31\x01"
 
 /* Read the regular file `path` into *out (which must not own pixels; it stays empty on
- * failure).  Refused: deep parts, luminance-chroma (Y with RY / BY) and sub-sampled channels,
- * sizes image_check_size refuses, a header claiming more than the file can hold.  Charged to
- * `mem` from the header before allocating (budget.h; NULL: none): the image, 12 bytes a texel
- * of the display window, which stays charged, and the buffers that decode the largest chunk
- * (ours, 12 bytes a texel, and the library's packed and unpacked bytes), released when read. */
+ * failure).  Refused: deep parts, luminance-chroma and sub-sampled channels, sizes
+ * image_check_size refuses, a header claiming more than the file holds.  Charged to `mem`
+ * before allocating (NULL: none): the image (stays charged) and the largest chunk's decoding
+ * buffers (released when read). */
 int exrfile_read(const char *path, image *out, budget *mem, error *err);
 
 /* Write `im` to `path`: RGB float (half == 0) or half (half != 0: rounded to nearest, values
