@@ -63,9 +63,8 @@ typedef struct bvh_quad {
     vec3 a, ab, ac;
 } bvh_quad;
 
-/* The primitives a BVH is built over.  Spheres and triangles are borrowed (they must outlive
- * the bvh, unchanged); quads are copied.  Ids: sphere i is id i, triangle j is n_spheres + j,
- * quad k is n_spheres + n_triangles + k. */
+/* What a BVH is built over: spheres and triangles borrowed (unchanged while it lives), quads
+ * copied.  Ids: sphere i, then triangle n_spheres + j, then quad n_spheres + n_triangles + k. */
 typedef struct bvh_prims {
     const sphere *spheres;
     long n_spheres;
@@ -91,14 +90,13 @@ typedef struct bvh {
     double build_seconds;
 } bvh;
 
-/* Build b over `prims`, its memory charged to `mem` first (budget.h, bvh_bytes; NULL: no
- * budget): what the tree keeps stays charged, the build's scratch and unused nodes are
- * released.  Returns 0, or -1 with *err set (more than 2^31 - 1 primitives, the budget, out of
- * memory) and b holding nothing.  Free with bvh_free, which is safe on a zeroed or failed bvh. */
+/* Build b over `prims`, charged to `mem` first (NULL: none; the scratch is released after).
+ * 0, or -1 with *err (over 2^31 - 1 primitives, the budget, memory) and b holding nothing.
+ * bvh_free is safe on a zeroed or failed bvh. */
 int bvh_build(bvh *b, bvh_prims prims, budget *mem, error *err);
 
-/* At most the bytes a BVH of n primitives keeps (at most 2 n - 1 nodes, the leaf order, the
- * float triangles), and in *scratch (may be NULL) what its build holds only while it runs. */
+/* At most the bytes a BVH of n primitives keeps, and in *scratch (may be NULL) what its build
+ * holds only while it runs. */
 double bvh_bytes(long n, double *scratch);
 /* What one more primitive costs a BVH at most, its build's scratch included. */
 double bvh_bytes_per_prim(void);

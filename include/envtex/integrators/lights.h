@@ -32,41 +32,35 @@ typedef struct lights {
     distrib1d choose;     /* pick a light by power */
     double radius;
     double env_fraction;  /* c in [0, 1]: lights_set_env_fraction (default 1) */
-    /* a BVH over the quad lights alone; its quad j is light quad_light[j] (an index into
-     * sc->lights; owned, NULL without quads), in the order of sc->lights */
+    /* the quad lights' own BVH: its quad j is sc->lights[quad_light[j]] (owned) */
     bvh quad_bvh;
     int *quad_light;
     int n_quads;
 } lights;
 
 typedef struct light_sample {
-    vec3 wi;        /* unit direction from the shading point towards the light (shading) */
-    rgb Li;         /* radiance (area and env lights) or, for delta lights, irradiance at normal
-                     * incidence (intensity / attenuation, power of a median-cut stratum) */
+    vec3 wi;        /* unit direction from the shading point towards the light */
+    rgb Li;         /* radiance, or for delta lights irradiance at normal incidence */
     double pdf;     /* per steradian, of this light's sampling; 0 for delta lights */
     int is_delta;   /* point, directional, median-cut: no density, not reachable by BRDF rays */
     ray shadow;     /* the visibility ray: blocked means no light */
 } light_sample;
 
-/* The light set of sc plus the environment env (NULL: none), both referenced: they must outlive
- * ls.  scene_radius is R above (<= 0: 1).  The quads' triangles and BVH are charged to `mem`
- * first (budget.h; NULL: none).  Returns 0, or -1 with *err set (the budget, out of memory);
- * free with lights_free. */
+/* The lights of sc plus env (NULL: none), both borrowed (they must outlive ls); scene_radius is
+ * R (<= 0: 1).  The quads' BVH is charged to `mem` (NULL: none).  0, or -1 with *err set (the
+ * budget, memory); free with lights_free. */
 int lights_build(lights *ls, const scene *sc, const envlight *env, double scene_radius, budget *mem,
                  error *err);
 void lights_free(lights *ls);
 
-/* Pick a light with probability proportional to its power (xi in [0,1)), envmap fraction c
- * included (below): 1, *k and *prob = lights_pick_prob(k); 0 if there are none, or when the
- * envmap was picked but not kept.  (`lightselection power`; any selection may call it.) */
+/* Pick a light by power (xi in [0,1)): 1, *k and *prob = lights_pick_prob(k); 0 if there are
+ * none, or the envmap was picked but not kept (lights_set_env_fraction). */
 int lights_pick(const lights *ls, double xi, int *k, double *prob);
 double lights_pick_prob(const lights *ls, int k);
 
-/* The probability that one light sample is a sample of light k in the selection in use:
- *   all:    c for the envmap, 1 for every other light (each has samples of its own);
- *   power:  lights_pick_prob(k) = P(pick k), times c for the envmap.
- * A light sample of k estimates f Li cos / (lights_selection_prob(k) pdf_k); MIS weighs a BRDF
- * ray that finds light k against lightsamples x lights_selection_prob(k) x pdf_k. */
+/* The probability that one light sample is of light k: `all` 1 (c for the envmap), `power`
+ * lights_pick_prob(k) (times c for the envmap).  A light sample estimates
+ * f Li cos / (prob pdf_k); MIS weighs a BRDF ray against lightsamples x prob x pdf_k. */
 double lights_selection_prob(const lights *ls, int k);
 
 /* Keep a light sample of the envmap with probability c in [0, 1] (MIS only: with NEE alone the
@@ -84,11 +78,9 @@ static inline int lights_env_index(const lights *ls) { return ls->env ? ls->n - 
 int lights_sample(const lights *ls, int k, vec3 p, vec3 ng, double xi1, double xi2, double xi3,
                   int stratified, light_sample *out);
 
-/* The BVH of sc's spheres and triangles and, for an integrator that sees quad lights (all but
- * `raytracer` and `prefiltered`), its quad lights: bvh_intersect's BVH_QUAD with h.prim = j is
- * light quad_light[j] of lights_build (the j-th quadLight of sc->lights).  sc is borrowed (it
- * must outlive b); b is charged to `mem`.  Returns 0, or -1 with *err set (bvh_build's
- * reasons); free with bvh_free. */
+/* The BVH of sc's spheres, triangles and (for all integrators but `raytracer` and
+ * `prefiltered`) quad lights: BVH_QUAD with h.prim = j is light quad_light[j].  sc is borrowed;
+ * b is charged to `mem`.  0, or -1 with *err (bvh_build's reasons); free with bvh_free. */
 int lights_scene_bvh(bvh *b, const scene *sc, budget *mem, error *err);
 
 /* Nearest quad light hit by r with t in (r->tmin, r->tmax): 1, its index (into sc->lights) and

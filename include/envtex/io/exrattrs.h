@@ -1,12 +1,8 @@
-/* exrattrs.h - the envtex attributes of an OpenEXR header (envtex:spp, envtex:seed,
- * envtex:integrator, envtex:scene): what a render records beside its pixels, so that compare
- * --test can read back the sample count.  Used by exrfile.c on a context it has open; the
- * public calls are exrfile_write_attrs and exrfile_read_attrs (exrfile.h, which includes this).
+/* exrattrs.h - the envtex attributes of an OpenEXR header, on a context exrfile.c has open
+ * (the public calls: exrfile_write_attrs, exrfile_read_attrs in exrfile.h).
  *
  *     r = exrattrs_set(ctx, part, &at);          // before exr_write_header
  *     if (exrattrs_get(ctx, &at, path, &err)) return -1;
- *
- * Attributes live on part 0; a field that is unknown (spp 0, has_seed 0, "") is not written.
  */
 #ifndef ENVTEX_EXRATTRS_H
 #define ENVTEX_EXRATTRS_H
@@ -29,13 +25,12 @@ typedef struct exrfile_attrs {
     char scene[EXRFILE_TEXT_MAX];      /* the scene file as named on the command line */
 } exrfile_attrs;
 
-/* Set the known fields of `at` (NULL: none) on `part` of a write context whose header is not
- * yet written.  Returns OpenEXRCore's result; on failure some attributes may already be set. */
+/* Set at's known fields (at NULL: none) on `part` before the header is written; OpenEXRCore's
+ * result (on failure some may be set). */
 exr_result_t exrattrs_set(exr_context_t ctx, int part, const exrfile_attrs *at);
 
-/* Read the attributes of part 0 of `ctx` into *at (fields absent stay as they are: the caller
- * zeroes *at first).  0, or -1 with err naming `path`: envtex:spp not an int >= 1, envtex:seed
- * not a whole number, or a text attribute not a string. */
+/* Part 0's attributes into *at (absent fields are left alone).  0, or -1 with err naming `path`:
+ * envtex:spp not an int >= 1, envtex:seed not a whole number, a text one not a string. */
 int exrattrs_get(exr_context_t ctx, exrfile_attrs *at, const char *path, error *err);
 
 #endif
