@@ -1,13 +1,10 @@
-/* parse.h - the scene parser's inside, private to src/scene/ (tests/layers/run-tests): the
- * parser's state, the helpers every command uses (parse_*), the command tables and the loaders
- * of the files a scene names.  The public entry is scene_load.h.
+/* parse.h - the scene parser's inside, private to src/scene/ (the public entry: scene_load.h):
+ * its state, the helpers every command uses (parse_*), the command tables, the asset loaders.
  *
- * One pass, line by line (scene_load.c).  Each line is copied into a fixed buffer, split into
- * white-space separated tokens and handed to its command's handler through a table
- * (parse_run_line).  Handlers see p->tok[1..] with the argument count already checked, and
- * check their arguments completely before they change the scene, so every error names the line
- * and the token that is wrong.  Arrays grow by doubling, so a 100k-triangle mesh costs O(n).
- * The helpers that return int return 0, or -1 with *p->err set at the current line.
+ * One pass, line by line: each line is split into tokens and handed to its command's handler
+ * (parse_run_line), which sees p->tok[1..] with the argument count checked and checks its
+ * arguments completely before it changes the scene.  The helpers that return int return 0,
+ * or -1 with *p->err set at the current line.
  */
 #ifndef ENVTEX_SCENE_PARSE_H
 #define ENVTEX_SCENE_PARSE_H
@@ -17,8 +14,7 @@
 #include "envtex/io/obj.h"
 #include "envtex/scene/scene.h"
 
-/* A command has at most 12 arguments (quadLight); a few more slots let us name the first extra
- * token in "takes N arguments, got M" messages. */
+/* At most 12 arguments (quadLight), plus room to name the first extra token in messages. */
 #define MAX_TOKENS 16
 
 typedef struct vertex_normal {
@@ -37,11 +33,11 @@ typedef struct parsed_obj {
 typedef struct parser {
     scene *sc;
     /* the load options (scene_load.h), copied */
-    int strict;         /* unknown commands are errors, not warnings */
-    scene_warn_fn warn; /* NULL: warnings are dropped */
+    int strict;
+    scene_warn_fn warn;
     void *warn_ctx;
-    int load_images;  /* 0: the images are not read (parser tests) */
-    budget *mem;      /* the run's memory budget, or NULL */
+    int load_images;
+    budget *mem;
     const char *name; /* scene name for messages (err->file) */
     char base[1024];  /* the scene file's folder with its trailing '/', or "" */
     error *err;
@@ -89,8 +85,7 @@ int parse_fail(parser *p, const char *fmt, ...) __attribute__((format(printf, 2,
 /* Report a warning at the current line through p->warn (dropped when it is NULL). */
 void parse_warn(parser *p, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
-/* Make room for `need` elements (`what`) of `size` bytes in *arr (capacity *cap), doubling; what
- * the array grows by is charged to the budget first. */
+/* Room for `need` elements of `size` bytes in *arr (capacity *cap), doubling, charged first. */
 int parse_grow(parser *p, void **arr, long *cap, long need, size_t size, const char *what);
 
 /* Argument i (1-based) as a finite double: strtod must consume the whole token. */
@@ -127,8 +122,7 @@ int parse_xf_push(parser *p);
 /* `popTransform`: restore the last saved transform; an error when none is saved. */
 int parse_xf_pop(parser *p);
 
-/* Index of the current material state: the last stored one if nothing changed since, else a
- * new entry (so a mesh of 100k triangles with one material stores one material). */
+/* Index of the current material state: the last stored one if nothing changed, else a new one. */
 int parse_material_index(parser *p, int *out);
 
 /* The three indices of a tri / trinormal, each in [0, count). */
@@ -137,22 +131,19 @@ int parse_tri_indices(parser *p, long count, const char *list, long idx[3]);
 /* Store triangle t, whose world corners p[] are the current transform of its object corners. */
 int parse_add_triangle(parser *p, const triangle *t);
 
-/* Store light l (world space; the current transform does not apply), remembering the
- * first point or directional light for parse_finish's warnings. */
+/* Store light l (world space; the current transform does not apply). */
 int parse_add_light(parser *p, const scene_light *l);
 
 /* A file name token resolved against the scene file's folder (absolute names are kept). */
 int parse_relative_path(parser *p, const char *file, char *dst, size_t size);
 
-/* Free what only the parser holds (the vertex lists, the transform stack, the parsed OBJ
- * meshes) and give its memory back to the budget. */
+/* Free what only the parser holds and give its memory back to the budget. */
 void parse_free(parser *p);
 
 /* ---- parse.c: the commands, line by line ------------------------------------------------- */
 
-/* A command: its keyword, its handler (0, or -1 with *p->err set), the argument counts
- * parse_run_line checks before calling it, and for a handler that checks its own counts, its
- * forms for the message ("'%s' takes FORMS, got N arguments"), else NULL. */
+/* A command: keyword, handler (0, or -1 with *p->err set), the argument counts parse_run_line
+ * checks, and `forms` for "'%s' takes FORMS, got N arguments" (NULL: from the counts). */
 typedef struct parse_command {
     const char *name;
     int (*run)(parser *p);
@@ -160,9 +151,8 @@ typedef struct parse_command {
     const char *forms;
 } parse_command;
 
-/* The command tables, each ended by an entry with name NULL: the CSE 167/168 commands
- * (commands_course.c), envtex's texture commands (commands_texture.c) and envtex's own
- * (commands_envtex.c).  parse_run_line looks a keyword up in this order. */
+/* The command tables (ended by name NULL), looked up in this order: the course's, the texture
+ * commands, envtex's own. */
 extern const parse_command commands_course[];
 extern const parse_command commands_texture[];
 extern const parse_command commands_envtex[];
@@ -178,15 +168,12 @@ int parse_finish(parser *p);
 
 /* ---- assets.c: the files a scene names --------------------------------------------------- */
 
-/* The mesh of the OBJ file `path` (its token p->tok[1] as written), parsed on its first `obj`
- * line and kept in p->objs for the next ones that name the same file, however spelled; the
- * file is added to the scene's inputs.  *out is owned by the parser (parse_free). */
+/* The mesh of the OBJ file `path`, parsed once however often (and however spelled) it is named,
+ * and added to the scene's inputs.  *out is owned by the parser (parse_free). */
 int assets_obj_mesh(parser *p, const char *path, const obj_mesh **out);
 
-/* Read each image texture's file (once per distinct file, however many textures name it),
- * then build the mip pyramids the materials' filters need, one per file and wrap mode (the
- * materials' maps are pointed at the texture that owns it).  Errors are reported at the
- * `texture` line with the reader's reason. */
+/* Read each image texture's file once, then build the pyramids the filters need (one per file
+ * and wrap mode).  Errors at the `texture` line with the reader's reason. */
 int assets_load_textures(parser *p);
 
 /* Read the envmap image(s), clean their texels and settle the representation (named, or
