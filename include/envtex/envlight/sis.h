@@ -42,45 +42,39 @@ typedef struct sis_strata {
     double radius; /* largest angle (radians) from a texel to its stratum's sample */
 } sis_strata;
 
-/* Stratify the w x h lat-long luminance `lum` (row-major, each >= 0 and finite) into n strata.
- * n must be in [1, w h].  What it allocates is charged to `mem` first (NULL: none): the result
- * (sis_strata_bytes), and while it runs the scratch (sis_scratch_bytes), released after.
- * 0, or -1 with *err (a black map, bad n, memory), *out then empty (safe to free). */
+/* Stratify the w x h lat-long luminance `lum` (row-major, finite, >= 0) into n in [1, w h]
+ * strata, charged to `mem` first (NULL: none; the scratch is released after).  0, or -1 with
+ * *err (a black map, bad n, memory) and *out empty (safe to free). */
 int sis_stratify(const double *lum, int w, int h, int n, budget *mem, sis_strata *out, error *err);
 void sis_strata_free(sis_strata *s);
 /* The bytes sis_stratify keeps in its result, and holds only while it runs. */
 double sis_strata_bytes(int w, int h, int n);
 double sis_scratch_bytes(int w, int h, int n);
 
-/* The luminance the light sees of a lat-long image: the average of the channels times scale,
- * NaN, Inf and negative channels as 0; w * h doubles row-major, malloc'd (NULL: no memory). */
+/* The channels' average times scale (NaN, Inf, negatives: 0) of a lat-long image, w * h doubles
+ * row-major, malloc'd (NULL: no memory). */
 double *sis_luminance(const image *map, double scale);
 
-/* The envmap as `envsampling sis n` (n < 1: 64): envlight_build in mode sis (the tables every
- * mode shares), then the strata's point lights in el->points (n_points = n, or the map's texel
- * count if smaller), el->point_choice by power, and the shadow-ray tables in el->strata.  A black
- * map falls back to uniform directions as envlight_build says (mode uniform, fell_back).  Charged
- * to `mem` first: what stays (sis_envlight_bytes) and what only building holds
- * (sis_envlight_scratch_bytes).  0, or -1 with *err and *el freed.  Free with envlight_free. */
+/* The envmap as `envsampling sis n` (n < 1: 64): envlight_build's shared tables, the strata's
+ * point lights in el->points (n, or fewer texels), el->point_choice by power, the shadow-ray
+ * tables in el->strata.  A black map falls back as envlight_build says.  Charged to `mem`
+ * first.  0, or -1 with *err and *el freed.  Free with envlight_free. */
 int sis_envlight_build(envlight *el, const envmap *env, envsampler_kind sampler, int n, budget *mem,
                        error *err);
 double sis_envlight_bytes(int w, int h, int n);
 double sis_envlight_scratch_bytes(int w, int h, int n);
 
-/* envlight_mediancut_pick for sis: light k with probability power_avg(k) / sum (by xi in
- * [0, 1)), *prob that probability, and the shadow direction sis_shadow_dir(el, k, xi1, xi2).
- * 0 if there is nothing to pick. */
+/* Light k with probability *prob = power_avg(k) / sum (xi in [0, 1)) and its shadow direction
+ * sis_shadow_dir(el, k, xi1, xi2); 0 if there is nothing to pick. */
 int sis_pick(const envlight *el, double xi, double xi1, double xi2, int *k, vec3 *shadow_dir,
              double *prob);
 
-/* The world direction of a shadow ray towards point light k of a sis envlight: a texel of
- * stratum k chosen with probability e_t / E_k (its energy over the stratum's, by xi1), then
- * uniform in (cos theta, phi) inside it (the rest of xi1, and xi2); xi1, xi2 in [0, 1). */
+/* The world direction of a shadow ray towards light k: a texel of stratum k by energy (xi1),
+ * then uniform in (cos theta, phi) inside it (the rest of xi1, and xi2); xi in [0, 1). */
 vec3 sis_shadow_dir(const envlight *el, int k, double xi1, double xi2);
 
-/* The paper's figure: the map (times `scale`) with each stratum's boundary texels painted
- * `edge` and a 3 x 3 mark of colour `mark` on each sample's texel, into *out (allocated; free
- * with image_free).  map is s's w x h map.  0, or -1 with *err (memory). */
+/* The paper's figure: s's map (times `scale`), strata boundaries `edge`, a 3 x 3 `mark` on each
+ * sample, into *out (free with image_free).  0, or -1 with *err (memory). */
 int sis_strata_picture(const sis_strata *s, const image *map, double scale, rgb edge, rgb mark,
                        image *out, error *err);
 

@@ -32,10 +32,8 @@
 typedef struct compare_result {
     double rmse;    /* sqrt(mean over pixels and channels of (a - ref)^2) */
     double relmse;  /* mean over pixels and channels of (a - ref)^2 / (ref^2 + epsilon) */
-    double relmse_trim; /* relmse without the COMPARE_RELMSE_TRIM of the pixels whose terms
-                         * (summed over channels) are largest: fireflies */
-    double psnr;    /* 10 log10(1 / mse) in dB: peak 1.0, display white of a linear image;
-                     * +INFINITY when the images are equal */
+    double relmse_trim; /* relmse without the COMPARE_RELMSE_TRIM largest pixels */
+    double psnr;    /* 10 log10(1 / mse) in dB (peak 1.0); +INFINITY when equal */
     double max_abs; /* largest |a - ref| over channels */
     int max_x, max_y;   /* a pixel where max_abs occurs (-1, -1 if none) */
     long nonfinite;     /* pixels of `a` with a NaN or Inf channel */
@@ -43,17 +41,14 @@ typedef struct compare_result {
     long pixels;        /* pixels compared: those finite in both images */
 } compare_result;
 
-/* Metrics of `a` against `ref`.  Pixels that are not finite in either image are counted and
- * left out of the sums; when no pixel is left, rmse, relmse, relmse_trim, max_abs and psnr are
- * NaN.  -1 with a message if the sizes differ, an image is empty, or there is no memory for
- * relmse_trim's list of the largest terms (8 bytes per 1000 pixels). */
+/* Metrics of `a` against `ref`; pixels not finite in either are counted and left out (none
+ * left: the metrics are NaN).  -1 with a message if the sizes differ, an image is empty, or
+ * there is no memory. */
 int compare_metrics(const image *a, const image *ref, compare_result *out, error *err);
 
-/* A pixel's difference is its largest channel |a - ref|.  The
- * pixel "fails" if that exceeds fail_thresh and, when fail_relative > 0, also exceeds
- * fail_relative * (|a| + |ref|) / 2 in that channel (relative mode: bright pixels may differ
- * more).  The images fail if more than fail_percent % of the pixels fail, or any pixel differs
- * by more than hard_thresh, or any pixel of either image is NaN / Inf, or the sizes differ. */
+/* A pixel fails if its largest channel |a - ref| exceeds fail_thresh and (fail_relative > 0)
+ * fail_relative * (|a| + |ref|) / 2.  The images fail if over fail_percent % of the pixels
+ * fail, any differs by over hard_thresh, any is NaN / Inf, or the sizes differ. */
 typedef struct compare_thresholds_params {
     double fail_thresh;   /* absolute difference a pixel may have */
     double fail_relative; /* 0: off; else the relative difference a pixel may also have */
@@ -77,14 +72,12 @@ typedef struct compare_verdict {
     char why[256];     /* one line: "ok" or the reasons it failed */
 } compare_verdict;
 
-/* Judge `a` against `ref`; fills *v.  Returns 0 if they pass, -1 if they fail (for any reason,
- * including different sizes: then v->why says so). */
+/* Judge `a` against `ref` into *v: 0 pass, -1 fail (any reason, sizes too: v->why says). */
 int compare_thresholds(const image *a, const image *ref, const compare_thresholds_params *p,
                        compare_verdict *v);
 
-/* Difference picture scale: d = largest channel |a - ref| of a pixel, on a log scale with one
- * colour stop per decade: d <= 1e-4 black, 1e-3 blue, 1e-2 green, 1e-1 yellow, >= 1 red,
- * linear in log10(d) between stops.  NaN / Inf in either image: magenta. */
+/* The difference picture of d = largest channel |a - ref|, linear in log10(d): <= 1e-4 black,
+ * 1e-3 blue, 1e-2 green, 1e-1 yellow, >= 1 red; NaN / Inf magenta. */
 #define COMPARE_DIFF_MIN 1e-4
 #define COMPARE_DIFF_MAX 1.0
 
