@@ -45,11 +45,10 @@ typedef struct gradetest_result {
     char why[256];            /* one line */
 } gradetest_result;
 
-/* Run the test: 0 with the verdict in *out (pass or fail), or -1 with *err set when it cannot
- * run (sizes differ, a sample count <= 0 (var_spp < 0), a reference or variance pixel whose
- * channel average is not finite or is negative, out of memory; fail_map then holds nothing).
- * `fail_map` (may be NULL) receives a w x h image: red where a pixel failed with img too bright, blue where too
- * dark, magenta where img is NaN or Inf, grey elsewhere (allocated; free with image_free). */
+/* 0 with the verdict in *out, or -1 with *err when it cannot run (sizes differ, a sample count
+ * <= 0, a ref or var channel average not finite or negative, memory; fail_map then empty).
+ * fail_map (may be NULL): w x h, red a failed pixel too bright, blue too dark, magenta NaN /
+ * Inf, grey elsewhere (free with image_free). */
 int gradetest_run(const image *img, const image *ref, const image *var, const gradetest_params *p,
                   gradetest_result *out, image *fail_map, error *err);
 
