@@ -102,13 +102,11 @@ double bvh_bytes(long n, double *scratch);
 double bvh_bytes_per_prim(void);
 void bvh_free(bvh *b);
 
-/* The closest hit with t in (r->tmin, r->tmax).  BVH_SURFACE: a sphere or triangle, *h filled
- * completely.  BVH_QUAD: a quad, h->t and h->prim (the quad's index k) set, nothing else.
- * BVH_MISS (0): nothing. */
+/* The closest hit with t in (r->tmin, r->tmax): BVH_SURFACE (*h filled), BVH_QUAD (only h->t
+ * and h->prim, the quad's index, set) or BVH_MISS. */
 int bvh_intersect(const bvh *b, const ray *r, hit *h);
 
-/* 1 if anything (quads included) lies on the ray with t in (r->tmin, r->tmax): shadow rays,
- * which stop at the first hit found. */
+/* 1 if anything (quads included) lies on the ray with t in (r->tmin, r->tmax). */
 int bvh_occluded(const bvh *b, const ray *r);
 
 #endif

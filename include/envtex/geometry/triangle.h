@@ -15,15 +15,12 @@
 
 /* A triangle of the scene (`tri`, `trinormal`, `tritex`, an OBJ face), in world space. */
 typedef struct triangle {
-    vec3 p[3];      /* world-space corners, counter-clockwise seen from outside: under a
-                       mirroring transform (det < 0) corners 1 and 2 are stored swapped, with
-                       their n, st and q, so that (p1 - p0) x (p2 - p0) is the outward normal */
+    vec3 p[3];      /* world corners: (p1 - p0) x (p2 - p0) is the outward normal (corners 1
+                       and 2 swapped, with n, st, q, under a mirroring transform) */
     vec3 n[3];      /* world-space unit vertex normals (trinormal); unused if !has_normals */
     int has_normals;
     int material;
-    uv2 st[3];      /* texture coordinates of the corners: given by `tritex` or an OBJ's vt
-                       (has_st = 1), else (0,0), (1,0), (0,1) for the corners as written, so
-                       that st = (b1, b2) of those corners */
+    uv2 st[3];      /* `tritex` or an OBJ's vt (has_st = 1), else (0,0), (1,0), (0,1) as written */
     int has_st;
     int st_mapped;  /* 1: st already holds the material's point mapping (a displaced sphere's
                        tessellation, displacemap.h), interpolated as for `uv`; 0 from a file */
@@ -38,7 +35,7 @@ typedef struct triangle {
  * or grazing angle under 1e-10 rad. */
 #define TRIANGLE_DEGENERATE_EPS 1e-10
 
-/* 1 if the ray meets the triangle at t in (r->tmin, r->tmax), with barycentrics b1, b2 of p1, p2. */
+/* 1 if the ray meets the triangle at t in (r->tmin, r->tmax); b1, b2: the weights of p1, p2. */
 int triangle_intersect(vec3 p0, vec3 p1, vec3 p2, const ray *r, double *t, double *b1, double *b2);
 
 #endif

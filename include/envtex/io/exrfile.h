@@ -34,8 +34,8 @@
  * buffers (released when read). */
 int exrfile_read(const char *path, image *out, budget *mem, error *err);
 
-/* Write `im` to `path`: RGB float (half == 0) or half (half != 0: rounded to nearest, values
- * beyond the largest half become +-Inf), ZIP, scanline, atomic.  Nothing is left on failure. */
+/* Write `im` to `path`: float (half == 0) or half (rounded to nearest, beyond it +-Inf), ZIP,
+ * atomic: nothing is left on failure. */
 int exrfile_write(const char *path, const image *im, int half, error *err);
 
 /* exrfile_write with `at`'s fields added to the header (at may be NULL: exrfile_write).
@@ -43,10 +43,9 @@ int exrfile_write(const char *path, const image *im, int half, error *err);
 int exrfile_write_attrs(const char *path, const image *im, int half, const exrfile_attrs *at,
                         error *err);
 
-/* The envtex attributes of the OpenEXR file `path` into *at (fields the file lacks are 0 / "";
- * one of the right name and another type, or an spp below 1, is an error: a file that says
- * something else than a sample count is not trusted as one).  Reads the header only.  0, or -1
- * with *err set (not an OpenEXR file, cannot open) and *at all unknown. */
+/* The envtex attributes of `path` into *at (absent: 0 / ""), from the header only.  0, or -1
+ * with *err (cannot open, not OpenEXR, an attribute of the wrong type or spp < 1) and *at
+ * unknown. */
 int exrfile_read_attrs(const char *path, exrfile_attrs *at, error *err);
 
 #endif
