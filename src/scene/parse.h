@@ -42,26 +42,25 @@ typedef struct parser {
     char base[1024];  /* the scene file's folder with its trailing '/', or "" */
     error *err;
     int line; /* 1-based line being read */
-    /* the current line's tokens: tok[0] is the command */
-    char *tok[MAX_TOKENS];
-    int ntok; /* number of tokens (may exceed MAX_TOKENS: only counted) */
+    char *tok[MAX_TOKENS]; /* the current line's tokens: tok[0] is the command */
+    int ntok;              /* may exceed MAX_TOKENS: only counted */
     /* transform state */
     mat4 xf;       /* object -> world, current */
     mat4 inv;      /* its inverse when inv_state == 1 */
     int inv_state; /* 0 not computed, 1 valid, -1 singular */
     mat4 *stack;   /* saved transforms (pushTransform) */
     int depth, stack_cap;
-    int first_quad_line;  /* the first `quadLight`, for the raytracer's warning (parse_finish) */
-    int first_delta_line; /* the first `point` or `directional`, for analyticdirect's */
+    int first_quad_line;  /* for parse_finish's warnings */
+    int first_delta_line;
     /* material and light state */
     material mat;
     double atten[3];
-    /* vertex lists (the scene keeps only world-space triangles) */
+    /* vertex lists */
     vec3 *verts;
     long n_verts, cap_verts;
     vertex_normal *vnorms;
     long n_vnorms, cap_vnorms;
-    vertex_tex *vtex; /* `vertextex`: a third list, for `tritex` */
+    vertex_tex *vtex; /* `vertextex`, for `tritex` */
     long n_vtex, cap_vtex;
     /* capacities of the scene's arrays */
     long cap_spheres, cap_tris;
@@ -69,12 +68,12 @@ typedef struct parser {
     long cap_textures;
     /* bookkeeping */
     long max_prims;   /* SCENE_MAX_PRIMS unless the options lower it */
-    parsed_obj *objs; /* each OBJ file read so far, parsed once (assets_obj_mesh) */
+    parsed_obj *objs; /* each OBJ file read so far (assets_obj_mesh) */
     int n_objs, cap_objs;
     int *tex_index;   /* texture names: slots of indices into sc->textures, -1 empty */
     size_t tex_slots; /* a power of two, or 0 */
     int seen_size, warned_order;
-    char envmap_token[CUBEMAP_FACES][1024]; /* the envmap file name(s) as written, for messages */
+    char envmap_token[CUBEMAP_FACES][1024]; /* the envmap file name(s) as written */
 } parser;
 
 /* ---- parse.c: messages, arguments, the current state ------------------------------------- */
@@ -157,13 +156,12 @@ extern const parse_command commands_course[];
 extern const parse_command commands_texture[];
 extern const parse_command commands_envtex[];
 
-/* Split `line` (NUL-terminated, modified in place; a token starting with '#' ends it) into
- * p->tok and run its command: unknown commands are warnings (errors when opts->strict), and a
- * command before `size` is warned about once. */
+/* Split `line` (modified in place; '#' starts a comment) into p->tok and run its command;
+ * unknown commands are warnings (errors when strict). */
 int parse_run_line(parser *p, char *line);
 
-/* After the last line: the checks that need the whole file, the warnings about lights the
- * integrator ignores, then the images (assets.c) unless opts->load_images is 0. */
+/* After the last line: the whole-file checks and warnings, then the images (unless
+ * load_images is 0). */
 int parse_finish(parser *p);
 
 /* ---- assets.c: the files a scene names --------------------------------------------------- */
@@ -176,8 +174,8 @@ int assets_obj_mesh(parser *p, const char *path, const obj_mesh **out);
  * and wrap mode).  Errors at the `texture` line with the reader's reason. */
 int assets_load_textures(parser *p);
 
-/* Read the envmap image(s), clean their texels and settle the representation (named, or
- * detected from the shape; a cross is split into faces); errors at the `envmap` line. */
+/* Read the envmap image(s), zero bad texels, settle the representation (a cross split into
+ * faces); errors at the `envmap` line. */
 int assets_load_envmap(parser *p);
 
 #endif

@@ -28,12 +28,12 @@
 
 typedef struct sis_strata {
     int w, h;        /* the lat-long map */
-    int n;           /* samples = strata made: N (fewer only if the map has fewer texels) */
+    int n;           /* strata made: N, or the texel count if fewer */
     int *label;      /* w * h, row-major: the stratum of each texel, in [0, n) (owned) */
     int *seed;       /* n texel indices r * w + c: the samples, in the order placed (owned) */
     int *seed_layer; /* n: the layer whose farthest-point step placed each (owned) */
     int n_layers;    /* d: thresholds t_0 .. t_{d-1} */
-    double sigma;    /* standard deviation of L over the sphere (solid-angle weighted) */
+    double sigma;    /* standard deviation of L over the sphere */
     double threshold[SIS_MAX_LAYERS]; /* t_i = i sigma */
     int regions[SIS_MAX_LAYERS];      /* connected regions of each layer */
     int layer_total[SIS_MAX_LAYERS];  /* sum of n_R over the regions of each layer */
@@ -47,7 +47,7 @@ typedef struct sis_strata {
  * *err (a black map, bad n, memory) and *out empty (safe to free). */
 int sis_stratify(const double *lum, int w, int h, int n, budget *mem, sis_strata *out, error *err);
 void sis_strata_free(sis_strata *s);
-/* The bytes sis_stratify keeps in its result, and holds only while it runs. */
+/* The bytes sis_stratify keeps, and holds while it runs. */
 double sis_strata_bytes(int w, int h, int n);
 double sis_scratch_bytes(int w, int h, int n);
 

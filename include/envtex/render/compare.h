@@ -37,7 +37,7 @@ typedef struct compare_result {
     double max_abs; /* largest |a - ref| over channels */
     int max_x, max_y;   /* a pixel where max_abs occurs (-1, -1 if none) */
     long nonfinite;     /* pixels of `a` with a NaN or Inf channel */
-    long ref_nonfinite; /* pixels of `ref` with a NaN or Inf channel */
+    long ref_nonfinite; /* ... of `ref` */
     long pixels;        /* pixels compared: those finite in both images */
 } compare_result;
 
