@@ -4,12 +4,10 @@
  *     sis_strata s;  // lum: w * h luminances, row-major; s.label[r * w + c]: a texel's stratum
  *     if (sis_stratify(lum, w, h, 64, NULL, &s, &err)) ...   else ... sis_strata_free(&s);
  *
- * On a lat-long map of luminance L: a region's importance is Gamma = E^a Omega^b (energy E,
- * solid angle Omega); layer i holds the texels with L >= i sigma, and each connected region R
- * gets floor(N Gamma_R / Gamma_4pi) samples, its sub-regions' included, placed by the
- * farthest-point rule; every texel belongs to its nearest sample: the strata (docs/sis.md).
- * As a light, each stratum is a point light at its energy centroid with the stratum's power;
- * only its shadow ray is jittered inside the stratum.
+ * Importance Gamma = E^a Omega^b; layer i holds the texels with L >= i sigma; a connected
+ * region R gets floor(N Gamma_R / Gamma_4pi) samples, placed farthest-point; each texel joins
+ * its nearest sample's stratum (docs/sis.md).  A stratum lights as a point light at its energy
+ * centroid with its power; only the shadow ray is jittered inside it.
  * Frame and texels as latlong.h (row 0 the zenith); texels are adjacent across the phi seam,
  * and all of row 0 (of row H - 1) meet at the pole.
  */

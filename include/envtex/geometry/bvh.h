@@ -42,18 +42,16 @@
 
 enum { BVH_MISS = 0, BVH_SURFACE = 1, BVH_QUAD = 2 }; /* what bvh_intersect found */
 
-/* A node (32 bytes): its box, and either its primitives (a leaf) or its second child (the first
- * child is the next node: depth-first order). */
+/* A node (32 bytes), depth-first: the first child is the next node. */
 typedef struct bvh_node {
     float box[2][3]; /* lower corner, upper corner */
     int32_t offset;  /* leaf: first index into prims and tris; inner: index of the second child */
     uint16_t count;  /* leaf: number of primitives (> 0); inner: 0 */
-    uint8_t axis;    /* inner: the split axis (the first child holds the smaller coordinates) */
+    uint8_t axis;    /* inner: the split axis (the first child on the smaller side) */
     uint8_t pad;
 } bvh_node;
 
-/* A triangle or quad laid out for the float test: corner p0, edges e1 = p1 - p0, e2 = p2 - p0
- * (a quad: its corner a and edges ab, ac). */
+/* A triangle (or quad: a, ab, ac) for the float test: p0, e1 = p1 - p0, e2 = p2 - p0. */
 typedef struct bvh_tri {
     float p0[3], e1[3], e2[3];
 } bvh_tri;

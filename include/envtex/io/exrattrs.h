@@ -12,10 +12,9 @@
 
 #include "envtex/core/error.h"
 
-/* What a render records about itself in its file's header, as OpenEXR attributes other readers
- * show and ignore: envtex:spp (int), envtex:seed (string, decimal: a 64-bit seed), and
- * envtex:integrator and envtex:scene (strings).  A field that is 0 / "" / has_seed == 0 is not
- * written, and reads back so when the file does not have it. */
+/* What a render records in its header: envtex:spp (int), envtex:seed (decimal string, 64 bits),
+ * envtex:integrator, envtex:scene (strings).  A field 0 / "" / has_seed 0 is not written, and
+ * reads back so when absent. */
 #define EXRFILE_TEXT_MAX 256
 typedef struct exrfile_attrs {
     int spp;      /* samples per pixel, >= 1; 0: unknown */

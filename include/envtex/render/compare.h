@@ -7,12 +7,8 @@
  *
  *     compare_thresholds_params p = compare_thresholds_defaults();
  *     compare_verdict v;
- *     if (compare_thresholds(&render, &ref, &p, &v)) {           // failed: say why, show where
- *         printf("FAIL: %s\n", v.why);
- *         image diff = {0};
- *         if (!compare_diff_image(&render, &ref, &diff, &err))
- *             imageio_write("diff.png", &diff, NULL, &err);        // default tone mapping
- *     }
+ *     if (compare_thresholds(&render, &ref, &p, &v)) puts(v.why);   // failed: why
+ *     compare_diff_image(&render, &ref, &diff, &err);              // where (false colour)
  *
  * Both images are linear RGB.  `a` is the image under test, `ref` the reference.
  */
