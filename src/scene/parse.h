@@ -24,7 +24,7 @@ typedef struct vertex_tex {
     vec3 p;
     uv2 st;
 } vertex_tex;
-/* An OBJ file read once, by identity (infile.h), and its mesh. */
+/* An OBJ file read once (by identity) and its mesh. */
 typedef struct parsed_obj {
     infile_id id;
     obj_mesh mesh;
@@ -39,20 +39,18 @@ typedef struct parser {
     int load_images;
     budget *mem;
     const char *name; /* scene name for messages (err->file) */
-    char base[1024];  /* the scene file's folder with its trailing '/', or "" */
+    char base[1024];  /* the scene file's folder with a trailing '/', or "" */
     error *err;
     int line; /* 1-based line being read */
     char *tok[MAX_TOKENS]; /* the current line's tokens: tok[0] is the command */
     int ntok;              /* may exceed MAX_TOKENS: only counted */
-    /* transform state */
     mat4 xf;       /* object -> world, current */
     mat4 inv;      /* its inverse when inv_state == 1 */
     int inv_state; /* 0 not computed, 1 valid, -1 singular */
-    mat4 *stack;   /* saved transforms (pushTransform) */
+    mat4 *stack;   /* pushTransform's */
     int depth, stack_cap;
     int first_quad_line;  /* for parse_finish's warnings */
     int first_delta_line;
-    /* material and light state */
     material mat;
     double atten[3];
     /* vertex lists */
@@ -62,15 +60,15 @@ typedef struct parser {
     long n_vnorms, cap_vnorms;
     vertex_tex *vtex; /* `vertextex`, for `tritex` */
     long n_vtex, cap_vtex;
-    /* capacities of the scene's arrays */
+    /* the scene's arrays' capacities */
     long cap_spheres, cap_tris;
     long cap_lights, cap_materials;
     long cap_textures;
     /* bookkeeping */
-    long max_prims;   /* SCENE_MAX_PRIMS unless the options lower it */
+    long max_prims;
     parsed_obj *objs; /* each OBJ file read so far (assets_obj_mesh) */
     int n_objs, cap_objs;
-    int *tex_index;   /* texture names: slots of indices into sc->textures, -1 empty */
+    int *tex_index;   /* texture names' hash: indices into sc->textures, -1 empty */
     size_t tex_slots; /* a power of two, or 0 */
     int seen_size, warned_order;
     char envmap_token[CUBEMAP_FACES][1024]; /* the envmap file name(s) as written */
@@ -87,7 +85,7 @@ void parse_warn(parser *p, const char *fmt, ...) __attribute__((format(printf, 2
 /* Room for `need` elements of `size` bytes in *arr (capacity *cap), doubling, charged first. */
 int parse_grow(parser *p, void **arr, long *cap, long need, size_t size, const char *what);
 
-/* Argument i (1-based) as a finite double: strtod must consume the whole token. */
+/* Argument i (1-based) as a finite double (the whole token). */
 int parse_arg_num(parser *p, int i, double *out);
 
 /* Arguments first..first+n-1 into v[0..n-1]. */
@@ -111,14 +109,13 @@ int parse_arg_onoff(parser *p, int *out);
 /* Right-multiply the current transform (OpenGL): the command written last applies first. */
 int parse_xf_apply(parser *p, mat4 m);
 
-/* The inverse of the current transform, computed once per change; an error names the command
- * that needs it (a sphere, a trinormal, an envmap) when the transform is singular. */
+/* The inverse of the current transform (once per change); singular: an error naming the command. */
 int parse_xf_inverse(parser *p, const mat4 **inv);
 
-/* `pushTransform`: save the current transform (at most SCENE_MAX_TRANSFORM_STACK deep). */
+/* `pushTransform` (at most SCENE_MAX_TRANSFORM_STACK deep). */
 int parse_xf_push(parser *p);
 
-/* `popTransform`: restore the last saved transform; an error when none is saved. */
+/* `popTransform`; an error when none is saved. */
 int parse_xf_pop(parser *p);
 
 /* Index of the current material state: the last stored one if nothing changed, else a new one. */
@@ -127,7 +124,7 @@ int parse_material_index(parser *p, int *out);
 /* The three indices of a tri / trinormal, each in [0, count). */
 int parse_tri_indices(parser *p, long count, const char *list, long idx[3]);
 
-/* Store triangle t, whose world corners p[] are the current transform of its object corners. */
+/* Store triangle t (world corners p[]: the current transform of q[]). */
 int parse_add_triangle(parser *p, const triangle *t);
 
 /* Store light l (world space; the current transform does not apply). */

@@ -11,9 +11,8 @@
  * `lightselection` (direct.h): `all` samples every light (`lightsamples` each, one for a delta
  * light); `power` picks one light per sample with probability proportional to its power:
  *   quad: pi A L_avg;  point: 4 pi I_avg;  directional: pi R^2 E_avg;  envmap: pi R^2 |L|
- * (R: the radius of the scene's bounding sphere).  A quad light emits on the side of ac x ab
- * (FORMAT.md) and is opaque from both sides to every ray (camera, BRDF and shadow rays), so
- * NEE and BRDF sampling agree; the quads join the scene's BVH (lights_scene_bvh).
+ * (R: the scene's bounding radius).  A quad light emits on the side of ac x ab and is opaque
+ * from both sides to every ray, so NEE and BRDF sampling agree.
  */
 #ifndef ENVTEX_LIGHTS_H
 #define ENVTEX_LIGHTS_H
@@ -42,7 +41,7 @@ typedef struct light_sample {
     vec3 wi;        /* unit direction from the shading point towards the light */
     rgb Li;         /* radiance, or for delta lights irradiance at normal incidence */
     double pdf;     /* per steradian, of this light's sampling; 0 for delta lights */
-    int is_delta;   /* point, directional, median-cut: no density, not reachable by BRDF rays */
+    int is_delta;   /* point, directional, median-cut: no density, BRDF rays cannot reach it */
     ray shadow;     /* the visibility ray: blocked means no light */
 } light_sample;
 

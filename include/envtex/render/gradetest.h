@@ -25,8 +25,8 @@ typedef struct gradetest_params {
     double alpha;             /* family-wise significance, default 0.01 */
     double max_fail_fraction; /* pixels allowed to fail, default 0.005 (0.5%) */
     double global_z;          /* bound on |Z| of the image total, default 5 */
-    double img_spp, ref_spp;  /* sample counts (only their ratios matter); default equal */
-    double var_spp;           /* VAR's render's sample count; 0 (default): VAR is REF's */
+    double img_spp, ref_spp;  /* sample counts (only ratios matter); default equal */
+    double var_spp;           /* VAR's sample count; 0 (default): ref_spp */
     /* the floor on the standard deviation, relative to the reference: 1e-4 */
     double rel_floor;
 } gradetest_params;
