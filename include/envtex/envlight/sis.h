@@ -29,7 +29,7 @@ typedef struct sis_strata {
     int n;           /* strata made: N, or the texel count if fewer */
     int *label;      /* w * h, row-major: the stratum of each texel, in [0, n) (owned) */
     int *seed;       /* n texel indices r * w + c: the samples, in the order placed (owned) */
-    int *seed_layer; /* n: the layer whose farthest-point step placed each (owned) */
+    int *seed_layer; /* n: the layer that placed each (owned) */
     int n_layers;    /* d: thresholds t_0 .. t_{d-1} */
     double sigma;    /* standard deviation of L over the sphere */
     double threshold[SIS_MAX_LAYERS]; /* t_i = i sigma */
@@ -37,7 +37,7 @@ typedef struct sis_strata {
     int layer_total[SIS_MAX_LAYERS];  /* sum of n_R over the regions of each layer */
     int layer_new[SIS_MAX_LAYERS];    /* samples each layer placed itself */
     double gamma_4pi;                 /* Gamma of the whole map */
-    double radius; /* largest angle (radians) from a texel to its stratum's sample */
+    double radius; /* largest angle (radians) from a texel to its sample */
 } sis_strata;
 
 /* Stratify the w x h lat-long luminance `lum` (row-major, finite, >= 0) into n in [1, w h]

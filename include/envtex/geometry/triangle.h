@@ -1,5 +1,5 @@
-/* triangle.h - ray-triangle intersection with barycentric coordinates (the texture lecture
- * interpolates (s,t) and normals with them: p = b0 p0 + b1 p1 + b2 p2, b0 = 1 - b1 - b2).
+/* triangle.h - ray-triangle intersection with barycentric coordinates, which interpolate
+ * (s,t) and normals: p = b0 p0 + b1 p1 + b2 p2, b0 = 1 - b1 - b2.
  *
  *     double t, b1, b2;
  *     if (triangle_intersect(p0, p1, p2, &r, &t, &b1, &b2)) ...

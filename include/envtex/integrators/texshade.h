@@ -1,5 +1,5 @@
 /* texshade.h - texture maps at a ray hit (slides 25-46): the hit's (s, t) and footprint, and
- * what the material's maps make of the surface.  Every integrator calls it at each hit.
+ * what the material's maps make of the surface, for every integrator.
  *
  *     brdf_surface_from_material(&s, &sc->materials[h.material]);  // s's frame set from h
  *     texshade_surface(sc, &h, &r, &rd, &s);                       // differentials, maps
@@ -30,10 +30,10 @@ typedef struct texshade_point {
 /* 1 if m has a map evaluated at hits (not displacement). */
 int texshade_material_has_maps(const material *m);
 
-/* 1 if m has a map filtered by `trilinear` or `ewa`, or a bump map (its step is the footprint). */
+/* 1 if m has a map filtered by `trilinear` or `ewa`, or a bump map. */
 int texshade_material_needs_footprint(const material *m);
 
-/* 1 if some material of sc needs a footprint: only then do camera rays get differentials. */
+/* 1 if some material of sc needs a footprint (camera rays then get differentials). */
 int texshade_scene_needs_differentials(const scene *sc);
 
 /* s->has_diff, dpdx, dpdy (raydiff_at_hit) and dndx, dndy (the unbumped shading normal's

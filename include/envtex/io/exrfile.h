@@ -1,12 +1,10 @@
 /* exrfile.h - OpenEXR images (linear half or float radiance, lecture slide 10) through
  * OpenEXRCore 3.1.
  *
- *     image sky = {0};
  *     if (exrfile_read("sky.exr", &sky, &mem, &err)) return -1;    // linear RGB float
  *     if (exrfile_write("out.exr", &sky, 1, &err)) return -1;      // half float, ZIP, atomic
  *     exrfile_attrs at = {.spp = 64};                              // what a render records
  *     if (exrfile_write_attrs("img.exr", &sky, 0, &at, &err)) return -1;
- *     image_free(&sky);
  *
  * Reading takes part 0 (scanline, or level 0 of tiles), half, float or uint, any compression
  * but DWAA / DWAB; channels R, G, B, else Y (grey), else one layer's "LAYER.R/G/B".  The image

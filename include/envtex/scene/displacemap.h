@@ -16,11 +16,11 @@
 
 #define DISPLACEMAP_SPHERE_RATE 96     /* 36480 triangles per sphere */
 #define DISPLACEMAP_TRIANGLE_RATE 32   /* 1024 triangles per triangle */
-#define DISPLACEMAP_MAX_TRIS 8000000L  /* default budget for the whole displaced scene */
+#define DISPLACEMAP_MAX_TRIS 8000000L  /* default limit for the displaced scene */
 
 typedef struct displacemap_stats {
     long spheres, triangles;   /* primitives that were displaced */
-    long new_triangles;        /* triangles of the result (displaced and untouched) */
+    long new_triangles;        /* triangles of the result, untouched ones included */
     int sphere_rate, triangle_rate; /* the rates used */
 } displacemap_stats;
 

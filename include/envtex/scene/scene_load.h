@@ -1,6 +1,5 @@
 /* scene_load.h - the scene parser: a CSE 167/168 `.test` file and envtex's commands
- * (docs/scene-format.md) into a scene (scene.h).  Only the render and cli layers include it
- * (tests/layers/run-tests).
+ * (docs/scene-format.md) into a scene (scene.h); for the render and cli layers only.
  *
  *     scene sc;
  *     scene_load_opts o = scene_load_defaults();
@@ -34,8 +33,8 @@ scene_load_opts scene_load_defaults(void);
  * stays charged to opts->mem (scene_free does not release it). */
 int scene_load(const char *path, const scene_load_opts *opts, scene *out, error *err);
 
-/* The same from a string; `name` is the file in messages and its folder the base of relative
- * file names ("-" or NULL: the working folder; NULL shows as "<string>", leaves sc->path ""). */
+/* The same from a string; `name` names it in messages and its folder resolves relative names
+ * ("-" or NULL: the working folder; NULL shows as "<string>", sc->path ""). */
 int scene_load_string(const char *text, const char *name, const scene_load_opts *opts, scene *out,
                       error *err);
 
