@@ -79,7 +79,7 @@ typedef struct parser {
 /* Set *p->err to "NAME:LINE: message" at the current line; returns -1. */
 int parse_fail(parser *p, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
-/* Report a warning at the current line through p->warn (dropped when it is NULL). */
+/* A warning at the current line through p->warn (NULL: dropped). */
 void parse_warn(parser *p, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
 /* Room for `need` elements of `size` bytes in *arr (capacity *cap), doubling, charged first. */
@@ -91,22 +91,22 @@ int parse_arg_num(parser *p, int i, double *out);
 /* Arguments first..first+n-1 into v[0..n-1]. */
 int parse_arg_nums(parser *p, int first, int n, double *v);
 
-/* Argument i as an integer in [lo, hi] ("10", "10.0" and "1e1" are 10; "10.5" is an error). */
+/* Argument i as an integer in [lo, hi] ("1e1" is 10; "10.5" an error). */
 int parse_arg_int(parser *p, int i, double lo, double hi, long *out);
 
 /* Argument i as a number >= 0 (strict = 0) or > 0 (strict = 1). */
 int parse_arg_nonneg(parser *p, int i, int strict, double *out);
 
-/* Arguments first..first+2 as a colour with every channel >= 0. */
+/* Arguments first..first+2 as a colour, each >= 0. */
 int parse_arg_rgb(parser *p, int first, rgb *out);
 
-/* Argument 1 as one of `n` keywords (exact, lower case); *out = its index. */
+/* Argument 1 as one of `n` keywords (exact); *out its index. */
 int parse_arg_word(parser *p, const char *const *words, int n, int *out);
 
 /* Argument 1 as `off` (0) or `on` (1). */
 int parse_arg_onoff(parser *p, int *out);
 
-/* Right-multiply the current transform (OpenGL): the command written last applies first. */
+/* Right-multiply the current transform: the command written last applies first. */
 int parse_xf_apply(parser *p, mat4 m);
 
 /* The inverse of the current transform (once per change); singular: an error naming the command. */
@@ -130,7 +130,7 @@ int parse_add_triangle(parser *p, const triangle *t);
 /* Store light l (world space; the current transform does not apply). */
 int parse_add_light(parser *p, const scene_light *l);
 
-/* A file name token resolved against the scene file's folder (absolute names are kept). */
+/* A file name resolved against the scene file's folder (absolute names kept). */
 int parse_relative_path(parser *p, const char *file, char *dst, size_t size);
 
 /* Free what only the parser holds and give its memory back to the budget. */

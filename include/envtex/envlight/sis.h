@@ -21,7 +21,7 @@
 
 #define SIS_A          1.0  /* Gamma = E^a Omega^b: the exponent of the energy */
 #define SIS_B          0.25 /* ... and of the solid angle */
-#define SIS_MAX_LAYERS 16   /* thresholds t_0 .. t_15 at most (i sigma beyond: one layer) */
+#define SIS_MAX_LAYERS 16   /* thresholds t_0 .. t_15 at most */
 #define SIS_MAX_LIGHTS 4096 /* `envsampling sis N`: N in [1, SIS_MAX_LIGHTS] */
 
 typedef struct sis_strata {
@@ -34,7 +34,7 @@ typedef struct sis_strata {
     double sigma;    /* standard deviation of L over the sphere */
     double threshold[SIS_MAX_LAYERS]; /* t_i = i sigma */
     int regions[SIS_MAX_LAYERS];      /* connected regions of each layer */
-    int layer_total[SIS_MAX_LAYERS];  /* sum of n_R over the regions of each layer */
+    int layer_total[SIS_MAX_LAYERS];  /* sum of each layer's n_R */
     int layer_new[SIS_MAX_LAYERS];    /* samples each layer placed itself */
     double gamma_4pi;                 /* Gamma of the whole map */
     double radius; /* largest angle (radians) from a texel to its sample */

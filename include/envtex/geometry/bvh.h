@@ -23,11 +23,11 @@
 #include "envtex/geometry/sphere.h"
 #include "envtex/geometry/triangle.h"
 
-#define BVH_MIN_PRIMS 8  /* this many primitives or fewer: one leaf, no tree (make bench) */
+#define BVH_MIN_PRIMS 8  /* this many primitives or fewer: one leaf, no tree */
 #define BVH_LEAF_MAX  8  /* a leaf holds at most this many; the SAH decides below it */
 #define BVH_BINS      16 /* SAH bins per axis */
 #define BVH_MAX_DEPTH 64 /* traversal stack size; the build stops splitting at depth 62 */
-/* SAH: the cost of visiting a node, in units of a primitive's float test (design-notes.md) */
+/* SAH: a node visit's cost, in primitive float tests */
 #define BVH_TRAVERSAL_COST 2.0
 /* Each primitive's box grows by this times (its extent + its largest coordinate) before it is
  * rounded outwards to float: room for TRIANGLE_EDGE_EPS and rounding. */
@@ -74,17 +74,17 @@ typedef struct bvh_prims {
 } bvh_prims;
 
 typedef struct bvh {
-    bvh_prims prims_of; /* what it was built over (quads: pointing at b->quads) */
+    bvh_prims prims_of; /* what it was built over (quads: b->quads) */
     bvh_node *nodes;
     long n_nodes;
     uint32_t *prims; /* primitive ids in leaf order */
-    bvh_tri *tris;   /* float triangles and quads in leaf order, parallel to prims */
+    bvh_tri *tris;   /* parallel to prims */
     bvh_quad *quads; /* the copied quads (owned) */
     long n_prims;
     long n_spheres, n_surfaces; /* id < n_spheres: a sphere; < n_surfaces: a triangle; a quad */
-    int is_tree;                /* 0: a single leaf (no tree was worth building) */
+    int is_tree;                /* 0: a single leaf */
     int depth;                  /* deepest leaf */
-    double bytes;               /* what the bvh keeps (nodes, leaf order, float triangles, quads) */
+    double bytes;               /* what the bvh keeps */
     double build_seconds;
 } bvh;
 

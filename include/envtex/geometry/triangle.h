@@ -13,7 +13,7 @@
 
 #include "envtex/geometry/ray.h"
 
-/* A triangle of the scene (`tri`, `trinormal`, `tritex`, an OBJ face), in world space. */
+/* A scene triangle (`tri`, `trinormal`, `tritex`, an OBJ face). */
 typedef struct triangle {
     vec3 p[3];      /* world corners: (p1 - p0) x (p2 - p0) is the outward normal (corners 1
                        and 2 swapped, with n, st, q, under a mirroring transform) */

@@ -26,7 +26,7 @@
 typedef struct lights {
     const scene *sc;
     const envlight *env;  /* NULL: no environment light */
-    int n;                /* sc->n_lights, plus 1 for the environment (last index) */
+    int n;                /* sc->n_lights, + 1 for the environment (last) */
     light_selection selection; /* sc->lightselection */
     distrib1d choose;     /* pick a light by power */
     double radius;
@@ -62,18 +62,15 @@ double lights_pick_prob(const lights *ls, int k);
  * f Li cos / (prob pdf_k); MIS weighs a BRDF ray against lightsamples x prob x pdf_k. */
 double lights_selection_prob(const lights *ls, int k);
 
-/* Keep a light sample of the envmap with probability c in [0, 1] (MIS only: with NEE alone the
- * skipped directions would be lost; lights_pick returns 0 for a dropped one).  The envmap's
- * selection probability, hence its pdf in the MIS weights, is multiplied by c on both sides,
- * so the estimate stays unbiased for any c; c = 0 leaves the envmap to BRDF sampling.  The
- * pathtracer's `envsamplefraction auto` takes c from misfraction_choose. */
+/* Keep a light sample of the envmap with probability c in [0, 1] (MIS only; lights_pick returns
+ * 0 for a dropped one); its selection probability, hence its pdf in the MIS weights, is
+ * multiplied by c, which keeps the estimate unbiased; c = 0 leaves it to BRDF sampling. */
 void lights_set_env_fraction(lights *ls, double c);
 static inline int lights_env_index(const lights *ls) { return ls->env ? ls->n - 1 : -1; }
 
-/* Sample light k from shading point p (geometric normal ng, for the shadow ray's offset) with
- * (xi1, xi2) in [0,1)^2 and xi3 in [0,1) (median cut jitter).  `stratified`: (xi1, xi2) come
- * from a stratified grid (the envmap then inverts its CDF even with alias tables).  Returns 0
- * if the sample carries nothing. */
+/* Sample light k from p (geometric normal ng, for the shadow ray's offset) with xi1, xi2, xi3
+ * in [0,1); `stratified`: (xi1, xi2) from a stratified grid (the envmap then inverts its CDF
+ * even with alias tables).  0 if the sample carries nothing. */
 int lights_sample(const lights *ls, int k, vec3 p, vec3 ng, double xi1, double xi2, double xi3,
                   int stratified, light_sample *out);
 
@@ -83,9 +80,9 @@ int lights_sample(const lights *ls, int k, vec3 p, vec3 ng, double xi1, double x
 int lights_scene_bvh(bvh *b, const scene *sc, budget *mem, error *err);
 
 /* Nearest quad light hit by r with t in (r->tmin, r->tmax): 1, its index (into sc->lights) and
- * t.  Quads are two-sided for visibility; lights_quad_radiance tells the emitting side. */
+ * t.  Quads are two-sided for visibility. */
 int lights_intersect_quad(const lights *ls, const ray *r, int *k, double *t);
-/* Radiance leaving quad k towards direction -d (d: the ray's direction): L on the emitting side. */
+/* Radiance leaving quad k towards -d (d: the ray's direction): L on the emitting side. */
 rgb lights_quad_radiance(const lights *ls, int k, vec3 d);
 /* pdf per steradian of lights_sample(k) producing the point at distance t along unit wi from p. */
 double lights_quad_pdf(const lights *ls, int k, vec3 wi, double t);

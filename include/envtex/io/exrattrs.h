@@ -24,8 +24,8 @@ typedef struct exrfile_attrs {
     char scene[EXRFILE_TEXT_MAX];      /* the scene file as named on the command line */
 } exrfile_attrs;
 
-/* Set at's known fields (at NULL: none) on `part` before the header is written; OpenEXRCore's
- * result (on failure some may be set). */
+/* Set at's known fields (NULL: none) on `part` before the header is written; OpenEXRCore's
+ * result. */
 exr_result_t exrattrs_set(exr_context_t ctx, int part, const exrfile_attrs *at);
 
 /* Part 0's attributes into *at (absent fields are left alone).  0, or -1 with err naming `path`:

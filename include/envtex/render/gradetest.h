@@ -23,7 +23,7 @@
 
 typedef struct gradetest_params {
     double alpha;             /* family-wise significance, default 0.01 */
-    double max_fail_fraction; /* pixels allowed to fail, default 0.005 (0.5%) */
+    double max_fail_fraction; /* pixels allowed to fail, default 0.005 */
     double global_z;          /* bound on |Z| of the image total, default 5 */
     double img_spp, ref_spp;  /* sample counts (only ratios matter); default equal */
     double var_spp;           /* VAR's sample count; 0 (default): ref_spp */
@@ -41,7 +41,7 @@ typedef struct gradetest_result {
     double mean_z;            /* Z of the image total (signed) */
     double global_stat;       /* |Z| */
     double z_threshold;       /* |z| above which a pixel fails */
-    long nonfinite;           /* pixels of img that are NaN or Inf: any fails the render */
+    long nonfinite;           /* NaN or Inf pixels of img (any fails) */
     char why[256];            /* one line */
 } gradetest_result;
 

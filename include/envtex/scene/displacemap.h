@@ -5,8 +5,8 @@
  *     if (displacemap_needed(sc) && displacemap_apply(sc, 0, &mem, &work, &st, &err)) ...
  *     ... render `work` ...    displacemap_free(&work);
  *
- * The result owns only its sphere and triangle arrays and shares the rest with the caller's
- * scene, which it does not modify and which must outlive it unchanged.
+ * The result owns only its sphere and triangle arrays; the rest is the caller's scene, which
+ * must outlive it unchanged.
  */
 #ifndef ENVTEX_DISPLACEMAP_H
 #define ENVTEX_DISPLACEMAP_H
