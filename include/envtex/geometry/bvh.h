@@ -6,9 +6,9 @@
  *     hit h; if (bvh_intersect(&b, &r, &h) == BVH_SURFACE) shade(&h);
  *     bvh_free(&b);
  *
- * Float finds, double decides: the float box and triangle tests are conservative filters, and
- * triangle.h's double test on the scene's own corners decides, so every hit (t, barycentrics,
- * point) is the double test's, bit for bit (docs/design-notes.md, "The float BVH").  At most
+ * Float finds, double decides: conservative float box and triangle tests filter, triangle.h's
+ * double test on the scene's corners decides, so every hit is the double test's, bit for bit
+ * (docs/design-notes.md, "The float BVH").  At most
  * BVH_MIN_PRIMS primitives: one leaf, tested linearly.  The bvh reads the scene's spheres and
  * triangles on every query: pass the same scene, unchanged.  Queries allocate nothing.
  */

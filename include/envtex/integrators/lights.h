@@ -1,6 +1,5 @@
-/* lights.h - the scene's lights for next-event estimation (CSE 168 hw2-hw4, lecture slide 17:
- * "extend next-event estimation to envmaps"): quad, point and directional lights and the
- * environment (envlight.h), one set the sampling integrators share.
+/* lights.h - the scene's lights for next-event estimation (hw2-hw4; slide 17, NEE extended
+ * to envmaps): quad, point, directional and the environment (envlight.h), shared.
  *
  *     lights ls;
  *     lights_build(&ls, sc, el, radius, &mem, &err);

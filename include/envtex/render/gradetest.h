@@ -8,9 +8,9 @@
  *
  *   z = (img - ref) / sqrt(var_img + var_ref + floor^2)     per pixel, on the channel average
  *   var_img = V var_spp / img_spp,  var_ref = V var_spp / ref_spp
- * VAR is `envtex render --variance`'s image (sample variance / var_spp); V is its largest value
- * in the pixel's 3 x 3 neighbourhood; floor = rel_floor max(|ref|, 1e-3).  A pixel fails when
- * its two-sided p-value is below alpha / N (N pixels).  The render passes if at most
+ * VAR: `envtex render --variance` (sample variance / var_spp); V: VAR's largest in the pixel's
+ * 3 x 3 neighbourhood; floor = rel_floor max(|ref|, 1e-3).  A pixel fails when its two-sided
+ * p-value is below alpha / N (N pixels).  The render passes if at most
  * max_fail_fraction of the pixels fail, no pixel of img is NaN or Inf, and the image total
  *   Z = sum (img - ref) / sqrt(sum (var_img + var_ref + floor^2))   (each pixel's own VAR)
  * has |Z| <= global_z.
