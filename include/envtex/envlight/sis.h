@@ -1,27 +1,15 @@
-/* sis.h - structured importance sampling (lecture slides 17-21: "reduce the environment to point
- * lights"; Agarwal, Ramamoorthi, Belongie and Jensen 2003), `envsampling sis N`.
- *
- * Three steps on a W x H lat-long map of luminance L (the average of the colour channels):
- *   1. the importance of a region of energy E = sum L d(omega) and solid angle Omega is
- *      Gamma = E^a Omega^b with a = 1, b = 1/4 (a = 1, b = 0 would be the cdf's illumination
- *      sampling, a = 0, b = 1 area stratification);
- *   2. hierarchical thresholding: layer i holds the texels with L >= t_i = i sigma (sigma: the
- *      standard deviation of L over the sphere), so layers nest and layer 0 is the whole map;
- *      a connected region R of layer i holds n_R = floor(N Gamma_R / Gamma_4pi) samples in all,
- *      those of the regions of layer i + 1 inside it included (the whole map: exactly N);
- *   3. hierarchical stratification: from the top layer down, each region adds its new samples by
- *      the Hochbaum-Shmoys farthest-point rule (the texel farthest from the samples it already
- *      holds; the first is its brightest texel), a 2-approximation of the k-center problem.
- * Every texel then belongs to its nearest sample (angular distance): the strata.  As a light
- * (sis_envlight_build, sis_pick), each stratum is a point light at its energy centroid carrying the
- * stratum's exact power sum L d(omega); only the shadow ray is jittered, to a texel chosen by
- * energy inside the stratum and a uniform point in (cos theta, phi) inside that texel.
+/* sis.h - structured importance sampling (slides 17-21: "reduce the environment to point
+ * lights"; Agarwal et al. 2003), `envsampling sis N`.
  *
  *     sis_strata s;  // lum: w * h luminances, row-major; s.label[r * w + c]: a texel's stratum
  *     if (sis_stratify(lum, w, h, 64, NULL, &s, &err)) ...   else ... sis_strata_free(&s);
  *
+ * Importance Gamma = E^a Omega^b; layer i holds the texels with L >= i sigma; a connected
+ * region R gets floor(N Gamma_R / Gamma_4pi) samples, placed farthest-point; each texel joins
+ * its nearest sample's stratum (docs/sis.md).  A stratum lights as a point light at its energy
+ * centroid with its power; only the shadow ray is jittered inside it.
  * Frame and texels as latlong.h (row 0 the zenith); texels are adjacent across the phi seam,
- * and all of row 0 (of row H - 1) meet at the pole.  Versus the paper: docs/sis.md.
+ * and all of row 0 (of row H - 1) meet at the pole.
  */
 #ifndef ENVTEX_SIS_H
 #define ENVTEX_SIS_H
@@ -33,64 +21,58 @@
 
 #define SIS_A          1.0  /* Gamma = E^a Omega^b: the exponent of the energy */
 #define SIS_B          0.25 /* ... and of the solid angle */
-#define SIS_MAX_LAYERS 16   /* thresholds t_0 .. t_15 at most (i sigma beyond: one layer) */
+#define SIS_MAX_LAYERS 16   /* thresholds t_0 .. t_15 at most */
 #define SIS_MAX_LIGHTS 4096 /* `envsampling sis N`: N in [1, SIS_MAX_LIGHTS] */
 
 typedef struct sis_strata {
     int w, h;        /* the lat-long map */
-    int n;           /* samples = strata made: N (fewer only if the map has fewer texels) */
+    int n;           /* strata made: N, or the texel count if fewer */
     int *label;      /* w * h, row-major: the stratum of each texel, in [0, n) (owned) */
     int *seed;       /* n texel indices r * w + c: the samples, in the order placed (owned) */
-    int *seed_layer; /* n: the layer whose farthest-point step placed each (owned) */
+    int *seed_layer; /* n: the layer that placed each (owned) */
     int n_layers;    /* d: thresholds t_0 .. t_{d-1} */
-    double sigma;    /* standard deviation of L over the sphere (solid-angle weighted) */
+    double sigma;    /* standard deviation of L over the sphere */
     double threshold[SIS_MAX_LAYERS]; /* t_i = i sigma */
     int regions[SIS_MAX_LAYERS];      /* connected regions of each layer */
-    int layer_total[SIS_MAX_LAYERS];  /* sum of n_R over the regions of each layer */
+    int layer_total[SIS_MAX_LAYERS];  /* sum of each layer's n_R */
     int layer_new[SIS_MAX_LAYERS];    /* samples each layer placed itself */
     double gamma_4pi;                 /* Gamma of the whole map */
-    double radius; /* largest angle (radians) from a texel to its stratum's sample */
+    double radius; /* largest angle (radians) from a texel to its sample */
 } sis_strata;
 
-/* Stratify the w x h lat-long luminance `lum` (row-major, each >= 0 and finite) into n strata.
- * n must be in [1, w h].  What it allocates is charged to `mem` first (NULL: none): the result
- * (sis_strata_bytes), and while it runs the scratch (sis_scratch_bytes), released after.
- * 0, or -1 with *err (a black map, bad n, memory), *out then empty (safe to free). */
+/* Stratify the w x h lat-long luminance `lum` (row-major, finite, >= 0) into n in [1, w h]
+ * strata, charged to `mem` first (NULL: none; the scratch is released after).  0, or -1 with
+ * *err (a black map, bad n, memory) and *out empty (safe to free). */
 int sis_stratify(const double *lum, int w, int h, int n, budget *mem, sis_strata *out, error *err);
 void sis_strata_free(sis_strata *s);
-/* The bytes sis_stratify keeps in its result, and holds only while it runs. */
+/* The bytes sis_stratify keeps, and holds while it runs. */
 double sis_strata_bytes(int w, int h, int n);
 double sis_scratch_bytes(int w, int h, int n);
 
-/* The luminance the light sees of a lat-long image: the average of the channels times scale,
- * NaN, Inf and negative channels as 0; w * h doubles row-major, malloc'd (NULL: no memory). */
+/* The channels' average times scale (NaN, Inf, negatives: 0) of a lat-long image, w * h doubles
+ * row-major, malloc'd (NULL: no memory). */
 double *sis_luminance(const image *map, double scale);
 
-/* The envmap as `envsampling sis n` (n < 1: 64): envlight_build in mode sis (the tables every
- * mode shares), then the strata's point lights in el->points (n_points = n, or the map's texel
- * count if smaller), el->point_choice by power, and the shadow-ray tables in el->strata.  A black
- * map falls back to uniform directions as envlight_build says (mode uniform, fell_back).  Charged
- * to `mem` first: what stays (sis_envlight_bytes) and what only building holds
- * (sis_envlight_scratch_bytes).  0, or -1 with *err and *el freed.  Free with envlight_free. */
+/* The envmap as `envsampling sis n` (n < 1: 64): envlight_build's shared tables, the strata's
+ * point lights in el->points (n, or fewer texels), el->point_choice by power, the shadow-ray
+ * tables in el->strata.  A black map falls back as envlight_build says.  Charged to `mem`
+ * first.  0, or -1 with *err and *el freed.  Free with envlight_free. */
 int sis_envlight_build(envlight *el, const envmap *env, envsampler_kind sampler, int n, budget *mem,
                        error *err);
 double sis_envlight_bytes(int w, int h, int n);
 double sis_envlight_scratch_bytes(int w, int h, int n);
 
-/* envlight_mediancut_pick for sis: light k with probability power_avg(k) / sum (by xi in
- * [0, 1)), *prob that probability, and the shadow direction sis_shadow_dir(el, k, xi1, xi2).
- * 0 if there is nothing to pick. */
+/* Light k with probability *prob = power_avg(k) / sum (xi in [0, 1)) and its shadow direction
+ * sis_shadow_dir(el, k, xi1, xi2); 0 if there is nothing to pick. */
 int sis_pick(const envlight *el, double xi, double xi1, double xi2, int *k, vec3 *shadow_dir,
              double *prob);
 
-/* The world direction of a shadow ray towards point light k of a sis envlight: a texel of
- * stratum k chosen with probability e_t / E_k (its energy over the stratum's, by xi1), then
- * uniform in (cos theta, phi) inside it (the rest of xi1, and xi2); xi1, xi2 in [0, 1). */
+/* The world direction of a shadow ray towards light k: a texel of stratum k by energy (xi1),
+ * then uniform in (cos theta, phi) inside it (the rest of xi1, and xi2); xi in [0, 1). */
 vec3 sis_shadow_dir(const envlight *el, int k, double xi1, double xi2);
 
-/* The paper's figure: the map (times `scale`) with each stratum's boundary texels painted
- * `edge` and a 3 x 3 mark of colour `mark` on each sample's texel, into *out (allocated; free
- * with image_free).  map is s's w x h map.  0, or -1 with *err (memory). */
+/* The paper's figure: s's map (times `scale`), strata boundaries `edge`, a 3 x 3 `mark` on each
+ * sample, into *out (free with image_free).  0, or -1 with *err (memory). */
 int sis_strata_picture(const sis_strata *s, const image *map, double scale, rgb edge, rgb mark,
                        image *out, error *err);
 

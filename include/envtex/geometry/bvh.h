@@ -6,21 +6,11 @@
  *     hit h; if (bvh_intersect(&b, &r, &h) == BVH_SURFACE) shade(&h);
  *     bvh_free(&b);
  *
- * Float finds, double decides.  Traversal tests the rays against float boxes and float
- * triangles (a corner and two edges, Moller-Trumbore); a triangle or quad that passes the float
- * test only becomes a candidate, and the double-precision test of triangle.h on the scene's own
- * corners decides whether it is hit and where.  So every hit (t, barycentrics, point) is the one
- * the double test gives, bit for bit.  The float tests are made conservative, never robustly
- * watertight: a watertight test needs the corners relative to the ray's origin, which the
- * layout of precomputed edges does not keep, and the double test closes cracks anyway
- * (TRIANGLE_EDGE_EPS).  Boxes are rounded outwards and padded (BVH_BOX_PAD_REL), slabs are
- * measured from float origins that bracket the double one and widened by BVH_SLAB_SLACK, so no
- * box culls a hit; the float triangle test widens by BVH_FILTER_EPS and leaves grazing rays
- * (BVH_GRAZING) to the double test, which covers its rounding for a triangle seen from up to
- * ~10^3 times its size.  A scene with at most BVH_MIN_PRIMS primitives gets no tree (one
- * leaf, tested linearly, no slab test).
- * The bvh keeps a pointer to nothing in the scene but reads its spheres and triangles on every
- * query: pass the same scene, unchanged, to every call.  Queries allocate nothing.
+ * Float finds, double decides: conservative float box and triangle tests filter, triangle.h's
+ * double test on the scene's corners decides, so every hit is the double test's, bit for bit
+ * (docs/design-notes.md, "The float BVH").  At most
+ * BVH_MIN_PRIMS primitives: one leaf, tested linearly.  The bvh reads the scene's spheres and
+ * triangles on every query: pass the same scene, unchanged.  Queries allocate nothing.
  */
 #ifndef ENVTEX_BVH_H
 #define ENVTEX_BVH_H
@@ -33,43 +23,35 @@
 #include "envtex/geometry/sphere.h"
 #include "envtex/geometry/triangle.h"
 
-#define BVH_MIN_PRIMS 8  /* this many primitives or fewer: one leaf, no tree (make bench) */
+#define BVH_MIN_PRIMS 8  /* this many primitives or fewer: one leaf, no tree */
 #define BVH_LEAF_MAX  8  /* a leaf holds at most this many; the SAH decides below it */
 #define BVH_BINS      16 /* SAH bins per axis */
 #define BVH_MAX_DEPTH 64 /* traversal stack size; the build stops splitting at depth 62 */
-/* SAH: the cost of visiting a node, in units of a primitive's float test (design-notes.md) */
+/* SAH: a node visit's cost, in primitive float tests */
 #define BVH_TRAVERSAL_COST 2.0
 /* Each primitive's box grows by this times (its extent + its largest coordinate) before it is
- * rounded outwards to float: room for the double tests' edge tolerance (TRIANGLE_EDGE_EPS)
- * and rounding, far beyond both (~1e-12 relative), invisible. */
+ * rounded outwards to float: room for TRIANGLE_EDGE_EPS and rounding. */
 #define BVH_BOX_PAD_REL 0x1p-18
-/* The float slab test's rounding: the far end of each slab is widened by 2 gamma(3) =
- * 6 u / (1 - 3 u), u = 2^-24 (pbrt-v3, 3.9.2, "robust ray-bounds intersections"). */
+/* The far end of each float slab is widened by 2 gamma(3) = 6 u / (1 - 3 u), u = 2^-24. */
 #define BVH_SLAB_SLACK (6 * 0x1p-24f / (1 - 3 * 0x1p-24f))
 /* The float triangle test accepts barycentrics this far outside [0, 1] and t this fraction
- * beyond tmax: its rounding is ~ 3 u |s| / (|e| cos) (s = o - p0, from the origin split in two
- * floats; e: an edge; u = 2^-24), under 2^-7 while |s| / |e| stays below ~10^3 for cos >= 2^-5
- * (and |p0| / |e|, the corner's own rounding, below ~10^4).  A wider filter only sends more
- * near misses to the double test. */
+ * beyond tmax (enough while the origin is within ~10^3 triangle sizes, cos >= BVH_GRAZING). */
 #define BVH_FILTER_EPS 0x1p-7f
-/* ... when the ray is not grazing: below this |det| / (|e1| |pv|) (in L1 norms; ~ the cosine
- * of the ray and the plane's normal) the double test decides alone */
+/* Below this |det| / (|e1| |pv|) (L1 norms; ~ the ray's cosine) the double test decides alone */
 #define BVH_GRAZING 0x1p-5f
 
 enum { BVH_MISS = 0, BVH_SURFACE = 1, BVH_QUAD = 2 }; /* what bvh_intersect found */
 
-/* A node, 32 bytes (pbrt-v4's layout): its box, and either its primitives (a leaf) or its
- * second child (the first child is the next node: depth-first order). */
+/* A node (32 bytes), depth-first: the first child is the next node. */
 typedef struct bvh_node {
     float box[2][3]; /* lower corner, upper corner */
     int32_t offset;  /* leaf: first index into prims and tris; inner: index of the second child */
     uint16_t count;  /* leaf: number of primitives (> 0); inner: 0 */
-    uint8_t axis;    /* inner: the split axis (the first child holds the smaller coordinates) */
+    uint8_t axis;    /* inner: the split axis (the first child on the smaller side) */
     uint8_t pad;
 } bvh_node;
 
-/* A triangle or quad laid out for the float test: corner p0, edges e1 = p1 - p0, e2 = p2 - p0
- * (a quad: its corner a and edges ab, ac). */
+/* A triangle (or quad: a, ab, ac) for the float test: p0, e1 = p1 - p0, e2 = p2 - p0. */
 typedef struct bvh_tri {
     float p0[3], e1[3], e2[3];
 } bvh_tri;
@@ -79,9 +61,8 @@ typedef struct bvh_quad {
     vec3 a, ab, ac;
 } bvh_quad;
 
-/* The primitives a BVH is built over.  Spheres and triangles are borrowed (they must outlive
- * the bvh, unchanged); quads are copied.  Ids: sphere i is id i, triangle j is n_spheres + j,
- * quad k is n_spheres + n_triangles + k. */
+/* What a BVH is built over: spheres and triangles borrowed (unchanged while it lives), quads
+ * copied.  Ids: sphere i, then triangle n_spheres + j, then quad n_spheres + n_triangles + k. */
 typedef struct bvh_prims {
     const sphere *spheres;
     long n_spheres;
@@ -93,40 +74,37 @@ typedef struct bvh_prims {
 } bvh_prims;
 
 typedef struct bvh {
-    bvh_prims prims_of; /* what it was built over (quads: pointing at b->quads) */
+    bvh_prims prims_of; /* what it was built over (quads: b->quads) */
     bvh_node *nodes;
     long n_nodes;
     uint32_t *prims; /* primitive ids in leaf order */
-    bvh_tri *tris;   /* float triangles and quads in leaf order, parallel to prims */
+    bvh_tri *tris;   /* parallel to prims */
     bvh_quad *quads; /* the copied quads (owned) */
     long n_prims;
     long n_spheres, n_surfaces; /* id < n_spheres: a sphere; < n_surfaces: a triangle; a quad */
-    int is_tree;                /* 0: a single leaf (no tree was worth building) */
+    int is_tree;                /* 0: a single leaf */
     int depth;                  /* deepest leaf */
-    double bytes;               /* what the bvh keeps (nodes, leaf order, float triangles, quads) */
+    double bytes;               /* what the bvh keeps */
     double build_seconds;
 } bvh;
 
-/* Build b over `prims`, its memory charged to `mem` first (budget.h, bvh_bytes; NULL: no
- * budget): what the tree keeps stays charged, the build's scratch and unused nodes are
- * released.  Returns 0, or -1 with *err set (more than 2^31 - 1 primitives, the budget, out of
- * memory) and b holding nothing.  Free with bvh_free, which is safe on a zeroed or failed bvh. */
+/* Build b over `prims`, charged to `mem` first (NULL: none; the scratch is released after).
+ * 0, or -1 with *err (over 2^31 - 1 primitives, the budget, memory) and b holding nothing.
+ * bvh_free is safe on a zeroed or failed bvh. */
 int bvh_build(bvh *b, bvh_prims prims, budget *mem, error *err);
 
-/* At most the bytes a BVH of n primitives keeps (at most 2 n - 1 nodes, the leaf order, the
- * float triangles), and in *scratch (may be NULL) what its build holds only while it runs. */
+/* At most the bytes a BVH of n primitives keeps, and in *scratch (may be NULL) what its build
+ * holds only while it runs. */
 double bvh_bytes(long n, double *scratch);
 /* What one more primitive costs a BVH at most, its build's scratch included. */
 double bvh_bytes_per_prim(void);
 void bvh_free(bvh *b);
 
-/* The closest hit with t in (r->tmin, r->tmax).  BVH_SURFACE: a sphere or triangle, *h filled
- * completely.  BVH_QUAD: a quad, h->t and h->prim (the quad's index k) set, nothing else.
- * BVH_MISS (0): nothing. */
+/* The closest hit with t in (r->tmin, r->tmax): BVH_SURFACE (*h filled), BVH_QUAD (only h->t
+ * and h->prim, the quad's index, set) or BVH_MISS. */
 int bvh_intersect(const bvh *b, const ray *r, hit *h);
 
-/* 1 if anything (quads included) lies on the ray with t in (r->tmin, r->tmax): shadow rays,
- * which stop at the first hit found. */
+/* 1 if anything (quads included) lies on the ray with t in (r->tmin, r->tmax). */
 int bvh_occluded(const bvh *b, const ray *r);
 
 #endif

@@ -1,5 +1,5 @@
-/* triangle.h - ray-triangle intersection with barycentric coordinates (the texture lecture
- * interpolates (s,t) and normals with them: p = b0 p0 + b1 p1 + b2 p2, b0 = 1 - b1 - b2).
+/* triangle.h - ray-triangle intersection with barycentric coordinates, which interpolate
+ * (s,t) and normals: p = b0 p0 + b1 p1 + b2 p2, b0 = 1 - b1 - b2.
  *
  *     double t, b1, b2;
  *     if (triangle_intersect(p0, p1, p2, &r, &t, &b1, &b2)) ...
@@ -13,39 +13,29 @@
 
 #include "envtex/geometry/ray.h"
 
-/* A triangle of the scene (`tri`, `trinormal`, `tritex`, an OBJ face), in world space. */
+/* A scene triangle (`tri`, `trinormal`, `tritex`, an OBJ face). */
 typedef struct triangle {
-    vec3 p[3];      /* world-space corners, counter-clockwise seen from outside: under a
-                       mirroring transform (det < 0) corners 1 and 2 are stored swapped, with
-                       their n, st and q, so that (p1 - p0) x (p2 - p0) is the outward normal */
+    vec3 p[3];      /* world corners: (p1 - p0) x (p2 - p0) is the outward normal (corners 1
+                       and 2 swapped, with n, st, q, under a mirroring transform) */
     vec3 n[3];      /* world-space unit vertex normals (trinormal); unused if !has_normals */
     int has_normals;
     int material;
-    uv2 st[3];      /* texture coordinates of the corners: given by `tritex` or an OBJ's vt
-                       (has_st = 1), else (0,0), (1,0), (0,1) for the corners as written, so
-                       that st = (b1, b2) of those corners */
+    uv2 st[3];      /* `tritex` or an OBJ's vt (has_st = 1), else (0,0), (1,0), (0,1) as written */
     int has_st;
-    int st_mapped;  /* 1: st already holds the material's point mapping, made where q cannot make
-                       it (a displaced sphere's tessellation, displacemap.h: its mapping sees the
-                       sphere's unit direction, not q); the renderer then interpolates st as for
-                       `uv`.  0 for every triangle of a scene file */
-    vec3 q[3];      /* OBJECT-space corners (the vertices as written, before the transform), for
-                       the point-based mappings and solid textures: P_object = sum b_i q_i.
-                       Corners, not a matrix index, because they need no inverse (a triangle
-                       under `scale 1 1 0` still has an object space) */
+    int st_mapped;  /* 1: st already holds the material's point mapping (a displaced sphere's
+                       tessellation, displacemap.h), interpolated as for `uv`; 0 from a file */
+    vec3 q[3];      /* OBJECT-space corners (as written, before the transform), for the point
+                       mappings and solid textures: P_object = sum b_i q_i */
 } triangle;
 
-/* Rounding in the barycentric computation is ~1e-16 relative; 1e-12 closes shared-edge cracks
- * for any sane coordinates while widening each triangle by an invisible amount. */
+/* The barycentric tolerance that closes shared-edge cracks (rounding is ~1e-16 relative). */
 #define TRIANGLE_EDGE_EPS 1e-12
 
-/* Corners typed as collinear are rarely collinear in binary: rounding leaves a sliver whose
- * normal is noise.  A triangle is treated as degenerate when |d . (e1 x e2)| is below this
- * fraction of its bound |d| |e1| |e2| - a corner angle (or a grazing angle) under 1e-10 rad,
- * which no modelled surface has and no pixel can show. */
+/* Degenerate (never hit) when |d . (e1 x e2)| is below this fraction of |d| |e1| |e2|: a corner
+ * or grazing angle under 1e-10 rad. */
 #define TRIANGLE_DEGENERATE_EPS 1e-10
 
-/* 1 if the ray meets the triangle at t in (r->tmin, r->tmax), with barycentrics b1, b2 of p1, p2. */
+/* 1 if the ray meets the triangle at t in (r->tmin, r->tmax); b1, b2: the weights of p1, p2. */
 int triangle_intersect(vec3 p0, vec3 p1, vec3 p2, const ray *r, double *t, double *b1, double *b2);
 
 #endif

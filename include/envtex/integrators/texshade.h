@@ -1,5 +1,5 @@
 /* texshade.h - texture maps at a ray hit (slides 25-46): the hit's (s, t) and footprint, and
- * what the material's maps make of the surface.  Every integrator calls it at each hit.
+ * what the material's maps make of the surface, for every integrator.
  *
  *     brdf_surface_from_material(&s, &sc->materials[h.material]);  // s's frame set from h
  *     texshade_surface(sc, &h, &r, &rd, &s);                       // differentials, maps
@@ -30,23 +30,22 @@ typedef struct texshade_point {
 /* 1 if m has a map evaluated at hits (not displacement). */
 int texshade_material_has_maps(const material *m);
 
-/* 1 if m has a map filtered by `trilinear` or `ewa`, or a bump map (its step is the footprint). */
+/* 1 if m has a map filtered by `trilinear` or `ewa`, or a bump map. */
 int texshade_material_needs_footprint(const material *m);
 
-/* 1 if some material of sc needs a footprint: only then do camera rays get differentials. */
+/* 1 if some material of sc needs a footprint (camera rays then get differentials). */
 int texshade_scene_needs_differentials(const scene *sc);
 
-/* The hit's s->has_diff, dpdx, dpdy (raydiff_at_hit) and dndx, dndy (the unbumped shading
- * normal's change, oriented as s->n; zero on a flat triangle or where s->n is s->ng).  rd may
- * be NULL; s->n, s->ng and s->entering set on entry. */
+/* s->has_diff, dpdx, dpdy (raydiff_at_hit) and dndx, dndy (the unbumped shading normal's
+ * change, as s->n; zero where flat).  rd may be NULL; s->n, s->ng, s->entering set on entry. */
 void texshade_differentials(const scene *sc, const hit *h, const ray *r, const ray_diff *rd,
                             surface *s);
 
 /* (s, t), object-space point and footprints of hit h (tangents zero); s has its differentials. */
 void texshade_point_at(const scene *sc, const hit *h, const surface *s, texshade_point *tp);
 
-/* tp's tangents, object dq_ds, dq_dt and world dp_ds, dp_dt (the triangle's for uv, else the
- * mapping's; where singular, an orthonormal basis of the tangent plane). */
+/* tp's tangents dq_ds, dq_dt, dp_ds, dp_dt (the triangle's for uv, else the mapping's;
+ * singular: an orthonormal basis of the tangent plane). */
 void texshade_tangents(const scene *sc, const hit *h, texshade_point *tp);
 
 /* texshade_differentials, then the maps: diffusemap -> kd, specularmap -> ks, roughnessmap ->
@@ -55,9 +54,9 @@ void texshade_tangents(const scene *sc, const hit *h, texshade_point *tp);
 void texshade_surface(const scene *sc, const hit *h, const ray *r, const ray_diff *rd,
                       surface *s);
 
-/* The differentials of the ray leaving s along wi, about s->n: a mirror if wi is on wo's side
- * of s->n, else refraction (eta from s->ior, s->entering).  wo: unit, back along the ray that
- * had rd.  out->has = 0 when there are none (rd NULL or empty, s without them). */
+/* The differentials of the ray leaving s along wi: mirrored about s->n if wi is on wo's side,
+ * else refracted (s->ior, s->entering).  wo: unit, back along rd's ray.  out->has = 0 when
+ * there are none. */
 void texshade_delta_diff(const surface *s, const ray_diff *rd, vec3 wo, vec3 wi, ray_diff *out);
 
 #endif

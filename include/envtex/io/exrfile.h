@@ -1,21 +1,16 @@
-/* exrfile.h - OpenEXR images through OpenEXR's C API (OpenEXRCore 3.1).  Lecture slide 10 (HDR
- * images): OpenEXR stores linear radiance as half or float, which is why environment maps use it.
+/* exrfile.h - OpenEXR images (linear half or float radiance, lecture slide 10) through
+ * OpenEXRCore 3.1.
  *
- *     image sky = {0};
  *     if (exrfile_read("sky.exr", &sky, &mem, &err)) return -1;    // linear RGB float
  *     if (exrfile_write("out.exr", &sky, 1, &err)) return -1;      // half float, ZIP, atomic
  *     exrfile_attrs at = {.spp = 64};                              // what a render records
  *     if (exrfile_write_attrs("img.exr", &sky, 0, &at, &err)) return -1;
- *     image_free(&sky);
  *
- * Reading takes part 0: scanline or tiled (level 0 of a mip/rip map), half, float or uint
- * samples, every compression OpenEXRCore 3.1 decodes (DWAA / DWAB are refused, saying how to
- * re-save the file).  Channels, matched case-sensitively: R, G, B; else Y alone (grey); else one
- * layer's "LAYER.R", "LAYER.G", "LAYER.B".  The image is the display window: data-window pixels
- * land at (x - display.min.x, y - display.min.y), the rest of the display window is 0.  Writing
- * makes one scanline part, R, G, B, ZIP, display window = data window = (0,0)-(w-1,h-1), atomic
- * (a temporary file beside the target, renamed over it when complete: fileio.h).
- * Errors name the file; a truncated, corrupt or hostile file is an error, never a crash.
+ * Reading takes part 0 (scanline, or level 0 of tiles), half, float or uint, any compression
+ * but DWAA / DWAB; channels R, G, B, else Y (grey), else one layer's "LAYER.R/G/B".  The image
+ * is the display window (pixels outside the data window are 0).  Writing: one scanline part,
+ * R, G, B, ZIP, windows (0,0)-(w-1,h-1), atomic (fileio.h).  Errors name the file; a corrupt
+ * or hostile file is an error, never a crash.
  */
 #ifndef ENVTEX_EXRFILE_H
 #define ENVTEX_EXRFILE_H
@@ -25,44 +20,30 @@
 #include "envtex/core/budget.h"
 #include "envtex/core/error.h"
 #include "envtex/core/image.h"
+#include "envtex/io/exrattrs.h"
 
 /* The 4 magic bytes that open every OpenEXR file: 76 2f 31 01. */
 #define EXRFILE_MAGIC "\x76\x2f\x31\x01"
 
 /* Read the regular file `path` into *out (which must not own pixels; it stays empty on
- * failure).  Refused: deep parts, luminance-chroma (Y with RY / BY) and sub-sampled channels,
- * sizes image_check_size refuses, a header claiming more than the file can hold.  Charged to
- * `mem` from the header before allocating (budget.h; NULL: none): the image, 12 bytes a texel
- * of the display window, which stays charged, and the buffers that decode the largest chunk
- * (ours, 12 bytes a texel, and the library's packed and unpacked bytes), released when read. */
+ * failure).  Refused: deep parts, luminance-chroma and sub-sampled channels, sizes
+ * image_check_size refuses, a header claiming more than the file holds.  Charged to `mem`
+ * before allocating (NULL: none): the image (stays charged) and the largest chunk's decoding
+ * buffers (released when read). */
 int exrfile_read(const char *path, image *out, budget *mem, error *err);
 
-/* Write `im` to `path`: RGB float (half == 0) or half (half != 0: rounded to nearest, values
- * beyond the largest half become +-Inf), ZIP, scanline, atomic.  Nothing is left on failure. */
+/* Write `im` to `path`: float (half == 0) or half (rounded to nearest, beyond it +-Inf), ZIP,
+ * atomic: nothing is left on failure. */
 int exrfile_write(const char *path, const image *im, int half, error *err);
-
-/* What a render records about itself in its file's header, as OpenEXR attributes other readers
- * show and ignore: envtex:spp (int), envtex:seed (string, decimal: a 64-bit seed), and
- * envtex:integrator and envtex:scene (strings).  A field that is 0 / "" / has_seed == 0 is not
- * written, and reads back so when the file does not have it. */
-#define EXRFILE_TEXT_MAX 256
-typedef struct exrfile_attrs {
-    int spp;      /* samples per pixel, >= 1; 0: unknown */
-    int has_seed; /* 1 when seed holds the render's seed */
-    uint64_t seed;
-    char integrator[EXRFILE_TEXT_MAX]; /* the scene's `integrator` name, "" unknown */
-    char scene[EXRFILE_TEXT_MAX];      /* the scene file as named on the command line */
-} exrfile_attrs;
 
 /* exrfile_write with `at`'s fields added to the header (at may be NULL: exrfile_write).
  * Strings are cut to EXRFILE_TEXT_MAX - 1 bytes. */
 int exrfile_write_attrs(const char *path, const image *im, int half, const exrfile_attrs *at,
                         error *err);
 
-/* The envtex attributes of the OpenEXR file `path` into *at (fields the file lacks are 0 / "";
- * one of the right name and another type, or an spp below 1, is an error: a file that says
- * something else than a sample count is not trusted as one).  Reads the header only.  0, or -1
- * with *err set (not an OpenEXR file, cannot open) and *at all unknown. */
+/* The envtex attributes of `path` into *at (absent: 0 / ""), from the header only.  0, or -1
+ * with *err (cannot open, not OpenEXR, an attribute of the wrong type or spp < 1) and *at
+ * unknown. */
 int exrfile_read_attrs(const char *path, exrfile_attrs *at, error *err);
 
 #endif

@@ -1,6 +1,5 @@
 /* compare.h - comparing two images: error metrics, pass/fail thresholds for golden-image tests,
- * and a false-colour difference picture.  Used by the unit tests, the golden-image harness and
- * `envtex compare`.  (Lecture slide 10 is about HDR images; a renderer's tests compare them.)
+ * and a false-colour difference picture (the unit tests, the golden harness, `envtex compare`).
  *
  *     compare_result m;
  *     if (compare_metrics(&render, &ref, &m, &err)) return -1;   // sizes differ
@@ -8,12 +7,8 @@
  *
  *     compare_thresholds_params p = compare_thresholds_defaults();
  *     compare_verdict v;
- *     if (compare_thresholds(&render, &ref, &p, &v)) {           // failed: say why, show where
- *         printf("FAIL: %s\n", v.why);
- *         image diff = {0};
- *         if (!compare_diff_image(&render, &ref, &diff, &err))
- *             imageio_write("diff.png", &diff, NULL, &err);        // default tone mapping
- *     }
+ *     if (compare_thresholds(&render, &ref, &p, &v)) puts(v.why);   // failed: why
+ *     compare_diff_image(&render, &ref, &diff, &err);              // where (false colour)
  *
  * Both images are linear RGB.  `a` is the image under test, `ref` the reference.
  */
@@ -23,42 +18,33 @@
 #include "envtex/core/error.h"
 #include "envtex/core/image.h"
 
-/* relMSE = mean of (a - ref)^2 / (ref^2 + COMPARE_RELMSE_EPSILON): the epsilon keeps black
- * reference pixels from dividing by zero, and 1e-2 (a reference value of 0.1) is the usual
- * choice in rendering papers, so near-black errors count about as much as absolute ones. */
+/* relMSE = mean of (a - ref)^2 / (ref^2 + COMPARE_RELMSE_EPSILON) */
 #define COMPARE_RELMSE_EPSILON 1e-2
 
 /* relmse_trim leaves out this fraction of the pixels, those with the largest errors (rounded
- * down: images under 1000 pixels leave out none).  One run's relMSE can be decided by a single
- * pixel: a path of probability 1e-7 that finds the sun through a glass ball adds thousands to
- * it.  Leaving out the top 0.1% is the usual robust variant in rendering papers' comparisons. */
+ * down: images under 1000 pixels leave out none). */
 #define COMPARE_RELMSE_TRIM 1e-3
 
 typedef struct compare_result {
     double rmse;    /* sqrt(mean over pixels and channels of (a - ref)^2) */
     double relmse;  /* mean over pixels and channels of (a - ref)^2 / (ref^2 + epsilon) */
-    double relmse_trim; /* relmse without the COMPARE_RELMSE_TRIM of the pixels whose terms
-                         * (summed over channels) are largest: fireflies */
-    double psnr;    /* 10 log10(1 / mse) in dB: peak 1.0, display white of a linear image;
-                     * +INFINITY when the images are equal */
-    double max_abs; /* largest |a - ref| over channels */
-    int max_x, max_y;   /* a pixel where max_abs occurs (-1, -1 if none) */
+    double relmse_trim; /* relmse without the COMPARE_RELMSE_TRIM largest pixels */
+    double psnr;    /* 10 log10(1 / mse) in dB (peak 1.0); +INFINITY when equal */
+    double max_abs; /* largest channel |a - ref| */
+    int max_x, max_y;   /* where max_abs occurs (-1, -1 if none) */
     long nonfinite;     /* pixels of `a` with a NaN or Inf channel */
-    long ref_nonfinite; /* pixels of `ref` with a NaN or Inf channel */
+    long ref_nonfinite; /* ... of `ref` */
     long pixels;        /* pixels compared: those finite in both images */
 } compare_result;
 
-/* Metrics of `a` against `ref`.  Pixels that are not finite in either image are counted and
- * left out of the sums; when no pixel is left, rmse, relmse, relmse_trim, max_abs and psnr are
- * NaN.  -1 with a message if the sizes differ, an image is empty, or there is no memory for
- * relmse_trim's list of the largest terms (8 bytes per 1000 pixels). */
+/* Metrics of `a` against `ref`; pixels not finite in either are counted and left out (none
+ * left: the metrics are NaN).  -1 with a message if the sizes differ, an image is empty, or
+ * there is no memory. */
 int compare_metrics(const image *a, const image *ref, compare_result *out, error *err);
 
-/* OpenImageIO testsuite's rule.  A pixel's difference is its largest channel |a - ref|.  The
- * pixel "fails" if that exceeds fail_thresh and, when fail_relative > 0, also exceeds
- * fail_relative * (|a| + |ref|) / 2 in that channel (relative mode: bright pixels may differ
- * more).  The images fail if more than fail_percent % of the pixels fail, or any pixel differs
- * by more than hard_thresh, or any pixel of either image is NaN / Inf, or the sizes differ. */
+/* A pixel fails if its largest channel |a - ref| exceeds fail_thresh and (fail_relative > 0)
+ * fail_relative * (|a| + |ref|) / 2.  The images fail if over fail_percent % of the pixels
+ * fail, any differs by over hard_thresh, any is NaN / Inf, or the sizes differ. */
 typedef struct compare_thresholds_params {
     double fail_thresh;   /* absolute difference a pixel may have */
     double fail_relative; /* 0: off; else the relative difference a pixel may also have */
@@ -66,36 +52,33 @@ typedef struct compare_thresholds_params {
     double hard_thresh;   /* no pixel may differ more; INFINITY: off */
 } compare_thresholds_params;
 
-/* Strict defaults, meant to be loosened per test: fail_thresh 0.004 (about one 8-bit step,
- * 1/255), fail_relative 0 (off), fail_percent 0.02 (%), hard_thresh INFINITY (off). */
+/* Strict defaults, loosened per test: fail_thresh 0.004, fail_relative 0 (off), fail_percent
+ * 0.02 (%), hard_thresh INFINITY (off). */
 compare_thresholds_params compare_thresholds_defaults(void);
 
 typedef struct compare_verdict {
     int pass;          /* 1 if the images pass */
     long pixels;       /* pixels compared (0 if the sizes differ) */
-    long failed;       /* pixels over the fail threshold */
+    long failed;       /* pixels that fail */
     double failed_percent; /* 100 * failed / pixels */
     long hard_failed;  /* pixels over hard_thresh */
     long nonfinite;    /* pixels with a NaN / Inf in a or ref */
-    double max_diff;   /* largest pixel difference (finite pixels) */
+    double max_diff;   /* largest finite pixel difference */
     int max_x, max_y;  /* where (-1, -1 if none) */
     char why[256];     /* one line: "ok" or the reasons it failed */
 } compare_verdict;
 
-/* Judge `a` against `ref`; fills *v.  Returns 0 if they pass, -1 if they fail (for any reason,
- * including different sizes: then v->why says so). */
+/* Judge `a` against `ref` into *v: 0 pass, -1 fail (any reason, sizes too: v->why says). */
 int compare_thresholds(const image *a, const image *ref, const compare_thresholds_params *p,
                        compare_verdict *v);
 
-/* Difference picture scale: d = largest channel |a - ref| of a pixel, on a log scale with one
- * colour stop per decade: d <= 1e-4 black, 1e-3 blue, 1e-2 green, 1e-1 yellow, >= 1 red,
- * linear in log10(d) between stops.  NaN / Inf in either image: magenta. */
+/* The difference picture of d = largest channel |a - ref|, linear in log10(d): <= 1e-4 black,
+ * 1e-3 blue, 1e-2 green, 1e-1 yellow, >= 1 red; NaN / Inf magenta. */
 #define COMPARE_DIFF_MIN 1e-4
 #define COMPARE_DIFF_MAX 1.0
 
-/* Make the false-colour difference image of `a` against `ref` into *out (allocated; free with
- * image_free).  Its values are the palette colours decoded from sRGB to linear, so writing it
- * with the default tone mapping (imageio_write "x.png", NULL) shows exactly the palette.
+/* The false-colour difference image of `a` against `ref` into *out (allocated; free with
+ * image_free), in linear values that the default tone mapping writes as the palette exactly.
  * -1 with a message if the sizes differ. */
 int compare_diff_image(const image *a, const image *ref, image *out, error *err);
 

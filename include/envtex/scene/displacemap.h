@@ -1,13 +1,12 @@
-/* displacemap.h - `displacementmap NAME SCALE` (lecture "Environment, Texture Maps", slide 43,
- * docs/lecture-map.md): each sphere and triangle whose material has a displacement map becomes
- * triangles moved along the normal by SCALE times the texture (displace.h), traced instead of
- * it: unlike a bump map, silhouettes and shadows change.
+/* displacemap.h - `displacementmap NAME SCALE` (slide 43): each sphere and triangle whose
+ * material has a displacement map becomes triangles moved along the normal by SCALE times the
+ * texture (displace.h), traced instead of it.
  *
  *     if (displacemap_needed(sc) && displacemap_apply(sc, 0, &mem, &work, &st, &err)) ...
  *     ... render `work` ...    displacemap_free(&work);
  *
- * The result owns only its sphere and triangle arrays and shares the rest with the caller's
- * scene, which it does not modify and which must outlive it unchanged.
+ * The result owns only its sphere and triangle arrays; the rest is the caller's scene, which
+ * must outlive it unchanged.
  */
 #ifndef ENVTEX_DISPLACEMAP_H
 #define ENVTEX_DISPLACEMAP_H
@@ -17,29 +16,25 @@
 
 #define DISPLACEMAP_SPHERE_RATE 96     /* 36480 triangles per sphere */
 #define DISPLACEMAP_TRIANGLE_RATE 32   /* 1024 triangles per triangle */
-#define DISPLACEMAP_MAX_TRIS 8000000L  /* default budget for the whole displaced scene */
+#define DISPLACEMAP_MAX_TRIS 8000000L  /* default limit for the displaced scene */
 
 typedef struct displacemap_stats {
     long spheres, triangles;   /* primitives that were displaced */
-    long new_triangles;        /* triangles of the result (displaced and untouched) */
+    long new_triangles;        /* triangles of the result, untouched ones included */
     int sphere_rate, triangle_rate; /* the rates used */
 } displacemap_stats;
 
 /* 1 if some sphere's or triangle's material has a displacement map. */
 int displacemap_needed(const scene *sc);
 
-/* The displaced scene into *out.  A sphere: 4 N (N - 1) triangles (N: the sphere rate) in object
- * space, SCALE object units per unit of texture; a triangle: N^2 (N: the triangle rate) in world
- * space, SCALE world units, along its vertex normals or else the angle-weighted normal of the
- * displaced triangles without normals meeting at the corner (docs/texture-mapping.md).
- * (s, t): a sphere's mapping of the undisplaced direction, kept as st (st_mapped = 1); a
- * triangle's st or the mapping of its object point q, interpolated like the world point (solid
- * textures see it too).  Output triangles keep the material (its displacement map then ignored),
- * have st, q and area-weighted normals, and are counter-clockwise seen from outside.  Texture
- * reads: the material's filter, no footprint.  The rates (DISPLACEMAP_*_RATE) halve, to 2 and 1
- * at least, until the result fits max_tris (0: DISPLACEMAP_MAX_TRIS; at most SCENE_MAX_PRIMS)
- * and mem (NULL: none) with its BVH, else an error; mem stays charged the triangles.  st may be
- * NULL.  0, or -1 with *err set and *out owning nothing. */
+/* The displaced scene into *out.  A sphere: 4 N (N - 1) triangles (N: the sphere rate), SCALE
+ * object units; a triangle: N^2 (the triangle rate), SCALE world units, along its vertex
+ * normals or the angle-weighted normal at the corner (docs/texture-mapping.md).  Output
+ * triangles keep the material (its displacement map ignored), have st (a sphere's:
+ * st_mapped = 1), q and area-weighted normals, counter-clockwise from outside.  The rates halve
+ * (to 2 and 1) until the result fits max_tris (0: DISPLACEMAP_MAX_TRIS) and mem (NULL: none)
+ * with its BVH, else an error; mem stays charged.  st may be NULL.  0, or -1 with *err set and
+ * *out owning nothing. */
 int displacemap_apply(const scene *in, long max_tris, budget *mem, scene *out,
                       displacemap_stats *st, error *err);
 

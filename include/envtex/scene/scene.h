@@ -3,10 +3,8 @@
  *
  *     if (scene_load(path, NULL, &sc, &err)) ...   ... render ...   scene_free(&sc);
  *
- * Data flows one way: scene file -> scene -> integrator -> image.  The scene holds what the file
- * said, in world space: triangles transformed when read, spheres with their object-to-world
- * matrix (a scaled sphere is an ellipsoid), lights at world positions; no acceleration
- * structure or sampling table.
+ * The scene holds what the file said, in world space (triangles transformed when read, spheres
+ * with their object-to-world matrix, lights at world positions); no BVH or sampling table.
  */
 #ifndef ENVTEX_SCENE_H
 #define ENVTEX_SCENE_H
@@ -93,9 +91,8 @@ typedef enum sampling_kind { SAMPLING_HEMISPHERE, SAMPLING_COSINE, SAMPLING_BRDF
 typedef enum envmiss_mode { ENVMISS_ENVMAP, ENVMISS_BLACK } envmiss_mode;
 #define SCENE_MAX_MEDIANCUT 65536
 
-/* `envmap FILE [SCALE] [REPRESENTATION]` or `envmap cube PX NX PY NY PZ NZ [SCALE]`; without a
- * keyword the representation is detected from the image's shape (2:1 lat-long, 4:3 or 3:4 a
- * cross; a square needs the keyword). */
+/* `envmap FILE [SCALE] [REPRESENTATION]` or `envmap cube PX NX PY NY PZ NZ [SCALE]` (no keyword:
+ * by shape, convert_kind_detect). */
 typedef struct scene_envmap {
     int present;        /* 0: no envmap (rays that leave see black) */
     char path[1024];    /* resolved (against the scene's folder); six files: the +X face */

@@ -1,6 +1,5 @@
 /* scene_load.h - the scene parser: a CSE 167/168 `.test` file and envtex's commands
- * (docs/scene-format.md) into a scene (scene.h).  Only the render and cli layers include it
- * (tests/layers/run-tests).
+ * (docs/scene-format.md) into a scene (scene.h); for the render and cli layers only.
  *
  *     scene sc;
  *     scene_load_opts o = scene_load_defaults();
@@ -19,28 +18,23 @@ typedef struct scene_load_opts {
     int strict;          /* unknown commands are errors instead of warnings */
     scene_warn_fn warn;  /* each warning; NULL: dropped */
     void *warn_ctx;
-    int load_images;     /* 1 (default): read the envmap and texture images, build their
-                          * pyramids; 0: leave them (parser tests) */
+    int load_images;     /* 1 (default): read the images, build the pyramids; 0: leave them */
     long max_prims;      /* 0 (default): SCENE_MAX_PRIMS; a smaller limit lets tests reach it */
-    budget *mem;         /* the run's budget (budget.h), charged before each allocation the
-                          * file asks for (arrays, meshes, images, pyramids); NULL: none */
+    budget *mem;         /* charged before each allocation the file asks for; NULL: none */
 } scene_load_opts;
 
 /* load_images 1, every other field 0 or NULL. */
 scene_load_opts scene_load_defaults(void);
 
 /* Read and check a scene file: 0, *out to free with scene_free; or -1, *out owning nothing and
- * err naming FILE:LINE and the token ("expected a number for 'sphere' argument 4, got 'abc'"),
- * line 0 for what only the end shows ("no 'camera' command"), an image's reason at its `envmap`
- * or `texture` line.  opts NULL: scene_load_defaults().  Lines are checked as they arrive (a NUL
- * byte or a line over SCENE_MAX_LINE stops the reading), so path may be a pipe; every other file
- * must be a regular file, read once by identity however many lines name it (one image, and one
- * pyramid per wrap mode; docs/robustness.md).  What the scene holds stays charged to opts->mem
- * (scene_free does not release it). */
+ * err naming FILE:LINE and the token (line 0 for what only the end shows, an image's reason at
+ * its `envmap` or `texture` line).  opts NULL: the defaults.  path may be a pipe; the files it
+ * names must be regular files, each read once (docs/robustness.md).  What the scene holds
+ * stays charged to opts->mem (scene_free does not release it). */
 int scene_load(const char *path, const scene_load_opts *opts, scene *out, error *err);
 
-/* The same from a string; `name` is the file in messages and its folder the base of relative
- * file names ("-" or NULL: the working folder; NULL shows as "<string>", leaves sc->path ""). */
+/* The same from a string; `name` names it in messages and its folder resolves relative names
+ * ("-" or NULL: the working folder; NULL shows as "<string>", sc->path ""). */
 int scene_load_string(const char *text, const char *name, const scene_load_opts *opts, scene *out,
                       error *err);
 
