@@ -1,4 +1,5 @@
-/* triangle.c - Moller-Trumbore ray-triangle intersection (see include/envtex/geometry/triangle.h). */
+/* triangle.c - Moller-Trumbore ray-triangle intersection (see
+ * include/envtex/geometry/triangle.h). */
 #include "envtex/geometry/triangle.h"
 
 int triangle_intersect(vec3 p0, vec3 p1, vec3 p2, const ray *r, double *t_out, double *b1_out,

@@ -1,4 +1,5 @@
-/* lights.c - the scene's lights for next-event estimation (see include/envtex/integrators/lights.h). */
+/* lights.c - the scene's lights for next-event estimation (see
+ * include/envtex/integrators/lights.h). */
 #include "envtex/integrators/lights.h"
 
 #include <stdlib.h>
@@ -24,7 +25,8 @@ static double light_log2_power(const lights *ls, int k)
     case LIGHT_QUAD: { /* pi A L, with |ab x ac| = |ab| |ac| sin(angle) computed without overflow */
         double la = vec3_length(l->ab), lc = vec3_length(l->ac);
         if (!(la > 0 && lc > 0)) return -INFINITY;
-        double sin_a = vec3_length(vec3_cross(vec3_scale(l->ab, 1 / la), vec3_scale(l->ac, 1 / lc)));
+        double sin_a =
+            vec3_length(vec3_cross(vec3_scale(l->ab, 1 / la), vec3_scale(l->ac, 1 / lc)));
         return log2(M_PI) + log2(la) + log2(lc) + log2(sin_a) + c;
     }
     case LIGHT_POINT: return log2(4 * M_PI) + c;     /* 4 pi I */

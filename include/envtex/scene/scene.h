@@ -176,7 +176,8 @@ const char *scene_envsampling_name(envsampling_mode m);
 /* The scene's spheres and triangles, as bvh_build takes them (borrowed; no quads: lights.h). */
 static inline bvh_prims scene_prims(const scene *sc)
 {
-    return (bvh_prims){sc->spheres, sc->n_spheres, sc->triangles, sc->n_triangles, sc->path, NULL, 0};
+    return (bvh_prims){sc->spheres, sc->n_spheres, sc->triangles, sc->n_triangles, sc->path,
+                       NULL, 0};
 }
 
 /* The scene's envmap as rays see it (envmap.h), borrowed: the scene must outlive *env.  No
