@@ -93,10 +93,15 @@ uv2 texmapping_point(texmapping_kind k, vec3 q)
 
 uv2 texmapping_uv_interpolate(const uv2 st[3], double b1, double b2)
 {
+    /* STEP(barycentric): (s, t) at the hit from the vertices' (s, t) by its barycentric
+     * weights: b1 of vertex 1, b2 of vertex 2, b0 = 1 - b1 - b2 of vertex 0 (slides 25-27) */
+    /* STUB: (void)b1; (void)b2;
+     * return st[0]; */
     double b0 = 1.0 - b1 - b2;
     /* st = b0 st0 + b1 st1 + b2 st2 */
     return (uv2){b0 * st[0].u + b1 * st[1].u + b2 * st[2].u,
                  b0 * st[0].v + b1 * st[1].v + b2 * st[2].v};
+    /* END STEP(barycentric) */
 }
 
 double texmapping_wrap_delta(double d)
