@@ -46,6 +46,13 @@ static rgb bilinear(const image *im, uv2 uv, int wrap_u)
     double x0 = floor(x), y0 = floor(y);
     double ax = x - x0, ay = y - y0;
     int i0 = (int)x0, j0 = (int)y0, i1 = i0 + 1, j1 = j0 + 1;
+    /* STEP(bilinear): the four texels' columns and rows in the image: with wrap_u (lat-long)
+     * the columns wrap across the phi seam (u = 0 and u = 1 are neighbours), else they clamp
+     * to the edge; the rows clamp at the top and bottom (a lat-long map's poles); uv in
+     * [0, 1] x [0, 1] (slides 11-12, 34-35) */
+    /* STUB: (void)wrap_u;
+     * i0 = i1 = (int)fmin(fmax(uv.u * w, 0), w - 1);
+     * j0 = j1 = (int)fmin(fmax(uv.v * h, 0), h - 1); */
     if (wrap_u) {
         if (i0 < 0) i0 += w;
         if (i0 >= w) i0 -= w;
@@ -58,6 +65,7 @@ static rgb bilinear(const image *im, uv2 uv, int wrap_u)
     if (j0 < 0) j0 = 0;
     if (j1 > h - 1) j1 = h - 1;
     if (j0 > h - 1) j0 = h - 1;
+    /* END STEP(bilinear) */
     rgb c00 = image_get(im, i0, j0), c10 = image_get(im, i1, j0);
     rgb c01 = image_get(im, i0, j1), c11 = image_get(im, i1, j1);
     /* L = (1-ax)(1-ay) c00 + ax (1-ay) c10 + (1-ax) ay c01 + ax ay c11 */

@@ -103,6 +103,15 @@ static void alias_build_table(const double *cdf, int n, distrib_alias *t, double
         else
             large[nl++] = i;
     }
+    /* STEP(alias): Vose's pairing: while both lists hold a bin, fill small bin s up to 1
+     * (prob_s = q_s as a float) with large bin l as its alias, take 1 - prob_s from q_l, and
+     * move l to the small list once q_l < 1; leftovers keep themselves (prob 1), a zero bin
+     * (prob 0) goes to the largest bin, best (slide 23) */
+    /* STUB: (void)small; (void)large; (void)ns; (void)nl;
+     * for (int i = 0; i < n; i++) {
+     *     t[i].prob = q[i] > 0 ? 1.0f : 0.0f;
+     *     t[i].alias = q[i] > 0 ? i : best;
+     * } */
     while (ns > 0 && nl > 0) {
         int s = small[--ns], l = large[nl - 1];
         float prob = (float)q[s];
@@ -131,6 +140,7 @@ static void alias_build_table(const double *cdf, int n, distrib_alias *t, double
         t[s].prob = zero ? 0.0f : 1.0f;
         t[s].alias = zero ? best : s;
     }
+    /* END STEP(alias) */
 }
 
 /* O(1) alias sampling: u = x n picks the cell i = floor(u), and f = u - i, uniform in [0, 1),

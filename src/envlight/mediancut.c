@@ -37,6 +37,13 @@ static int split_region(int w, int h, const double *S, const region *g, region *
 {
     int cw = g->c1 - g->c0, rh = g->r1 - g->r0;
     if (cw < 2 && rh < 2) return 0;
+    /* STEP(mediancut): the median cut: split across the longer side in angle (phi's side
+     * shortened by sin theta at the middle row), at the first cut whose part [c0, k) or
+     * [r0, k) holds half the energy (sat_sum; a binary search), k in (c0, c1) or (r0, r1); a
+     * side of one texel never splits (slides 18-21) */
+    /* STUB: (void)w;
+     * *a = *b = *g;
+     * if (cw >= rh) a->c1 = b->c0 = g->c0 + cw / 2; else a->r1 = b->r0 = g->r0 + rh / 2; */
     double mid_theta = M_PI * 0.5 * (g->r0 + g->r1) / h;
     double phi_len = cw * 2 * M_PI / w * sin(mid_theta), theta_len = rh * M_PI / h;
     int by_cols = rh < 2 || (cw >= 2 && phi_len >= theta_len);
@@ -63,6 +70,7 @@ static int split_region(int w, int h, const double *S, const region *g, region *
         }
         a->r1 = b->r0 = lo;
     }
+    /* END STEP(mediancut) */
     a->energy = sat_sum(S, h, a->c0, a->c1, a->r0, a->r1);
     b->energy = sat_sum(S, h, b->c0, b->c1, b->r0, b->r1);
     return 1;

@@ -70,7 +70,12 @@ static rgb miss(raytracer *rt, vec3 d, int depth)
     /* camera rays see the environment as the background; reflected rays see it unless the
      * scene asks for the lecture's contrast, `envmiss black` */
     if (depth > 0 && rt->sc->envmiss == ENVMISS_BLACK) return rgb_gray(0);
+    /* STEP(reflection): a ray that misses the scene takes the envmap's colour in its
+     * direction d: envmap_radiance (reflection/envmap.h) (slides 3-5) */
+    /* STUB: (void)rt; (void)d;
+     * return rgb_gray(0); */
     return envmap_radiance(&rt->env, d);
+    /* END STEP(reflection) */
 }
 
 static rgb trace(raytracer *rt, ray r, const ray_diff *rd, int depth, double weight)
@@ -123,6 +128,11 @@ static rgb trace(raytracer *rt, ray r, const ray_diff *rd, int depth, double wei
         }
         return c;
     }
+    /* STEP(reflection): the mirror: reflect d about n (vec3_reflect), recurse on the hit
+     * (trace at depth + 1, the footprint by texshade_delta_diff, the weight times ks, skipped
+     * below RAYTRACER_MIN_WEIGHT or when the shader says !reflect), then Color += reflectivity
+     * ks x the colour of the reflected ray (slides 3-5) */
+    /* STUB: (void)reflect; (void)weight; (void)rd; */
     double ks = rgb_max(s.ks);
     if (reflect && ks > 0 && weight * ks > RAYTRACER_MIN_WEIGHT) {
         /* Color += reflectivity * Color of reflected ray (ks: `specular` or its map) */
@@ -131,6 +141,7 @@ static rgb trace(raytracer *rt, ray r, const ray_diff *rd, int depth, double wei
         rgb li = trace(rt, ray_spawn(h.p, h.ng, refl), &next, depth + 1, weight * ks);
         c = rgb_fma(c, s.ks, li);
     }
+    /* END STEP(reflection) */
     return c;
 }
 

@@ -22,7 +22,11 @@ int tonemap_op_parse(const char *name, tonemap_op *op)
  * at 0.  Values outside [0,1] follow the same two pieces (negatives take the linear one). */
 double tonemap_srgb_encode(double l)
 {
+    /* STEP(tonemap): the sRGB curve for display: 12.92 l on the linear toe l <= 0.0031308,
+     * else 1.055 l^(1 / 2.4) - 0.055 (IEC 61966-2-1; tonemap.h) (slide 10) */
+    /* STUB: return l; */
     return l <= 0.0031308 ? 12.92 * l : 1.055 * pow(l, 1.0 / 2.4) - 0.055;
+    /* END STEP(tonemap) */
 }
 
 double tonemap_srgb_decode(double e)
@@ -36,7 +40,11 @@ static double tonemap_channel(const tonemap_params *tm, double scale, double c)
     if (isnan(c)) return 0.0;
     if (isinf(c))
         return c > 0 ? 1.0 : 0.0; /* before the scale: Inf * 0 when 2^exposure underflows */
+    /* STEP(tonemap): exposure: the radiance times scale = 2^exposure (exposure in stops) */
+    /* STUB: (void)scale;
+     * double x = c; */
     double x = c * scale; /* c * 2^exposure: finite * finite, never NaN */
+    /* END STEP(tonemap) */
     if (x <= 0.0) return 0.0; /* display values are never negative; also guards 1 + x = 0 below */
     if (isinf(x)) return 1.0;
     switch (tm->op) {

@@ -32,17 +32,38 @@ static double phi_s(vec3 q)
     return s < 1.0 ? s : 0.0;
 }
 
-uv2 texmapping_planar(vec3 q) { return (uv2){q.x, q.y}; }
+uv2 texmapping_planar(vec3 q)
+{
+    /* STEP(parameterization): planar: project onto the xy plane, (s, t) = (x, y)
+     * (texmapping.h) (slides 28-31) */
+    /* STUB: (void)q;
+     * return (uv2){0, 0}; */
+    return (uv2){q.x, q.y};
+    /* END STEP(parameterization) */
+}
 
-uv2 texmapping_cylindrical(vec3 q) { return (uv2){phi_s(q), q.z}; }
+uv2 texmapping_cylindrical(vec3 q)
+{
+    /* STEP(parameterization): cylindrical about z: s = phi / 2 pi (phi_s: phi = atan2(y, x)
+     * in [0, 2 pi), the seam at phi = 0), t = z (slides 28-31) */
+    /* STUB: (void)q; (void)phi_s;
+     * return (uv2){0, 0}; */
+    return (uv2){phi_s(q), q.z};
+    /* END STEP(parameterization) */
+}
 
 uv2 texmapping_spherical(vec3 q)
 {
+    /* STEP(parameterization): spherical: s = phi / 2 pi (phi_s), t = 1 - theta / pi with theta
+     * the angle from +z, pi / 2 for q = 0 (texmapping.h) (slides 28-31) */
+    /* STUB: (void)q; (void)phi_s;
+     * return (uv2){0, 0}; */
     /* theta = atan2(sqrt(x^2 + y^2), z): the angle from +z, exact near the poles (acos is not),
      * and atan2(0, 0) = 0 for q = 0 */
     double theta = atan2(hypot(q.x, q.y), q.z); /* hypot: no overflow, no underflow */
     if (q.x == 0 && q.y == 0 && q.z == 0) theta = 0.5 * M_PI;
     return (uv2){phi_s(q), 1.0 - theta / M_PI}; /* t = 1 - theta / pi */
+    /* END STEP(parameterization) */
 }
 
 /* Face axis (0 x, 1 y, 2 z), its sign, right and up axes: the table of the header. */
@@ -64,11 +85,17 @@ static int cube_face_of(vec3 q)
 uv2 texmapping_cube_face(vec3 q, int face)
 {
     assert(face >= 0 && face < 6);
+    /* STEP(parameterization): cube: the central projection onto the face's plane, divided by
+     * the face axis's |a|: s = (1 + q.right / |a|) / 2, t = (1 + q.up / |a|) / 2 with the face
+     * table's right and up; (0.5, 0.5) for a = 0 (slides 28-31) */
+    /* STUB: (void)q; (void)face;
+     * return (uv2){0.5, 0.5}; */
     const face_frame *f = &faces[face];
     double a = fabs(vec3_get(q, f->axis));
     if (!(a > 0)) return (uv2){0.5, 0.5};
     /* s = (1 + r / |a|) / 2, t = (1 + u / |a|) / 2 : central projection onto the face */
     return (uv2){0.5 * (1.0 + vec3_dot(q, f->right) / a), 0.5 * (1.0 + vec3_dot(q, f->up) / a)};
+    /* END STEP(parameterization) */
 }
 
 uv2 texmapping_cube(vec3 q, int *face)
@@ -93,10 +120,15 @@ uv2 texmapping_point(texmapping_kind k, vec3 q)
 
 uv2 texmapping_uv_interpolate(const uv2 st[3], double b1, double b2)
 {
+    /* STEP(barycentric): (s, t) at the hit from the vertices' (s, t) by its barycentric
+     * weights: b1 of vertex 1, b2 of vertex 2, b0 = 1 - b1 - b2 of vertex 0 (slides 25-27) */
+    /* STUB: (void)b1; (void)b2;
+     * return st[0]; */
     double b0 = 1.0 - b1 - b2;
     /* st = b0 st0 + b1 st1 + b2 st2 */
     return (uv2){b0 * st[0].u + b1 * st[1].u + b2 * st[2].u,
                  b0 * st[0].v + b1 * st[1].v + b2 * st[2].v};
+    /* END STEP(barycentric) */
 }
 
 double texmapping_wrap_delta(double d)

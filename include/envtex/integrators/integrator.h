@@ -91,10 +91,16 @@ int integrator_light_sample(integrator *it, const surface *s, vec3 wo, int k, do
 /* power heuristic with beta = 2: w = (nf pf)^2 / ((nf pf)^2 + (ng pg)^2) */
 static inline double integrator_power_heuristic(double nf, double pf, double ng, double pg)
 {
+    /* STEP(mis): Veach's power heuristic (beta = 2) for the sample of strategy f against g:
+     * (nf pf)^2 / ((nf pf)^2 + (ng pg)^2); 0 when nf pf is 0 (or NaN), 1 when it is infinite
+     * (a delta) (slide 23) */
+    /* STUB: (void)nf; (void)pf; (void)ng; (void)pg;
+     * return 0.5; */
     double f = nf * pf, g = ng * pg;
     if (!(f > 0)) return 0;
     if (isinf(f)) return 1;
     return f * f / (f * f + g * g);
+    /* END STEP(mis) */
 }
 
 #endif
