@@ -111,7 +111,6 @@ int cli_check_not_replacing(const char *out, const char *const *inputs, int n, e
 {
     for (int k = 0; k < n; k++)
         if (inputs[k] && (!strcmp(out, inputs[k]) || cli_same_file(out, inputs[k])))
-            return error_set(err, out, 0, "the output would replace the input image %s",
-                             inputs[k]);
+            return error_set(err, out, 0, "the output would replace the input image %s", inputs[k]);
     return 0;
 }

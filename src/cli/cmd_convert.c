@@ -34,10 +34,14 @@ static int parse_args(int argc, char **argv, convert_args *a)
             if (!(v = cli_opt_value(argc, argv, &i))) return 1;
             if (cli_parse_long(v, 1, CONVERT_MAX_SAMPLES, &a->samples))
                 return cli_usage_error("--samples needs a whole number from 1 to 64, got '%s'", v);
-        } else if (o[0] == '-' && o[1]) return cli_usage_error("unknown option '%s'", o);
-        else if (!a->in) a->in = o;
-        else if (!a->out) a->out = o;
-        else return cli_usage_error("unexpected argument '%s'", o);
+        } else if (o[0] == '-' && o[1])
+            return cli_usage_error("unknown option '%s'", o);
+        else if (!a->in)
+            a->in = o;
+        else if (!a->out)
+            a->out = o;
+        else
+            return cli_usage_error("unexpected argument '%s'", o);
     }
     if (!a->out) return cli_usage_error("%s", "convert needs IN and OUT");
     convert_kind from_kind;
@@ -91,8 +95,8 @@ static void print_summary(const convert_args *a, int six, const convert_map *src
            "power_change=%+.4f%%\n",
            convert_kind_name(src->kind), si->w, si->h, src->kind == CONVERT_CUBE ? "x6" : "",
            six ? "cube" : a->to, di->w, di->h, a->kind == CONVERT_CUBE ? "x6" : "",
-           a->samples > 0 ? (int)a->samples : convert_default_samples(&sv, a->kind, di->w), p0,
-           p1, p0 > 0 ? 100.0 * (p1 / p0 - 1.0) : 0.0);
+           a->samples > 0 ? (int)a->samples : convert_default_samples(&sv, a->kind, di->w), p0, p1,
+           p0 > 0 ? 100.0 * (p1 / p0 - 1.0) : 0.0);
 }
 
 /* envtex convert IN OUT --to KIND [--from KIND] [--width W] [--samples K]: resample an

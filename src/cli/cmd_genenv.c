@@ -21,19 +21,28 @@ int cmd_gen_env(int argc, char **argv)
             p.width = (int)n;
             continue;
         }
-        if (!strcmp(a, "--value")) target = &p.value;
-        else if (!strcmp(a, "--sun-ratio")) target = &p.sun_ratio;
-        else if (!strcmp(a, "--sun-radius")) target = &p.sun_radius_deg;
-        else if (!strcmp(a, "--sun-elevation")) target = &p.sun_elevation_deg;
-        else if (!strcmp(a, "--sun-azimuth")) target = &p.sun_azimuth_deg;
+        if (!strcmp(a, "--value"))
+            target = &p.value;
+        else if (!strcmp(a, "--sun-ratio"))
+            target = &p.sun_ratio;
+        else if (!strcmp(a, "--sun-radius"))
+            target = &p.sun_radius_deg;
+        else if (!strcmp(a, "--sun-elevation"))
+            target = &p.sun_elevation_deg;
+        else if (!strcmp(a, "--sun-azimuth"))
+            target = &p.sun_azimuth_deg;
         if (target) {
             if (!(v = cli_opt_value(argc, argv, &i))) return 1;
             if (cli_parse_double(v, target))
                 return cli_usage_error("%s needs a finite number, got '%s'", a, v);
-        } else if (a[0] == '-' && a[1]) return cli_usage_error("unknown option '%s'", a);
-        else if (!kind_name) kind_name = a;
-        else if (!out) out = a;
-        else return cli_usage_error("unexpected argument '%s'", a);
+        } else if (a[0] == '-' && a[1])
+            return cli_usage_error("unknown option '%s'", a);
+        else if (!kind_name)
+            kind_name = a;
+        else if (!out)
+            out = a;
+        else
+            return cli_usage_error("unexpected argument '%s'", a);
     }
     if (!out) return cli_usage_error("%s", "gen-env needs KIND and OUT");
     genenv_kind kind;

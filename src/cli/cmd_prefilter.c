@@ -50,7 +50,7 @@ static int parse_args(int argc, char **argv, args *a)
             int bad = end == v || *end || errno == ERANGE;
             if (bad || !(a->s >= 0 && a->s <= PREFILTER_MAX_SHININESS))
                 return cli_usage_error("--phong needs an exponent from 0 to %g, got '%s'",
-                                   PREFILTER_MAX_SHININESS, v);
+                                       PREFILTER_MAX_SHININESS, v);
             a->mode = MODE_PHONG;
             a->modes++;
         } else if (!strcmp(o, "--method")) {
@@ -63,24 +63,30 @@ static int parse_args(int argc, char **argv, args *a)
             a->width = strtol(v, &end, 10);
             if (end == v || *end || errno == ERANGE || prefilter_check_width(a->width, NULL))
                 return cli_usage_error("--width needs an even number from 2 to %d, got '%s'",
-                                   PREFILTER_MAX_WIDTH, v);
+                                       PREFILTER_MAX_WIDTH, v);
         } else if (!strcmp(o, "--from")) {
             convert_kind k;
             if (!(a->from = cli_opt_value(argc, argv, &i))) return 1;
             if (convert_kind_parse(a->from, &k))
                 return cli_usage_error("--from must be latlong, cube, cross, mirrorball, angular, "
-                                   "cylindrical or equalarea, got '%s'", a->from);
-        } else if (o[0] == '-' && o[1]) return cli_usage_error("unknown option '%s'", o);
-        else if (!a->in) a->in = o;
-        else if (!a->out) a->out = o;
-        else return cli_usage_error("unexpected argument '%s'", o);
+                                       "cylindrical or equalarea, got '%s'",
+                                       a->from);
+        } else if (o[0] == '-' && o[1])
+            return cli_usage_error("unknown option '%s'", o);
+        else if (!a->in)
+            a->in = o;
+        else if (!a->out)
+            a->out = o;
+        else
+            return cli_usage_error("unexpected argument '%s'", o);
     }
     if (!a->in) return cli_usage_error("%s", "prefilter needs IN");
     if (a->modes != 1)
         return cli_usage_error("%s", "prefilter needs one of --sh9, --irradiance or --phong S");
     if (a->mode == MODE_SH9 && a->out)
         return cli_usage_error("--sh9 prints the coefficients and writes no map: unexpected "
-                           "argument '%s'", a->out);
+                               "argument '%s'",
+                               a->out);
     if (a->mode == MODE_SH9 && a->width)
         return cli_usage_error("%s", "--sh9 writes no map: --width does not apply");
     if (a->mode != MODE_SH9 && !a->out)
@@ -134,14 +140,16 @@ int cmd_prefilter(int argc, char **argv)
         }
         n_inputs = CUBEMAP_FACES;
     }
-    if (a.out && (cli_check_output(a.out, &err) ||
-                  cli_check_not_replacing(a.out, inputs, n_inputs, &err)))
+    if (a.out &&
+        (cli_check_output(a.out, &err) || cli_check_not_replacing(a.out, inputs, n_inputs, &err)))
         goto done;
     budget mb;
     if (convert_read(a.in, a.from, &src, cli_run_budget(&mb, a.mem_limit), &err)) goto done;
     if (src.bad_texels)
-        fprintf(stderr, "envtex: warning: %s: %ld NaN, infinite or negative texel value%s "
-                "(used as 0)\n", a.in, src.bad_texels, src.bad_texels == 1 ? "" : "s");
+        fprintf(stderr,
+                "envtex: warning: %s: %ld NaN, infinite or negative texel value%s "
+                "(used as 0)\n",
+                a.in, src.bad_texels, src.bad_texels == 1 ? "" : "s");
     convert_env env = convert_view(&src);
     clock_t t0 = clock();
     if (a.mode == MODE_SH9) {

@@ -60,7 +60,7 @@ static void progress_bar(void *ctx, int done, int rows)
 typedef struct render_args {
     const char *scene_path, *out_path, *ref_path, *var_path;
     int quiet, verbose, strict;
-    int out_from_scene;       /* no -o: the scene's `output` (or its default) */
+    int out_from_scene;        /* no -o: the scene's `output` (or its default) */
     imageio_format out_format; /* IMAGEIO_UNKNOWN: by the extension */
     double mem_limit;
     render_opts ro;
@@ -93,12 +93,18 @@ static int parse_args(int argc, char **argv, render_args *a)
             if (!(a->ref_path = cli_opt_value(argc, argv, &i))) return 1;
         } else if (!strcmp(o, "--variance")) {
             if (!(a->var_path = cli_opt_value(argc, argv, &i))) return 1;
-        } else if (!strcmp(o, "--quiet")) a->quiet = 1;
-        else if (!strcmp(o, "--verbose")) a->verbose = 1;
-        else if (!strcmp(o, "--strict")) a->strict = 1;
-        else if (o[0] == '-' && o[1]) return cli_usage_error("unknown option '%s'", o);
-        else if (!a->scene_path) a->scene_path = o;
-        else return cli_usage_error("unexpected argument '%s'", o);
+        } else if (!strcmp(o, "--quiet"))
+            a->quiet = 1;
+        else if (!strcmp(o, "--verbose"))
+            a->verbose = 1;
+        else if (!strcmp(o, "--strict"))
+            a->strict = 1;
+        else if (o[0] == '-' && o[1])
+            return cli_usage_error("unknown option '%s'", o);
+        else if (!a->scene_path)
+            a->scene_path = o;
+        else
+            return cli_usage_error("unexpected argument '%s'", o);
     }
     if (!a->scene_path) return cli_usage_error("%s", "render needs a scene file");
     return 0;
@@ -125,9 +131,11 @@ static int check_outputs(render_args *a, scene *sc, warnings *ws, error *err)
     if (a->out_from_scene && a->out_path[0] && !imageio_can_write(a->out_path)) {
         a->out_format = IMAGEIO_PNG;
         error w;
-        error_set(&w, a->scene_path, sc->output_line, "'output' %s has no .exr, .png, .pfm or "
+        error_set(&w, a->scene_path, sc->output_line,
+                  "'output' %s has no .exr, .png, .pfm or "
                   ".hdr extension: written as a PNG under this exact name, as the course "
-                  "skeleton does", a->out_path);
+                  "skeleton does",
+                  a->out_path);
         warn_keep(ws, &w);
     }
     if (a->ref_path && infile_list_add(&sc->inputs, a->ref_path, err)) return -1;
@@ -143,8 +151,7 @@ static int check_outputs(render_args *a, scene *sc, warnings *ws, error *err)
         return -1;
     }
     if (!a->var_path) return 0;
-    if (cli_check_output(a->var_path, err) ||
-        check_not_an_input(a->var_path, sc, a->ref_path, err))
+    if (cli_check_output(a->var_path, err) || check_not_an_input(a->var_path, sc, a->ref_path, err))
         return -1;
     if (!strcmp(a->var_path, a->out_path) || cli_same_file(a->var_path, a->out_path))
         return error_set(err, a->var_path, 0, "--variance names the output file itself");
@@ -156,8 +163,10 @@ static int read_ref(const render_args *a, const scene *sc, budget *mem, image *r
 {
     if (imageio_read(a->ref_path, ref, mem, err)) return -1;
     if (ref->w != sc->width || ref->h != sc->height)
-        return error_set(err, NULL, 0, "--ref %s: image sizes differ: %d x %d against a %d x %d "
-                         "reference", a->ref_path, sc->width, sc->height, ref->w, ref->h);
+        return error_set(err, NULL, 0,
+                         "--ref %s: image sizes differ: %d x %d against a %d x %d "
+                         "reference",
+                         a->ref_path, sc->width, sc->height, ref->w, ref->h);
     return 0;
 }
 
@@ -177,8 +186,10 @@ static void verbose_envmap(const scene *sc, const render_stats *st)
         fprintf(stderr, "envtex: envmap sampling: none ('envmiss black': the envmap is a "
                         "background only)\n");
     else if (!st->envlight_sampled)
-        fprintf(stderr, "envtex: envmap sampling: none (the '%s' integrator%s does not sample "
-                "the envmap)\n", scene_integrator_name(sc->integrator),
+        fprintf(stderr,
+                "envtex: envmap sampling: none (the '%s' integrator%s does not sample "
+                "the envmap)\n",
+                scene_integrator_name(sc->integrator),
                 sc->integrator == INTEGRATOR_PATHTRACER ? " without next-event estimation" : "");
     else if (st->envlight_mode != ENVSAMPLING_UNIFORM)
         fprintf(stderr, "envtex: envmap sampling: '%s' tables (%s) built in %.3f s%s\n",
@@ -188,35 +199,45 @@ static void verbose_envmap(const scene *sc, const render_stats *st)
     else
         fprintf(stderr, "envtex: envmap sampling: uniform directions, no tables%s\n",
                 st->envlight_fell_back && sc->envsampling != ENVSAMPLING_UNIFORM
-                    ? " (black map: uniform fallback)" : "");
+                    ? " (black map: uniform fallback)"
+                    : "");
     if (st->envlight_points)
-        fprintf(stderr, "envtex: %s: %d point lights\n", st->envlight_mode == ENVSAMPLING_SIS
-                ? "structured importance sampling" : "median cut", st->envlight_points);
+        fprintf(stderr, "envtex: %s: %d point lights\n",
+                st->envlight_mode == ENVSAMPLING_SIS ? "structured importance sampling"
+                                                     : "median cut",
+                st->envlight_points);
     if (st->envlight_built && sc->integrator == INTEGRATOR_PATHTRACER && sc->nee == NEE_MIS)
-        fprintf(stderr, "envtex: MIS: the envmap is sampled at a fraction %.3g of its light "
-                "samples (%s; kappa = E[L^2]/E[L]^2 = %.4g)%s\n", st->env_fraction,
+        fprintf(stderr,
+                "envtex: MIS: the envmap is sampled at a fraction %.3g of its light "
+                "samples (%s; kappa = E[L^2]/E[L]^2 = %.4g)%s\n",
+                st->env_fraction,
                 sc->envsamplefraction < 0 ? "auto: least variance x time, misfraction.h"
                                           : "envsamplefraction",
                 st->envlight_kappa,
                 st->nee == NEE_OFF ? "; no other light, so paths run as BRDF sampling alone" : "");
     if (st->envlight_bad_texels)
-        fprintf(stderr, "envtex: warning: envmap %s: %ld NaN, Inf or negative texel values "
-                "(used as 0)\n", e->path, st->envlight_bad_texels);
+        fprintf(stderr,
+                "envtex: warning: envmap %s: %ld NaN, Inf or negative texel values "
+                "(used as 0)\n",
+                e->path, st->envlight_bad_texels);
 }
 
 /* --verbose: what the render built and what it cost (a scene pays only for what it uses) */
 static void verbose_report(const render_args *a, const scene *sc, const render_stats *st,
                            const budget *mem)
 {
-    fprintf(stderr, "envtex: scene %s: %dx%d, %ld spheres and %ld triangles as read (%ld "
-            "primitives rendered), %d lights, %d materials\n", a->scene_path, sc->width,
-            sc->height, sc->n_spheres, sc->n_triangles, st->prims, sc->n_lights, sc->n_materials);
+    fprintf(stderr,
+            "envtex: scene %s: %dx%d, %ld spheres and %ld triangles as read (%ld "
+            "primitives rendered), %d lights, %d materials\n",
+            a->scene_path, sc->width, sc->height, sc->n_spheres, sc->n_triangles, st->prims,
+            sc->n_lights, sc->n_materials);
     char peak[32], limit[32];
     budget_format(mem ? mem->peak : 0, peak, sizeof peak);
     budget_format(mem ? mem->limit : 0, limit, sizeof limit);
-    fprintf(stderr, "envtex: %d input files, each read once (the scene, its envmap, textures, "
-            "meshes%s); memory charged: %s at most, %s%s\n", sc->inputs.n,
-            a->ref_path ? ", --ref" : "", peak, mem ? "of a budget of " : "no budget",
+    fprintf(stderr,
+            "envtex: %d input files, each read once (the scene, its envmap, textures, "
+            "meshes%s); memory charged: %s at most, %s%s\n",
+            sc->inputs.n, a->ref_path ? ", --ref" : "", peak, mem ? "of a budget of " : "no budget",
             mem ? limit : "");
     if (st->bvh_is_tree)
         fprintf(stderr, "envtex: built BVH: %ld nodes, depth %d, %.3f s\n", st->bvh_nodes,
@@ -224,21 +245,24 @@ static void verbose_report(const render_args *a, const scene *sc, const render_s
     else
         fprintf(stderr, "envtex: no BVH (%ld primitives <= %d: tested linearly)\n", st->prims,
                 BVH_MIN_PRIMS);
-    if (sc->envmap.present) verbose_envmap(sc, st);
-    else fprintf(stderr, "envtex: no envmap\n");
+    if (sc->envmap.present)
+        verbose_envmap(sc, st);
+    else
+        fprintf(stderr, "envtex: no envmap\n");
     if (st->lights) {
         const char *how = sc->lightselection == LIGHTSELECTION_POWER
                               ? " (lightselection power: one a light sample, chosen by power)"
                               : " (lightselection all: lightsamples samples of each)";
         const char *plural = st->lights == 1 ? "" : "s";
-        fprintf(stderr, "envtex: %d light%s to sample%s\n", st->lights, plural,
-                *plural ? how : "");
+        fprintf(stderr, "envtex: %d light%s to sample%s\n", st->lights, plural, *plural ? how : "");
     }
     if (sc->n_textures) {
         int mips = 0;
         for (int i = 0; i < sc->n_textures; i++) mips += sc->textures[i].tex.has_mip;
-        fprintf(stderr, "envtex: %d textures (%d image files), %d mip pyramids (built only for "
-                "trilinear/EWA)\n", sc->n_textures, sc->n_texture_images, mips);
+        fprintf(stderr,
+                "envtex: %d textures (%d image files), %d mip pyramids (built only for "
+                "trilinear/EWA)\n",
+                sc->n_textures, sc->n_texture_images, mips);
     }
     if (st->ray_differentials)
         fprintf(stderr, "envtex: ray differentials traced (a trilinear, EWA or bump map needs "
@@ -246,12 +270,14 @@ static void verbose_report(const render_args *a, const scene *sc, const render_s
     else
         fprintf(stderr, "envtex: no ray differentials traced (%s)\n",
                 sc->n_textures ? "no trilinear, EWA or bump map: nearest and bilinear read one "
-                                 "point" : "no textures");
+                                 "point"
+                               : "no textures");
     if (st->displaced_spheres + st->displaced_triangles)
-        fprintf(stderr, "envtex: displacement: %ld spheres (rate %d) and %ld triangles (rate %d) "
-                "tessellated; the BVH holds %ld triangles\n", st->displaced_spheres,
-                st->displace_sphere_rate, st->displaced_triangles, st->displace_triangle_rate,
-                st->displaced_result);
+        fprintf(stderr,
+                "envtex: displacement: %ld spheres (rate %d) and %ld triangles (rate %d) "
+                "tessellated; the BVH holds %ld triangles\n",
+                st->displaced_spheres, st->displace_sphere_rate, st->displaced_triangles,
+                st->displace_triangle_rate, st->displaced_result);
 }
 
 /* The image and its variance, one output: a failure writing either leaves both targets
@@ -320,9 +346,9 @@ int cmd_render(int argc, char **argv)
         fprintf(stderr, "envtex: warning: %s: %ld pixels of the variance image are NaN or Inf\n",
                 a.var_path, st.nonfinite_variance);
     if (write_outputs(&a, &sc, &st, &img, &var, &err)) goto done;
-    printf("time_s=%.3f spp=%d rays=%lld mrays_per_s=%.3f nonfinite=%ld build_s=%.3f",
-           st.seconds, st.spp, st.rays, st.seconds > 0 ? st.rays / st.seconds / 1e6 : 0.0,
-           st.nonfinite_pixels, st.build_seconds);
+    printf("time_s=%.3f spp=%d rays=%lld mrays_per_s=%.3f nonfinite=%ld build_s=%.3f", st.seconds,
+           st.spp, st.rays, st.seconds > 0 ? st.rays / st.seconds / 1e6 : 0.0, st.nonfinite_pixels,
+           st.build_seconds);
     if (a.ref_path)
         printf(" relmse=%.6g rmse=%.6g relmse_trim=%.6g", cr.relmse, cr.rmse, cr.relmse_trim);
     printf("\n");

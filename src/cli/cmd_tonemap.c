@@ -28,10 +28,14 @@ int cmd_tonemap(int argc, char **argv)
             if (!(v = cli_opt_value(argc, argv, &i))) return 1;
             if (cli_parse_double(v, &tm.gamma) || !(tm.gamma > 0))
                 return cli_usage_error("--gamma needs a number > 0, got '%s'", v);
-        } else if (a[0] == '-' && a[1]) return cli_usage_error("unknown option '%s'", a);
-        else if (!in) in = a;
-        else if (!out) out = a;
-        else return cli_usage_error("unexpected argument '%s'", a);
+        } else if (a[0] == '-' && a[1])
+            return cli_usage_error("unknown option '%s'", a);
+        else if (!in)
+            in = a;
+        else if (!out)
+            out = a;
+        else
+            return cli_usage_error("unexpected argument '%s'", a);
     }
     if (!out) return cli_usage_error("%s", "tonemap needs IN and OUT.png");
     error err = {0};
@@ -41,8 +45,9 @@ int cmd_tonemap(int argc, char **argv)
      * written as an unchanged copy of IN, the options silently ignored */
     const char *dot = strrchr(out, '.');
     if (!dot || strchr(dot, '/') || strcasecmp(dot, ".png")) {
-        error_set(&err, out, 0, "tonemap writes an 8-bit PNG: name the output .png (an HDR "
-                                "output would be IN unchanged, without the tone mapping)");
+        error_set(&err, out, 0,
+                  "tonemap writes an 8-bit PNG: name the output .png (an HDR "
+                  "output would be IN unchanged, without the tone mapping)");
         goto done;
     }
     if (cli_check_output(out, &err) || cli_check_not_replacing(out, &in, 1, &err)) goto done;

@@ -34,10 +34,14 @@ int budget_charge(budget *b, double bytes, const char *file, int line, error *er
     budget_format(b->limit, limit, sizeof limit);
     budget_format(b->used, used, sizeof used);
     if (b->used > 0)
-        return error_set(err, file, line, "%s = %s, beyond the memory budget of %s (%s of it in "
-                         "use; envtex --memory-budget SIZE sets it)", claim, size, limit, used);
-    return error_set(err, file, line, "%s = %s, beyond the memory budget of %s (envtex "
-                     "--memory-budget SIZE sets it)", claim, size, limit);
+        return error_set(err, file, line,
+                         "%s = %s, beyond the memory budget of %s (%s of it in "
+                         "use; envtex --memory-budget SIZE sets it)",
+                         claim, size, limit, used);
+    return error_set(err, file, line,
+                     "%s = %s, beyond the memory budget of %s (envtex "
+                     "--memory-budget SIZE sets it)",
+                     claim, size, limit);
 }
 
 void budget_release(budget *b, double bytes)

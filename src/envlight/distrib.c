@@ -402,8 +402,8 @@ double distrib2d_pmf(const distrib2d *d, int outer, int inner)
     return distrib2d_pmf_outer(d, outer) * distrib2d_pmf_inner(d, outer, inner);
 }
 
-void distrib2d_sample(const distrib2d *d, double xi_outer, double xi_inner, int *outer,
-                      int *inner, double *pmf, double *rem_outer, double *rem_inner)
+void distrib2d_sample(const distrib2d *d, double xi_outer, double xi_inner, int *outer, int *inner,
+                      double *pmf, double *rem_outer, double *rem_inner)
 {
     assert(outer && inner);
     double p_outer;
@@ -424,8 +424,8 @@ void distrib2d_sample_alias(const distrib2d *d, double xi_outer, double xi_inner
     assert(outer && inner);
     assert(d->cond_alias && "call distrib2d_alias_build first");
     int o = alias_pick(d->marginal.alias, d->n_outer, xi_outer, rem_outer);
-    int i = alias_pick(d->cond_alias + (size_t)o * (size_t)d->n_inner, d->n_inner, xi_inner,
-                       rem_inner);
+    int i =
+        alias_pick(d->cond_alias + (size_t)o * (size_t)d->n_inner, d->n_inner, xi_inner, rem_inner);
     if (pmf) *pmf = distrib2d_pmf(d, o, i); /* p(outer) p(inner | outer) */
     *outer = o;
     *inner = i;

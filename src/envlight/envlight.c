@@ -176,8 +176,8 @@ static int build_sampling(envlight *el, envsampling_mode mode, envsampler_kind s
         energy = malloc((size_t)w * (size_t)h * sizeof *energy);
         if (!energy) {
             envlight_free(el);
-            return error_set(err, NULL, 0,
-                             "out of memory for the sampling table of a %d x %d map", w, h);
+            return error_set(err, NULL, 0, "out of memory for the sampling table of a %d x %d map",
+                             w, h);
         }
     }
     measure_texels(el, mode, energy);
@@ -385,7 +385,7 @@ static int point_in_texel_sintheta(const envlight *el, int c, int r, double pmf,
 static int point_in_texel(const envlight *el, int c, int r, double rc, double rr,
                           envlight_sample_result *out)
 {
-    double phi = 2 * M_PI * (c + rc) / el->w;                                 /* v = phi */
+    double phi = 2 * M_PI * (c + rc) / el->w;                                  /* v = phi */
     double u = el->cos_edge[r] + rr * (el->cos_edge[r + 1] - el->cos_edge[r]); /* u = cos theta */
     double sin_t = sqrt(fmax(0.0, 1 - u * u));
     out->wi = frame_to_world(el, vec3_make(sin_t * cos(phi), sin_t * sin(phi), u));

@@ -150,8 +150,8 @@ static mediancut_point point_light(const mediancut_map *m, const region *g)
     return pt;
 }
 
-int mediancut_build(const mediancut_map *m, int n_lights, mediancut_point **points,
-                    int *n_points, distrib1d *choice, error *err)
+int mediancut_build(const mediancut_map *m, int n_lights, mediancut_point **points, int *n_points,
+                    distrib1d *choice, error *err)
 {
     int w = m->img->w, h = m->img->h, H = h + 1, status = -1, n = 0;
     *points = NULL;
@@ -168,8 +168,8 @@ int mediancut_build(const mediancut_map *m, int n_lights, mediancut_point **poin
     /* summed-area table: S[c][r] = energy of columns [0,c) x rows [0,r) */
     for (int c = 0; c < w; c++)
         for (int r = 0; r < h; r++)
-            S[(c + 1) * H + r + 1] = m->energy[(size_t)c * h + r] + S[c * H + r + 1] +
-                                     S[(c + 1) * H + r] - S[c * H + r];
+            S[(c + 1) * H + r + 1] =
+                m->energy[(size_t)c * h + r] + S[c * H + r + 1] + S[(c + 1) * H + r] - S[c * H + r];
     n = cut_strata(w, h, S, n_lights, heap, done);
     mediancut_point *pts = calloc((size_t)n, sizeof *pts);
     if (!pts) {

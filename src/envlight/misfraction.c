@@ -76,8 +76,8 @@ double misfraction_choose(const envlight *el, double light_cost, double *rel_var
     double cost[NC] = {0};
     int counted = 0;
     for (int n = 0; n < MODEL_NORMALS; n++) {
-        vec3 nrm = sampling_uniform_sphere((n + 0.5) / MODEL_NORMALS,
-                                           fmod(n * 0.6180339887498949, 1.0));
+        vec3 nrm =
+            sampling_uniform_sphere((n + 0.5) / MODEL_NORMALS, fmod(n * 0.6180339887498949, 1.0));
         counted += add_surface(el, nrm, gw * gh, energy, omega, dir, cost);
     }
     if (!counted) return 1;

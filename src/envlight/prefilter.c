@@ -14,9 +14,9 @@
 #include "envtex/envmaps/mirrorball.h"
 
 /* The basis's constants (prefilter.h), to the last digit of a double. */
-#define SH_K0 0.28209479177387814  /* 1 / (2 sqrt pi) */
-#define SH_K1 0.4886025119029199   /* sqrt(3 / (4 pi)) */
-#define SH_K2 1.0925484305920792   /* sqrt(15 / (4 pi)) */
+#define SH_K0  0.28209479177387814 /* 1 / (2 sqrt pi) */
+#define SH_K1  0.4886025119029199  /* sqrt(3 / (4 pi)) */
+#define SH_K2  1.0925484305920792  /* sqrt(15 / (4 pi)) */
 #define SH_K20 0.31539156525252005 /* sqrt(5 / (16 pi)) */
 #define SH_K22 0.5462742152960396  /* sqrt(15 / (16 pi)) */
 
@@ -169,15 +169,15 @@ void prefilter_sh9_basis(vec3 d, double y[PREFILTER_SH9])
      * Y22 = sqrt(15 / 16 pi) (x^2 - y^2), in that order (the SH_K constants above) */
     /* STUB: (void)d; for (int k = 0; k < PREFILTER_SH9; k++) y[k] = 0; */
     double x = d.x, yy = d.y, z = d.z;
-    y[0] = SH_K0;                       /* Y00 */
-    y[1] = SH_K1 * yy;                  /* Y1-1 */
-    y[2] = SH_K1 * z;                   /* Y10 */
-    y[3] = SH_K1 * x;                   /* Y11 */
-    y[4] = SH_K2 * x * yy;              /* Y2-2 */
-    y[5] = SH_K2 * yy * z;              /* Y2-1 */
-    y[6] = SH_K20 * (3.0 * z * z - 1);  /* Y20 */
-    y[7] = SH_K2 * x * z;               /* Y21 */
-    y[8] = SH_K22 * (x * x - yy * yy);  /* Y22 */
+    y[0] = SH_K0;                      /* Y00 */
+    y[1] = SH_K1 * yy;                 /* Y1-1 */
+    y[2] = SH_K1 * z;                  /* Y10 */
+    y[3] = SH_K1 * x;                  /* Y11 */
+    y[4] = SH_K2 * x * yy;             /* Y2-2 */
+    y[5] = SH_K2 * yy * z;             /* Y2-1 */
+    y[6] = SH_K20 * (3.0 * z * z - 1); /* Y20 */
+    y[7] = SH_K2 * x * z;              /* Y21 */
+    y[8] = SH_K22 * (x * x - yy * yy); /* Y22 */
     /* END STEP(sh9) */
 }
 
@@ -295,8 +295,10 @@ rgb prefilter_sh9_quadratic_eval(const prefilter_sh9_quadratic *q, vec3 n)
 int prefilter_check_width(long width, error *err)
 {
     if (width < 2 || width > PREFILTER_MAX_WIDTH || width % 2)
-        return error_set(err, NULL, 0, "the map's width must be an even number from 2 to %d, "
-                         "got %ld", PREFILTER_MAX_WIDTH, width);
+        return error_set(err, NULL, 0,
+                         "the map's width must be an even number from 2 to %d, "
+                         "got %ld",
+                         PREFILTER_MAX_WIDTH, width);
     return 0;
 }
 
@@ -411,8 +413,10 @@ static int arc_columns(double x, double half, int w, int *start)
 static int arc_half_width(double a, double b, double c, int w, double *half)
 {
     if (!(a + b > c)) return 0;
-    if (a - b > c || !(b > 0)) *half = w;
-    else *half = acos((c - a) / b) * w / (2.0 * M_PI); /* cos(dphi) = (c - a) / b in [-1, 1) */
+    if (a - b > c || !(b > 0))
+        *half = w;
+    else
+        *half = acos((c - a) / b) * w / (2.0 * M_PI); /* cos(dphi) = (c - a) / b in [-1, 1) */
     return 1;
 }
 
@@ -493,8 +497,10 @@ int prefilter_irradiance_arcs(const convert_env *env, int width, image *out, err
 {
     memset(out, 0, sizeof *out);
     if (!is_rows_kind(env->kind))
-        return error_set(err, NULL, 0, "the arc sums need a map of rows (lat-long, equal-area or "
-                         "cylindrical), not %s", convert_kind_name(env->kind));
+        return error_set(err, NULL, 0,
+                         "the arc sums need a map of rows (lat-long, equal-area or "
+                         "cylindrical), not %s",
+                         convert_kind_name(env->kind));
     if (alloc_map(width, out, err)) return -1;
     rows rw;
     if (rows_build(env, &rw, err)) {
@@ -528,7 +534,8 @@ static int refuse_work(const convert_env *env, const char *what, int width, doub
                        double limit, error *err)
 {
     const image *im = convert_face_image(env, 0);
-    return error_set(err, NULL, 0, "%s %d x %d map from this %s map (%d x %d%s) would evaluate its "
+    return error_set(err, NULL, 0,
+                     "%s %d x %d map from this %s map (%d x %d%s) would evaluate its "
                      "kernel %.3g times, over the limit of %.3g: use a smaller --width, or a "
                      "smaller input (envtex convert IN small.exr --to latlong --width W)",
                      what, width, width / 2, convert_kind_name(env->kind), im->w, im->h,
@@ -561,11 +568,11 @@ static double phong_cut(double s)
 typedef struct phong_job {
     const rows *rw;
     double s, cut;
-    long si;           /* whole_exponent(s) */
+    long si; /* whole_exponent(s) */
     int wo, ho, p, q, g;
-    const double *tr;  /* out_trig */
-    double *kern;      /* W_in: the kernel over one arc */
-    double *acc;       /* 3 per output texel */
+    const double *tr; /* out_trig */
+    double *kern;     /* W_in: the kernel over one arc */
+    double *acc;      /* 3 per output texel */
 } phong_job;
 
 static int gcd(int a, int b) { return b ? gcd(b, a % b) : a; }

@@ -16,9 +16,9 @@ int angular_dir_to_uv(vec3 d, uv2 *uv)
         *uv = r.x > 0 ? (uv2){0.5, 0.5} : (uv2){0.5, 0.0};
         return 0;
     }
-    double theta = atan2(s, r.x);             /* angle from +x, exact near 0 and pi */
-    double k = theta / M_PI / s;              /* rho / sin theta, rho = theta / pi */
-    double a = r.y * k, b = r.z * k;          /* (a, b) = (y, z) / |(y, z)| * rho */
+    double theta = atan2(s, r.x);                  /* angle from +x, exact near 0 and pi */
+    double k = theta / M_PI / s;                   /* rho / sin theta, rho = theta / pi */
+    double a = r.y * k, b = r.z * k;               /* (a, b) = (y, z) / |(y, z)| * rho */
     uv->u = fmin(fmax(0.5 * (a + 1.0), 0.0), 1.0); /* a = 2u - 1, clamped against rounding */
     uv->v = fmin(fmax(0.5 * (1.0 - b), 0.0), 1.0); /* b = 1 - 2v */
     return 0;
@@ -33,7 +33,7 @@ int angular_uv_to_dir(uv2 uv, vec3 *d)
         *d = vec3_make(1.0, 0.0, 0.0);
         return 0;
     }
-    double theta = M_PI * fmin(rho, 1.0);             /* theta = pi rho */
+    double theta = M_PI * fmin(rho, 1.0); /* theta = pi rho */
     double k = sin(theta) / rho;
     *d = vec3_make(cos(theta), a * k, b * k); /* (cos theta, sin theta a/rho, sin theta b/rho) */
     return 0;

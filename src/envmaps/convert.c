@@ -33,12 +33,12 @@
  * 7 x 7).  Measured, the whole disc sums to 4 pi within (relative) 5.5e-6 at 8 x 8, 3.6e-6 at
  * 9 x 9, 1.1e-6 at 33 x 33, 3.3e-8 at 128 x 128, 1.5e-7 at 130 x 130: within 6e-6 from 7 x 7 up
  * and 1.5e-7 from 128 x 128 up, not monotone in the size. */
-#define ANGULAR_OMEGA_SPAN 256
+#define ANGULAR_OMEGA_SPAN      256
 #define ANGULAR_OMEGA_MIN_STEPS 4
 #define ANGULAR_OMEGA_MAX_STEPS 16
 
-static const char *const kind_names[CONVERT_KINDS] = {
-    "latlong", "cube", "mirrorball", "angular", "cylindrical", "equalarea"};
+static const char *const kind_names[CONVERT_KINDS] = {"latlong", "cube",        "mirrorball",
+                                                      "angular", "cylindrical", "equalarea"};
 
 /* ---- kinds -------------------------------------------------------------------------------- */
 
@@ -79,11 +79,13 @@ int convert_kind_detect(int w, int h, convert_kind *kind, error *err)
         return error_set(err, NULL, 0,
                          "a square image (%d x %d) could be a mirror ball or an angular map: "
                          "name it (mirrorball, angular, cube, cross, latlong, cylindrical, "
-                         "equalarea)", w, h);
+                         "equalarea)",
+                         w, h);
     return error_set(err, NULL, 0,
                      "cannot tell the representation of a %d x %d image (2:1 is lat-long, 4:3 "
                      "or 3:4 a cube cross): name it (latlong, cross, mirrorball, angular, "
-                     "cylindrical, equalarea)", w, h);
+                     "cylindrical, equalarea)",
+                     w, h);
 }
 
 double convert_cylindrical_height(int w, int h)
@@ -434,8 +436,8 @@ static void stratum(stratum_job *job, double u0, double u1, double v0, double v1
 static long equivalent_width(convert_kind kind, long width)
 {
     switch (kind) {
-    case CONVERT_CUBE: return 4 * width;       /* four faces around the horizon */
-    case CONVERT_MIRRORBALL: return 2 * width; /* the 90-degree circle is pi W / sqrt 2 ~ 2.2 W */
+    case CONVERT_CUBE: return 4 * width;        /* four faces around the horizon */
+    case CONVERT_MIRRORBALL: return 2 * width;  /* the 90-degree circle is pi W / sqrt 2 ~ 2.2 W */
     case CONVERT_ANGULAR: return 3 * width / 2; /* the 90-degree circle is pi W / 2 ~ 1.6 W */
     default: return width;
     }
@@ -619,8 +621,10 @@ int convert_read(const char *path, const char *from, convert_map *out, budget *m
     memset(out, 0, sizeof *out);
     convert_kind kind = CONVERT_LATLONG;
     if (from && convert_kind_parse(from, &kind))
-        return error_set(err, path, 0, "unknown representation '%s' (latlong, cube, cross, "
-                                       "mirrorball, angular, cylindrical, equalarea)", from);
+        return error_set(err, path, 0,
+                         "unknown representation '%s' (latlong, cube, cross, "
+                         "mirrorball, angular, cylindrical, equalarea)",
+                         from);
     int rc = -1;
     image img = {0};
     out->kind = kind;

@@ -9,12 +9,36 @@
 static void face_axes(int f, vec3 d, double *sc, double *tc, double *ma)
 {
     switch (f) {
-    case CUBEMAP_POS_X: *sc = -d.z; *tc = -d.y; *ma = d.x; break;
-    case CUBEMAP_NEG_X: *sc = d.z;  *tc = -d.y; *ma = d.x; break;
-    case CUBEMAP_POS_Y: *sc = d.x;  *tc = d.z;  *ma = d.y; break;
-    case CUBEMAP_NEG_Y: *sc = d.x;  *tc = -d.z; *ma = d.y; break;
-    case CUBEMAP_POS_Z: *sc = d.x;  *tc = -d.y; *ma = d.z; break;
-    default:            *sc = -d.x; *tc = -d.y; *ma = d.z; break; /* CUBEMAP_NEG_Z */
+    case CUBEMAP_POS_X:
+        *sc = -d.z;
+        *tc = -d.y;
+        *ma = d.x;
+        break;
+    case CUBEMAP_NEG_X:
+        *sc = d.z;
+        *tc = -d.y;
+        *ma = d.x;
+        break;
+    case CUBEMAP_POS_Y:
+        *sc = d.x;
+        *tc = d.z;
+        *ma = d.y;
+        break;
+    case CUBEMAP_NEG_Y:
+        *sc = d.x;
+        *tc = -d.z;
+        *ma = d.y;
+        break;
+    case CUBEMAP_POS_Z:
+        *sc = d.x;
+        *tc = -d.y;
+        *ma = d.z;
+        break;
+    default:
+        *sc = -d.x;
+        *tc = -d.y;
+        *ma = d.z;
+        break; /* CUBEMAP_NEG_Z */
     }
 }
 
@@ -68,7 +92,7 @@ static vec3 face_point(int f, uv2 st)
     case CUBEMAP_POS_Y: return vec3_make(sc, 1.0, tc);
     case CUBEMAP_NEG_Y: return vec3_make(sc, -1.0, -tc);
     case CUBEMAP_POS_Z: return vec3_make(sc, -tc, 1.0);
-    default:            return vec3_make(-sc, -tc, -1.0); /* CUBEMAP_NEG_Z */
+    default: return vec3_make(-sc, -tc, -1.0); /* CUBEMAP_NEG_Z */
     }
     /* END STEP(cubemap) */
 }
@@ -162,15 +186,13 @@ typedef struct cross_cell {
 } cross_cell;
 
 static const cross_cell horizontal_cells[CUBEMAP_FACES] = {
-    [CUBEMAP_POS_X] = {2, 1, 0}, [CUBEMAP_NEG_X] = {0, 1, 0},
-    [CUBEMAP_POS_Y] = {1, 0, 0}, [CUBEMAP_NEG_Y] = {1, 2, 0},
-    [CUBEMAP_POS_Z] = {1, 1, 0}, [CUBEMAP_NEG_Z] = {3, 1, 0},
+    [CUBEMAP_POS_X] = {2, 1, 0}, [CUBEMAP_NEG_X] = {0, 1, 0}, [CUBEMAP_POS_Y] = {1, 0, 0},
+    [CUBEMAP_NEG_Y] = {1, 2, 0}, [CUBEMAP_POS_Z] = {1, 1, 0}, [CUBEMAP_NEG_Z] = {3, 1, 0},
 };
 
 static const cross_cell vertical_cells[CUBEMAP_FACES] = {
-    [CUBEMAP_POS_X] = {2, 1, 0}, [CUBEMAP_NEG_X] = {0, 1, 0},
-    [CUBEMAP_POS_Y] = {1, 0, 0}, [CUBEMAP_NEG_Y] = {1, 2, 0},
-    [CUBEMAP_POS_Z] = {1, 1, 0}, [CUBEMAP_NEG_Z] = {1, 3, 1},
+    [CUBEMAP_POS_X] = {2, 1, 0}, [CUBEMAP_NEG_X] = {0, 1, 0}, [CUBEMAP_POS_Y] = {1, 0, 0},
+    [CUBEMAP_NEG_Y] = {1, 2, 0}, [CUBEMAP_POS_Z] = {1, 1, 0}, [CUBEMAP_NEG_Z] = {1, 3, 1},
 };
 
 /* Cross pixel holding texel (i, j) of a face in `cell`. */
@@ -205,8 +227,8 @@ static int split_cross(const image *cross, const cross_cell *cells, int cols, in
     return 0;
 }
 
-static int join_cross(const cubemap *cm, const cross_cell *cells, int cols, int rows,
-                      image *out, error *err)
+static int join_cross(const cubemap *cm, const cross_cell *cells, int cols, int rows, image *out,
+                      error *err)
 {
     int n = cm->size;
     assert(n > 0);

@@ -18,15 +18,15 @@ int cylindrical_dir_to_uv(vec3 d, double max_height, uv2 *uv)
     double u = phi / (2.0 * M_PI) + 0.0;      /* + 0.0 turns -0 into +0 */
     if (u >= 1.0) u = 0.0;                    /* -tiny + 2 pi rounds to 2 pi */
     uv->u = u;
-    uv->v = 0.5 - zc / (2.0 * max_height);    /* v = 1/2 - z_cyl / (2 h), in [0, 1] */
+    uv->v = 0.5 - zc / (2.0 * max_height); /* v = 1/2 - z_cyl / (2 h), in [0, 1] */
     return 0;
 }
 
 int cylindrical_uv_to_dir(uv2 uv, double max_height, vec3 *d)
 {
     if (!valid_height(max_height) || !isfinite(uv.u) || !(uv.v >= 0 && uv.v <= 1)) return -1;
-    double phi = 2.0 * M_PI * uv.u;                  /* phi = 2 pi u */
-    double zc = (0.5 - uv.v) * 2.0 * max_height;     /* z_cyl = (1/2 - v) 2 h */
+    double phi = 2.0 * M_PI * uv.u;                         /* phi = 2 pi u */
+    double zc = (0.5 - uv.v) * 2.0 * max_height;            /* z_cyl = (1/2 - v) 2 h */
     *d = vec3_normalize(vec3_make(cos(phi), sin(phi), zc)); /* length >= 1: no zero division */
     return 0;
 }

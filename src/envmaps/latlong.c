@@ -10,11 +10,11 @@ int latlong_dir_to_uv(vec3 d, uv2 *uv)
      * phi = -tiny + 2 pi rounds to 2 pi), v = theta / pi (slide 12) */
     /* STUB: uv->u = 0; uv->v = 0; return -1; */
     double rxy = sqrt(d.x * d.x + d.y * d.y);
-    double theta = atan2(rxy, d.z);                    /* theta = acos(z / |d|), stable form */
-    double phi = rxy > 0 ? atan2(d.y, d.x) : 0.0;      /* phi = atan2(y, x), 0 at the poles */
-    if (phi < 0) phi += 2 * M_PI;                      /* wrap to [0, 2 pi) */
+    double theta = atan2(rxy, d.z);               /* theta = acos(z / |d|), stable form */
+    double phi = rxy > 0 ? atan2(d.y, d.x) : 0.0; /* phi = atan2(y, x), 0 at the poles */
+    if (phi < 0) phi += 2 * M_PI;                 /* wrap to [0, 2 pi) */
     double u = phi / (2 * M_PI);
-    if (u >= 1.0) u = 0.0;                             /* -tiny + 2 pi rounds to 2 pi */
+    if (u >= 1.0) u = 0.0; /* -tiny + 2 pi rounds to 2 pi */
     uv->u = u;
     uv->v = theta / M_PI;
     return 0;

@@ -33,7 +33,7 @@ int mirrorball_uv_to_dir(uv2 uv, vec3 *d)
     double rho2 = a * a + b * b;
     if (!(rho2 <= 1.0 + MIRRORBALL_RIM_SLACK)) return -1; /* outside the ball (or NaN) */
     rho2 = fmin(rho2, 1.0);
-    double nx = sqrt(1.0 - rho2);              /* n = (sqrt(1 - a^2 - b^2), a, b) */
+    double nx = sqrt(1.0 - rho2); /* n = (sqrt(1 - a^2 - b^2), a, b) */
     /* r = 2 (n.V) n - V = 2 n_x n - (1, 0, 0) */
     *d = vec3_make(1.0 - 2.0 * rho2, 2.0 * nx * a, 2.0 * nx * b); /* 2 n_x^2 - 1 = 1 - 2 rho^2 */
     return 0;

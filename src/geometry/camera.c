@@ -14,8 +14,8 @@ camera_frame_status camera_frame(vec3 eye, vec3 center, vec3 up, vec3 *u, vec3 *
     if (!(vec3_length(r) > CAMERA_PARALLEL_EPS) || vec3_unit_direction(r, &right))
         return CAMERA_FRAME_UP_PARALLEL;
     *w = wn;
-    *u = right;                   /* u = up x w / |...| */
-    *v = vec3_cross(wn, right);   /* v = w x u */
+    *u = right;                 /* u = up x w / |...| */
+    *v = vec3_cross(wn, right); /* v = w x u */
     return CAMERA_FRAME_OK;
 }
 
@@ -27,7 +27,7 @@ void camera_init(camera *c, vec3 eye, vec3 center, vec3 up, double fovy_degrees,
     camera_frame_status st = camera_frame(eye, center, up, &c->u, &c->v, &c->w);
     assert(st == CAMERA_FRAME_OK); /* eye != center and up not parallel to the view */
     (void)st;
-    c->tan_half_y = tan(fovy_degrees * M_PI / 360.0);    /* tan(fovy / 2)             */
+    c->tan_half_y = tan(fovy_degrees * M_PI / 360.0); /* tan(fovy / 2)             */
     c->tan_half_x = c->tan_half_y * (double)width / (double)height;
     c->width = width;
     c->height = height;
@@ -48,7 +48,7 @@ ray camera_ray_differential(const camera *c, double x, double y, double scale, r
     double beta = c->tan_half_y * (c->height * 0.5 - y) / (c->height * 0.5);
     vec3 v = vec3_sub(vec3_add(vec3_scale(c->u, alpha), vec3_scale(c->v, beta)), c->w);
     double len = vec3_length(v); /* >= 1: the w component alone has length 1 */
-    vec3 d = vec3_normalize(v); /* exactly camera_ray's direction */
+    vec3 d = vec3_normalize(v);  /* exactly camera_ray's direction */
     vec3 dvx = vec3_scale(c->u, scale * c->tan_half_x / (c->width * 0.5));   /* dv/dx */
     vec3 dvy = vec3_scale(c->v, -scale * c->tan_half_y / (c->height * 0.5)); /* dv/dy */
     rd->has = 1;

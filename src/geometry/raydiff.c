@@ -10,8 +10,8 @@ static int offset_hit(vec3 o, vec3 d, vec3 dO, vec3 dD, vec3 p, vec3 n, vec3 *dp
     vec3 oo = vec3_add(o, dO), dd = vec3_add(d, dD);
     double den = vec3_dot(n, dd);
     if (!(fabs(den) > RAYDIFF_MIN_COS * vec3_length(n) * vec3_length(dd))) return 0;
-    double t = vec3_dot(n, vec3_sub(p, oo)) / den;    /* t_x = n.(p - o') / n.d' */
-    *dp = vec3_sub(vec3_madd(oo, dd, t), p);          /* dp/dx = o' + t_x d' - p */
+    double t = vec3_dot(n, vec3_sub(p, oo)) / den; /* t_x = n.(p - o') / n.d' */
+    *dp = vec3_sub(vec3_madd(oo, dd, t), p);       /* dp/dx = o' + t_x d' - p */
     return vec3_is_finite(*dp);
 }
 
@@ -63,8 +63,8 @@ static vec3 refract_dir(vec3 dd_in, vec3 wo, vec3 n, vec3 dn, double eta, double
     return vec3_madd(vec3_madd(vec3_scale(dwo, -eta), dn, mu), n, dmu);
 }
 
-int raydiff_refract(const ray_diff *in, vec3 dpdx, vec3 dpdy, vec3 wo, vec3 n, vec3 dndx,
-                    vec3 dndy, double eta, vec3 wi, ray_diff *out)
+int raydiff_refract(const ray_diff *in, vec3 dpdx, vec3 dpdy, vec3 wo, vec3 n, vec3 dndx, vec3 dndy,
+                    double eta, vec3 wi, ray_diff *out)
 {
     out->has = 0;
     out->dox = out->doy = out->ddx = out->ddy = zero3;

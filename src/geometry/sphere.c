@@ -28,9 +28,19 @@ int sphere_intersect(const sphere *s, const ray *r, double *t_out)
     /* stable roots: q = -(b + sign(b) sqrt(a disc)); t0 = q / a, t1 = c / q */
     double q = -(b + copysign(sqrt(a * disc), b));
     double t0 = q / a, t1 = q != 0 ? c / q : t0;
-    if (t0 > t1) { double tmp = t0; t0 = t1; t1 = tmp; }
-    if (t0 > r->tmin && t0 < r->tmax) { *t_out = t0; return 1; }
-    if (t1 > r->tmin && t1 < r->tmax) { *t_out = t1; return 1; }
+    if (t0 > t1) {
+        double tmp = t0;
+        t0 = t1;
+        t1 = tmp;
+    }
+    if (t0 > r->tmin && t0 < r->tmax) {
+        *t_out = t0;
+        return 1;
+    }
+    if (t1 > r->tmin && t1 < r->tmax) {
+        *t_out = t1;
+        return 1;
+    }
     return 0;
 }
 

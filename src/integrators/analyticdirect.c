@@ -18,7 +18,7 @@ static vec3 polygon_irradiance_vector(const vec3 *v, int n, vec3 p)
         a = vec3_scale(a, 1 / la);
         b = vec3_scale(b, 1 / lb);
         double theta = acos(fmax(-1.0, fmin(1.0, vec3_dot(a, b)))); /* theta_i */
-        vec3 gamma = vec3_cross(a, b);                             /* Gamma_i, normalized below */
+        vec3 gamma = vec3_cross(a, b);                              /* Gamma_i, normalized below */
         double gl = vec3_length(gamma);
         /* Phi = 1/2 sum theta_i Gamma_i */
         if (gl > 0) phi = vec3_madd(phi, gamma, 0.5 * theta / gl);

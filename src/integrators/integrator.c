@@ -47,8 +47,7 @@ static int build_sampled_envlight(envlight *el, const envmap *env, const scene *
 {
     if (sc->envsampling == ENVSAMPLING_SIS)
         return sis_envlight_build(el, env, sc->envsampler, sc->mediancut_lights, mem, err);
-    return envlight_build(el, env, sc->envsampling, sc->envsampler, sc->mediancut_lights, mem,
-                          err);
+    return envlight_build(el, env, sc->envsampling, sc->envsampler, sc->mediancut_lights, mem, err);
 }
 
 int integrator_init(integrator *it, const scene *sc, const bvh *accel, budget *mem, error *err)
@@ -201,8 +200,7 @@ int integrator_stratum(int j, int m, double *xi1, double *xi2)
 }
 
 int integrator_light_sample(integrator *it, const surface *s, vec3 wo, int k, double xi1,
-                            double xi2, double xi3, int stratified, light_sample *l,
-                            rgb *f_li_cos)
+                            double xi2, double xi3, int stratified, light_sample *l, rgb *f_li_cos)
 {
     if (!lights_sample(&it->ls, k, s->p, s->ng, xi1, xi2, xi3, stratified, l)) return 0;
     double cos_i = vec3_dot(s->n, l->wi);
@@ -210,6 +208,6 @@ int integrator_light_sample(integrator *it, const surface *s, vec3 wo, int k, do
     rgb f = brdf_eval(s, wo, l->wi);
     if (rgb_is_black(f)) return 0;
     if (integrator_occluded(it, &l->shadow)) return 0; /* V = 0 */
-    *f_li_cos = rgb_scale(rgb_mul(f, l->Li), cos_i);  /* f Li cos(theta) */
+    *f_li_cos = rgb_scale(rgb_mul(f, l->Li), cos_i);   /* f Li cos(theta) */
     return 1;
 }

@@ -29,8 +29,8 @@ static double light_log2_power(const lights *ls, int k)
             vec3_length(vec3_cross(vec3_scale(l->ab, 1 / la), vec3_scale(l->ac, 1 / lc)));
         return log2(M_PI) + log2(la) + log2(lc) + log2(sin_a) + c;
     }
-    case LIGHT_POINT: return log2(4 * M_PI) + c;     /* 4 pi I */
-    default: return log2(M_PI) + r2 + c;             /* pi R^2 E */
+    case LIGHT_POINT: return log2(4 * M_PI) + c; /* 4 pi I */
+    default: return log2(M_PI) + r2 + c;         /* pi R^2 E */
     }
 }
 

@@ -12,19 +12,16 @@ rgb pathtracer_radiance(integrator *it, ray r, rng *g)
 
 /* What the path remembers of its last bounce, to weigh the light it finds. */
 typedef struct path_state {
-    nee_mode nee;        /* as run: off without lights */
-    int n_light;         /* lightsamples */
-    int specular_chain;  /* only camera and perfect-specular bounces so far */
-    int last_delta;      /* the ray came from the camera or a perfect-specular bounce */
-    double brdf_pdf;     /* pdf of the last BRDF sample (non-delta), for MIS */
+    nee_mode nee;       /* as run: off without lights */
+    int n_light;        /* lightsamples */
+    int specular_chain; /* only camera and perfect-specular bounces so far */
+    int last_delta;     /* the ray came from the camera or a perfect-specular bounce */
+    double brdf_pdf;    /* pdf of the last BRDF sample (non-delta), for MIS */
 } path_state;
 
 /* Light found by following the path is counted unless next-event estimation has already
  * counted it (nee on) or weighs against it (mis).  NEE never samples from a delta bounce. */
-static int path_counts_light(const path_state *ps)
-{
-    return ps->last_delta || ps->nee == NEE_OFF;
-}
+static int path_counts_light(const path_state *ps) { return ps->last_delta || ps->nee == NEE_OFF; }
 
 /* The environment along direction d, which left the scene after `bounce` bounces: the
  * bilinear reflection map down a specular chain, else the piecewise-constant light, weighted
@@ -98,8 +95,8 @@ rgb pathtracer_radiance_diff(integrator *it, ray r, const ray_diff *rd0, rng *g)
             return rgb_fma(L, beta, quad_light_radiance(it, &ps, &sh, r));
         const surface *s = &sh.s;
         vec3 wo = vec3_neg(vec3_normalize(r.d));
-        L = rgb_fma(L, beta, s->emission); /* emissive geometry is not a sampled light */
-        if (bounce >= it->maxdepth) break; /* a path may have at most maxdepth bounces */
+        L = rgb_fma(L, beta, s->emission);            /* emissive geometry is not a sampled light */
+        if (bounce >= it->maxdepth) break;            /* a path may have at most maxdepth bounces */
         if (!brdf_is_delta(s) && ps.nee != NEE_OFF) { /* next-event estimation: direct light */
             rgb Ld = ps.nee == NEE_MIS ? direct_lighting_mis(it, s, wo, g)
                                        : direct_lighting(it, s, wo, g);

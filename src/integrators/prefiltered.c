@@ -25,19 +25,23 @@ static int check_scene(const scene *sc, const envmap *env, error *err)
     for (int i = 0; i < sc->n_materials; i++) {
         const material *m = &sc->materials[i];
         if (m->brdf == BRDF_GGX)
-            return error_set(err, sc->path, 0, "the 'prefiltered' integrator has maps for "
+            return error_set(err, sc->path, 0,
+                             "the 'prefiltered' integrator has maps for "
                              "diffuse and Phong lobes only: a 'brdf ggx' material has neither (use "
                              "'brdf phong', or another integrator)");
         if (has_lobe(m) && m->shininess > PREFILTER_MAX_SHININESS)
-            return error_set(err, sc->path, 0, "the 'prefiltered' integrator makes Phong maps of "
+            return error_set(err, sc->path, 0,
+                             "the 'prefiltered' integrator makes Phong maps of "
                              "shininess up to %g, not %g (use 'brdf mirror' for a perfect mirror)",
                              PREFILTER_MAX_SHININESS, m->shininess);
     }
     if (env->present && !envlight_transform_is_conformal(&env->to_env))
-        return error_set(err, sc->path, sc->envmap.line, "envmap %s: its transform is not a "
+        return error_set(err, sc->path, sc->envmap.line,
+                         "envmap %s: its transform is not a "
                          "rotation (nor a rotation times a uniform scale), so the 'prefiltered' "
                          "integrator's maps, made in the envmap's frame, cannot follow it (put "
-                         "only 'rotate' before 'envmap')", sc->envmap.path);
+                         "only 'rotate' before 'envmap')",
+                         sc->envmap.path);
     return 0;
 }
 
@@ -70,9 +74,11 @@ static int build_phong(prefiltered *pf, const scene *sc, const convert_env *view
 {
     int n = sc->n_materials;
     if (pf->lit && count_exponents(sc, PREFILTERED_MAX_PHONG_MAPS) > PREFILTERED_MAX_PHONG_MAPS)
-        return error_set(err, sc->path, 0, "the 'prefiltered' integrator makes one Phong map per "
+        return error_set(err, sc->path, 0,
+                         "the 'prefiltered' integrator makes one Phong map per "
                          "distinct shininess, at most %d: this scene has more (round the "
-                         "exponents to fewer values)", PREFILTERED_MAX_PHONG_MAPS);
+                         "exponents to fewer values)",
+                         PREFILTERED_MAX_PHONG_MAPS);
     pf->phong_of = malloc((size_t)(n > 0 ? n : 1) * sizeof *pf->phong_of);
     pf->phong_s = malloc((size_t)(n > 0 ? n : 1) * sizeof *pf->phong_s);
     pf->phong = calloc((size_t)(n > 0 ? n : 1), sizeof *pf->phong);

@@ -51,7 +51,7 @@ static rgb direct_lights(raytracer *rt, const hit *h, const surface *s, vec3 vie
          * skipping the light at N.L <= 0 rendered such course scenes darker than the course. */
         rgb c = rgb_scale(s->kd, fmax(vec3_dot(n, ldir), 0.0)); /* kd max(N.L, 0) */
         if (has_ks) {
-            vec3 half = vec3_normalize(vec3_add(ldir, view));  /* H = (L + V) / |L + V| */
+            vec3 half = vec3_normalize(vec3_add(ldir, view)); /* H = (L + V) / |L + V| */
             /* N.H in [0, 1]: two unit vectors' dot product rounds up to 1 + 2^-52, and
              * (1 + 2^-52)^s is Inf for a huge s (1e18): clamp to the highlight's centre */
             double ndoth = fmin(fmax(vec3_dot(n, half), 0.0), 1.0);

@@ -8,8 +8,8 @@ static const vec3 zero3 = {0, 0, 0};
 
 int texshade_material_has_maps(const material *m)
 {
-    return m->diffusemap > 0 || m->specularmap > 0 || m->roughnessmap > 0 ||
-           m->emissionmap > 0 || m->bumpmap > 0;
+    return m->diffusemap > 0 || m->specularmap > 0 || m->roughnessmap > 0 || m->emissionmap > 0 ||
+           m->bumpmap > 0;
 }
 
 int texshade_material_needs_footprint(const material *m)
@@ -180,8 +180,7 @@ void texshade_tangents(const scene *sc, const hit *h, texshade_point *tp)
 /* each channel max(0, c) (NaN as 0) */
 static rgb nonnegative(rgb c) { return rgb_make(fmax(0.0, c.r), fmax(0.0, c.g), fmax(0.0, c.b)); }
 
-void texshade_surface(const scene *sc, const hit *h, const ray *r, const ray_diff *rd,
-                      surface *s)
+void texshade_surface(const scene *sc, const hit *h, const ray *r, const ray_diff *rd, surface *s)
 {
     s->has_diff = 0;
     if (rd && rd->has) texshade_differentials(sc, h, r, rd, s);

@@ -37,7 +37,8 @@ int fileio_tmp_open(const char *path, char *tmp_path, error *err)
     /* mkstemp makes the file 0600; give it the mode a plain fopen would (0666 less umask) */
     mode_t mask = umask(0);
     umask(mask);
-    if (fchmod(fd, 0666 & ~mask) != 0) { /* not fatal: the file is merely private */ }
+    if (fchmod(fd, 0666 & ~mask) != 0) { /* not fatal: the file is merely private */
+    }
     return fd;
 }
 
@@ -116,4 +117,3 @@ int fileio_read_all(const char *path, unsigned char **data, size_t *size, budget
     *size = done;
     return 0;
 }
-

@@ -36,7 +36,8 @@ static int read_magic(const char *path, unsigned char m[8], error *err)
     int fd = infile_open(path, NULL, err);
     if (fd < 0) return -1;
     ssize_t n;
-    do n = read(fd, m, 8); while (n < 0 && errno == EINTR);
+    do n = read(fd, m, 8);
+    while (n < 0 && errno == EINTR);
     int e = errno;
     close(fd);
     if (n < 0) return error_set(err, path, 0, "cannot read: %s", strerror(e));
@@ -59,8 +60,7 @@ int imageio_read(const char *path, image *out, budget *mem, error *err)
     case IMAGEIO_PFM: return pfm_read(path, out, mem, err);
     case IMAGEIO_UNKNOWN: break;
     }
-    return error_set(err, path, 0,
-                     "unknown image format (not OpenEXR, PNG, Radiance .hdr or PFM)");
+    return error_set(err, path, 0, "unknown image format (not OpenEXR, PNG, Radiance .hdr or PFM)");
 }
 
 imageio_format imageio_detect(const char *path)
@@ -152,8 +152,7 @@ int imageio_write_set_attrs(int n, const char *const *paths, const image *const 
     }
     int done = 0;
     for (; done < n; done++)
-        if (write_as(part[done], fmt[done], images[done], tms ? tms[done] : NULL, at, err))
-            break;
+        if (write_as(part[done], fmt[done], images[done], tms ? tms[done] : NULL, at, err)) break;
     if (done < n) {
         for (int k = 0; k < done; k++) unlink(part[k]);
         if (err) { /* name the target, not its temporary */

@@ -35,7 +35,7 @@ static int grow(reader *r, void **arr, long n, long *cap, size_t size, const cha
     if (n >= r->max) return fail(r, "more than %ld %s", r->max, what);
     if (n < *cap) return 0;
     long c = *cap > 0 ? *cap : 64;
-    while (c <= n) c *= 2; /* n < max <= OBJ_MAX_ELEMS: no overflow */
+    while (c <= n) c *= 2;                           /* n < max <= OBJ_MAX_ELEMS: no overflow */
     double more = (double)(c - *cap) * (double)size; /* what the array grows by */
     if (budget_charge(r->mem, more, r->name, r->line, r->err, "room for %ld more %s x %zu bytes",
                       c - *cap, what, size))

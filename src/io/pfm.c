@@ -111,7 +111,10 @@ int pfm_read(const char *path, image *out, budget *mem, error *err)
                       "%ld x %ld texels x %d bytes", w, h, IMAGE_TEXEL_BYTES))
         goto done;
     charged = (double)w * h * IMAGE_TEXEL_BYTES;
-    if (image_alloc(&im, (int)w, (int)h, err)) { error_prefix(err, "%s", path); goto done; }
+    if (image_alloc(&im, (int)w, (int)h, err)) {
+        error_prefix(err, "%s", path);
+        goto done;
+    }
     decode_pixels(d + at, scale < 0, chans, &im);
     *out = im;
     im.px = NULL;
@@ -149,7 +152,10 @@ int pfm_write(const char *path, const image *im, error *err)
     }
     int e = errno;
     free(row);
-    if (fclose(f) != 0 && ok) { ok = 0; e = errno; }
+    if (fclose(f) != 0 && ok) {
+        ok = 0;
+        e = errno;
+    }
     if (!ok) {
         fileio_tmp_abandon(tmp);
         return error_set(err, path, 0, "cannot write: %s", oom ? "out of memory" : strerror(e));

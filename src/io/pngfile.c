@@ -32,10 +32,10 @@ typedef struct png_job {
     float *lut;           /* decode table (sRGB or a gAMA power law), 256 or 65536 entries */
     png_fixed_point gama; /* writing: gAMA's file gamma x 100000, or 0 for an sRGB chunk */
     image im;
-    budget *mem;          /* reading: the run's memory budget (may be NULL) */
+    budget *mem;                   /* reading: the run's memory budget (may be NULL) */
     double image_bytes, row_bytes; /* reading: charged to it for the image and the decoded rows */
-    char msg[256];        /* libpng's message */
-    int errnum;           /* writing: errno of a failed fwrite or fflush, else 0 */
+    char msg[256];                 /* libpng's message */
+    int errnum;                    /* writing: errno of a failed fwrite or fflush, else 0 */
 } png_job;
 
 static void job_error(png_structp png, png_const_charp msg)
@@ -45,7 +45,11 @@ static void job_error(png_structp png, png_const_charp msg)
     png_longjmp(png, 1);
 }
 
-static void job_warning(png_structp png, png_const_charp msg) { (void)png; (void)msg; }
+static void job_warning(png_structp png, png_const_charp msg)
+{
+    (void)png;
+    (void)msg;
+}
 
 /* ---- reading ------------------------------------------------------------------------------- */
 
@@ -83,8 +87,8 @@ static int read_body(png_job *job, error *err)
     if (fstat(fileno(job->f), &st) == 0 && raw > PNG_MAX_INFLATE_RATIO * (double)st.st_size)
         return error_set(err, job->path, 0,
                          "corrupt or truncated PNG: %u x %u pixels need %.0f bytes of image data, "
-                         "more than a %lld-byte file can hold", (unsigned)w, (unsigned)h, raw,
-                         (long long)st.st_size);
+                         "more than a %lld-byte file can hold",
+                         (unsigned)w, (unsigned)h, raw, (long long)st.st_size);
 
     /* every layout to 8- or 16-bit RGB */
     if (type == PNG_COLOR_TYPE_PALETTE) png_set_palette_to_rgb(job->png);
@@ -209,8 +213,10 @@ static int write_body(png_job *job, int w, int h, const uint8_t *rgb8, error *er
     png_set_write_fn(job->png, job, job_write, job_flush);
     png_set_IHDR(job->png, job->info, (png_uint_32)w, (png_uint_32)h, 8, PNG_COLOR_TYPE_RGB,
                  PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-    if (job->gama > 0) png_set_gAMA_fixed(job->png, job->info, job->gama); /* power law alone */
-    else png_set_sRGB(job->png, job->info, PNG_sRGB_INTENT_PERCEPTUAL);
+    if (job->gama > 0)
+        png_set_gAMA_fixed(job->png, job->info, job->gama); /* power law alone */
+    else
+        png_set_sRGB(job->png, job->info, PNG_sRGB_INTENT_PERCEPTUAL);
     png_write_info(job->png, job->info);
     for (int y = 0; y < h; y++) png_write_row(job->png, rgb8 + (size_t)y * (size_t)w * 3);
     png_write_end(job->png, NULL);
@@ -259,8 +265,10 @@ int pngfile_write_rgb8_gamma(const char *path, int w, int h, const uint8_t *rgb8
     if (!rgb8 || image_check_size(w, h, path, err))
         return error_set(err, path, 0, "cannot write an empty or invalid image");
     if (!(gamma >= 1.0 / PNGFILE_GAMMA_MAX && gamma <= PNGFILE_GAMMA_MAX))
-        return error_set(err, path, 0, "gamma %g cannot be recorded in a PNG (a gAMA chunk holds "
-                         "gammas from 1/%g to %g)", gamma, PNGFILE_GAMMA_MAX, PNGFILE_GAMMA_MAX);
+        return error_set(err, path, 0,
+                         "gamma %g cannot be recorded in a PNG (a gAMA chunk holds "
+                         "gammas from 1/%g to %g)",
+                         gamma, PNGFILE_GAMMA_MAX, PNGFILE_GAMMA_MAX);
     /* encoded = linear^(1/gamma): the file gamma is 1/gamma, stored x 100000 (2.2 -> 45455),
      * within [16, 625000000], which libpng accepts */
     png_fixed_point gama = (png_fixed_point)floor(100000.0 / gamma + 0.5);

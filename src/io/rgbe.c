@@ -24,7 +24,7 @@ void rgbe_to_float(const unsigned char in[4], float c[3])
         c[0] = c[1] = c[2] = 0.0f;
         return;
     }
-    double f = ldexp(1.0, (int)in[3] - (128 + 8)); /* 2^(e - 128) / 256 */
+    double f = ldexp(1.0, (int)in[3] - (128 + 8));                 /* 2^(e - 128) / 256 */
     for (int k = 0; k < 3; k++) c[k] = (float)((in[k] + 0.5) * f); /* middle of the bin */
 }
 
@@ -41,8 +41,8 @@ void rgbe_from_float(const float c[3], unsigned char out[4])
         return;
     }
     int e;
-    double frac = frexp(m, &e);     /* m = frac 2^e, frac in [0.5, 1) */
-    if (e + 128 > 255) {            /* beyond the largest RGBE value */
+    double frac = frexp(m, &e); /* m = frac 2^e, frac in [0.5, 1) */
+    if (e + 128 > 255) {        /* beyond the largest RGBE value */
         memset(out, 255, 4);
         return;
     }
@@ -163,8 +163,8 @@ static int read_header(const unsigned char *d, size_t n, size_t *at, long *w, lo
         return error_set(err, path, 0, "bad Radiance resolution line \"%s\"", line);
     if (strcmp(ya, "-Y") != 0 || strcmp(xa, "+X") != 0)
         return error_set(err, path, 0,
-                         "Radiance orientation \"%s ... %s\" is not supported (only -Y H +X W)",
-                         ya, xa);
+                         "Radiance orientation \"%s ... %s\" is not supported (only -Y H +X W)", ya,
+                         xa);
     return 0;
 truncated:
     return error_set(err, path, 0, "truncated Radiance header");
@@ -200,7 +200,10 @@ int rgbe_read(const char *path, image *out, budget *mem, error *err)
                       "%ld x %ld texels x %d bytes", w, h, IMAGE_TEXEL_BYTES))
         goto done;
     image_bytes = (double)w * h * IMAGE_TEXEL_BYTES;
-    if (image_alloc(&im, (int)w, (int)h, err)) { error_prefix(err, "%s", path); goto done; }
+    if (image_alloc(&im, (int)w, (int)h, err)) {
+        error_prefix(err, "%s", path);
+        goto done;
+    }
     scan = malloc((size_t)w * 4);
     if (!scan) {
         error_set(err, path, 0, "out of memory");
@@ -286,7 +289,10 @@ static int write_rgbe(const char *path, const image *im, int rle, error *err)
     int e = errno;
     free(scan);
     free(packed);
-    if (fclose(f) != 0 && ok) { ok = 0; e = errno; }
+    if (fclose(f) != 0 && ok) {
+        ok = 0;
+        e = errno;
+    }
     if (!ok) {
         fileio_tmp_abandon(tmp);
         return error_set(err, path, 0, "cannot write: %s", oom ? "out of memory" : strerror(e));

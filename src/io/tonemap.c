@@ -11,10 +11,14 @@ tonemap_params tonemap_defaults(void)
 
 int tonemap_op_parse(const char *name, tonemap_op *op)
 {
-    if (!strcmp(name, "clamp")) *op = TONEMAP_CLAMP;
-    else if (!strcmp(name, "reinhard")) *op = TONEMAP_REINHARD;
-    else if (!strcmp(name, "aces")) *op = TONEMAP_ACES;
-    else return -1;
+    if (!strcmp(name, "clamp"))
+        *op = TONEMAP_CLAMP;
+    else if (!strcmp(name, "reinhard"))
+        *op = TONEMAP_REINHARD;
+    else if (!strcmp(name, "aces"))
+        *op = TONEMAP_ACES;
+    else
+        return -1;
     return 0;
 }
 

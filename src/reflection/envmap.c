@@ -14,8 +14,10 @@ void envmap_init(envmap *env, const convert_env *map, double scale, const mat4 *
         return;
     env->present = 1;
     env->kind = map->kind;
-    if (map->kind == CONVERT_CUBE) env->cube = map->cube;
-    else env->map = map->img;
+    if (map->kind == CONVERT_CUBE)
+        env->cube = map->cube;
+    else
+        env->map = map->img;
     if (map->kind == CONVERT_LATLONG) env->img = map->img;
     if (map->kind == CONVERT_CYLINDRICAL)
         env->max_height = map->max_height > 0

@@ -9,7 +9,7 @@ double fresnel_dielectric(double cos_i, double eta)
      * F = (r_s^2 + r_p^2) / 2 (slides 3-5) */
     /* STUB: (void)eta; return 0.0; */
     double sin2_t = (1 - cos_i * cos_i) / (eta * eta); /* Snell: sin_t = sin_i / eta */
-    if (sin2_t >= 1) return 1.0;                        /* total internal reflection */
+    if (sin2_t >= 1) return 1.0;                       /* total internal reflection */
     double cos_t = sqrt(1 - sin2_t);
     double rs = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
     double rp = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);

@@ -321,11 +321,11 @@ static void work_free(work *w)
 
 /* Sphere sp, whose material mt has displacement map tex, as srate's triangles appended to out
  * (m: the scratch mesh, freed again). */
-static int displace_one_sphere(const sphere *sp, const texture *tex, const material *mt,
-                               int srate, displace_mesh *m, scene *out, error *err)
+static int displace_one_sphere(const sphere *sp, const texture *tex, const material *mt, int srate,
+                               displace_mesh *m, scene *out, error *err)
 {
-    height_ctx c = {tex, mt, scene_material_texmapping(mt, 1), sp->center, sp->radius,
-                    NULL, NULL, 0, 0};
+    height_ctx c = {tex, mt, scene_material_texmapping(mt, 1), sp->center, sp->radius, NULL, NULL,
+                    0,   0};
     if (c.mapping == TEXMAPPING_UV) c.mapping = TEXMAPPING_SPHERICAL;
     /* SCALE object units along the unit sphere's normal: SCALE / R in its units */
     double scale = sp->radius > 0 ? mt->displacement_scale / sp->radius : 0.0;
@@ -355,8 +355,8 @@ static int displace_one_sphere(const sphere *sp, const texture *tex, const mater
 }
 
 /* Every sphere of `in` into out: displaced ones as triangles, the others as they are. */
-static int displace_spheres(const scene *in, int srate, work *w, scene *out,
-                            displacemap_stats *st, error *err)
+static int displace_spheres(const scene *in, int srate, work *w, scene *out, displacemap_stats *st,
+                            error *err)
 {
     for (long i = 0; i < in->n_spheres; i++) {
         const sphere *sp = &in->spheres[i];
@@ -374,13 +374,13 @@ static int displace_spheres(const scene *in, int srate, work *w, scene *out,
 
 /* Triangle i of `in`, whose material has displacement map tex, as trate's patch appended to
  * out, its border corners collected into w->seams. */
-static int displace_one_triangle(const scene *in, long i, const texture *tex, int trate,
-                                 work *w, scene *out, error *err)
+static int displace_one_triangle(const scene *in, long i, const texture *tex, int trate, work *w,
+                                 scene *out, error *err)
 {
     const triangle *tr = &in->triangles[i];
     const material *mt = &in->materials[tr->material];
-    height_ctx c = {tex, mt, scene_material_texmapping(mt, 0), {0, 0, 0}, 0,
-                    w->qv, w->nv, 0, w->patch_verts};
+    height_ctx c = {
+        tex, mt, scene_material_texmapping(mt, 0), {0, 0, 0}, 0, w->qv, w->nv, 0, w->patch_verts};
     /* along its vertex normals, or the welded corner normals (no cracks); NULL for a
      * zero-area triangle without normals, which displace_triangle refuses */
     vec3 fn;
@@ -443,16 +443,20 @@ int displacemap_apply(const scene *in, long max_tris, budget *mem, scene *out,
     out->triangles = NULL;
     out->n_spheres = out->n_triangles = 0;
     if (total > cap && by_memory) /* more than the budget holds: the charge names it */
-        return budget_charge(mem, total * per_tri, in->path, 0, err, "even at the lowest rates, "
+        return budget_charge(mem, total * per_tri, in->path, 0, err,
+                             "even at the lowest rates, "
                              "displacement mapping's %ld triangles and their BVH x %.0f bytes",
                              total, per_tri);
     if (total > cap)
         return error_set(err, in->path, 0,
                          "displacement mapping needs %ld triangles even at the lowest rates, "
-                         "more than the limit %ld", total, cap);
+                         "more than the limit %ld",
+                         total, cap);
     double bytes = (double)total * sizeof *out->triangles; /* fits: the BVH is charged when built */
-    if (budget_charge(mem, bytes, in->path, 0, err, "displacement mapping's %ld triangles x %zu "
-                      "bytes", total, sizeof *out->triangles))
+    if (budget_charge(mem, bytes, in->path, 0, err,
+                      "displacement mapping's %ld triangles x %zu "
+                      "bytes",
+                      total, sizeof *out->triangles))
         return -1;
     st->sphere_rate = srate;
     st->triangle_rate = trate;

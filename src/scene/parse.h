@@ -41,15 +41,15 @@ typedef struct parser {
     const char *name; /* scene name for messages (err->file) */
     char base[1024];  /* the scene file's folder with a trailing '/', or "" */
     error *err;
-    int line; /* 1-based line being read */
+    int line;              /* 1-based line being read */
     char *tok[MAX_TOKENS]; /* the current line's tokens: tok[0] is the command */
     int ntok;              /* may exceed MAX_TOKENS: only counted */
-    mat4 xf;       /* object -> world, current */
-    mat4 inv;      /* its inverse when inv_state == 1 */
-    int inv_state; /* 0 not computed, 1 valid, -1 singular */
-    mat4 *stack;   /* pushTransform's */
+    mat4 xf;               /* object -> world, current */
+    mat4 inv;              /* its inverse when inv_state == 1 */
+    int inv_state;         /* 0 not computed, 1 valid, -1 singular */
+    mat4 *stack;           /* pushTransform's */
     int depth, stack_cap;
-    int first_quad_line;  /* for parse_finish's warnings */
+    int first_quad_line; /* for parse_finish's warnings */
     int first_delta_line;
     material mat;
     double atten[3];

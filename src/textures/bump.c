@@ -18,8 +18,8 @@ int bump_normal(vec3 n, vec3 ng, vec3 dp_ds, vec3 dp_dt, double dh_ds, double dh
      * N' = dP/ds x dP/dt + k dh/ds (n x dP/dt) + k dh/dt (dP/ds x n) (slide 42) */
     /* STUB: vec3 np = base; */
     /* N' = dP/ds x dP/dt + k dh/ds (n x dP/dt) + k dh/dt (dP/ds x n) */
-    vec3 np = vec3_add(base, vec3_add(vec3_scale(vec3_cross(n, dp_dt), ks),
-                                      vec3_scale(vec3_cross(dp_ds, n), kt)));
+    vec3 np = vec3_add(
+        base, vec3_add(vec3_scale(vec3_cross(n, dp_dt), ks), vec3_scale(vec3_cross(dp_ds, n), kt)));
     /* END STEP(bump) */
     if (side < 0) np = vec3_neg(np); /* left-handed (s, t): turn to n's side */
     vec3 u;

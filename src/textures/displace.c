@@ -67,8 +67,7 @@ static int recompute_normals(displace_mesh *m, error *err)
  * (vst) and callback points (vq, may be NULL), then recompute the normals.  On failure *out is
  * freed. */
 static int displace_and_renormalize(displace_mesh *out, uv2 *vst, vec3 *vq,
-                                    displace_height_fn height, void *ctx, double scale,
-                                    error *err)
+                                    displace_height_fn height, void *ctx, double scale, error *err)
 {
     displace_vertices(out, vst, vq, height, ctx, scale);
     free(vst);
@@ -122,7 +121,7 @@ int displace_triangle(const vec3 p[3], const vec3 q[3], const vec3 n[3], const u
         return -1;
     }
     /* vertex (i, j): b1 = i / N, b2 = j / N; index = j (N + 1) - j (j - 1) / 2 + i */
-#define IDX(i, j) ((j) * (N + 1) - (j) * ((j) - 1) / 2 + (i))
+#define IDX(i, j) ((j) * (N + 1) - (j) * ((j)-1) / 2 + (i))
     for (long j = 0; j <= N; j++)
         for (long i = 0; i + j <= N; i++) {
             double b1 = (double)i / N, b2 = (double)j / N, b0 = 1.0 - b1 - b2;
@@ -169,7 +168,7 @@ int displace_sphere(int rate, displace_height_fn height, void *ctx, double scale
         return -1;
     }
     /* vertex 0 the north pole, 1 the south pole, ring i (1..N-1) segment j at 2 + (i-1) M + j */
-#define RING(i, j) (2 + ((i) - 1) * M + ((j) % M))
+#define RING(i, j) (2 + ((i)-1) * M + ((j) % M))
     out->p[0] = vec3_make(0, 0, 1);
     out->p[1] = vec3_make(0, 0, -1);
     vst[0] = (uv2){0, 1};
@@ -189,16 +188,16 @@ int displace_sphere(int rate, displace_height_fn height, void *ctx, double scale
         /* corner st: s of segment j runs j/M .. (j+1)/M (up to 1 at the seam, not back to 0) */
         double s0 = (double)j / M, s1 = (double)(j + 1) / M, sm = (j + 0.5) / M;
         double tt = 1.0 - 1.0 / N, tb = 1.0 / N;
-        out->tris[t++] = (displace_tri){{0, RING(1, j), RING(1, j + 1)},
-                                        {{sm, 1}, {s0, tt}, {s1, tt}}};
+        out->tris[t++] =
+            (displace_tri){{0, RING(1, j), RING(1, j + 1)}, {{sm, 1}, {s0, tt}, {s1, tt}}};
         for (long i = 1; i < N - 1; i++) {
             long a0 = RING(i, j), a1 = RING(i, j + 1), b0 = RING(i + 1, j), b1 = RING(i + 1, j + 1);
             double ta = 1.0 - (double)i / N, tl = 1.0 - (double)(i + 1) / N;
             out->tris[t++] = (displace_tri){{a0, b0, b1}, {{s0, ta}, {s0, tl}, {s1, tl}}};
             out->tris[t++] = (displace_tri){{a0, b1, a1}, {{s0, ta}, {s1, tl}, {s1, ta}}};
         }
-        out->tris[t++] = (displace_tri){{1, RING(N - 1, j + 1), RING(N - 1, j)},
-                                        {{sm, 0}, {s1, tb}, {s0, tb}}};
+        out->tris[t++] =
+            (displace_tri){{1, RING(N - 1, j + 1), RING(N - 1, j)}, {{sm, 0}, {s1, tb}, {s0, tb}}};
     }
 #undef RING
     return displace_and_renormalize(out, vst, NULL, height, ctx, scale, err);

@@ -14,8 +14,8 @@
 #define MIPMAP_MAX_TAPS 8
 
 typedef struct taps {
-    int n;                       /* number of taps used */
-    int index[MIPMAP_MAX_TAPS];  /* source texel, already wrapped into [0, n_src) */
+    int n;                      /* number of taps used */
+    int index[MIPMAP_MAX_TAPS]; /* source texel, already wrapped into [0, n_src) */
     double weight[MIPMAP_MAX_TAPS];
 } taps;
 
@@ -200,8 +200,8 @@ static double reduce_coordinate(double x, int n, double rad, wrap_mode wrap)
     if (fabs(x) < 0x1p24) return x; /* already small: nothing to do */
     if (wrap == WRAP_CLAMP) {
         double margin = ceil(rad) + 2.0;
-        if (x < 0) return x - floor(x) - margin;       /* frac(x) - margin < -rad - 1 */
-        return x - floor(x) + n + margin;               /* > n + rad + 1 */
+        if (x < 0) return x - floor(x) - margin; /* frac(x) - margin < -rad - 1 */
+        return x - floor(x) + n + margin;        /* > n + rad + 1 */
     }
     /* fmod is exact (x - period floor(x / period) is not once x passes 2^53 texels: x / period
      * rounds, and a 3-texel texture read the wrong texel there) */

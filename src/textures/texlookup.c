@@ -10,12 +10,11 @@ int texlookup_wrap(int i, int n, wrap_mode wrap)
     assert(n >= 1);
     if ((unsigned)i < (unsigned)n) return i; /* inside: the common case, every mode agrees */
     switch (wrap) {
-    case WRAP_CLAMP:
-        return i < 0 ? 0 : n - 1;
+    case WRAP_CLAMP: return i < 0 ? 0 : n - 1;
     case WRAP_MIRROR: {
-        long long period = 2LL * n; /* 2n overflows an int for n > 2^30 */
-        long long r = i % period;   /* in (-2n, 2n) */
-        if (r < 0) r += period;     /* [0, 2n) */
+        long long period = 2LL * n;               /* 2n overflows an int for n > 2^30 */
+        long long r = i % period;                 /* in (-2n, 2n) */
+        if (r < 0) r += period;                   /* [0, 2n) */
         return (int)(r < n ? r : period - 1 - r); /* the second copy runs backwards */
     }
     case WRAP_REPEAT:

@@ -67,11 +67,14 @@ uv2 texmapping_spherical(vec3 q)
 }
 
 /* Face axis (0 x, 1 y, 2 z), its sign, right and up axes: the table of the header. */
-typedef struct face_frame { int axis; double sign; vec3 right, up; } face_frame;
+typedef struct face_frame {
+    int axis;
+    double sign;
+    vec3 right, up;
+} face_frame;
 static const face_frame faces[6] = {
-    {0, +1, {0, 1, 0}, {0, 0, 1}},  {0, -1, {0, -1, 0}, {0, 0, 1}},
-    {1, +1, {-1, 0, 0}, {0, 0, 1}}, {1, -1, {1, 0, 0}, {0, 0, 1}},
-    {2, +1, {1, 0, 0}, {0, 1, 0}},  {2, -1, {1, 0, 0}, {0, -1, 0}},
+    {0, +1, {0, 1, 0}, {0, 0, 1}}, {0, -1, {0, -1, 0}, {0, 0, 1}}, {1, +1, {-1, 0, 0}, {0, 0, 1}},
+    {1, -1, {1, 0, 0}, {0, 0, 1}}, {2, +1, {1, 0, 0}, {0, 1, 0}},  {2, -1, {1, 0, 0}, {0, -1, 0}},
 };
 
 static int cube_face_of(vec3 q)

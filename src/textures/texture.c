@@ -9,8 +9,8 @@
 /* ---- names ------------------------------------------------------------------------------ */
 
 static const char *const filter_names[] = {"nearest", "bilinear", "trilinear", "ewa"};
-static const char *const kind_names[] = {"image", "checker", "perlin", "fbm",
-                                         "turbulence", "marble", "wood"};
+static const char *const kind_names[] = {"image",      "checker", "perlin", "fbm",
+                                         "turbulence", "marble",  "wood"};
 
 int texture_filter_parse(const char *name, texture_filter *out)
 {
@@ -145,7 +145,7 @@ static double odd_box(double x, double hw)
 {
     if (!(hw > 0)) return odd_point(x);
     double a = x - hw, b = x + hw;
-    if (floor(a) == floor(b)) return odd_point(x); /* inside one square */
+    if (floor(a) == floor(b)) return odd_point(x);            /* inside one square */
     double m = (odd_integral(b) - odd_integral(a)) / (b - a); /* b > a: hw > 0 and finite */
     if (!isfinite(m)) return 0.5;
     return m < 0 ? 0 : m > 1 ? 1 : m;
@@ -182,15 +182,11 @@ static double solid_value(const texture *t, vec3 p, double w)
     double v = 0;
     switch (t->kind) {
     case TEXTURE_PERLIN: /* one octave of lattice frequency 1 */
-        v = 0.5 + 0.5 * (w > 0 ? perlin_fbm_filtered(x, w, 1, 2.0, 0.5)
-                               : perlin_noise(x.x, x.y, x.z));
+        v = 0.5 +
+            0.5 * (w > 0 ? perlin_fbm_filtered(x, w, 1, 2.0, 0.5) : perlin_noise(x.x, x.y, x.z));
         break;
-    case TEXTURE_FBM:
-        v = 0.5 + 0.5 * perlin_fbm_filtered(x, w, s->octaves, 2.0, 0.5);
-        break;
-    case TEXTURE_TURBULENCE:
-        v = perlin_turbulence_filtered(x, w, s->octaves, 2.0, 0.5);
-        break;
+    case TEXTURE_FBM: v = 0.5 + 0.5 * perlin_fbm_filtered(x, w, s->octaves, 2.0, 0.5); break;
+    case TEXTURE_TURBULENCE: v = perlin_turbulence_filtered(x, w, s->octaves, 2.0, 0.5); break;
     case TEXTURE_MARBLE:
         if (w > 0) {
             /* the veins have s->frequency / 2 pi cycles per unit: fade them to their mean as
@@ -301,7 +297,7 @@ void texture_height_derivs(const texture *t, const texture_query *q, double *h, 
     for (int k = 0; k < 2; k++) {
         double len = vec3_length(tang[k]);
         if (!(len > 0) || !isfinite(len) || !isfinite(dist)) continue; /* no tangent: 0 */
-        double e = dist / len; /* e |dP/ds| = dist */
+        double e = dist / len;                                         /* e |dP/ds| = dist */
         vec3 d = vec3_scale(tang[k], e);
         /* dh/ds = (h(P + e dP/ds) - h(P - e dP/ds)) / (2 e) */
         *out[k] = (h_at_p(t, q, d) - h_at_p(t, q, vec3_neg(d))) / (2 * e);

@@ -43,7 +43,7 @@ static inline void fuzz_image_check(int rc, const image *im, const error *err)
         int rc = READER(path, &im, &mem, &err);                                                    \
         fuzz_image_check(rc, &im, &err);                                                           \
         fuzz_check(rc || mem.used == (double)im.w * im.h * IMAGE_TEXEL_BYTES,                      \
-                   "a read image stays charged, its scratch released");                           \
+                   "a read image stays charged, its scratch released");                            \
         image_free(&im);                                                                           \
         return 0;                                                                                  \
     }

@@ -28,7 +28,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                        (long)sc.width * sc.height <= SCENE_MAX_PIXELS,
                    "a loaded scene has a size within the limits");
         fuzz_check(sc.spp >= 1 && sc.spp <= SCENE_MAX_SPP, "spp within the limits");
-        fuzz_check(sc.maxdepth >= -1 && sc.maxdepth <= SCENE_MAX_DEPTH, "maxdepth within the limits");
+        fuzz_check(sc.maxdepth >= -1 && sc.maxdepth <= SCENE_MAX_DEPTH,
+                   "maxdepth within the limits");
         fuzz_check(sc.n_spheres + sc.n_triangles <= 2 * o.max_prims, "primitives within the limit");
         for (long i = 0; i < sc.n_triangles; i++)
             fuzz_check(sc.triangles[i].material >= 0 && sc.triangles[i].material < sc.n_materials,

@@ -26,7 +26,11 @@ static int replay(const char *path)
         n += fread(buf + n, 1, cap - n, f);
         if (n < cap) break;
         uint8_t *more = realloc(buf, cap * 2);
-        if (!more) { free(buf); buf = NULL; break; }
+        if (!more) {
+            free(buf);
+            buf = NULL;
+            break;
+        }
         buf = more;
         cap *= 2;
     }

@@ -25,13 +25,15 @@
 #include <float.h>
 #include <math.h>
 
-#define CHISQ_ALPHA 0.01        /* family-wise significance of one test program */
+#define CHISQ_ALPHA        0.01 /* family-wise significance of one test program */
 #define CHISQ_MIN_EXPECTED 5.0  /* the usual rule of thumb for the chi-square approximation */
-#define CHISQ_EPS 1e-15         /* relative size of the last series term / fraction update:
+#define CHISQ_EPS                                                                                  \
+    1e-15 /* relative size of the last series term / fraction update:
                                  * a few ulps of double, the precision Q can have */
-#define CHISQ_TINY 1e-300       /* stands in for 0 in Lentz's method (avoids 1/0), far below
+#define CHISQ_TINY                                                                                 \
+    1e-300                    /* stands in for 0 in Lentz's method (avoids 1/0), far below
                                  * any value the fraction's terms take */
-#define CHISQ_MAX_ITER 100000   /* both expansions need O(sqrt(a)) terms: ample for dof < 10^8 */
+#define CHISQ_MAX_ITER 100000 /* both expansions need O(sqrt(a)) terms: ample for dof < 10^8 */
 
 typedef struct chisq_result {
     double stat; /* X^2 after pooling */

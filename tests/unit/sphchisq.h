@@ -28,18 +28,21 @@
 
 #include "envtex/core/vec.h"
 
-#define SPH_MAX_BINS 4096
+#define SPH_MAX_BINS   4096
 #define SPH_MAX_BREAKS 1024
-#define SPH_GL_SUB 2 /* default sub-intervals per piece and variable, each with 4 Gauss-Legendre
+#define SPH_GL_SUB                                                                                 \
+    2 /* default sub-intervals per piece and variable, each with 4 Gauss-Legendre
                       * nodes: enough for piecewise-constant pdfs; peaked lobes need more */
 
 typedef double (*sph_pdf_fn)(void *ctx, vec3 w); /* w: unit direction in the bin frame */
 
 typedef struct sph_grid {
     int n_u, n_phi;
-    int sub;                                        /* sub-intervals per piece (SPH_GL_SUB) */
-    const double *theta_breaks; int n_theta_breaks; /* ascending, in [0, pi]; may be NULL */
-    const double *phi_breaks; int n_phi_breaks;     /* ascending, in [0, 2 pi]; may be NULL */
+    int sub; /* sub-intervals per piece (SPH_GL_SUB) */
+    const double *theta_breaks;
+    int n_theta_breaks; /* ascending, in [0, pi]; may be NULL */
+    const double *phi_breaks;
+    int n_phi_breaks; /* ascending, in [0, 2 pi]; may be NULL */
 } sph_grid;
 
 static inline sph_grid sph_grid_make(int n_u, int n_phi)
@@ -79,7 +82,8 @@ static inline int sph_cuts(double a, double b, const double *br, int n_br, doubl
 }
 
 /* integral of pdf sin(theta) over [t0, t1] x [p0, p1], Gauss-Legendre on sub-intervals */
-static inline double sph_piece(sph_pdf_fn pdf, void *ctx, int sub, double t0, double t1, double p0, double p1)
+static inline double sph_piece(sph_pdf_fn pdf, void *ctx, int sub, double t0, double t1, double p0,
+                               double p1)
 {
     double sum = 0, ht = (t1 - t0) / sub, hp = (p1 - p0) / sub;
     for (int a = 0; a < sub; a++)
@@ -106,11 +110,12 @@ static inline double sph_expected(const sph_grid *g, sph_pdf_fn pdf, void *ctx, 
         double u0 = -1 + 2.0 * iu / g->n_u, u1 = -1 + 2.0 * (iu + 1) / g->n_u;
         int nt = sph_cuts(acos(u1), acos(u0), g->theta_breaks, g->n_theta_breaks, tc);
         for (int ip = 0; ip < g->n_phi; ip++) {
-            int np = sph_cuts(2 * M_PI * ip / g->n_phi, 2 * M_PI * (ip + 1) / g->n_phi, g->phi_breaks,
-                              g->n_phi_breaks, pc);
+            int np = sph_cuts(2 * M_PI * ip / g->n_phi, 2 * M_PI * (ip + 1) / g->n_phi,
+                              g->phi_breaks, g->n_phi_breaks, pc);
             double s = 0;
             for (int a = 0; a < nt; a++)
-                for (int b = 0; b < np; b++) s += sph_piece(pdf, ctx, g->sub, tc[a], tc[a + 1], pc[b], pc[b + 1]);
+                for (int b = 0; b < np; b++)
+                    s += sph_piece(pdf, ctx, g->sub, tc[a], tc[a + 1], pc[b], pc[b + 1]);
             prob[iu * g->n_phi + ip] = s;
             total += s;
         }

@@ -12,28 +12,28 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#define UNIT_MAIN(suite_fn)                                                       \
-    int main(void)                                                                \
-    {                                                                             \
-        SRunner *sr = srunner_create(suite_fn());                                 \
-        srunner_run_all(sr, CK_NORMAL);                                           \
-        int failed = srunner_ntests_failed(sr), ran = srunner_ntests_run(sr);     \
-        srunner_free(sr);                                                         \
-        if (ran == 0) fprintf(stderr, "no test ran (CK_RUN_SUITE, CK_RUN_CASE?)\n"); \
-        return failed || ran == 0 ? EXIT_FAILURE : EXIT_SUCCESS;                  \
+#define UNIT_MAIN(suite_fn)                                                                        \
+    int main(void)                                                                                 \
+    {                                                                                              \
+        SRunner *sr = srunner_create(suite_fn());                                                  \
+        srunner_run_all(sr, CK_NORMAL);                                                            \
+        int failed = srunner_ntests_failed(sr), ran = srunner_ntests_run(sr);                      \
+        srunner_free(sr);                                                                          \
+        if (ran == 0) fprintf(stderr, "no test ran (CK_RUN_SUITE, CK_RUN_CASE?)\n");               \
+        return failed || ran == 0 ? EXIT_FAILURE : EXIT_SUCCESS;                                   \
     }
 
 /* Assertions for hot loops: ck_require(expr) and ck_require_msg(expr, fmt, ...) fail as
  * ck_assert and ck_assert_msg do, but a passing one costs nothing: Check records the file and
  * line of every passing ck_assert (a write() each), which in a loop of a million samples is most
  * of a test's time. */
-#define ck_require(expr)                                                   \
-    do {                                                                   \
-        if (!(expr)) ck_abort_msg("Assertion '%s' failed", #expr);         \
+#define ck_require(expr)                                                                           \
+    do {                                                                                           \
+        if (!(expr)) ck_abort_msg("Assertion '%s' failed", #expr);                                 \
     } while (0)
-#define ck_require_msg(expr, ...)                                          \
-    do {                                                                   \
-        if (!(expr)) ck_abort_msg(__VA_ARGS__);                            \
+#define ck_require_msg(expr, ...)                                                                  \
+    do {                                                                                           \
+        if (!(expr)) ck_abort_msg(__VA_ARGS__);                                                    \
     } while (0)
 
 /* |a - b| <= tol, with the values in the failure message */

@@ -58,13 +58,16 @@ int main(int argc, char **argv)
     double result[2];
     for (int s = 0; s < 2; s++) {
         envlight el;
-        if (envlight_build(&el, &env, ENVSAMPLING_CDF, (envsampler_kind)s, 0, NULL, &err)) goto fail;
+        if (envlight_build(&el, &env, ENVSAMPLING_CDF, (envsampler_kind)s, 0, NULL, &err))
+            goto fail;
         result[s] = time_samples(&el, repeats, n);
-        printf("envlight sample+pdf 2048x1024 sun, %-6s: median %6.1f ns per sample (%d repeats of %d)\n",
+        printf("envlight sample+pdf 2048x1024 sun, %-6s: median %6.1f ns per sample (%d repeats of "
+               "%d)\n",
                names[s], result[s], repeats, n);
         envlight_free(&el);
     }
-    printf("envlight alias / binary time ratio: %.2f (target: alias <= 30 ns)\n", result[1] / result[0]);
+    printf("envlight alias / binary time ratio: %.2f (target: alias <= 30 ns)\n",
+           result[1] / result[0]);
     image_free(&img);
     if (make_env(128, &img, &env, &err)) goto fail;
     {
@@ -72,7 +75,8 @@ int main(int argc, char **argv)
         if (envlight_build(&el, &env, ENVSAMPLING_CDF, ENVSAMPLER_ALIAS, 0, NULL, &err)) goto fail;
         double small = time_samples(&el, repeats, n);
         printf("envlight sample+pdf 128x64 sun (in cache), alias: median %6.1f ns per sample; "
-               "the 2048x1024 map takes %.2fx that\n", small, result[1] / small);
+               "the 2048x1024 map takes %.2fx that\n",
+               small, result[1] / small);
         envlight_free(&el);
     }
     image_free(&img);
@@ -82,12 +86,13 @@ int main(int argc, char **argv)
         for (int k = 0; k < repeats && k < 64; k++) {
             envlight el;
             double t0 = now();
-            if (envlight_build(&el, &env, ENVSAMPLING_CDF, (envsampler_kind)s, 0, NULL, &err)) goto fail;
+            if (envlight_build(&el, &env, ENVSAMPLING_CDF, (envsampler_kind)s, 0, NULL, &err))
+                goto fail;
             t[k] = now() - t0;
             envlight_free(&el);
         }
-        printf("envlight tables 4096x2048, %-6s: median %.3f s to build (target <= 0.5 s)\n", names[s],
-               median(t, repeats < 64 ? repeats : 64));
+        printf("envlight tables 4096x2048, %-6s: median %.3f s to build (target <= 0.5 s)\n",
+               names[s], median(t, repeats < 64 ? repeats : 64));
     }
     image_free(&img);
     return 0;

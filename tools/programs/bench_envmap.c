@@ -30,7 +30,7 @@
 #include "envtex/envmaps/mirrorball.h"
 #include "envtex/core/rng.h"
 
-#define N_DIRS (1 << 20)
+#define N_DIRS    (1 << 20)
 #define POWER_TOL 0.005
 
 /* The representation's direction -> image coordinates; the face index counts for cubes. */
@@ -87,10 +87,12 @@ int main(int argc, char **argv)
     rng r;
     rng_seed(&r, 1, 0);
     for (int i = 0; i < N_DIRS; i++) {
-        double z = 1.0 - 2.0 * rng_uniform(&r), phi = 2.0 * M_PI * rng_uniform(&r), s = sqrt(fmax(0.0, 1.0 - z * z));
+        double z = 1.0 - 2.0 * rng_uniform(&r), phi = 2.0 * M_PI * rng_uniform(&r),
+               s = sqrt(fmax(0.0, 1.0 - z * z));
         dirs[i] = vec3_make(s * cos(phi), s * sin(phi), z);
     }
-    printf("envmap representations (%s, %d x %d; medians of %d runs)\n", src_name, src.img.w, src.img.h, runs);
+    printf("envmap representations (%s, %d x %d; medians of %d runs)\n", src_name, src.img.w,
+           src.img.h, runs);
     printf("  %-12s %10s %12s %12s %12s\n", "to", "size", "dir->uv ns", "lookup ns", "convert s");
     convert_map m[CONVERT_KINDS];
     memset(m, 0, sizeof m);
@@ -119,8 +121,8 @@ int main(int argc, char **argv)
         const image *im = convert_face_image(&v, 0);
         char size[32];
         snprintf(size, sizeof size, "%dx%d%s", im->w, im->h, k == CONVERT_CUBE ? "x6" : "");
-        printf("  %-12s %10s %12.1f %12.1f %12.3f\n", convert_kind_name((convert_kind)k), size, uv_ns,
-               lookup_ns, conv_s);
+        printf("  %-12s %10s %12.1f %12.1f %12.3f\n", convert_kind_name((convert_kind)k), size,
+               uv_ns, lookup_ns, conv_s);
     }
     for (int k = 0; k < CONVERT_KINDS; k++) convert_map_free(&m[k]);
     if (sink == 42.0) printf(" \n"); /* keep the loops */
@@ -140,8 +142,8 @@ int main(int argc, char **argv)
             double there = power_change(&a, &mid), round = power_change(&a, &back);
             int ok = fabs(there) < POWER_TOL && fabs(round) < POWER_TOL;
             bad += !ok;
-            printf(" via %s %+.4f%% (there %+.4f%%)%s", convert_kind_name(via[j]), 100 * round, 100 * there,
-                   ok ? "" : " FAIL");
+            printf(" via %s %+.4f%% (there %+.4f%%)%s", convert_kind_name(via[j]), 100 * round,
+                   100 * there, ok ? "" : " FAIL");
             convert_map_free(&mid);
             convert_map_free(&back);
         }
@@ -151,7 +153,8 @@ int main(int argc, char **argv)
     free(t);
     free(dirs);
     convert_map_free(&src);
-    if (bad) fprintf(stderr, "bench_envmap: %d round trips lost more than 0.5%% of the power\n", bad);
+    if (bad)
+        fprintf(stderr, "bench_envmap: %d round trips lost more than 0.5%% of the power\n", bad);
     return bad ? 1 : 0;
 fail:
     error_print(&err, stderr);

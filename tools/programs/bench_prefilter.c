@@ -83,7 +83,8 @@ int main(int argc, char **argv)
            median(t, runs < 16 ? runs : 16), runs);
     double arcs = time_map(irr_arcs, &em, 0, 64, runs), brute = time_map(irr_brute, &em, 0, 64, 1);
     printf("prefilter: exact irradiance 64 x 32 of 1024 x 512:  arc sums %.3f s, plain sum %.2f s "
-           "(%.0fx)\n", arcs, brute, brute / arcs);
+           "(%.0fx)\n",
+           arcs, brute, brute / arcs);
     printf("prefilter: exact irradiance 64 x 32 of 4096 x 2048: arc sums %.3f s\n",
            time_map(irr_arcs, &eb, 0, 64, runs));
     const double s[] = {1, 10, 100, 1000};

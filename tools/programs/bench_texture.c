@@ -31,7 +31,7 @@
 #include "envtex/textures/texture.h"
 
 #define N_QUERIES (1 << 18)
-#define TEX_SIZE 512
+#define TEX_SIZE  512
 
 int main(int argc, char **argv)
 {
@@ -45,7 +45,10 @@ int main(int argc, char **argv)
     /* Queries are made in the timed loop from one small record per scanline, as a renderer makes
      * them per pixel: an array of N_QUERIES full queries (176 bytes each, 46 MB) would make the
      * benchmark measure memory bandwidth instead of the lookups. */
-    typedef struct line { uv2 st, st0, dx, dy; vec3 p, dp; } line; /* st0: the "rows" start */
+    typedef struct line {
+        uv2 st, st0, dx, dy;
+        vec3 p, dp;
+    } line; /* st0: the "rows" start */
     enum { N_LINES = N_QUERIES / TEX_SIZE, PATCH_ROWS = 16 };
     line *lines = malloc(N_LINES * sizeof *lines);
     if (!lines || image_alloc(&img, TEX_SIZE, TEX_SIZE, &err)) goto fail;
@@ -55,7 +58,9 @@ int main(int argc, char **argv)
         for (int x = 0; x < TEX_SIZE; x++)
             image_set(&img, x, y, rgb_make(rng_uniform(&g), rng_uniform(&g), rng_uniform(&g)));
     texture_init_image(&tx, &img, WRAP_REPEAT);
-    if (texture_prepare(&tx, TEXFILTER_EWA, NULL, &err) || texture_prepare(&tx, TEXFILTER_TRILINEAR, NULL, &err)) goto fail;
+    if (texture_prepare(&tx, TEXFILTER_EWA, NULL, &err) ||
+        texture_prepare(&tx, TEXFILTER_TRILINEAR, NULL, &err))
+        goto fail;
     for (int l = 0; l < N_LINES; l++) { /* a scanline: its start, footprint and direction */
         if (l % PATCH_ROWS) { /* patch order: the row below the previous one (kept for "rows") */
             lines[l] = lines[l - 1];
@@ -69,9 +74,12 @@ int main(int argc, char **argv)
         lines[l].st = lines[l].st0 = (uv2){rng_uniform(&g), rng_uniform(&g)};
         lines[l].dx = (uv2){w * cos(a), w * sin(a)};
         lines[l].dy = (uv2){-w / aniso * sin(a), w / aniso * cos(a)};
-        lines[l].p = vec3_make(200 * rng_uniform(&g) - 100, 200 * rng_uniform(&g) - 100, 200 * rng_uniform(&g) - 100);
-        lines[l].dp = vec3_scale(vec3_normalize(vec3_make(rng_uniform(&g) - 0.5, rng_uniform(&g) - 0.5,
-                                                          rng_uniform(&g) - 0.5)), 0.37);
+        lines[l].p = vec3_make(200 * rng_uniform(&g) - 100, 200 * rng_uniform(&g) - 100,
+                               200 * rng_uniform(&g) - 100);
+        lines[l].dp =
+            vec3_scale(vec3_normalize(vec3_make(rng_uniform(&g) - 0.5, rng_uniform(&g) - 0.5,
+                                                rng_uniform(&g) - 0.5)),
+                       0.37);
     }
     /* Rounds: each times every pass once, back to back (the 8 lookup passes, then Perlin), and a
      * pass's figure is its median over the rounds.  The host runs slower part of the time, in
@@ -120,8 +128,8 @@ int main(int argc, char **argv)
     int pass = 0;
     for (int order = 0; order < 2; order++)
         for (int f = TEXFILTER_NEAREST; f <= TEXFILTER_EWA; f++, pass++)
-            printf("%s %s %.2f\n", order == 0 ? "lookup" : "lookup-rows", texture_filter_name((texture_filter)f),
-                   median(t[pass], repeats));
+            printf("%s %s %.2f\n", order == 0 ? "lookup" : "lookup-rows",
+                   texture_filter_name((texture_filter)f), median(t[pass], repeats));
     printf("perlin %.2f\n", median(t[pass], repeats));
     fprintf(stderr, "(checksum %g)\n", sink);
     texture_free(&tx);

@@ -38,8 +38,10 @@ int main(int argc, char **argv)
         int x0 = atoi(argv[4 + 4 * i]), y0 = atoi(argv[5 + 4 * i]);
         int x1 = atoi(argv[6 + 4 * i]), y1 = atoi(argv[7 + 4 * i]);
         if (x0 < 0 || y0 < 0 || x1 > im.w || y1 > im.h || x0 >= x1 || y0 >= y1) {
-            fprintf(stderr, "fireflies: the rectangle [%d, %d) x [%d, %d) is not inside the %d x %d image\n",
-                    x0, x1, y0, y1, im.w, im.h);
+            fprintf(
+                stderr,
+                "fireflies: the rectangle [%d, %d) x [%d, %d) is not inside the %d x %d image\n",
+                x0, x1, y0, y1, im.w, im.h);
             goto cleanup;
         }
         n += (long)(x1 - x0) * (y1 - y0);
@@ -58,7 +60,8 @@ int main(int argc, char **argv)
     qsort(lv, (size_t)n, sizeof *lv, cmp_int); /* the order of the pixels does not matter */
     int median = lv[n / 2];
     for (long i = 0; i < n; i++) above += lv[i] > median + levels;
-    printf("pixels %ld median %d above %d: %ld (%.3f%%)\n", n, median, median + levels, above, 100.0 * above / n);
+    printf("pixels %ld median %d above %d: %ld (%.3f%%)\n", n, median, median + levels, above,
+           100.0 * above / n);
     status = 0;
 cleanup:
     free(lv);

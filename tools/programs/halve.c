@@ -22,8 +22,9 @@ int main(int argc, char **argv)
     }
     for (int y = 0; y < out.h; y++)
         for (int x = 0; x < out.w; x++) {
-            rgb s = rgb_add(rgb_add(image_get(&in, 2 * x, 2 * y), image_get(&in, 2 * x + 1, 2 * y)),
-                            rgb_add(image_get(&in, 2 * x, 2 * y + 1), image_get(&in, 2 * x + 1, 2 * y + 1)));
+            rgb s = rgb_add(
+                rgb_add(image_get(&in, 2 * x, 2 * y), image_get(&in, 2 * x + 1, 2 * y)),
+                rgb_add(image_get(&in, 2 * x, 2 * y + 1), image_get(&in, 2 * x + 1, 2 * y + 1)));
             image_set(&out, x, y, rgb_scale(s, 0.25));
         }
     int st = exrfile_write(argv[2], &out, 1, &err);

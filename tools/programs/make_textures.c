@@ -24,7 +24,8 @@ typedef void (*texel_fn)(int x, int y, int w, int h, double rgb_linear[3]);
 
 static void checker(int x, int y, int w, int h, double c[3])
 {
-    (void)w; (void)h;
+    (void)w;
+    (void)h;
     double v = ((x / 8) + (y / 8)) % 2 ? 0.9 : 0.05;
     c[0] = c[1] = c[2] = v;
 }
@@ -64,7 +65,8 @@ static void lightmap(int x, int y, int w, int h, double c[3])
 
 static void roughness(int x, int y, int w, int h, double c[3])
 {
-    (void)x; (void)w;
+    (void)x;
+    (void)w;
     int stripe = y * 4 / h; /* four bands down the image: row 0 is t = 1 */
     const double a[4] = {0.05, 0.15, 0.3, 0.6};
     c[0] = c[1] = c[2] = a[stripe];
@@ -88,8 +90,10 @@ static int write(const char *dir, const char *name, int w, int h, texel_fn f)
     error err = {0};
     int st = pngfile_write_rgb8(path, w, h, px, &err);
     free(px);
-    if (st) error_print(&err, stderr);
-    else printf("%s\n", path);
+    if (st)
+        error_print(&err, stderr);
+    else
+        printf("%s\n", path);
     return st;
 }
 

@@ -21,8 +21,8 @@ int main(int argc, char **argv)
     }
     if (imageio_read(argv[1], &a, NULL, &err) || imageio_read(argv[2], &b, NULL, &err)) goto done;
     if (a.w != b.w || a.h != b.h || b.w != 2 * b.h) {
-        error_set(&err, argv[1], 0, "A (%d x %d) and B (%d x %d) must be lat-long maps of one size", a.w,
-                  a.h, b.w, b.h);
+        error_set(&err, argv[1], 0, "A (%d x %d) and B (%d x %d) must be lat-long maps of one size",
+                  a.w, a.h, b.w, b.h);
         goto done;
     }
     double peak = 0, sum = 0, max = 0;
@@ -36,7 +36,9 @@ int main(int argc, char **argv)
     for (int r = 0; r < b.h; r++) {
         double om = latlong_texel_solid_angle(r, b.w, b.h);
         for (int c = 0; c < b.w; c++) {
-            double d = fabs(rgb_luminance(image_get(&a, c, r)) - rgb_luminance(image_get(&b, c, r))) / peak;
+            double d =
+                fabs(rgb_luminance(image_get(&a, c, r)) - rgb_luminance(image_get(&b, c, r))) /
+                peak;
             sum += d * om; /* the mean over the sphere: weighted by solid angle */
             max = fmax(max, d);
             if (e.px) image_set(&e, c, r, rgb_gray(d));

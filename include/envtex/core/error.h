@@ -10,7 +10,7 @@
 #include <stdio.h>
 
 #define ERROR_FILE_MAX 1024
-#define ERROR_MSG_MAX 1024
+#define ERROR_MSG_MAX  1024
 
 typedef struct error {
     char file[ERROR_FILE_MAX]; /* file the problem is in; "" when none */

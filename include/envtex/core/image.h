@@ -14,7 +14,7 @@
 #include "envtex/core/error.h"
 #include "envtex/core/vec.h"
 
-#define IMAGE_MAX_SIDE 32768L
+#define IMAGE_MAX_SIDE   32768L
 #define IMAGE_MAX_PIXELS (1L << 28)
 /* Bytes a pixel takes, as readers charge them. */
 #define IMAGE_TEXEL_BYTES 12

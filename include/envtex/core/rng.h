@@ -9,7 +9,9 @@
 
 #include <stdint.h>
 
-typedef struct rng { uint64_t state, inc; } rng;
+typedef struct rng {
+    uint64_t state, inc;
+} rng;
 
 /* The next 32 random bits. */
 static inline uint32_t rng_u32(rng *r)

@@ -11,7 +11,9 @@
 
 #include "envtex/core/vec.h"
 
-typedef struct mat4 { double m[4][4]; } mat4; /* m[row][col], column vectors: p' = M p */
+typedef struct mat4 {
+    double m[4][4];
+} mat4; /* m[row][col], column vectors: p' = M p */
 
 mat4 mat4_identity(void);
 mat4 mat4_mul(mat4 a, mat4 b); /* a b: b applies first */
@@ -25,7 +27,7 @@ double mat4_det3(const mat4 *m);
 /* Inverse of an affine matrix: 0, or -1 (*out untouched) if singular. */
 int mat4_inverse(mat4 a, mat4 *out);
 
-vec3 mat4_point(const mat4 *m, vec3 p);  /* M (p, 1) */
+vec3 mat4_point(const mat4 *m, vec3 p); /* M (p, 1) */
 /* M (d, 0) */
 static inline vec3 mat4_dir(const mat4 *m, vec3 d)
 {

@@ -12,9 +12,15 @@
 #define M_PI 3.14159265358979323846
 #endif
 
-typedef struct vec3 { double x, y, z; } vec3; /* a point or a direction */
-typedef struct rgb { double r, g, b; } rgb;   /* linear radiance or reflectance */
-typedef struct uv2 { double u, v; } uv2;      /* 2D coordinates, meaning given by the user */
+typedef struct vec3 {
+    double x, y, z;
+} vec3; /* a point or a direction */
+typedef struct rgb {
+    double r, g, b;
+} rgb; /* linear radiance or reflectance */
+typedef struct uv2 {
+    double u, v;
+} uv2; /* 2D coordinates, meaning given by the user */
 
 static inline vec3 vec3_make(double x, double y, double z) { return (vec3){x, y, z}; }
 static inline vec3 vec3_add(vec3 a, vec3 b) { return (vec3){a.x + b.x, a.y + b.y, a.z + b.z}; }

@@ -36,7 +36,7 @@ typedef struct distrib1d {
     int fell_back_to_uniform; /* every weight was 0: uniform */
     int first_nonzero;        /* first and last bin of positive pmf */
     int last_nonzero;
-    distrib_alias *alias;     /* n cells after distrib1d_alias_build, else NULL */
+    distrib_alias *alias; /* n cells after distrib1d_alias_build, else NULL */
 } distrib1d;
 
 /* Build *d from n weights (double or float); free with distrib1d_free.  -1 if n is outside
@@ -65,9 +65,9 @@ int distrib1d_sample_alias(const distrib1d *d, double xi, double *pmf, double *r
  * marginal, and p(inner | outer) = w / sum_inner w, the conditional. */
 typedef struct distrib2d {
     int n_outer, n_inner;
-    distrib1d marginal;        /* p(outer): n_outer bins */
-    double *cond_cdf;          /* column o's CDF at cond_cdf + o (n_inner + 1) */
-    double total;              /* as in distrib1d */
+    distrib1d marginal; /* p(outer): n_outer bins */
+    double *cond_cdf;   /* column o's CDF at cond_cdf + o (n_inner + 1) */
+    double total;       /* as in distrib1d */
     int n_bad;
     int fell_back_to_uniform;
     distrib_alias *cond_alias; /* n_outer n_inner cells after distrib2d_alias_build, else NULL */
@@ -97,8 +97,8 @@ double distrib2d_pmf_inner(const distrib2d *d, int outer, int inner);
 /* Outer from the marginal CDF with xi_outer, then inner from that column's CDF with xi_inner
  * (binary search twice).  *pmf = distrib2d_pmf; rem_* the remapped xi; pmf, rem_* may be NULL,
  * outer and inner not. */
-void distrib2d_sample(const distrib2d *d, double xi_outer, double xi_inner, int *outer,
-                      int *inner, double *pmf, double *rem_outer, double *rem_inner);
+void distrib2d_sample(const distrib2d *d, double xi_outer, double xi_inner, int *outer, int *inner,
+                      double *pmf, double *rem_outer, double *rem_inner);
 
 /* The same by the alias method at both levels (after distrib2d_alias_build, assert). */
 void distrib2d_sample_alias(const distrib2d *d, double xi_outer, double xi_inner, int *outer,

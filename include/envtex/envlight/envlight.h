@@ -32,24 +32,24 @@ typedef enum envsampler_kind { ENVSAMPLER_BINARY, ENVSAMPLER_ALIAS } envsampler_
 
 typedef struct envlight {
     const envmap *env;
-    const image *map;   /* env->img, or `converted` (owned) for other kinds */
+    const image *map; /* env->img, or `converted` (owned) for other kinds */
     image converted;
     envsampling_mode mode;
     envsampler_kind sampler;
     int w, h;
-    distrib2d table;    /* cdf modes: outer = columns (phi), inner = rows */
-    double power;       /* |L| = sum of L_avg dOmega (after scale) */
-    double kappa;       /* 4 pi sum L_avg^2 dOmega / |L|^2: 1 + uniform sampling's rel. variance */
-    long n_bad;         /* NaN / Inf / negative texel channels */
-    int fell_back;      /* the map was black */
-    double *cos_edge;   /* h + 1: cos theta at the row edges */
-    double *row_omega;  /* h: a texel's solid angle per row */
-    int identity;       /* to_env's linear part is I */
-    mat4 to_world;      /* to_env transposed (normalize after it) */
+    distrib2d table;   /* cdf modes: outer = columns (phi), inner = rows */
+    double power;      /* |L| = sum of L_avg dOmega (after scale) */
+    double kappa;      /* 4 pi sum L_avg^2 dOmega / |L|^2: 1 + uniform sampling's rel. variance */
+    long n_bad;        /* NaN / Inf / negative texel channels */
+    int fell_back;     /* the map was black */
+    double *cos_edge;  /* h + 1: cos theta at the row edges */
+    double *row_omega; /* h: a texel's solid angle per row */
+    int identity;      /* to_env's linear part is I */
+    mat4 to_world;     /* to_env transposed (normalize after it) */
     mediancut_point *points; /* mediancut: n_points lights, world directions */
     int n_points;
-    distrib1d point_choice;  /* mediancut, sis: a light by its power */
-    void *strata;            /* sis: its shadow-ray tables (sis.h), owned, freed by strata_free */
+    distrib1d point_choice; /* mediancut, sis: a light by its power */
+    void *strata;           /* sis: its shadow-ray tables (sis.h), owned, freed by strata_free */
     void (*strata_free)(void *strata);
     double build_seconds;
 } envlight;

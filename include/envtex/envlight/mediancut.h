@@ -21,7 +21,7 @@
 
 /* The map: L(c, r) = scale x the texel, NaN, Inf and negative channels as 0 (as envlight.h). */
 typedef struct mediancut_map {
-    const image *img;        /* w x h, borrowed */
+    const image *img; /* w x h, borrowed */
     double scale;
     const double *energy;    /* w h weights >= 0: what the cuts halve */
     const double *row_omega; /* h: a texel's solid angle in row r */
@@ -37,8 +37,8 @@ typedef struct mediancut_point {
 /* Halve the most energetic stratum across its longer side in angle until there are n_lights
  * >= 1 or none splits.  The caller frees *points (free) and *choice (distrib1d_free; by
  * power_avg).  -1 out of memory: *points NULL, *n_points 0, *choice empty. */
-int mediancut_build(const mediancut_map *m, int n_lights, mediancut_point **points,
-                    int *n_points, distrib1d *choice, error *err);
+int mediancut_build(const mediancut_map *m, int n_lights, mediancut_point **points, int *n_points,
+                    distrib1d *choice, error *err);
 
 /* The bytes mediancut_build holds while building, and returns. */
 double mediancut_scratch_bytes(int w, int h, int n_lights);

@@ -11,7 +11,7 @@
 
 #define MISFRACTION_GRID_W 64
 #define MISFRACTION_GRID_H 32
-#define MISFRACTION_COUNT 8 /* c: 0, 1/32, 1/16, 1/8, 1/4, 1/2, 3/4, 1 */
+#define MISFRACTION_COUNT  8 /* c: 0, 1/32, 1/16, 1/8, 1/4, 1/2, 3/4, 1 */
 
 /* The c minimizing V(c) (1 + light_cost c) for a cdf-mode light from envlight_build, else 1;
  * rel_var_out (NULL or MISFRACTION_COUNT) gets each V.  Allocates nothing. */

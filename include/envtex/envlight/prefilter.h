@@ -24,10 +24,10 @@ typedef enum irradiance_method { IRRADIANCE_EXACT, IRRADIANCE_SH9 } irradiance_m
 
 #define PREFILTER_SH9 9
 
-#define PREFILTER_MAX_WIDTH 8192    /* output widths: even, in [2, this] */
-#define PREFILTER_MAX_SHININESS 1e6 /* Phong exponents S: finite, in [0, this] */
+#define PREFILTER_MAX_WIDTH     8192 /* output widths: even, in [2, this] */
+#define PREFILTER_MAX_SHININESS 1e6  /* Phong exponents S: finite, in [0, this] */
 /* The most input texels an exact map may visit in all (a map of rows; other kinds). */
-#define PREFILTER_MAX_ROW_WORK 2e10
+#define PREFILTER_MAX_ROW_WORK  2e10
 #define PREFILTER_MAX_LIST_WORK 3e9
 /* prefilter_phong drops what adds at most this fraction of the mean radiance. */
 #define PREFILTER_PHONG_DROP 1e-12

@@ -37,7 +37,7 @@ typedef struct sis_strata {
     int layer_total[SIS_MAX_LAYERS];  /* sum of each layer's n_R */
     int layer_new[SIS_MAX_LAYERS];    /* samples each layer placed itself */
     double gamma_4pi;                 /* Gamma of the whole map */
-    double radius; /* largest angle (radians) from a texel to its sample */
+    double radius;                    /* largest angle (radians) from a texel to its sample */
 } sis_strata;
 
 /* Stratify the w x h lat-long luminance `lum` (row-major, finite, >= 0) into n in [1, w h]

@@ -23,7 +23,7 @@
 
 /* The representations; CONVERT_LATLONG is 0, so a zeroed struct holds a lat-long map. */
 typedef enum convert_kind {
-    CONVERT_LATLONG,     /* latlong.h, and so on */
+    CONVERT_LATLONG, /* latlong.h, and so on */
     CONVERT_CUBE,
     CONVERT_MIRRORBALL,
     CONVERT_ANGULAR,
@@ -35,18 +35,18 @@ typedef enum convert_kind {
 /* A view: owns nothing. */
 typedef struct convert_env {
     convert_kind kind;
-    const image *img;     /* non-empty; all kinds but CONVERT_CUBE */
-    const cubemap *cube;  /* CONVERT_CUBE: size >= 1 */
-    double max_height;    /* CONVERT_CYLINDRICAL: h > 0 */
+    const image *img;    /* non-empty; all kinds but CONVERT_CUBE */
+    const cubemap *cube; /* CONVERT_CUBE: size >= 1 */
+    double max_height;   /* CONVERT_CYLINDRICAL: h > 0 */
 } convert_env;
 
 /* Owns its pixels: convert_map_free. */
 typedef struct convert_map {
     convert_kind kind;
-    image img;            /* every kind but CONVERT_CUBE */
-    cubemap cube;         /* CONVERT_CUBE */
-    double max_height;    /* CONVERT_CYLINDRICAL */
-    long bad_texels;      /* convert_read: bad channel values it made 0 */
+    image img;         /* every kind but CONVERT_CUBE */
+    cubemap cube;      /* CONVERT_CUBE */
+    double max_height; /* CONVERT_CYLINDRICAL */
+    long bad_texels;   /* convert_read: bad channel values it made 0 */
 } convert_map;
 
 /* "latlong", "cube", "cross" (a cube), "mirrorball", "angular", "cylindrical", "equalarea":

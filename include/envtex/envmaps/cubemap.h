@@ -30,8 +30,8 @@ enum cubemap_face {
 };
 
 typedef struct cubemap {
-    int size;                    /* faces are N x N; 0 when empty */
-    image face[CUBEMAP_FACES];   /* owned: cubemap_free */
+    int size;                  /* faces are N x N; 0 when empty */
+    image face[CUBEMAP_FACES]; /* owned: cubemap_free */
 } cubemap;
 
 /* d -> *face, *st in [0,1]^2 (closed): 0, or -1 (untouched) for a zero or non-finite d. */

@@ -14,12 +14,12 @@
 typedef enum genenv_kind { GENENV_CONSTANT, GENENV_SKY, GENENV_SUN, GENENV_AXES } genenv_kind;
 
 typedef struct genenv_params {
-    int width;               /* map width; height = width / 2 (at least 1) */
-    double value;            /* constant: the radiance */
-    double sun_ratio;        /* sun: disc radiance / mean sky radiance, default 1e5 */
-    double sun_radius_deg;   /* sun: angular radius in degrees, default 0.5 */
-    double sun_elevation_deg;/* sun: height above the horizon in [-90, 90], default 35 */
-    double sun_azimuth_deg;  /* sun: phi of the sun (any finite angle), default 60 */
+    int width;                /* map width; height = width / 2 (at least 1) */
+    double value;             /* constant: the radiance */
+    double sun_ratio;         /* sun: disc radiance / mean sky radiance, default 1e5 */
+    double sun_radius_deg;    /* sun: angular radius in degrees, default 0.5 */
+    double sun_elevation_deg; /* sun: height above the horizon in [-90, 90], default 35 */
+    double sun_azimuth_deg;   /* sun: phi of the sun (any finite angle), default 60 */
 } genenv_params;
 
 genenv_params genenv_defaults(void);

@@ -24,10 +24,10 @@ typedef struct camera {
 /* What camera_frame refuses. */
 typedef enum camera_frame_status {
     CAMERA_FRAME_OK = 0,
-    CAMERA_FRAME_TOO_FAR,       /* eye - center overflows, or not finite */
-    CAMERA_FRAME_SAME_POINT,    /* eye == center: no view direction */
-    CAMERA_FRAME_UP_ZERO,       /* up is zero or not finite */
-    CAMERA_FRAME_UP_PARALLEL    /* sin(angle(up, view)) <= CAMERA_PARALLEL_EPS */
+    CAMERA_FRAME_TOO_FAR,    /* eye - center overflows, or not finite */
+    CAMERA_FRAME_SAME_POINT, /* eye == center: no view direction */
+    CAMERA_FRAME_UP_ZERO,    /* up is zero or not finite */
+    CAMERA_FRAME_UP_PARALLEL /* sin(angle(up, view)) <= CAMERA_PARALLEL_EPS */
 } camera_frame_status;
 
 /* The frame above for any finite inputs: CAMERA_FRAME_OK and *u, *v, *w, or a status (them

@@ -15,20 +15,20 @@ typedef struct ray {
 } ray;
 
 typedef struct ray_diff {
-    int has;             /* 1: valid; 0: none (after a diffuse bounce, shadow rays) */
-    vec3 dox, ddx;       /* change of o and of the UNIT d per pixel step in x */
-    vec3 doy, ddy;       /* ... in y (one row down) */
+    int has;       /* 1: valid; 0: none (after a diffuse bounce, shadow rays) */
+    vec3 dox, ddx; /* change of o and of the UNIT d per pixel step in x */
+    vec3 doy, ddy; /* ... in y (one row down) */
 } ray_diff;
 
 typedef struct hit {
-    double t;       /* ray parameter of the hit */
-    vec3 p;         /* world position */
-    vec3 ng;        /* unit geometric normal, facing outward (not flipped towards the ray) */
-    vec3 ns;        /* unit shading normal, same side as ng */
-    uv2 bary;       /* triangle barycentrics (b1, b2) of corners 1, 2; sphere: (0, 0) */
-    long prim;      /* index of the primitive in its scene array */
-    int is_sphere;  /* 1 sphere, 0 triangle */
-    int material;   /* index into scene.materials */
+    double t;      /* ray parameter of the hit */
+    vec3 p;        /* world position */
+    vec3 ng;       /* unit geometric normal, facing outward (not flipped towards the ray) */
+    vec3 ns;       /* unit shading normal, same side as ng */
+    uv2 bary;      /* triangle barycentrics (b1, b2) of corners 1, 2; sphere: (0, 0) */
+    long prim;     /* index of the primitive in its scene array */
+    int is_sphere; /* 1 sphere, 0 triangle */
+    int material;  /* index into scene.materials */
 } hit;
 
 /* A leaving ray's origin moves along ng by ABS + REL max |p_i| (no "acne"): six orders above

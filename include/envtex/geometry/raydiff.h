@@ -26,7 +26,7 @@ void raydiff_reflect(const ray_diff *in, vec3 dpdx, vec3 dpdy, vec3 wo, vec3 n, 
 /* Of the refracted unit wi = -eta wo + mu n, eta = n_i / n_t (fresnel.h's INVERSE),
  * mu = eta cos_i - cos_t: dwi = -eta dwo + mu dn + dmu n, dmu = (eta - eta^2 cos_i / cos_t)
  * d(wo . n).  1, or 0 with out->has = 0 if cos_t <= RAYDIFF_MIN_COS or in->has = 0. */
-int raydiff_refract(const ray_diff *in, vec3 dpdx, vec3 dpdy, vec3 wo, vec3 n, vec3 dndx,
-                    vec3 dndy, double eta, vec3 wi, ray_diff *out);
+int raydiff_refract(const ray_diff *in, vec3 dpdx, vec3 dpdy, vec3 wo, vec3 n, vec3 dndx, vec3 dndy,
+                    double eta, vec3 wi, ray_diff *out);
 
 #endif

@@ -11,11 +11,11 @@
 
 /* `sphere x y z r` under the current transform. */
 typedef struct sphere {
-    vec3 center;    /* object space, as written */
+    vec3 center; /* object space, as written */
     double radius;
-    mat4 xf, inv;   /* object -> world and its inverse */
+    mat4 xf, inv;      /* object -> world and its inverse */
     int untransformed; /* 1: xf = inv = the identity, skipped; 0 (always correct): use them */
-    int material;   /* index into scene.materials */
+    int material;      /* index into scene.materials */
 } sphere;
 
 /* Nearest world-ray t in (r->tmin, r->tmax) on the transformed sphere: 1 and *t, or 0. */

@@ -15,16 +15,16 @@
 
 /* A scene triangle (`tri`, `trinormal`, `tritex`, an OBJ face). */
 typedef struct triangle {
-    vec3 p[3];      /* world corners: (p1 - p0) x (p2 - p0) is the outward normal (corners 1
+    vec3 p[3]; /* world corners: (p1 - p0) x (p2 - p0) is the outward normal (corners 1
                        and 2 swapped, with n, st, q, under a mirroring transform) */
-    vec3 n[3];      /* world-space unit vertex normals (trinormal); unused if !has_normals */
+    vec3 n[3]; /* world-space unit vertex normals (trinormal); unused if !has_normals */
     int has_normals;
     int material;
-    uv2 st[3];      /* `tritex` or an OBJ's vt (has_st = 1), else (0,0), (1,0), (0,1) as written */
+    uv2 st[3]; /* `tritex` or an OBJ's vt (has_st = 1), else (0,0), (1,0), (0,1) as written */
     int has_st;
-    int st_mapped;  /* 1: st already holds the material's point mapping (a displaced sphere's
+    int st_mapped; /* 1: st already holds the material's point mapping (a displaced sphere's
                        tessellation, displacemap.h), interpolated as for `uv`; 0 from a file */
-    vec3 q[3];      /* OBJECT-space corners (as written, before the transform), for the point
+    vec3 q[3];     /* OBJECT-space corners (as written, before the transform), for the point
                        mappings and solid textures: P_object = sum b_i q_i */
 } triangle;
 

@@ -15,10 +15,10 @@
 #include "envtex/scene/scene.h"
 
 typedef struct surface {
-    vec3 p;          /* world position */
-    vec3 ng;         /* unit geometric normal, turned to the side wo is on */
-    vec3 n;          /* unit shading normal, on the same side as ng */
-    int entering;    /* 1 if wo is on the outside of the object (glass: entering it) */
+    vec3 p;       /* world position */
+    vec3 ng;      /* unit geometric normal, turned to the side wo is on */
+    vec3 n;       /* unit shading normal, on the same side as ng */
+    int entering; /* 1 if wo is on the outside of the object (glass: entering it) */
     brdf_kind kind;
     rgb kd, ks, emission;
     double shininess, roughness, ior;
@@ -48,8 +48,8 @@ double brdf_pdf(const surface *s, vec3 wo, vec3 wi, sampling_kind strategy);
 
 typedef struct brdf_sample_result {
     vec3 wi;
-    double pdf;      /* per steradian; 0 for a delta direction */
-    rgb weight;      /* f cos / pdf (delta: the reflectance picked, divided by its probability) */
+    double pdf; /* per steradian; 0 for a delta direction */
+    rgb weight; /* f cos / pdf (delta: the reflectance picked, divided by its probability) */
     int is_delta;
 } brdf_sample_result;
 

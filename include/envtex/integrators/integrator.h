@@ -31,17 +31,17 @@ typedef struct integrator {
     const bvh *accel;
     envmap env;
     envlight el;
-    int has_envlight;   /* el built; without samples_env for lookups only (no power) */
-    int samples_env;    /* el is sampled as a light (direct, or pathtracer with NEE) */
+    int has_envlight; /* el built; without samples_env for lookups only (no power) */
+    int samples_env;  /* el is sampled as a light (direct, or pathtracer with NEE) */
     lights ls;
-    int has_lights;     /* ls built */
-    int maxdepth;       /* resolved: -1 becomes INTEGRATOR_UNLIMITED_DEPTH */
-    raytracer rt;       /* integrator raytracer (and prefiltered, which shades its hits) */
+    int has_lights;         /* ls built */
+    int maxdepth;           /* resolved: -1 becomes INTEGRATOR_UNLIMITED_DEPTH */
+    raytracer rt;           /* integrator raytracer (and prefiltered, which shades its hits) */
     struct prefiltered *pf; /* integrator prefiltered: its maps (prefiltered.h) */
-    long long rays;     /* rays traced by the sampling integrators */
+    long long rays;         /* rays traced by the sampling integrators */
     double build_seconds;
-    double env_fraction;  /* the envmap's sampling fraction in use (lights.h), 1 if not MIS */
-    nee_mode nee;         /* as run: the scene's, or off when no light can be sampled (none, or
+    double env_fraction; /* the envmap's sampling fraction in use (lights.h), 1 if not MIS */
+    nee_mode nee;        /* as run: the scene's, or off when no light can be sampled (none, or
                            * MIS with the envmap alone at fraction 0) */
 } integrator;
 
@@ -85,8 +85,7 @@ int integrator_stratum(int j, int m, double *xi1, double *xi2);
 /* One sample of light k from s: *l and *f_li_cos = f Li cos(theta_i), returns 1; 0 when it
  * carries nothing (behind, zero BRDF, blocked).  The caller divides by the pdf. */
 int integrator_light_sample(integrator *it, const surface *s, vec3 wo, int k, double xi1,
-                            double xi2, double xi3, int stratified, light_sample *l,
-                            rgb *f_li_cos);
+                            double xi2, double xi3, int stratified, light_sample *l, rgb *f_li_cos);
 
 /* power heuristic with beta = 2: w = (nf pf)^2 / ((nf pf)^2 + (ng pg)^2) */
 static inline double integrator_power_heuristic(double nf, double pf, double ng, double pg)

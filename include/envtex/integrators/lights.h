@@ -24,12 +24,12 @@
 
 typedef struct lights {
     const scene *sc;
-    const envlight *env;  /* NULL: no environment light */
-    int n;                /* sc->n_lights, + 1 for the environment (last) */
+    const envlight *env;       /* NULL: no environment light */
+    int n;                     /* sc->n_lights, + 1 for the environment (last) */
     light_selection selection; /* sc->lightselection */
-    distrib1d choose;     /* pick a light by power */
+    distrib1d choose;          /* pick a light by power */
     double radius;
-    double env_fraction;  /* c in [0, 1]: lights_set_env_fraction (default 1) */
+    double env_fraction; /* c in [0, 1]: lights_set_env_fraction (default 1) */
     /* the quad lights' own BVH: its quad j is sc->lights[quad_light[j]] (owned) */
     bvh quad_bvh;
     int *quad_light;
@@ -37,11 +37,11 @@ typedef struct lights {
 } lights;
 
 typedef struct light_sample {
-    vec3 wi;        /* unit direction from the shading point towards the light */
-    rgb Li;         /* radiance, or for delta lights irradiance at normal incidence */
-    double pdf;     /* per steradian, of this light's sampling; 0 for delta lights */
-    int is_delta;   /* point, directional, median-cut: no density, BRDF rays cannot reach it */
-    ray shadow;     /* the visibility ray: blocked means no light */
+    vec3 wi;      /* unit direction from the shading point towards the light */
+    rgb Li;       /* radiance, or for delta lights irradiance at normal incidence */
+    double pdf;   /* per steradian, of this light's sampling; 0 for delta lights */
+    int is_delta; /* point, directional, median-cut: no density, BRDF rays cannot reach it */
+    ray shadow;   /* the visibility ray: blocked means no light */
 } light_sample;
 
 /* The lights of sc plus env (NULL: none), both borrowed (they must outlive ls); scene_radius is

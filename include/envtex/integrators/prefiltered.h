@@ -28,11 +28,11 @@ typedef struct prefiltered {
     image irradiance;          /* exact: E / pi, envmap frame */
     prefilter_sh9_quadratic q; /* sh9: E(n) = (n, 1)^T M (n, 1) */
     int n_phong;
-    double *phong_s;           /* the distinct exponents */
-    image *phong;              /* their maps */
-    int *phong_of;             /* per material of the scene: its map, or -1 */
-    double build_seconds;      /* CPU time of building the maps */
-    budget *mem;               /* the run's budget, charged `charged` bytes for the maps */
+    double *phong_s;      /* the distinct exponents */
+    image *phong;         /* their maps */
+    int *phong_of;        /* per material of the scene: its map, or -1 */
+    double build_seconds; /* CPU time of building the maps */
+    budget *mem;          /* the run's budget, charged `charged` bytes for the maps */
     double charged;
 } prefiltered;
 

@@ -31,8 +31,8 @@ typedef struct raytracer {
     const scene *sc;
     const bvh *accel;
     envmap env;
-    int maxdepth;        /* resolved: -1 becomes RAYTRACER_UNLIMITED_DEPTH */
-    long long rays;      /* rays traced, shadow rays included */
+    int maxdepth;             /* resolved: -1 becomes RAYTRACER_UNLIMITED_DEPTH */
+    long long rays;           /* rays traced, shadow rays included */
     raytracer_shade_fn shade; /* NULL (raytracer_init): the Whitted terms */
     void *shade_ctx;
 } raytracer;

@@ -51,8 +51,7 @@ void texshade_tangents(const scene *sc, const hit *h, texshade_point *tp);
 /* texshade_differentials, then the maps: diffusemap -> kd, specularmap -> ks, roughnessmap ->
  * roughness, emissionmap -> emission, bumpmap -> s->n (kept on s->ng's side).  s holds the
  * hit's frame and the material's values on entry. */
-void texshade_surface(const scene *sc, const hit *h, const ray *r, const ray_diff *rd,
-                      surface *s);
+void texshade_surface(const scene *sc, const hit *h, const ray *r, const ray_diff *rd, surface *s);
 
 /* The differentials of the ray leaving s along wi: mirrored about s->n if wi is on wo's side,
  * else refracted (s->ior, s->entering).  wo: unit, back along rd's ray.  out->has = 0 when

@@ -26,7 +26,6 @@ void fileio_tmp_abandon(const char *tmp_path);
 /* A regular file into *data (malloc'd, 0 after the *size bytes; free() it), size + 1 charged
  * to `mem` first (released by the caller with the data).  Fails as infile_open, on the
  * budget, on a read error. */
-int fileio_read_all(const char *path, unsigned char **data, size_t *size, budget *mem,
-                    error *err);
+int fileio_read_all(const char *path, unsigned char **data, size_t *size, budget *mem, error *err);
 
 #endif

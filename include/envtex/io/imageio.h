@@ -24,7 +24,11 @@ int imageio_read(const char *path, image *out, budget *mem, error *err);
 
 /* The format by magic bytes; IMAGEIO_UNKNOWN if unreadable, not regular, or none of them. */
 typedef enum imageio_format {
-    IMAGEIO_UNKNOWN, IMAGEIO_EXR, IMAGEIO_PNG, IMAGEIO_RGBE, IMAGEIO_PFM
+    IMAGEIO_UNKNOWN,
+    IMAGEIO_EXR,
+    IMAGEIO_PNG,
+    IMAGEIO_RGBE,
+    IMAGEIO_PFM
 } imageio_format;
 imageio_format imageio_detect(const char *path);
 

@@ -18,10 +18,7 @@ typedef struct infile_id {
     unsigned long long dev, ino;
 } infile_id;
 
-static inline int infile_same(infile_id a, infile_id b)
-{
-    return a.dev == b.dev && a.ino == b.ino;
-}
+static inline int infile_same(infile_id a, infile_id b) { return a.dev == b.dev && a.ino == b.ino; }
 
 /* Open a regular file to read, never blocking: a descriptor (close it), its identity in *id
  * (may be NULL); or -1 with "cannot open: why" naming `path`. */
@@ -42,7 +39,7 @@ typedef struct infile_list {
     struct infile_entry {
         infile_id id;
         char *path; /* owned */
-    } *at;
+    } * at;
     int n, cap;
 } infile_list;
 

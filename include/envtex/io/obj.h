@@ -27,13 +27,17 @@ typedef struct obj_triangle {
 } obj_triangle;
 
 typedef struct obj_mesh {
-    vec3 *v; long n_v;
-    uv2 *vt; long n_vt;
-    vec3 *vn; long n_vn;
-    obj_triangle *tris; long n_tris;
-    double bytes;              /* the arrays' capacity, charged */
-    long n_ignored;            /* statements skipped */
-    char first_ignored[32];    /* the first skipped keyword, "" if none */
+    vec3 *v;
+    long n_v;
+    uv2 *vt;
+    long n_vt;
+    vec3 *vn;
+    long n_vn;
+    obj_triangle *tris;
+    long n_tris;
+    double bytes;           /* the arrays' capacity, charged */
+    long n_ignored;         /* statements skipped */
+    char first_ignored[32]; /* the first skipped keyword, "" if none */
     int first_ignored_line;
 } obj_mesh;
 
@@ -43,8 +47,8 @@ typedef struct obj_mesh {
 int obj_load(const char *path, long max_elems, obj_mesh *out, budget *mem, error *err);
 
 /* The same from NUL-terminated text; `name` in messages. */
-int obj_load_string(const char *text, const char *name, long max_elems, obj_mesh *out,
-                    budget *mem, error *err);
+int obj_load_string(const char *text, const char *name, long max_elems, obj_mesh *out, budget *mem,
+                    error *err);
 
 /* Free and zero *m; safe on a zeroed or freed mesh. */
 void obj_free(obj_mesh *m);

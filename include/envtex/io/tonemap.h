@@ -24,7 +24,7 @@ typedef enum tonemap_op {
 typedef struct tonemap_params {
     double exposure; /* EV: multiply by 2^exposure first */
     tonemap_op op;
-    double gamma;    /* <= 0: the sRGB curve; > 0: c^(1/gamma) */
+    double gamma; /* <= 0: the sRGB curve; > 0: c^(1/gamma) */
 } tonemap_params;
 
 tonemap_params tonemap_defaults(void);

@@ -12,14 +12,14 @@
 #include "envtex/core/transform.h"
 
 typedef struct envmap {
-    int present;          /* 0: black */
+    int present; /* 0: black */
     convert_kind kind;
-    const image *img;     /* lat-long only (else NULL): the map envlight.h samples */
-    const image *map;     /* every kind but CONVERT_CUBE (borrowed) */
-    const cubemap *cube;  /* CONVERT_CUBE only (borrowed), else NULL */
-    double max_height;    /* CONVERT_CYLINDRICAL: h > 0 */
+    const image *img;    /* lat-long only (else NULL): the map envlight.h samples */
+    const image *map;    /* every kind but CONVERT_CUBE (borrowed) */
+    const cubemap *cube; /* CONVERT_CUBE only (borrowed), else NULL */
+    double max_height;   /* CONVERT_CYLINDRICAL: h > 0 */
     double scale;
-    mat4 to_env;          /* world direction -> envmap frame */
+    mat4 to_env; /* world direction -> envmap frame */
 } envmap;
 
 /* `map` (borrowed: it must outlive *env) with `scale` and to_env; NULL or no pixels: present
@@ -33,10 +33,7 @@ convert_env envmap_view(const envmap *env);
 rgb envmap_radiance(const envmap *env, vec3 d);
 
 /* World direction -> envmap frame (not normalized). */
-static inline vec3 envmap_to_frame(const envmap *env, vec3 d)
-{
-    return mat4_dir(&env->to_env, d);
-}
+static inline vec3 envmap_to_frame(const envmap *env, vec3 d) { return mat4_dir(&env->to_env, d); }
 
 /* The map as a new width x width/2 lat-long image (image_free), unscaled, by convert_resample
  * (<= 0: its defaults).  Fails (out empty) if not present or on a bad size. */

@@ -26,11 +26,11 @@
 #define COMPARE_RELMSE_TRIM 1e-3
 
 typedef struct compare_result {
-    double rmse;    /* sqrt(mean over pixels and channels of (a - ref)^2) */
-    double relmse;  /* mean over pixels and channels of (a - ref)^2 / (ref^2 + epsilon) */
+    double rmse;        /* sqrt(mean over pixels and channels of (a - ref)^2) */
+    double relmse;      /* mean over pixels and channels of (a - ref)^2 / (ref^2 + epsilon) */
     double relmse_trim; /* relmse without the COMPARE_RELMSE_TRIM largest pixels */
-    double psnr;    /* 10 log10(1 / mse) in dB (peak 1.0); +INFINITY when equal */
-    double max_abs; /* largest channel |a - ref| */
+    double psnr;        /* 10 log10(1 / mse) in dB (peak 1.0); +INFINITY when equal */
+    double max_abs;     /* largest channel |a - ref| */
     int max_x, max_y;   /* where max_abs occurs (-1, -1 if none) */
     long nonfinite;     /* pixels of `a` with a NaN or Inf channel */
     long ref_nonfinite; /* ... of `ref` */
@@ -57,15 +57,15 @@ typedef struct compare_thresholds_params {
 compare_thresholds_params compare_thresholds_defaults(void);
 
 typedef struct compare_verdict {
-    int pass;          /* 1 if the images pass */
-    long pixels;       /* pixels compared (0 if the sizes differ) */
-    long failed;       /* pixels that fail */
+    int pass;              /* 1 if the images pass */
+    long pixels;           /* pixels compared (0 if the sizes differ) */
+    long failed;           /* pixels that fail */
     double failed_percent; /* 100 * failed / pixels */
-    long hard_failed;  /* pixels over hard_thresh */
-    long nonfinite;    /* pixels with a NaN / Inf in a or ref */
-    double max_diff;   /* largest finite pixel difference */
-    int max_x, max_y;  /* where (-1, -1 if none) */
-    char why[256];     /* one line: "ok" or the reasons it failed */
+    long hard_failed;      /* pixels over hard_thresh */
+    long nonfinite;        /* pixels with a NaN / Inf in a or ref */
+    double max_diff;       /* largest finite pixel difference */
+    int max_x, max_y;      /* where (-1, -1 if none) */
+    char why[256];         /* one line: "ok" or the reasons it failed */
 } compare_verdict;
 
 /* Judge `a` against `ref` into *v: 0 pass, -1 fail (any reason, sizes too: v->why says). */

@@ -36,13 +36,13 @@ gradetest_params gradetest_defaults(void);
 typedef struct gradetest_result {
     int pass;
     long pixels;
-    long failed;              /* pixels whose p-value is below alpha / N */
+    long failed; /* pixels whose p-value is below alpha / N */
     double failed_fraction;
-    double mean_z;            /* Z of the image total (signed) */
-    double global_stat;       /* |Z| */
-    double z_threshold;       /* |z| above which a pixel fails */
-    long nonfinite;           /* NaN or Inf pixels of img (any fails) */
-    char why[256];            /* one line */
+    double mean_z;      /* Z of the image total (signed) */
+    double global_stat; /* |Z| */
+    double z_threshold; /* |z| above which a pixel fails */
+    long nonfinite;     /* NaN or Inf pixels of img (any fails) */
+    char why[256];      /* one line */
 } gradetest_result;
 
 /* 0 with the verdict in *out, or -1 with *err when it cannot run (sizes differ, a sample count

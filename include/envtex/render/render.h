@@ -20,48 +20,48 @@ typedef void (*render_progress_fn)(void *ctx, int rows_done, int rows);
 typedef void (*render_start_fn)(void *ctx);
 
 typedef struct render_opts {
-    int spp;                   /* samples per pixel; 0: the scene's `spp` */
-    uint64_t seed;             /* default 0 */
+    int spp;                     /* samples per pixel; 0: the scene's `spp` */
+    uint64_t seed;               /* default 0 */
     render_progress_fn progress; /* called after each row (may be NULL) */
     void *progress_ctx;
-    render_start_fn start;     /* once everything is built, before the first pixel (may be
+    render_start_fn start; /* once everything is built, before the first pixel (may be
                                 * NULL); never for a refused render */
     void *start_ctx;
-    scene_warn_fn warn;        /* the render's own warnings (a black sampled envmap), before
+    scene_warn_fn warn; /* the render's own warnings (a black sampled envmap), before
                                 * start (NULL: dropped) */
     void *warn_ctx;
-    budget *mem;               /* charged before the displaced geometry, BVH and envmap tables
+    budget *mem;     /* charged before the displaced geometry, BVH and envmap tables
                                 * are built (NULL: none) */
-    image *variance;           /* not NULL: gets the variance of each pixel's mean (image_free) */
+    image *variance; /* not NULL: gets the variance of each pixel's mean (image_free) */
 } render_opts;
 
 typedef struct render_stats {
-    double seconds;            /* wall-clock time of the pixel loop */
-    double build_seconds;      /* time to build acceleration structures and tables */
-    long long rays;            /* rays traced, shadow rays included */
+    double seconds;       /* wall-clock time of the pixel loop */
+    double build_seconds; /* time to build acceleration structures and tables */
+    long long rays;       /* rays traced, shadow rays included */
     int spp;
-    long nonfinite_pixels;     /* pixels stored with a NaN or Inf channel (should be 0) */
-    long nonfinite_variance;   /* the same, in opts->variance (0 without one) */
+    long nonfinite_pixels;   /* pixels stored with a NaN or Inf channel (should be 0) */
+    long nonfinite_variance; /* the same, in opts->variance (0 without one) */
     /* what was built */
     long prims;
     int bvh_is_tree;
-    int ray_differentials;     /* camera rays carried differentials (a map needs a footprint) */
+    int ray_differentials; /* camera rays carried differentials (a map needs a footprint) */
     long bvh_nodes;
     int bvh_depth;
-    int envlight_built;        /* environment sampling tables were built */
-    int envlight_sampled;      /* the integrator samples the envmap as a light */
-    int envlight_mode;         /* envsampling_mode used (cdf: uniform on a black map) */
-    double envlight_seconds;   /* time to build them */
-    long envlight_bad_texels;  /* NaN / Inf / negative texel channels, treated as 0 */
-    int envlight_fell_back;    /* the map was black: sampling fell back to uniform */
-    int envlight_points;       /* median cut: point lights made */
+    int envlight_built;         /* environment sampling tables were built */
+    int envlight_sampled;       /* the integrator samples the envmap as a light */
+    int envlight_mode;          /* envsampling_mode used (cdf: uniform on a black map) */
+    double envlight_seconds;    /* time to build them */
+    long envlight_bad_texels;   /* NaN / Inf / negative texel channels, treated as 0 */
+    int envlight_fell_back;     /* the map was black: sampling fell back to uniform */
+    int envlight_points;        /* median cut: point lights made */
     int envlight_w, envlight_h; /* the lat-long map sampled (resampled for other kinds) */
-    double envlight_kappa;     /* E[L^2] / E[L]^2 of the map (envlight.h) */
-    double env_fraction;       /* the envmap's sampling fraction under MIS (lights.h), else 1 */
-    nee_mode nee;              /* the path tracer's next-event estimation as run (integrator.h) */
-    int lights;                /* lights the sampling integrators choose among */
+    double envlight_kappa;      /* E[L^2] / E[L]^2 of the map (envlight.h) */
+    double env_fraction;        /* the envmap's sampling fraction under MIS (lights.h), else 1 */
+    nee_mode nee;               /* the path tracer's next-event estimation as run (integrator.h) */
+    int lights;                 /* lights the sampling integrators choose among */
     long displaced_spheres, displaced_triangles; /* objects tessellated for displacement maps */
-    long displaced_result;     /* triangles they became (with the untouched ones) */
+    long displaced_result; /* triangles they became (with the untouched ones) */
     int displace_sphere_rate, displace_triangle_rate;
 } render_stats;
 

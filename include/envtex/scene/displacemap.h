@@ -14,13 +14,13 @@
 #include "envtex/core/error.h"
 #include "envtex/scene/scene.h"
 
-#define DISPLACEMAP_SPHERE_RATE 96     /* 36480 triangles per sphere */
-#define DISPLACEMAP_TRIANGLE_RATE 32   /* 1024 triangles per triangle */
-#define DISPLACEMAP_MAX_TRIS 8000000L  /* default limit for the displaced scene */
+#define DISPLACEMAP_SPHERE_RATE   96       /* 36480 triangles per sphere */
+#define DISPLACEMAP_TRIANGLE_RATE 32       /* 1024 triangles per triangle */
+#define DISPLACEMAP_MAX_TRIS      8000000L /* default limit for the displaced scene */
 
 typedef struct displacemap_stats {
-    long spheres, triangles;   /* primitives that were displaced */
-    long new_triangles;        /* triangles of the result, untouched ones included */
+    long spheres, triangles;        /* primitives that were displaced */
+    long new_triangles;             /* triangles of the result, untouched ones included */
     int sphere_rate, triangle_rate; /* the rates used */
 } displacemap_stats;
 

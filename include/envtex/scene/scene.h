@@ -28,16 +28,16 @@
 #include "envtex/core/vec.h"
 
 /* Limits a scene may not exceed (checked when read, before allocating). */
-#define SCENE_MAX_SIZE 16384         /* image width or height */
-#define SCENE_MAX_PIXELS (1L << 26)  /* width * height */
-#define SCENE_MAX_SPP 1048576
-#define SCENE_MAX_CAMERA_SAMPLES (1LL << 34) /* width * height * spp (docs/robustness.md) */
-#define SCENE_MAX_DEPTH 1000         /* maxdepth; -1 (unlimited) is allowed */
-#define SCENE_MAX_LIGHTSAMPLES 65536
-#define SCENE_MAX_PRIMS 50000000L    /* vertices, triangles or spheres */
+#define SCENE_MAX_SIZE            16384      /* image width or height */
+#define SCENE_MAX_PIXELS          (1L << 26) /* width * height */
+#define SCENE_MAX_SPP             1048576
+#define SCENE_MAX_CAMERA_SAMPLES  (1LL << 34) /* width * height * spp (docs/robustness.md) */
+#define SCENE_MAX_DEPTH           1000        /* maxdepth; -1 (unlimited) is allowed */
+#define SCENE_MAX_LIGHTSAMPLES    65536
+#define SCENE_MAX_PRIMS           50000000L /* vertices, triangles or spheres */
 #define SCENE_MAX_TRANSFORM_STACK 1024
-#define SCENE_MAX_LINE 65536         /* bytes in one line, without its '\n' */
-#define SCENE_MAX_TEXTURE_NAME 64    /* bytes in a texture's name, with its NUL */
+#define SCENE_MAX_LINE            65536 /* bytes in one line, without its '\n' */
+#define SCENE_MAX_TEXTURE_NAME    64    /* bytes in a texture's name, with its NUL */
 
 typedef enum brdf_kind {
     BRDF_PHONG, /* course default: Blinn-Phong for `raytracer`, modified Phong for path tracers */
@@ -55,22 +55,22 @@ typedef struct material {
     /* texture maps (docs/scene-format.md "Textures"): 0 none, else 1 + an index into
      * scene.textures (scene_map) */
     int diffusemap, specularmap, roughnessmap, emissionmap, bumpmap, displacementmap;
-    double bump_strength;      /* `bumpmap NAME STRENGTH`: height units -> world units */
-    double displacement_scale; /* `displacementmap NAME SCALE` (displacemap.h) */
+    double bump_strength;       /* `bumpmap NAME STRENGTH`: height units -> world units */
+    double displacement_scale;  /* `displacementmap NAME SCALE` (displacemap.h) */
     texmapping_kind texmapping; /* `texmapping`, used when texmapping_given */
-    int texmapping_given;      /* 0: the default (scene_material_texmapping) */
-    texture_filter texfilter;  /* `texfilter`, default TEXFILTER_TRILINEAR */
+    int texmapping_given;       /* 0: the default (scene_material_texmapping) */
+    texture_filter texfilter;   /* `texfilter`, default TEXFILTER_TRILINEAR */
 } material;
 
 typedef enum light_kind { LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_QUAD } light_kind;
 
 typedef struct scene_light {
     light_kind kind;
-    rgb color;          /* intensity (point, directional) or radiance L (quad) */
-    vec3 dir;           /* directional: unit, world, pointing TOWARDS the light */
-    vec3 pos;           /* point: world position; quad: corner a */
-    vec3 ab, ac;        /* quad: world edges; emits on the side of ac x ab */
-    double atten[3];    /* point: constant, linear, quadratic */
+    rgb color;       /* intensity (point, directional) or radiance L (quad) */
+    vec3 dir;        /* directional: unit, world, pointing TOWARDS the light */
+    vec3 pos;        /* point: world position; quad: corner a */
+    vec3 ab, ac;     /* quad: world edges; emits on the side of ac x ab */
+    double atten[3]; /* point: constant, linear, quadratic */
 } scene_light;
 
 typedef enum integrator_kind {
@@ -94,69 +94,75 @@ typedef enum envmiss_mode { ENVMISS_ENVMAP, ENVMISS_BLACK } envmiss_mode;
 /* `envmap FILE [SCALE] [REPRESENTATION]` or `envmap cube PX NX PY NY PZ NZ [SCALE]` (no keyword:
  * by shape, convert_kind_detect). */
 typedef struct scene_envmap {
-    int present;        /* 0: no envmap (rays that leave see black) */
-    char path[1024];    /* resolved (against the scene's folder); six files: the +X face */
-    double scale;       /* radiance multiplier, default 1 */
-    mat4 xf, inv;       /* envmap frame -> world (transform current at `envmap`) and inverse */
-    convert_kind kind;  /* the representation: CONVERT_LATLONG (0) unless named or detected */
-    int kind_given;     /* 1: the line named it; 0: detected */
-    int six_files;      /* 1: `envmap cube PX NX ...` */
+    int present;       /* 0: no envmap (rays that leave see black) */
+    char path[1024];   /* resolved (against the scene's folder); six files: the +X face */
+    double scale;      /* radiance multiplier, default 1 */
+    mat4 xf, inv;      /* envmap frame -> world (transform current at `envmap`) and inverse */
+    convert_kind kind; /* the representation: CONVERT_LATLONG (0) unless named or detected */
+    int kind_given;    /* 1: the line named it; 0: detected */
+    int six_files;     /* 1: `envmap cube PX NX ...` */
     char face_path[CUBEMAP_FACES][1024]; /* six_files: resolved paths, +X -X +Y -Y +Z -Z */
-    image img;          /* the map (every kind but cube); owned */
-    cubemap cube;       /* CONVERT_CUBE: the faces (six files, or a cross split); owned */
-    double max_height;  /* CONVERT_CYLINDRICAL: convert_cylindrical_height */
-    int line;           /* the `envmap` line */
+    image img;                           /* the map (every kind but cube); owned */
+    cubemap cube;      /* CONVERT_CUBE: the faces (six files, or a cross split); owned */
+    double max_height; /* CONVERT_CYLINDRICAL: convert_cylindrical_height */
+    int line;          /* the `envmap` line */
 } scene_envmap;
 
 /* `texture NAME FILE [WRAP]` or `texture NAME KIND PARAMS...` */
 typedef struct scene_texture {
     char name[SCENE_MAX_TEXTURE_NAME];
-    texture tex;        /* an image texture's tex.img is NULL unless load_images */
-    int image;          /* index into scene.texture_images, or -1 (procedural, not loaded) */
-    infile_id file;     /* once loaded: the file's identity (infile.h) */
+    texture tex;    /* an image texture's tex.img is NULL unless load_images */
+    int image;      /* index into scene.texture_images, or -1 (procedural, not loaded) */
+    infile_id file; /* once loaded: the file's identity (infile.h) */
     wrap_mode wrap;
-    char path[1024];    /* resolved against the scene's folder */
-    char token[1024];   /* the file name as written */
-    int line;           /* the `texture` line */
+    char path[1024];  /* resolved against the scene's folder */
+    char token[1024]; /* the file name as written */
+    int line;         /* the `texture` line */
 } scene_texture;
 
 typedef struct scene {
     /* image and camera */
-    int width, height;         /* `size`; required */
-    char output[1024];         /* `output`, default "raytrace.png" (the working folder's) */
-    int output_line;           /* its line; 0 for the default */
+    int width, height; /* `size`; required */
+    char output[1024]; /* `output`, default "raytrace.png" (the working folder's) */
+    int output_line;   /* its line; 0 for the default */
     int has_camera;
-    vec3 eye, center, up;      /* `camera` */
-    double fovy;               /* degrees */
+    vec3 eye, center, up; /* `camera` */
+    double fovy;          /* degrees */
     /* renderer settings */
-    int maxdepth;              /* default 5; -1 unlimited */
+    int maxdepth; /* default 5; -1 unlimited */
     integrator_kind integrator;
-    int spp;                   /* default 1 */
-    int lightsamples;          /* default 1 */
-    int lightstratify;         /* 0/1 */
+    int spp;                        /* default 1 */
+    int lightsamples;               /* default 1 */
+    int lightstratify;              /* 0/1 */
     light_selection lightselection; /* default LIGHTSELECTION_ALL */
     nee_mode nee;
-    int russianroulette;       /* 0/1 */
+    int russianroulette; /* 0/1 */
     sampling_kind importancesampling;
-    double gamma;              /* 0: not given (PNG gets the sRGB curve) */
+    double gamma; /* 0: not given (PNG gets the sRGB curve) */
     envmiss_mode envmiss;
     envsampling_mode envsampling; /* default ENVSAMPLING_CDF */
-    int mediancut_lights;      /* N of `envsampling mediancut N` or `sis N`, default 64 */
-    envsampler_kind envsampler; /* default ENVSAMPLER_BINARY */
-    double envsamplefraction;  /* in [0, 1]; -1 = auto (lights.h) */
-    irradiance_method prefilter; /* `prefilter exact|sh9`, default exact */
+    int mediancut_lights;         /* N of `envsampling mediancut N` or `sis N`, default 64 */
+    envsampler_kind envsampler;   /* default ENVSAMPLER_BINARY */
+    double envsamplefraction;     /* in [0, 1]; -1 = auto (lights.h) */
+    irradiance_method prefilter;  /* `prefilter exact|sh9`, default exact */
     scene_envmap envmap;
     /* geometry, materials, lights: owned */
-    material *materials; int n_materials;
-    sphere *spheres; long n_spheres;
-    triangle *triangles; long n_triangles;
-    scene_light *lights; int n_lights;
+    material *materials;
+    int n_materials;
+    sphere *spheres;
+    long n_spheres;
+    triangle *triangles;
+    long n_triangles;
+    scene_light *lights;
+    int n_lights;
     /* textures: owned */
-    scene_texture *textures; int n_textures;    /* in file order; the maps' references */
-    image *texture_images; int n_texture_images; /* one per distinct file */
+    scene_texture *textures;
+    int n_textures; /* in file order; the maps' references */
+    image *texture_images;
+    int n_texture_images; /* one per distinct file */
     /* where it came from */
     char path[1024];
-    infile_list inputs;        /* every file read, once by identity (infile.h); owned */
+    infile_list inputs; /* every file read, once by identity (infile.h); owned */
 } scene;
 
 /* A warning (FILE:LINE: what) for the caller, with its ctx; *warning is valid during the call. */
@@ -176,8 +182,8 @@ const char *scene_envsampling_name(envsampling_mode m);
 /* The scene's spheres and triangles, as bvh_build takes them (borrowed; no quads: lights.h). */
 static inline bvh_prims scene_prims(const scene *sc)
 {
-    return (bvh_prims){sc->spheres, sc->n_spheres, sc->triangles, sc->n_triangles, sc->path,
-                       NULL, 0};
+    return (bvh_prims){
+        sc->spheres, sc->n_spheres, sc->triangles, sc->n_triangles, sc->path, NULL, 0};
 }
 
 /* The scene's envmap as rays see it (envmap.h), borrowed: the scene must outlive *env.  No

@@ -15,12 +15,12 @@
 #include "envtex/scene/scene.h"
 
 typedef struct scene_load_opts {
-    int strict;          /* unknown commands are errors instead of warnings */
-    scene_warn_fn warn;  /* each warning; NULL: dropped */
+    int strict;         /* unknown commands are errors instead of warnings */
+    scene_warn_fn warn; /* each warning; NULL: dropped */
     void *warn_ctx;
-    int load_images;     /* 1 (default): read the images, build the pyramids; 0: leave them */
-    long max_prims;      /* 0 (default): SCENE_MAX_PRIMS; a smaller limit lets tests reach it */
-    budget *mem;         /* charged before each allocation the file asks for; NULL: none */
+    int load_images; /* 1 (default): read the images, build the pyramids; 0: leave them */
+    long max_prims;  /* 0 (default): SCENE_MAX_PRIMS; a smaller limit lets tests reach it */
+    budget *mem;     /* charged before each allocation the file asks for; NULL: none */
 } scene_load_opts;
 
 /* load_images 1, every other field 0 or NULL. */

@@ -21,13 +21,13 @@
 typedef double (*displace_height_fn)(void *ctx, vec3 p, vec3 n, uv2 st);
 
 typedef struct displace_tri {
-    long v[3];  /* indices into displace_mesh.p / .n, counter-clockwise */
-    uv2 st[3];  /* texture coordinates of the corners */
+    long v[3]; /* indices into displace_mesh.p / .n, counter-clockwise */
+    uv2 st[3]; /* texture coordinates of the corners */
 } displace_tri;
 
 typedef struct displace_mesh {
-    vec3 *p;    /* displaced vertices (object space) */
-    vec3 *n;    /* unit area-weighted vertex normals after displacement */
+    vec3 *p; /* displaced vertices (object space) */
+    vec3 *n; /* unit area-weighted vertex normals after displacement */
     long n_verts;
     displace_tri *tris;
     long n_tris;

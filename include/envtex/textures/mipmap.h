@@ -22,13 +22,13 @@
 #define MIPMAP_MAX_ANISOTROPY 8.0
 
 /* EWA: weight exp(-alpha r^2) - exp(-alpha) inside r^2 < 1, a table read linearly */
-#define MIPMAP_EWA_ALPHA 2.0
+#define MIPMAP_EWA_ALPHA    2.0
 #define MIPMAP_EWA_LUT_SIZE 128
 
 typedef struct mipmap {
-    int nlevels;                     /* 1 .. MIPMAP_MAX_LEVELS */
-    wrap_mode wrap;                  /* used to build every level and by every lookup */
-    image level[MIPMAP_MAX_LEVELS];  /* [0]: the caller's base (shallow); 1..: owned */
+    int nlevels;                            /* 1 .. MIPMAP_MAX_LEVELS */
+    wrap_mode wrap;                         /* used to build every level and by every lookup */
+    image level[MIPMAP_MAX_LEVELS];         /* [0]: the caller's base (shallow); 1..: owned */
     double ewa_weight[MIPMAP_EWA_LUT_SIZE]; /* weight at r^2 = i / (SIZE - 1) */
 } mipmap;
 

@@ -14,7 +14,7 @@
 #include "envtex/core/vec.h"
 
 typedef enum texmapping_kind {
-    TEXMAPPING_UV,          /* (s, t) given at the vertices, interpolated (triangles only) */
+    TEXMAPPING_UV, /* (s, t) given at the vertices, interpolated (triangles only) */
     TEXMAPPING_PLANAR,
     TEXMAPPING_CYLINDRICAL,
     TEXMAPPING_SPHERICAL,

@@ -53,7 +53,7 @@ typedef struct texture {
     /* image */
     const image *img; /* the caller's, kept alive and unchanged */
     wrap_mode wrap;
-    mipmap mip;       /* owned, built by texture_prepare */
+    mipmap mip; /* owned, built by texture_prepare */
     int has_mip;
     /* checker */
     double frequency; /* squares per unit of s and t, > 0 */
@@ -64,11 +64,11 @@ typedef struct texture {
 
 /* Where and how to evaluate (zeroed: valid, nearest, no footprint); p is in object space. */
 typedef struct texture_query {
-    uv2 st;              /* texture coordinates (image, checker) */
-    uv2 dst_dx, dst_dy;  /* change of st per pixel step in x and y */
-    vec3 p;              /* object-space point (solids) */
-    vec3 dp_dx, dp_dy;   /* its change per pixel step */
-    vec3 dp_ds, dp_dt;   /* tangents dP/ds, dP/dt (solids' bump); zero: no bump */
+    uv2 st;             /* texture coordinates (image, checker) */
+    uv2 dst_dx, dst_dy; /* change of st per pixel step in x and y */
+    vec3 p;             /* object-space point (solids) */
+    vec3 dp_dx, dp_dy;  /* its change per pixel step */
+    vec3 dp_ds, dp_dt;  /* tangents dP/ds, dP/dt (solids' bump); zero: no bump */
     texture_filter filter;
 } texture_query;
 

@@ -109,8 +109,8 @@ START_TEST(test_one_by_one_map_is_constant_everywhere)
     error err = {0};
     ck_assert_int_eq(image_alloc(&m, 1, 1, &err), 0);
     image_set(&m, 0, 0, rgb_make(0.25, 2.0, 8.0));
-    const vec3 dirs[] = {{0, 0, 1}, {0, 0, -1}, {1, 0, 0}, {1, -1e-300, 0}, {-1, 0, 0},
-                         {1e-300, 0, 1}, {0.3, -0.4, 0.5}, {-1e-9, -1e-9, -1}};
+    const vec3 dirs[] = {{0, 0, 1},  {0, 0, -1},     {1, 0, 0},        {1, -1e-300, 0},
+                         {-1, 0, 0}, {1e-300, 0, 1}, {0.3, -0.4, 0.5}, {-1e-9, -1e-9, -1}};
     for (size_t i = 0; i < sizeof dirs / sizeof dirs[0]; i++) {
         rgb b = latlong_lookup_bilinear(&m, dirs[i]), n = latlong_lookup_nearest(&m, dirs[i]);
         ck_assert_msg(b.r == 0.25 && b.g == 2.0 && b.b == 8.0, "bilinear dir %zu: %g %g %g", i, b.r,
@@ -312,8 +312,8 @@ START_TEST(test_tiny_textures_read_far_outside_stay_inside_their_texels)
     ck_assert_int_eq(image_alloc(&col, 1, 5, &err), 0);
     image_set(&one, 0, 0, rgb_make(0.25, 0.5, 0.75));
     for (int j = 0; j < 5; j++) image_set(&col, 0, j, rgb_gray(1 + j)); /* 1 .. 5 */
-    const double far[] = {0.5, -0.5, 1e6 + 0.3, -1e6 - 0.3, 1e9 + 0.7, -1e9 - 0.7, 3e15, -3e15,
-                          1e300, -1e300, NAN, INFINITY, -INFINITY, 1.0, -0.0};
+    const double far[] = {0.5,   -0.5,   1e6 + 0.3, -1e6 - 0.3, 1e9 + 0.7, -1e9 - 0.7, 3e15, -3e15,
+                          1e300, -1e300, NAN,       INFINITY,   -INFINITY, 1.0,        -0.0};
     const wrap_mode wraps[] = {WRAP_REPEAT, WRAP_CLAMP, WRAP_MIRROR};
     int n = sizeof far / sizeof far[0], bad = 0;
     for (int w = 0; w < 3; w++)
@@ -350,7 +350,7 @@ START_TEST(test_zero_and_whole_texture_footprints_give_bilinear_and_mean)
     ck_assert_int_eq(mipmap_build(&m, &im, WRAP_REPEAT, &err), 0);
     uv2 st = {0.3, 0.7}, zero = {0, 0};
     rgb bl = texlookup_bilinear(&im, st, WRAP_REPEAT);
-    ck_assert_near(mipmap_lookup_trilinear(&m, st, 0).r, bl.r, 1e-6); 
+    ck_assert_near(mipmap_lookup_trilinear(&m, st, 0).r, bl.r, 1e-6);
     ck_assert_near(mipmap_lookup_ewa(&m, st, zero, zero).r, bl.r, 1e-12);
     const double whole[] = {1, 2, 1e6, INFINITY};
     for (size_t i = 0; i < sizeof whole / sizeof whole[0]; i++) {

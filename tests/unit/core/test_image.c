@@ -50,7 +50,7 @@ START_TEST(test_image_check_size_accepts_sizes_exactly_at_the_limits)
     ck_assert_int_eq(image_check_size(1, IMAGE_MAX_SIDE, NULL, &err), 0);
     ck_assert_int_eq(image_check_size(16384, 16384, NULL, &err), 0); /* exactly 2^28 */
     ck_assert_int_eq(image_check_size(32768, 8192, NULL, &err), 0);  /* exactly 2^28 */
-    ck_assert_int_eq(image_check_size(3, 2, NULL, NULL), 0);          /* err may be NULL */
+    ck_assert_int_eq(image_check_size(3, 2, NULL, NULL), 0);         /* err may be NULL */
 }
 END_TEST
 

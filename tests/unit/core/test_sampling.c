@@ -17,14 +17,15 @@
 #include "unit.h"
 
 #define N_SAMPLES 200000L /* per chi-square test: a 3% error in a 1% bin is ~4 sigma */
-#define N_U 16            /* bins in cos theta ... */
-#define N_PHI 32          /* ... and in phi: 512 bins of equal solid angle */
+#define N_U       16      /* bins in cos theta ... */
+#define N_PHI     32      /* ... and in phi: 512 bins of equal solid angle */
 /* integral of a pdf: the quadrature is good to ~1e-5 on the sharpest lobe (GGX alpha 0.05); a
  * wrong constant, (s+2) for (s+1), is off by > 1e-3 */
 #define NORM_TOL 1e-4
-#define GL_SUB 12         /* Gauss-Legendre sub-intervals per bin: the top bin spans 29 degrees
+#define GL_SUB                                                                                     \
+    12                 /* Gauss-Legendre sub-intervals per bin: the top bin spans 29 degrees
                            * of theta and a GGX alpha = 0.05 lobe only ~3 */
-#define UNIT_TOL 1e-12    /* |w| - 1 of a warped direction: a few roundings */
+#define UNIT_TOL 1e-12 /* |w| - 1 of a warped direction: a few roundings */
 
 /* the chi-square tests of this program, for the Bonferroni correction (chisq.h) */
 enum { N_PHONG = 4, N_GGX = 4 };
@@ -34,7 +35,11 @@ static const double ggx_alpha[N_GGX] = {0.05, 0.2, 0.5, 1.0};
 
 typedef enum which { W_SPHERE, W_HEMI, W_COSINE, W_COSINE_TILTED, W_PHONG, W_GGX } which;
 
-typedef struct sampler { which kind; double param; vec3 n; } sampler;
+typedef struct sampler {
+    which kind;
+    double param;
+    vec3 n;
+} sampler;
 
 static vec3 draw(const sampler *s, double xi1, double xi2)
 {
@@ -212,8 +217,9 @@ END_TEST
  * below ~1e-81, where (alpha^2)^2 underflows, and below 1e-154). */
 START_TEST(test_sampling_ggx_is_finite_for_every_roughness_the_parser_accepts)
 {
-    const double alphas[] = {0, 4.9e-324, 1e-300, 1e-160, 1e-100, 1e-20, 1e-9, 0.3,
-                             1e10, 1e30, 1e154, 1e155, 1e200, 1e300, 1.7976931348623157e308};
+    const double alphas[] = {0,     4.9e-324, 1e-300, 1e-160, 1e-100,
+                             1e-20, 1e-9,     0.3,    1e10,   1e30,
+                             1e154, 1e155,    1e200,  1e300,  1.7976931348623157e308};
     const double cosines[] = {1.0, 1 - 0x1p-53, 0.9, 0.5, 1e-8, 1e-160, 4.9e-324};
     const double xs[] = {0.0, 0x1p-53, 0x1p-32, 0.5, 1 - 0x1p-32, 0x1.fffffffffffffp-1};
     int bad = 0;

@@ -10,13 +10,25 @@
 
 /* Checks for long loops: every passing ck_assert costs a system call (Check records the last
  * passing line), which would dominate the run time; these report failures only. */
-#define EXPECT(c) do { if (!(c)) ck_abort_msg("failed: %s", #c); } while (0)
-#define EXPECT_MSG(c, ...) do { if (!(c)) ck_abort_msg(__VA_ARGS__); } while (0)
-#define EXPECT_INT_EQ(a, b) do { long long a_ = (a), b_ = (b); \
-        if (a_ != b_) ck_abort_msg("%s == %lld, %s == %lld", #a, a_, #b, b_); } while (0)
-#define EXPECT_NEAR(a, b, tol) do { double a_ = (a), b_ = (b), t_ = (tol); \
-        if (!(fabs(a_ - b_) <= t_)) \
-            ck_abort_msg("%s == %.17g, %s == %.17g, tolerance %g", #a, a_, #b, b_, t_); } while (0)
+#define EXPECT(c)                                                                                  \
+    do {                                                                                           \
+        if (!(c)) ck_abort_msg("failed: %s", #c);                                                  \
+    } while (0)
+#define EXPECT_MSG(c, ...)                                                                         \
+    do {                                                                                           \
+        if (!(c)) ck_abort_msg(__VA_ARGS__);                                                       \
+    } while (0)
+#define EXPECT_INT_EQ(a, b)                                                                        \
+    do {                                                                                           \
+        long long a_ = (a), b_ = (b);                                                              \
+        if (a_ != b_) ck_abort_msg("%s == %lld, %s == %lld", #a, a_, #b, b_);                      \
+    } while (0)
+#define EXPECT_NEAR(a, b, tol)                                                                     \
+    do {                                                                                           \
+        double a_ = (a), b_ = (b), t_ = (tol);                                                     \
+        if (!(fabs(a_ - b_) <= t_))                                                                \
+            ck_abort_msg("%s == %.17g, %s == %.17g, tolerance %g", #a, a_, #b, b_, t_);            \
+    } while (0)
 
 static void assert_vec_near(vec3 a, vec3 b, double tol)
 {
@@ -226,8 +238,8 @@ START_TEST(test_transform_rotate_depends_only_on_the_axis_direction)
         for (int i = 0; i < 4; i++)
             for (int j = 0; j < 4; j++)
                 EXPECT_MSG(fabs(r.m[i][j] - ref.m[i][j]) <= 1e-15,
-                           "axis scale 1e%d: m[%d][%d] = %.17g, expected %.17g", e, i, j,
-                           r.m[i][j], ref.m[i][j]);
+                           "axis scale 1e%d: m[%d][%d] = %.17g, expected %.17g", e, i, j, r.m[i][j],
+                           ref.m[i][j]);
     }
 }
 END_TEST

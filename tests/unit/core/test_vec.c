@@ -7,13 +7,25 @@
 
 /* Checks for long loops: every passing ck_assert costs a system call (Check records the last
  * passing line), which would dominate the run time; these report failures only. */
-#define EXPECT(c) do { if (!(c)) ck_abort_msg("failed: %s", #c); } while (0)
-#define EXPECT_MSG(c, ...) do { if (!(c)) ck_abort_msg(__VA_ARGS__); } while (0)
-#define EXPECT_INT_EQ(a, b) do { long long a_ = (a), b_ = (b); \
-        if (a_ != b_) ck_abort_msg("%s == %lld, %s == %lld", #a, a_, #b, b_); } while (0)
-#define EXPECT_NEAR(a, b, tol) do { double a_ = (a), b_ = (b), t_ = (tol); \
-        if (!(fabs(a_ - b_) <= t_)) \
-            ck_abort_msg("%s == %.17g, %s == %.17g, tolerance %g", #a, a_, #b, b_, t_); } while (0)
+#define EXPECT(c)                                                                                  \
+    do {                                                                                           \
+        if (!(c)) ck_abort_msg("failed: %s", #c);                                                  \
+    } while (0)
+#define EXPECT_MSG(c, ...)                                                                         \
+    do {                                                                                           \
+        if (!(c)) ck_abort_msg(__VA_ARGS__);                                                       \
+    } while (0)
+#define EXPECT_INT_EQ(a, b)                                                                        \
+    do {                                                                                           \
+        long long a_ = (a), b_ = (b);                                                              \
+        if (a_ != b_) ck_abort_msg("%s == %lld, %s == %lld", #a, a_, #b, b_);                      \
+    } while (0)
+#define EXPECT_NEAR(a, b, tol)                                                                     \
+    do {                                                                                           \
+        double a_ = (a), b_ = (b), t_ = (tol);                                                     \
+        if (!(fabs(a_ - b_) <= t_))                                                                \
+            ck_abort_msg("%s == %.17g, %s == %.17g, tolerance %g", #a, a_, #b, b_, t_);            \
+    } while (0)
 
 /* A uniformly distributed unit vector (z uniform in [-1,1], phi uniform). */
 static vec3 random_unit(rng *r)
@@ -72,7 +84,7 @@ START_TEST(test_vec_reflect_mirrors_about_the_normal_and_keeps_length)
         vec3 m = vec3_reflect(d, n);
         EXPECT_NEAR(vec3_length(m), 1, 1e-14);
         EXPECT_NEAR(vec3_dot(m, n), -vec3_dot(d, n), 1e-14); /* normal part flips */
-        vec3 back = vec3_reflect(m, n);                          /* an involution */
+        vec3 back = vec3_reflect(m, n);                      /* an involution */
         EXPECT_NEAR(back.x, d.x, 1e-14);
         EXPECT_NEAR(back.y, d.y, 1e-14);
         EXPECT_NEAR(back.z, d.z, 1e-14);

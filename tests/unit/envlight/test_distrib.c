@@ -16,12 +16,13 @@
 #include "chisq.h"
 #include "unit.h"
 
-#define N_SAMPLES 200000L /* per chi-square test: ~0.02 s, and a 5% error in a 10% bin is 7 sigma  \
+#define N_SAMPLES                                                                                  \
+    200000L /* per chi-square test: ~0.02 s, and a 5% error in a 10% bin is 7 sigma  \
                            */
-#define PMF_REL_TOL 1e-12  /* pmf agreement: the maths is exact up to a few roundings of double */
-#define REM_BUCKETS_1D 4   /* each bin's remapped value is tested in 4 sub-bins ... */
-#define REM_BUCKETS_2D 2   /* ... and each cell's (rem_outer, rem_inner) in 2 x 2 */
-#define REM_BUCKETS 64     /* for the dedicated uniformity test of remapped values */
+#define PMF_REL_TOL    1e-12 /* pmf agreement: the maths is exact up to a few roundings of double */
+#define REM_BUCKETS_1D 4     /* each bin's remapped value is tested in 4 sub-bins ... */
+#define REM_BUCKETS_2D 2     /* ... and each cell's (rem_outer, rem_inner) in 2 x 2 */
+#define REM_BUCKETS    64    /* for the dedicated uniformity test of remapped values */
 
 /* ---- a fixed-seed PCG32 (O'Neill's pcg32_random_r, XSH RR) ----------------------------------- */
 typedef struct pcg32 {
@@ -55,8 +56,8 @@ static double pcg32_double(pcg32 *r)
 
 /* ---- the tables the lecture's cases reduce to --------------------------------------------- */
 enum { T1_ONE_HOT, T1_CONSTANT, T1_SINGLE, T1_DYNAMIC, T1_POLES, T1_RANDOM, T1_COUNT };
-static const char *const t1_name[T1_COUNT] = {"one-hot", "constant", "1 bin", "10^6 range",
-                                              "first and last bins", "random with zeros"};
+static const char *const t1_name[T1_COUNT] = {
+    "one-hot", "constant", "1 bin", "10^6 range", "first and last bins", "random with zeros"};
 #define T1_MAX 128
 
 /* Fill w with 1D table `which`; returns its size n. */
@@ -102,8 +103,8 @@ static int table1d(int which, double *w)
 }
 
 enum { T2_ONE_HOT, T2_CONSTANT, T2_SINGLE, T2_3X2, T2_DYNAMIC, T2_POLES, T2_RANDOM, T2_COUNT };
-static const char *const t2_name[T2_COUNT] = {"one-hot", "constant", "1 x 1", "3 x 2",
-                                              "10^6 range", "pole rows", "random with zeros"};
+static const char *const t2_name[T2_COUNT] = {
+    "one-hot", "constant", "1 x 1", "3 x 2", "10^6 range", "pole rows", "random with zeros"};
 #define T2_MAX 256
 
 /* Fill w[outer * n_inner + inner] with 2D table `which`. */
@@ -159,10 +160,10 @@ static void table2d(int which, double *w, int *n_outer, int *n_inner)
 /* Every chisq_accept that a correct sampler must pass, for the Bonferroni correction. */
 #define N_CHISQ_TESTS (2 * T1_COUNT + 2 * T2_COUNT + 6)
 
-#define ck_assert_chisq(r, what, ...)                                                           \
-    ck_assert_msg(chisq_accept(&(r), N_CHISQ_TESTS),                                            \
-                  what ": chi-square rejects: X^2 = %g, dof = %d, p = %g, %ld samples in "      \
-                       "bins of probability 0",                                                 \
+#define ck_assert_chisq(r, what, ...)                                                              \
+    ck_assert_msg(chisq_accept(&(r), N_CHISQ_TESTS),                                               \
+                  what ": chi-square rejects: X^2 = %g, dof = %d, p = %g, %ld samples in "         \
+                       "bins of probability 0",                                                    \
                   __VA_ARGS__, (r).stat, (r).dof, (r).p, (r).stray)
 
 static double sum_of(const double *w, int n)
@@ -174,10 +175,7 @@ static double sum_of(const double *w, int n)
 
 /* |a - b| <= PMF_REL_TOL |b|: for the pmf a sampler reports against pmf() (the same
  * subtraction of two CDF entries, so in fact equal) */
-static int pmf_agrees(double a, double b)
-{
-    return fabs(a - b) <= PMF_REL_TOL * fabs(b);
-}
+static int pmf_agrees(double a, double b) { return fabs(a - b) <= PMF_REL_TOL * fabs(b); }
 
 /* pmf() against w / sum w, computed independently.  A CDF entry near 1 is only known to about
  * an ulp of 1 (after n roundings of the running sum), so a bin of probability p is known to
@@ -196,8 +194,8 @@ START_TEST(test_chisq_gamma_q_matches_closed_forms_and_tables)
     const double xs[] = {0.01, 0.3, 1.0, 2.5, 5.9, 6.1, 12.0, 40.0};
     for (size_t k = 0; k < sizeof xs / sizeof xs[0]; k++) {
         double x = xs[k];
-        ck_assert_near(chisq_gamma_q(1.0, x), exp(-x), 1e-13);            /* Q(1,x) = e^-x */
-        ck_assert_near(chisq_gamma_q(0.5, x), erfc(sqrt(x)), 1e-13);      /* Q(1/2,x) = erfc */
+        ck_assert_near(chisq_gamma_q(1.0, x), exp(-x), 1e-13);       /* Q(1,x) = e^-x */
+        ck_assert_near(chisq_gamma_q(0.5, x), erfc(sqrt(x)), 1e-13); /* Q(1/2,x) = erfc */
         double q5 = exp(-x) * (1 + x + x * x / 2 + x * x * x / 6 + x * x * x * x / 24);
         ck_assert_near(chisq_gamma_q(5.0, x), q5, 1e-13); /* Q(n,x) = e^-x sum_{k<n} x^k/k! */
     }
@@ -294,8 +292,8 @@ static void check_1d_samples(int which, int use_alias)
     double sum = sum_of(w, n);
     for (int i = 0; i < n; i++)
         ck_assert_msg(pmf_matches_weight(distrib1d_pmf(&d, i), w[i] / sum, n),
-                      "%s: pmf(%d) = %.17g, not %.17g",
-                      t1_name[which], i, distrib1d_pmf(&d, i), w[i] / sum);
+                      "%s: pmf(%d) = %.17g, not %.17g", t1_name[which], i, distrib1d_pmf(&d, i),
+                      w[i] / sum);
 
     enum { R = REM_BUCKETS_1D };
     long obs[T1_MAX * R] = {0};
@@ -328,18 +326,12 @@ static void check_1d_samples(int which, int use_alias)
 
 /* Catches a wrong CDF, an off-by-one search, a wrong remap, or a reported pmf that is not the
  * bin's. */
-START_TEST(test_distrib1d_binary_search_samples_fit_the_pmf)
-{
-    check_1d_samples(_i, 0);
-}
+START_TEST(test_distrib1d_binary_search_samples_fit_the_pmf) { check_1d_samples(_i, 0); }
 END_TEST
 
 /* Catches a wrong alias table (Vose's bookkeeping) or alias remap: the alias samples must
  * follow the binary search's pmf. */
-START_TEST(test_distrib1d_alias_samples_fit_the_binary_search_pmf)
-{
-    check_1d_samples(_i, 1);
-}
+START_TEST(test_distrib1d_alias_samples_fit_the_binary_search_pmf) { check_1d_samples(_i, 1); }
 END_TEST
 
 /* The remapped value alone over all samples: REM_BUCKETS equal bins. */
@@ -416,7 +408,7 @@ END_TEST
 /* xi values at and beyond the ends of [0, 1) */
 static const double xi_low[] = {0.0, -0.0, 0x1p-53, -1e-300, -1.0, -INFINITY, NAN};
 static const double xi_high[] = {1.0 - 0x1p-24, 1.0 - 0x1p-53, 1.0, 1.0 + 1e-9, 2.0, INFINITY};
-#define N_XI_LOW ((int)(sizeof xi_low / sizeof xi_low[0]))
+#define N_XI_LOW  ((int)(sizeof xi_low / sizeof xi_low[0]))
 #define N_XI_HIGH ((int)(sizeof xi_high / sizeof xi_high[0]))
 
 /* Catches a search that returns a zero-width bin at the ends (the first bin at xi = 0, the
@@ -518,7 +510,7 @@ START_TEST(test_distrib1d_zero_bins_are_never_chosen_over_a_sweep_of_xi)
     ck_assert_int_eq(distrib1d_alias_build(&d, &err), 0);
     long zero_hits = 0;
     for (int k = 0; k <= 100000 + N_XI_LOW + N_XI_HIGH; k++) {
-        double xi = k <= 100000 ? k / 100000.0
+        double xi = k <= 100000              ? k / 100000.0
                     : k <= 100000 + N_XI_LOW ? xi_low[k - 100001]
                                              : xi_high[k - 100001 - N_XI_LOW];
         /* also every CDF value itself and its neighbours, where a >= / > slip would show */
@@ -840,17 +832,11 @@ static void check_2d_samples(int which, int use_alias)
 
 /* Catches a wrong marginal or conditional CDF, the wrong column's conditional, or a bad
  * remap in either dimension. */
-START_TEST(test_distrib2d_binary_search_samples_fit_the_pmf)
-{
-    check_2d_samples(_i, 0);
-}
+START_TEST(test_distrib2d_binary_search_samples_fit_the_pmf) { check_2d_samples(_i, 0); }
 END_TEST
 
 /* Catches wrong alias tables at either level: alias samples must follow the binary pmf. */
-START_TEST(test_distrib2d_alias_samples_fit_the_binary_search_pmf)
-{
-    check_2d_samples(_i, 1);
-}
+START_TEST(test_distrib2d_alias_samples_fit_the_binary_search_pmf) { check_2d_samples(_i, 1); }
 END_TEST
 
 /* rem_outer and rem_inner alone, each in REM_BUCKETS equal bins. */
@@ -910,7 +896,7 @@ static void zero_grid(double *w, int *no, int *ni)
 enum { SWEEP_STEPS = 400, N_SWEEP = SWEEP_STEPS + 1 + N_XI_LOW + N_XI_HIGH };
 static double sweep_xi(int k)
 {
-    return k <= SWEEP_STEPS ? (double)k / SWEEP_STEPS
+    return k <= SWEEP_STEPS              ? (double)k / SWEEP_STEPS
            : k <= SWEEP_STEPS + N_XI_LOW ? xi_low[k - SWEEP_STEPS - 1]
                                          : xi_high[k - SWEEP_STEPS - 1 - N_XI_LOW];
 }
@@ -1131,7 +1117,7 @@ START_TEST(test_distrib2d_8192_by_4096_table_is_normalized)
         w[k] = 0.01f + (float)(h >> 16) * (1.0f / 65536.0f);
     }
     for (int i = 0; i < NI; i++) w[(size_t)77 * NI + i] = 0.0f; /* a black column */
-    w[(size_t)4000 * NI + 2000] = 1e6f;                           /* a sun */
+    w[(size_t)4000 * NI + 2000] = 1e6f;                         /* a sun */
     distrib2d d = {0};
     error err = {0};
     ck_assert_int_eq(distrib2d_init_float(&d, w, NO, NI, &err), 0);

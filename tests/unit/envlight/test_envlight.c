@@ -25,10 +25,10 @@
 #include "sphchisq.h"
 #include "unit.h"
 
-#define N_SAMPLES 100000L /* per chi-square test */
-#define N_U 16
-#define N_PHI 32
-#define PDF_REL_TOL 1e-5    /* a sample's pdf against envlight_pdf (issue 4) */
+#define N_SAMPLES      100000L /* per chi-square test */
+#define N_U            16
+#define N_PHI          32
+#define PDF_REL_TOL    1e-5 /* a sample's pdf against envlight_pdf (issue 4) */
 #define CANCEL_REL_TOL 1e-9 /* pdf |L| = L_avg: one division and a sum in double */
 
 /* ---- the maps ---------------------------------------------------------------------------------
@@ -163,10 +163,13 @@ static const envsampler_kind cfg_sampler[C_COUNT] = {
     ENVSAMPLER_BINARY, ENVSAMPLER_BINARY, ENVSAMPLER_ALIAS, ENVSAMPLER_BINARY, ENVSAMPLER_ALIAS};
 static const char *const cfg_name[C_COUNT] = {"uniform", "cdf binary", "cdf alias",
                                               "cdf-sintheta binary", "cdf-sintheta alias"};
-#define N_ROTATED 4
+#define N_ROTATED     4
 #define N_CHISQ_TESTS (M_COUNT * C_COUNT + N_ROTATED)
 
-typedef struct frame_ctx { const envlight *el; mat4 to_world; } frame_ctx;
+typedef struct frame_ctx {
+    const envlight *el;
+    mat4 to_world;
+} frame_ctx;
 
 /* pdf at a direction given in the envmap frame (the grid's frame) */
 static double pdf_in_frame(void *ctx, vec3 d)
@@ -446,7 +449,7 @@ START_TEST(test_envlight_zero_texels_and_edge_xi_are_never_sampled)
             for (int force = 0; force < 2; force++) {
                 envlight_sample_result s;
                 if (!(force ? envlight_sample_stratified(&el, xi1, xi2, &s)
-                           : envlight_sample(&el, xi1, xi2, &s))) {
+                            : envlight_sample(&el, xi1, xi2, &s))) {
                     bad++;
                     continue;
                 }
@@ -466,7 +469,7 @@ END_TEST
  * column, on maps 1 to 2000 columns wide; and on a constant map, where phi is known, it must be
  * that phi to a few ulps (phi = 2 pi (c + rc) / w, not e.g. the column's centre). */
 #define UNIT_TOL 1e-15
-#define PHI_TOL 1e-14 /* radians: a few ulps of 2 pi */
+#define PHI_TOL  1e-14 /* radians: a few ulps of 2 pi */
 START_TEST(test_envlight_sampled_phi_is_unit_and_in_its_column)
 {
     const int widths[] = {1, 2, 3, 7, 255, 256, 257, 2000};
@@ -576,10 +579,17 @@ START_TEST(test_envlight_bad_texels_are_counted_dark_and_never_sampled)
     image im;
     make_map(M_CONSTANT, &im);
     float *p;
-    p = image_px(&im, 2, 2); p[0] = p[1] = p[2] = NAN;       /* 3 bad channels */
-    p = image_px(&im, 9, 4); p[0] = INFINITY; p[1] = -INFINITY; p[2] = -1; /* 3 */
-    p = image_px(&im, 12, 6); p[1] = NAN;                     /* 1: red and blue still 0.7 */
-    p = image_px(&im, 5, 1); p[0] = p[1] = 0; p[2] = -0.0f;   /* black, not bad: 0 */
+    p = image_px(&im, 2, 2);
+    p[0] = p[1] = p[2] = NAN; /* 3 bad channels */
+    p = image_px(&im, 9, 4);
+    p[0] = INFINITY;
+    p[1] = -INFINITY;
+    p[2] = -1; /* 3 */
+    p = image_px(&im, 12, 6);
+    p[1] = NAN; /* 1: red and blue still 0.7 */
+    p = image_px(&im, 5, 1);
+    p[0] = p[1] = 0;
+    p[2] = -0.0f; /* black, not bad: 0 */
     envmap env = env_of(&im, 1, mat4_identity());
     for (int cfg = C_UNIFORM; cfg < C_COUNT; cfg++) {
         envlight el;
@@ -651,7 +661,9 @@ START_TEST(test_envlight_large_table_is_normalized)
     fill(&im, W, H);
     uint32_t x = 12345; /* a cheap xorshift pattern with a bright spot and zero bands */
     for (size_t i = 0; i < (size_t)W * H; i++) {
-        x ^= x << 13; x ^= x >> 17; x ^= x << 5;
+        x ^= x << 13;
+        x ^= x >> 17;
+        x ^= x << 5;
         float v = (float)(x >> 8) * 0x1p-24f;
         im.px[3 * i] = im.px[3 * i + 1] = im.px[3 * i + 2] = (i / W) % 97 == 0 ? 0 : v;
     }

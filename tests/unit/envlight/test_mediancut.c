@@ -324,8 +324,8 @@ START_TEST(test_mediancut_two_strata_of_a_two_texel_map_are_its_texels)
     }
     const mediancut_point *right = pts[0].c0 == 1 ? &pts[0] : &pts[1];
     vec3 d = mediancut_jitter(right, 2, cos_edge, 0.5, 0.5); /* cos theta 0, phi 3 pi / 2 */
-    ck_assert_msg(vec3_length(vec3_sub(d, vec3_make(0, -1, 0))) < 1e-12, "jitter (%g, %g, %g)",
-                  d.x, d.y, d.z);
+    ck_assert_msg(vec3_length(vec3_sub(d, vec3_make(0, -1, 0))) < 1e-12, "jitter (%g, %g, %g)", d.x,
+                  d.y, d.z);
     free(pts);
     distrib1d_free(&choice);
     image_free(&im);

@@ -16,9 +16,12 @@
 #include "unit.h"
 
 /* Checks for long loops: report failures only (a passing ck_assert costs a system call). */
-#define EXPECT_NEAR(a, b, tol) do { double a_ = (a), b_ = (b), t_ = (tol); \
-        if (!(fabs(a_ - b_) <= t_)) \
-            ck_abort_msg("%s == %.17g, %s == %.17g, tolerance %g", #a, a_, #b, b_, t_); } while (0)
+#define EXPECT_NEAR(a, b, tol)                                                                     \
+    do {                                                                                           \
+        double a_ = (a), b_ = (b), t_ = (tol);                                                     \
+        if (!(fabs(a_ - b_) <= t_))                                                                \
+            ck_abort_msg("%s == %.17g, %s == %.17g, tolerance %g", #a, a_, #b, b_, t_);            \
+    } while (0)
 
 typedef rgb (*env_fn)(vec3 d, const void *ctx);
 
@@ -47,11 +50,14 @@ static void make_map(convert_map *m, convert_kind kind, int w, env_fn f, const v
         for (int c = 0; c < w; c++) {
             uv2 uv = {(c + 0.5) / w, (r + 0.5) / h};
             vec3 d;
-            if (kind == CONVERT_LATLONG) d = latlong_uv_to_dir(uv);
-            else if (kind == CONVERT_EQUALAREA) d = equalarea_uv_to_dir(uv);
+            if (kind == CONVERT_LATLONG)
+                d = latlong_uv_to_dir(uv);
+            else if (kind == CONVERT_EQUALAREA)
+                d = equalarea_uv_to_dir(uv);
             else if (kind == CONVERT_CYLINDRICAL)
                 ck_assert_int_eq(cylindrical_uv_to_dir(uv, m->max_height, &d), 0);
-            else if (mirrorball_uv_to_dir(uv, &d)) d = vec3_make(-1, 0, 0); /* past the rim: -x */
+            else if (mirrorball_uv_to_dir(uv, &d))
+                d = vec3_make(-1, 0, 0); /* past the rim: -x */
             image_set(&m->img, c, r, f(d, ctx));
         }
 }

@@ -8,7 +8,7 @@
 #include <float.h>
 
 #define RANDOM_DIRECTIONS 1000000
-#define ROUNDTRIP_TOL 1e-6 /* radians; the brief's bound */
+#define ROUNDTRIP_TOL     1e-6 /* radians; the brief's bound */
 
 static uv2 to_uv(vec3 d)
 {
@@ -26,8 +26,8 @@ static vec3 to_dir(uv2 uv)
 
 static void assert_dir_near(vec3 got, vec3 want, double tol)
 {
-    ck_assert_msg(vec3_angle(got, want) <= tol, "got (%.17g %.17g %.17g), want (%g %g %g)",
-                  got.x, got.y, got.z, want.x, want.y, want.z);
+    ck_assert_msg(vec3_angle(got, want) <= tol, "got (%.17g %.17g %.17g), want (%g %g %g)", got.x,
+                  got.y, got.z, want.x, want.y, want.z);
 }
 
 /* Known answers: centre +x, up +z, right +y, half-way out 90 degrees, rim -x.
@@ -145,8 +145,8 @@ START_TEST(test_angular_rim_is_the_direction_behind_the_probe)
     for (int k = 0; k < 4; k++) assert_dir_near(to_dir(rim[k]), vec3_make(-1, 0, 0), 1e-15);
     for (int k = 0; k < 360; k++) {
         double t = k * M_PI / 180;
-        assert_dir_near(to_dir((uv2){0.5 + 0.5 * cos(t), 0.5 - 0.5 * sin(t)}),
-                        vec3_make(-1, 0, 0), 1e-14);
+        assert_dir_near(to_dir((uv2){0.5 + 0.5 * cos(t), 0.5 - 0.5 * sin(t)}), vec3_make(-1, 0, 0),
+                        1e-14);
     }
     uv2 uv = to_uv(vec3_make(-1, 0, 0));
     ck_assert_double_eq(uv.u, 0.5);
@@ -166,8 +166,8 @@ END_TEST
 /* Outside the disc there is no direction.  Catches a missing disc test. */
 START_TEST(test_angular_points_outside_the_disc_have_no_direction)
 {
-    const uv2 out[] = {{0, 0}, {1, 1}, {0, 1}, {0.9, 0.9}, {0.5, -1e-9}, {1 + 1e-9, 0.5},
-                       {NAN, 0.5}, {0.5, NAN}, {INFINITY, 0.5}};
+    const uv2 out[] = {{0, 0},          {1, 1},     {0, 1},     {0.9, 0.9},     {0.5, -1e-9},
+                       {1 + 1e-9, 0.5}, {NAN, 0.5}, {0.5, NAN}, {INFINITY, 0.5}};
     for (size_t k = 0; k < sizeof out / sizeof out[0]; k++) {
         vec3 d = {7, 7, 7};
         ck_assert_int_eq(angular_uv_to_dir(out[k], &d), -1);

@@ -20,7 +20,7 @@
 
 #define POWER_TOL 0.005 /* the bound: 0.5% of the total power */
 
-static const convert_kind every_kind[] = {CONVERT_LATLONG, CONVERT_CUBE, CONVERT_MIRRORBALL,
+static const convert_kind every_kind[] = {CONVERT_LATLONG, CONVERT_CUBE,        CONVERT_MIRRORBALL,
                                           CONVERT_ANGULAR, CONVERT_CYLINDRICAL, CONVERT_EQUALAREA};
 #define N_KINDS ((int)(sizeof every_kind / sizeof every_kind[0]))
 
@@ -326,9 +326,13 @@ END_TEST
  * the zenith (-67% of the power) or counted one behind the ball five times (+20%). */
 START_TEST(test_default_samples_keep_the_power_of_a_sun_in_a_pole_row_or_the_rim_ring)
 {
-    static const struct { convert_kind to; double elevation, azimuth; } cases[] = {
-        {CONVERT_EQUALAREA, 89, 30}, {CONVERT_EQUALAREA, 83, 30},
-        {CONVERT_MIRRORBALL, 20, 180}, {CONVERT_MIRRORBALL, 5, 180}};
+    static const struct {
+        convert_kind to;
+        double elevation, azimuth;
+    } cases[] = {{CONVERT_EQUALAREA, 89, 30},
+                 {CONVERT_EQUALAREA, 83, 30},
+                 {CONVERT_MIRRORBALL, 20, 180},
+                 {CONVERT_MIRRORBALL, 5, 180}};
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         genenv_params p = genenv_defaults();
         p.sun_elevation_deg = cases[i].elevation;
@@ -458,7 +462,7 @@ START_TEST(test_an_envmap_in_a_cube_map_sees_what_its_latlong_map_sees)
     make_latlong(&src, GENENV_AXES, 128);
     resample_ok(&src, CONVERT_CUBE, 0, 4, &cube);
     a.envmap.present = b.envmap.present = 1;
-    a.envmap.img = src.img;   /* borrowed: freed through src */
+    a.envmap.img = src.img; /* borrowed: freed through src */
     b.envmap.kind = CONVERT_CUBE;
     b.envmap.cube = cube.cube; /* borrowed: freed through cube */
     a.envmap.scale = b.envmap.scale = 2;

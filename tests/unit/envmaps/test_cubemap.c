@@ -7,16 +7,16 @@
 #include <float.h>
 
 #define RANDOM_DIRECTIONS 1000000
-#define ROUNDTRIP_TOL 1e-6 /* radians; the brief's bound (doubles actually give ~1e-15) */
-#define ST_TOL 1e-12       /* face coordinates after a round trip: a few ulps of 1 */
+#define ROUNDTRIP_TOL     1e-6  /* radians; the brief's bound (doubles actually give ~1e-15) */
+#define ST_TOL            1e-12 /* face coordinates after a round trip: a few ulps of 1 */
 
-static const vec3 axes[CUBEMAP_FACES] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0},
-                                         {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+static const vec3 axes[CUBEMAP_FACES] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
+                                         {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
 
 static void assert_dir_near(vec3 got, vec3 want, double tol)
 {
-    ck_assert_msg(vec3_angle(got, want) <= tol, "got (%g %g %g), want (%g %g %g)", got.x,
-                  got.y, got.z, want.x, want.y, want.z);
+    ck_assert_msg(vec3_angle(got, want) <= tol, "got (%g %g %g), want (%g %g %g)", got.x, got.y,
+                  got.z, want.x, want.y, want.z);
 }
 
 /* Catches a wrong major axis or a wrong sign in the table. */
@@ -39,10 +39,13 @@ END_TEST
 START_TEST(test_cubemap_face_orientation_follows_the_gl_table)
 {
     const double h = sqrt(0.5);
-    static const struct { int face; vec3 right, top; } cases[] = {
-        {CUBEMAP_POS_X, {1, 0, -1}, {1, 1, 0}},  {CUBEMAP_NEG_X, {-1, 0, 1}, {-1, 1, 0}},
-        {CUBEMAP_POS_Y, {1, 1, 0}, {0, 1, -1}},  {CUBEMAP_NEG_Y, {1, -1, 0}, {0, -1, 1}},
-        {CUBEMAP_POS_Z, {1, 0, 1}, {0, 1, 1}},   {CUBEMAP_NEG_Z, {-1, 0, -1}, {0, 1, -1}},
+    static const struct {
+        int face;
+        vec3 right, top;
+    } cases[] = {
+        {CUBEMAP_POS_X, {1, 0, -1}, {1, 1, 0}}, {CUBEMAP_NEG_X, {-1, 0, 1}, {-1, 1, 0}},
+        {CUBEMAP_POS_Y, {1, 1, 0}, {0, 1, -1}}, {CUBEMAP_NEG_Y, {1, -1, 0}, {0, -1, 1}},
+        {CUBEMAP_POS_Z, {1, 0, 1}, {0, 1, 1}},  {CUBEMAP_NEG_Z, {-1, 0, -1}, {0, 1, -1}},
     };
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         int f = cases[k].face;
@@ -84,7 +87,7 @@ END_TEST
 /* face -> direction -> face on a grid of interior points of every face (no ties there). */
 START_TEST(test_cubemap_face_points_come_back_to_the_same_face)
 {
-    int wrong = 0; /* counted, not asserted, in the loop: Check writes a file per assert */
+    int wrong = 0;        /* counted, not asserted, in the loop: Check writes a file per assert */
     char first[160] = ""; /* the first point that did not come back, for the message */
     for (int f = 0; f < CUBEMAP_FACES; f++)
         for (int j = 1; j < 64; j++)
@@ -169,8 +172,8 @@ END_TEST
 /* Catches a missing validity check (NaN faces, division by zero). */
 START_TEST(test_cubemap_rejects_zero_infinite_and_nan_directions)
 {
-    const vec3 bad[] = {{0, 0, 0}, {-0.0, 0, -0.0}, {NAN, 0, 1}, {1, NAN, 0}, {0, 0, NAN},
-                        {INFINITY, 0, 0}, {1, -INFINITY, 0}};
+    const vec3 bad[] = {{0, 0, 0},   {-0.0, 0, -0.0},  {NAN, 0, 1},      {1, NAN, 0},
+                        {0, 0, NAN}, {INFINITY, 0, 0}, {1, -INFINITY, 0}};
     for (size_t k = 0; k < sizeof bad / sizeof bad[0]; k++) {
         int f = 77;
         uv2 st = {-5, -5};
@@ -262,13 +265,13 @@ START_TEST(test_cubemap_lookup_on_edges_and_corners_blends_the_faces_that_meet)
     for (int f = 0; f < CUBEMAP_FACES; f++)
         for (int j = 0; j < 4; j++)
             for (int i = 0; i < 4; i++) image_set(&cm.face[f], i, j, rgb_gray(value[f]));
-    rgb c = cubemap_lookup_bilinear(&cm, vec3_make(1, 0, 1));   /* +X | +Z edge, midpoint */
+    rgb c = cubemap_lookup_bilinear(&cm, vec3_make(1, 0, 1)); /* +X | +Z edge, midpoint */
     ck_assert_near(c.r, (1 + 16) / 2.0, 1e-12);
     c = cubemap_lookup_bilinear(&cm, vec3_make(0, -1, -1)); /* -Y | -Z */
     ck_assert_near(c.r, (8 + 32) / 2.0, 1e-12);
     c = cubemap_lookup_bilinear(&cm, vec3_make(-1, 1, 0.3)); /* -X | +Y, off the midpoint */
     ck_assert_near(c.r, (2 + 4) / 2.0, 1e-12);
-    c = cubemap_lookup_bilinear(&cm, vec3_make(1, 1, 1));   /* corner +X +Y +Z */
+    c = cubemap_lookup_bilinear(&cm, vec3_make(1, 1, 1)); /* corner +X +Y +Z */
     ck_assert_near(c.r, (1 + 4 + 16) / 3.0, 1e-12);
     c = cubemap_lookup_bilinear(&cm, vec3_make(-1, -1, -1)); /* corner -X -Y -Z */
     ck_assert_near(c.r, (2 + 8 + 32) / 3.0, 1e-12);

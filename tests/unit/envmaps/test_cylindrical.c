@@ -7,7 +7,7 @@
 #include <float.h>
 
 #define RANDOM_DIRECTIONS 1000000
-#define ROUNDTRIP_TOL 1e-6 /* radians; the brief's bound (doubles give ~1e-15) */
+#define ROUNDTRIP_TOL     1e-6 /* radians; the brief's bound (doubles give ~1e-15) */
 
 static uv2 to_uv(vec3 d, double h)
 {
@@ -32,9 +32,9 @@ START_TEST(test_cylindrical_orientation_has_up_at_the_top_and_phi_to_the_right)
     ck_assert_near(to_uv(vec3_make(0, 1, 0), 1.0).u, 0.25, 1e-15);
     ck_assert_near(to_uv(vec3_make(-1, 0, 0), 1.0).u, 0.5, 1e-15);
     ck_assert_near(to_uv(vec3_make(0, -1, 0), 1.0).u, 0.75, 1e-15);
-    ck_assert_double_eq(to_uv(vec3_make(1, 0, 1), 1.0).v, 0.0);  /* 45 deg up: the top edge */
-    ck_assert_double_eq(to_uv(vec3_make(1, 0, -1), 1.0).v, 1.0); /* 45 deg down: the bottom */
-    ck_assert_double_eq(to_uv(vec3_make(0, 2, 1), 1.0).v, 0.25); /* z_cyl = 1/2 */
+    ck_assert_double_eq(to_uv(vec3_make(1, 0, 1), 1.0).v, 0.0);   /* 45 deg up: the top edge */
+    ck_assert_double_eq(to_uv(vec3_make(1, 0, -1), 1.0).v, 1.0);  /* 45 deg down: the bottom */
+    ck_assert_double_eq(to_uv(vec3_make(0, 2, 1), 1.0).v, 0.25);  /* z_cyl = 1/2 */
     ck_assert_double_eq(to_uv(vec3_make(0, 2, 1), 2.0).v, 0.375); /* z_cyl = 1/2 of h = 2 */
     /* 30 degrees of elevation: z_cyl = tan 30 = 0.577..., not 30/45 of the way up */
     ck_assert_near(to_uv(vec3_make(cos(M_PI / 6), 0, sin(M_PI / 6)), 1.0).v,
@@ -100,8 +100,9 @@ END_TEST
  * missing extent test (v outside [0, 1], read out of the image). */
 START_TEST(test_cylindrical_rejects_poles_and_directions_beyond_the_extent)
 {
-    const vec3 out[] = {{0, 0, 1}, {0, 0, -1}, {-0.0, 0, 5}, {-0.0, -0.0, -1e-300},
-                        {1, 0, 1.0000001}, {0, -1, -1.0000001}, {1e-300, 0, 1}};
+    const vec3 out[] = {
+        {0, 0, 1},         {0, 0, -1},          {-0.0, 0, 5},  {-0.0, -0.0, -1e-300},
+        {1, 0, 1.0000001}, {0, -1, -1.0000001}, {1e-300, 0, 1}};
     for (size_t k = 0; k < sizeof out / sizeof out[0]; k++) {
         uv2 uv = {-5, -5};
         ck_assert_int_eq(cylindrical_dir_to_uv(out[k], 1.0, &uv), -1);

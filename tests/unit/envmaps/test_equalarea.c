@@ -7,7 +7,7 @@
 #include <float.h>
 
 #define RANDOM_DIRECTIONS 1000000
-#define ROUNDTRIP_TOL 1e-6 /* radians; the brief's bound (doubles give ~1e-15) */
+#define ROUNDTRIP_TOL     1e-6 /* radians; the brief's bound (doubles give ~1e-15) */
 
 static uv2 to_uv(vec3 d)
 {

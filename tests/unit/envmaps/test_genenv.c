@@ -56,9 +56,12 @@ START_TEST(test_genenv_axes_colours_name_their_directions)
     p.width = 256;
     image im = make(GENENV_AXES, &p);
     /* (d + 1) / 2: +x red, +y green, +z blue (nearest lookup: within half a texel) */
-    const struct { vec3 d; rgb c; } cases[] = {
-        {{1, 0, 0}, {1, 0.5, 0.5}},  {{0, 1, 0}, {0.5, 1, 0.5}}, {{-1, 0, 0}, {0, 0.5, 0.5}},
-        {{0, -1, 0}, {0.5, 0, 0.5}}, {{0, 0, 1}, {0.5, 0.5, 1}}, {{0, 0, -1}, {0.5, 0.5, 0}}};
+    const struct {
+        vec3 d;
+        rgb c;
+    } cases[] = {{{1, 0, 0}, {1, 0.5, 0.5}},  {{0, 1, 0}, {0.5, 1, 0.5}},
+                 {{-1, 0, 0}, {0, 0.5, 0.5}}, {{0, -1, 0}, {0.5, 0, 0.5}},
+                 {{0, 0, 1}, {0.5, 0.5, 1}},  {{0, 0, -1}, {0.5, 0.5, 0}}};
     for (unsigned i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         rgb c = latlong_lookup_nearest(&im, cases[i].d);
         ck_assert_msg(fabs(c.r - cases[i].c.r) < 0.02 && fabs(c.g - cases[i].c.g) < 0.02 &&

@@ -7,7 +7,7 @@
 #include <float.h>
 
 #define RANDOM_DIRECTIONS 1000000
-#define ROUNDTRIP_TOL 1e-6 /* radians; the brief's bound */
+#define ROUNDTRIP_TOL     1e-6 /* radians; the brief's bound */
 
 static uv2 to_uv(vec3 d)
 {
@@ -25,8 +25,8 @@ static vec3 to_dir(uv2 uv)
 
 static void assert_dir_near(vec3 got, vec3 want, double tol)
 {
-    ck_assert_msg(vec3_angle(got, want) <= tol, "got (%.17g %.17g %.17g), want (%g %g %g)",
-                  got.x, got.y, got.z, want.x, want.y, want.z);
+    ck_assert_msg(vec3_angle(got, want) <= tol, "got (%.17g %.17g %.17g), want (%g %g %g)", got.x,
+                  got.y, got.z, want.x, want.y, want.z);
 }
 
 /* Known answers: the centre reflects straight back at the camera (+x), up is +z, right is +y,
@@ -151,8 +151,8 @@ END_TEST
 /* Outside the ball there is no direction.  Catches a missing disc test (sqrt of a negative). */
 START_TEST(test_mirrorball_points_outside_the_ball_have_no_direction)
 {
-    const uv2 out[] = {{0, 0}, {1, 1}, {0, 1}, {0.9, 0.9}, {0.5, -1e-9}, {1 + 1e-9, 0.5},
-                       {NAN, 0.5}, {0.5, NAN}, {INFINITY, 0.5}};
+    const uv2 out[] = {{0, 0},          {1, 1},     {0, 1},     {0.9, 0.9},     {0.5, -1e-9},
+                       {1 + 1e-9, 0.5}, {NAN, 0.5}, {0.5, NAN}, {INFINITY, 0.5}};
     for (size_t k = 0; k < sizeof out / sizeof out[0]; k++) {
         vec3 d = {7, 7, 7};
         ck_assert_int_eq(mirrorball_uv_to_dir(out[k], &d), -1);

@@ -16,13 +16,25 @@
 
 /* Checks for long loops: every passing ck_assert costs a system call (Check records the last
  * passing line), which would dominate the run time; these report failures only. */
-#define EXPECT(c) do { if (!(c)) ck_abort_msg("failed: %s", #c); } while (0)
-#define EXPECT_MSG(c, ...) do { if (!(c)) ck_abort_msg(__VA_ARGS__); } while (0)
-#define EXPECT_INT_EQ(a, b) do { long long a_ = (a), b_ = (b); \
-        if (a_ != b_) ck_abort_msg("%s == %lld, %s == %lld", #a, a_, #b, b_); } while (0)
-#define EXPECT_NEAR(a, b, tol) do { double a_ = (a), b_ = (b), t_ = (tol); \
-        if (!(fabs(a_ - b_) <= t_)) \
-            ck_abort_msg("%s == %.17g, %s == %.17g, tolerance %g", #a, a_, #b, b_, t_); } while (0)
+#define EXPECT(c)                                                                                  \
+    do {                                                                                           \
+        if (!(c)) ck_abort_msg("failed: %s", #c);                                                  \
+    } while (0)
+#define EXPECT_MSG(c, ...)                                                                         \
+    do {                                                                                           \
+        if (!(c)) ck_abort_msg(__VA_ARGS__);                                                       \
+    } while (0)
+#define EXPECT_INT_EQ(a, b)                                                                        \
+    do {                                                                                           \
+        long long a_ = (a), b_ = (b);                                                              \
+        if (a_ != b_) ck_abort_msg("%s == %lld, %s == %lld", #a, a_, #b, b_);                      \
+    } while (0)
+#define EXPECT_NEAR(a, b, tol)                                                                     \
+    do {                                                                                           \
+        double a_ = (a), b_ = (b), t_ = (tol);                                                     \
+        if (!(fabs(a_ - b_) <= t_))                                                                \
+            ck_abort_msg("%s == %.17g, %s == %.17g, tolerance %g", #a, a_, #b, b_, t_);            \
+    } while (0)
 
 static double sym(rng *g) { return 2 * rng_uniform(g) - 1; }
 
@@ -70,8 +82,9 @@ static void random_scene(scene *sc, long n, uint64_t seed)
         double r = 0.1 + 0.9 * rng_uniform(&g);
         mat4 xf = mat4_identity();
         if (i % 4 == 3)
-            xf = mat4_mul(mat4_translate(c), mat4_mul(mat4_rotate(random_unit(&g), 360 * rng_uniform(&g)),
-                                                    mat4_scale(vec3_make(2, 0.5, 1))));
+            xf = mat4_mul(mat4_translate(c),
+                          mat4_mul(mat4_rotate(random_unit(&g), 360 * rng_uniform(&g)),
+                                   mat4_scale(vec3_make(2, 0.5, 1))));
         set_sphere(&sc->spheres[i], i % 4 == 3 ? vec3_make(0, 0, 0) : c, r, xf, (int)(i & 1));
     }
     for (long i = 0; i < nt; i++) {
@@ -92,10 +105,11 @@ static int brute_closest(const scene *sc, const ray *r, double *t_best, long *id
     int found = 0;
     for (long i = 0; i < sc->n_spheres + sc->n_triangles; i++) {
         double t, b1, b2;
-        int h = i < sc->n_spheres ? sphere_intersect(&sc->spheres[i], r, &t)
-                                  : triangle_intersect(sc->triangles[i - sc->n_spheres].p[0],
-                                                       sc->triangles[i - sc->n_spheres].p[1],
-                                                       sc->triangles[i - sc->n_spheres].p[2], r, &t, &b1, &b2);
+        int h = i < sc->n_spheres
+                    ? sphere_intersect(&sc->spheres[i], r, &t)
+                    : triangle_intersect(sc->triangles[i - sc->n_spheres].p[0],
+                                         sc->triangles[i - sc->n_spheres].p[1],
+                                         sc->triangles[i - sc->n_spheres].p[2], r, &t, &b1, &b2);
         if (h && (!found || t < *t_best)) {
             found = 1;
             *t_best = t;
@@ -119,11 +133,12 @@ static ray random_ray(rng *g, const scene *sc)
         r.d = vec3_make(axis == 0 ? s : zero, axis == 1 ? s : zero, axis == 2 ? s : zero);
     } else if (kind < 0.45 && sc->n_spheres + sc->n_triangles > 0) {
         long i = (long)(rng_uniform(g) * (double)(sc->n_spheres + sc->n_triangles));
-        vec3 target = i < sc->n_spheres ? mat4_point(&sc->spheres[i].xf, sc->spheres[i].center)
-                                        : vec3_scale(vec3_add(vec3_add(sc->triangles[i - sc->n_spheres].p[0],
-                                                                       sc->triangles[i - sc->n_spheres].p[1]),
-                                                              sc->triangles[i - sc->n_spheres].p[2]),
-                                                     1.0 / 3);
+        vec3 target = i < sc->n_spheres
+                          ? mat4_point(&sc->spheres[i].xf, sc->spheres[i].center)
+                          : vec3_scale(vec3_add(vec3_add(sc->triangles[i - sc->n_spheres].p[0],
+                                                         sc->triangles[i - sc->n_spheres].p[1]),
+                                                sc->triangles[i - sc->n_spheres].p[2]),
+                                       1.0 / 3);
         r.d = vec3_normalize(vec3_sub(target, r.o));
     }
     if (rng_uniform(g) < 0.3) {
@@ -150,8 +165,8 @@ static void check_against_brute_force(const scene *sc, int n_rays, uint64_t seed
         hit h;
         memset(&h, 0, sizeof h);
         int got = bvh_intersect(&b, &r, &h);
-        EXPECT_MSG(got == want, "ray %d: bvh %s, brute force %s (t = %g)", i, got ? "hit" : "missed",
-                      want ? "hit" : "missed", tb);
+        EXPECT_MSG(got == want, "ray %d: bvh %s, brute force %s (t = %g)", i,
+                   got ? "hit" : "missed", want ? "hit" : "missed", tb);
         EXPECT_INT_EQ(bvh_occluded(&b, &r), want);
         if (!want) continue;
         hits++;
@@ -162,8 +177,10 @@ static void check_against_brute_force(const scene *sc, int n_rays, uint64_t seed
             /* a tie (two triangles through one edge): the bvh's primitive must give the same t */
             double t2 = 0, b1, b2;
             const triangle *tr = &sc->triangles[h.prim];
-            EXPECT_MSG(!h.is_sphere && triangle_intersect(tr->p[0], tr->p[1], tr->p[2], &r, &t2, &b1, &b2) && t2 == tb,
-                          "ray %d: bvh hit primitive %ld, brute force %ld", i, id, idb);
+            EXPECT_MSG(!h.is_sphere &&
+                           triangle_intersect(tr->p[0], tr->p[1], tr->p[2], &r, &t2, &b1, &b2) &&
+                           t2 == tb,
+                       "ray %d: bvh hit primitive %ld, brute force %ld", i, id, idb);
         }
         int mat = h.is_sphere ? sc->spheres[h.prim].material : sc->triangles[h.prim].material;
         EXPECT_INT_EQ(h.material, mat);
@@ -322,7 +339,8 @@ START_TEST(test_bvh_of_coincident_primitives_matches_brute_force)
     scene_alloc(&sc, 40, 40);
     for (int i = 0; i < 40; i++) {
         set_sphere(&sc.spheres[i], vec3_make(1, 2, 3), 1 + 0.001 * i, mat4_identity(), 0);
-        sc.triangles[i] = (triangle){.p = {{-5, -5, 0}, {5, -5, 0}, {0, 5, 0.01 * i}}, .material = 1};
+        sc.triangles[i] =
+            (triangle){.p = {{-5, -5, 0}, {5, -5, 0}, {0, 5, 0.01 * i}}, .material = 1};
     }
     check_against_brute_force(&sc, 3000, 47);
     scene_free(&sc);
@@ -337,7 +355,8 @@ START_TEST(test_bvh_of_a_geometric_series_stays_within_the_depth_limit)
     scene sc;
     scene_alloc(&sc, n, 0);
     for (int k = 0; k < n; k++)
-        set_sphere(&sc.spheres[k], vec3_make(ldexp(1, -k), 0, 0), ldexp(0.1, -k), mat4_identity(), 0);
+        set_sphere(&sc.spheres[k], vec3_make(ldexp(1, -k), 0, 0), ldexp(0.1, -k), mat4_identity(),
+                   0);
     error err = {0};
     bvh b;
     EXPECT_INT_EQ(bvh_build(&b, scene_prims(&sc), NULL, &err), 0);
@@ -428,7 +447,8 @@ START_TEST(test_bvh_agrees_with_brute_force_on_rays_through_a_silhouette_edge)
     scene_alloc(&sc, 0, n);
     for (int k = 0; k < n; k++) {
         double th = 0.5 * M_PI * (k + 0.5) / n;
-        sc.triangles[k] = (triangle){.p = {{-5.1, 0, 0}, {4.7, 0, 0}, {0.3, 5 * cos(th), 5 * sin(th)}}};
+        sc.triangles[k] =
+            (triangle){.p = {{-5.1, 0, 0}, {4.7, 0, 0}, {0.3, 5 * cos(th), 5 * sin(th)}}};
     }
     error err = {0};
     bvh b;
@@ -479,7 +499,11 @@ START_TEST(test_bvh_keeps_hits_along_box_edges_seen_from_far_away)
     for (int k = 0; k < 20000; k++) {
         const triangle *t = &sc.triangles[(int)(rng_uniform(&g) * n)];
         double u = rng_uniform(&g), v = 1e-6 * rng_uniform(&g); /* just inside the x leg */
-        if (k % 2) { double x = u; u = v; v = x; }               /* or the y leg */
+        if (k % 2) {
+            double x = u;
+            u = v;
+            v = x;
+        } /* or the y leg */
         vec3 target = vec3_add(vec3_add(vec3_scale(t->p[0], 1 - u - v), vec3_scale(t->p[1], u)),
                                vec3_scale(t->p[2], v));
         vec3 dir = random_unit(&g);

@@ -102,9 +102,9 @@ START_TEST(test_camera_rays_are_unit_and_linear_in_the_image_plane)
         for (int x = 0; x <= 8; x++) {
             ray r = camera_ray(&c, x, y);
             ck_assert_near(vec3_length(r.d), 1, 1e-15);
-            vec3 p = vec3_scale(r.d, -1 / r.d.z); /* on the plane z = -1 */
+            vec3 p = vec3_scale(r.d, -1 / r.d.z);          /* on the plane z = -1 */
             ck_assert_near(p.x, 2.0 * (x - 4) / 4, 1e-14); /* tan(fovx/2) = 2 */
-            ck_assert_near(p.y, (2.0 - y) / 2, 1e-14);      /* tan(fovy/2) = 1 */
+            ck_assert_near(p.y, (2.0 - y) / 2, 1e-14);     /* tan(fovy/2) = 1 */
         }
 }
 END_TEST

@@ -18,8 +18,8 @@
  * plane a whole pixel away), exact only to first order: the reflection and refraction tests
  * take them for a step of DIFF_SCALE pixels and divide, which gives the derivative. */
 #define DIFF_SCALE 1e-5
-#define FD_STEP 1e-3
-#define FD_TOL 1e-7
+#define FD_STEP    1e-3
+#define FD_TOL     1e-7
 
 static camera test_camera(void)
 {
@@ -296,7 +296,8 @@ START_TEST(test_reflected_and_refracted_origins_move_with_the_hit_point)
     vec3 dpdx = vec3_make(0.01, 0.002, 0), dpdy = vec3_make(-0.003, 0.02, 0);
     vec3 dn = vec3_make(0.001, 0, 0), wi;
     ray_diff in = {1, vec3_make(0, 0, 0), vec3_make(0.002, 0, 0.001), vec3_make(0, 0, 0),
-                   vec3_make(0, 0.002, 0.0005)}, out;
+                   vec3_make(0, 0.002, 0.0005)},
+             out;
     raydiff_reflect(&in, dpdx, dpdy, wo, n, dn, dn, &out);
     ck_assert(out.has);
     ck_assert(vec3_length(vec3_sub(out.dox, dpdx)) == 0 &&
@@ -312,17 +313,16 @@ END_TEST
 
 /* A 1 x 1 quad facing the camera at distance D, (s, t) = (x, y) + 0.5: one world unit is one
  * texture unit.  A 64-texel texture, trilinear. */
-static const char *plane_scene =
-    "size 64 64\n"
-    "camera 0 0 0  0 0 -1  0 1 0  60\n"
-    "texture chk checker 8  0 0 0  1 1 1\n"
-    "diffusemap chk\n"
-    "vertextex -0.5 -0.5 -7  0 0\n"
-    "vertextex 0.5 -0.5 -7  1 0\n"
-    "vertextex 0.5 0.5 -7  1 1\n"
-    "vertextex -0.5 0.5 -7  0 1\n"
-    "tritex 0 1 2\n"
-    "tritex 0 2 3\n";
+static const char *plane_scene = "size 64 64\n"
+                                 "camera 0 0 0  0 0 -1  0 1 0  60\n"
+                                 "texture chk checker 8  0 0 0  1 1 1\n"
+                                 "diffusemap chk\n"
+                                 "vertextex -0.5 -0.5 -7  0 0\n"
+                                 "vertextex 0.5 -0.5 -7  1 0\n"
+                                 "vertextex 0.5 0.5 -7  1 1\n"
+                                 "vertextex -0.5 0.5 -7  0 1\n"
+                                 "tritex 0 1 2\n"
+                                 "tritex 0 2 3\n";
 
 /* hit of the ray (r, rd) on triangle `prim` of sc (brute force: the scenes here are tiny) */
 static int find_hit(const scene *sc, const ray *r, hit *h)
@@ -404,9 +404,9 @@ START_TEST(test_delta_diff_tells_reflection_from_refraction_by_the_shading_norma
     s.dndy = vec3_make(0.001, 0, -0.00075);
     ray_diff rd = {1, vec3_make(0.01, 0, 0), vec3_make(0, 0.003, 0.001), vec3_make(0, 0.01, 0),
                    vec3_make(0.002, 0, 0)};
-    vec3 wo = vec3_normalize(vec3_make(-0.5, 0, 1)); /* above ng, and above n */
+    vec3 wo = vec3_normalize(vec3_make(-0.5, 0, 1));                /* above ng, and above n */
     vec3 wi = vec3_sub(vec3_scale(s.n, 2 * vec3_dot(wo, s.n)), wo); /* mirror about n */
-    ck_assert(vec3_dot(wo, s.n) > 0 && wi.z < 0);                    /* below the surface */
+    ck_assert(vec3_dot(wo, s.n) > 0 && wi.z < 0);                   /* below the surface */
     ray_diff got, want;
     texshade_delta_diff(&s, &rd, wo, wi, &got);
     raydiff_reflect(&rd, s.dpdx, s.dpdy, wo, s.n, s.dndx, s.dndy, &want);
@@ -432,11 +432,10 @@ END_TEST
  * the neighbouring pixel's). */
 START_TEST(test_a_mirror_falling_back_to_the_geometric_normal_reflects_the_footprint_flat)
 {
-    const char *text =
-        "size 64 64\ncamera -4 0 5  0 0 0  0 1 0  45\n"
-        "texture chk checker 8  0 0 0  1 1 1\ndiffusemap chk\nbrdf mirror\n"
-        "vertexnormal -2 -2 0  1 0.3 0.3\nvertexnormal 2 -2 0  1 -0.3 0.25\n"
-        "vertexnormal 0 2 0  1 0.1 0.35\ntrinormal 0 1 2\n";
+    const char *text = "size 64 64\ncamera -4 0 5  0 0 0  0 1 0  45\n"
+                       "texture chk checker 8  0 0 0  1 1 1\ndiffusemap chk\nbrdf mirror\n"
+                       "vertexnormal -2 -2 0  1 0.3 0.3\nvertexnormal 2 -2 0  1 -0.3 0.25\n"
+                       "vertexnormal 0 2 0  1 0.1 0.35\ntrinormal 0 1 2\n";
     scene sc;
     error err = {0};
     ck_assert_msg(scene_load_string(text, NULL, NULL, &sc, &err) == 0, "%s", err.msg);
@@ -503,13 +502,12 @@ END_TEST
 
 START_TEST(test_diffusemap_replaces_kd_and_untextured_materials_are_untouched)
 {
-    const char *text =
-        "size 8 8\ncamera 0 0 0  0 0 -1  0 1 0  60\n"
-        "texture c checker 4  0.2 0.4 0.6  0.2 0.4 0.6\n"
-        "diffuse 0.9 0.9 0.9\n"
-        "vertex -1 -1 -3\nvertex 1 -1 -3\nvertex 0 1 -3\ntri 0 1 2\n"
-        "diffusemap c\nspecularmap c\nemissionmap c\n"
-        "vertex -1 -1 -2\nvertex 1 -1 -2\nvertex 0 1 -2\ntri 3 4 5\n";
+    const char *text = "size 8 8\ncamera 0 0 0  0 0 -1  0 1 0  60\n"
+                       "texture c checker 4  0.2 0.4 0.6  0.2 0.4 0.6\n"
+                       "diffuse 0.9 0.9 0.9\n"
+                       "vertex -1 -1 -3\nvertex 1 -1 -3\nvertex 0 1 -3\ntri 0 1 2\n"
+                       "diffusemap c\nspecularmap c\nemissionmap c\n"
+                       "vertex -1 -1 -2\nvertex 1 -1 -2\nvertex 0 1 -2\ntri 3 4 5\n";
     scene sc;
     error err = {0};
     ck_assert_msg(scene_load_string(text, NULL, NULL, &sc, &err) == 0, "%s", err.msg);

@@ -11,13 +11,25 @@
 
 /* Checks for long loops: every passing ck_assert costs a system call (Check records the last
  * passing line), which would dominate the run time; these report failures only. */
-#define EXPECT(c) do { if (!(c)) ck_abort_msg("failed: %s", #c); } while (0)
-#define EXPECT_MSG(c, ...) do { if (!(c)) ck_abort_msg(__VA_ARGS__); } while (0)
-#define EXPECT_INT_EQ(a, b) do { long long a_ = (a), b_ = (b); \
-        if (a_ != b_) ck_abort_msg("%s == %lld, %s == %lld", #a, a_, #b, b_); } while (0)
-#define EXPECT_NEAR(a, b, tol) do { double a_ = (a), b_ = (b), t_ = (tol); \
-        if (!(fabs(a_ - b_) <= t_)) \
-            ck_abort_msg("%s == %.17g, %s == %.17g, tolerance %g", #a, a_, #b, b_, t_); } while (0)
+#define EXPECT(c)                                                                                  \
+    do {                                                                                           \
+        if (!(c)) ck_abort_msg("failed: %s", #c);                                                  \
+    } while (0)
+#define EXPECT_MSG(c, ...)                                                                         \
+    do {                                                                                           \
+        if (!(c)) ck_abort_msg(__VA_ARGS__);                                                       \
+    } while (0)
+#define EXPECT_INT_EQ(a, b)                                                                        \
+    do {                                                                                           \
+        long long a_ = (a), b_ = (b);                                                              \
+        if (a_ != b_) ck_abort_msg("%s == %lld, %s == %lld", #a, a_, #b, b_);                      \
+    } while (0)
+#define EXPECT_NEAR(a, b, tol)                                                                     \
+    do {                                                                                           \
+        double a_ = (a), b_ = (b), t_ = (tol);                                                     \
+        if (!(fabs(a_ - b_) <= t_))                                                                \
+            ck_abort_msg("%s == %.17g, %s == %.17g, tolerance %g", #a, a_, #b, b_, t_);            \
+    } while (0)
 
 static sphere make_sphere(vec3 c, double r, mat4 xf)
 {
@@ -45,8 +57,8 @@ static vec3 random_unit(rng *r)
 static void assert_vec_near(vec3 a, vec3 b, double tol)
 {
     EXPECT_MSG(fabs(a.x - b.x) <= tol && fabs(a.y - b.y) <= tol && fabs(a.z - b.z) <= tol,
-                  "(%.17g, %.17g, %.17g) != (%.17g, %.17g, %.17g) within %g", a.x, a.y, a.z, b.x,
-                  b.y, b.z, tol);
+               "(%.17g, %.17g, %.17g) != (%.17g, %.17g, %.17g) within %g", a.x, a.y, a.z, b.x, b.y,
+               b.z, tol);
 }
 
 START_TEST(test_sphere_ray_from_outside_hits_the_near_side)
@@ -118,7 +130,7 @@ START_TEST(test_sphere_ray_leaving_the_surface_outward_does_not_hit_it_again)
         mat4_mul(mat4_translate(vec3_make(3, -1, 2)),
                  mat4_mul(mat4_rotate(vec3_make(1, 1, 0), 30), mat4_scale(vec3_make(2, 1, 0.5))));
     sphere ss[3] = {unit_sphere(), make_sphere(vec3_make(0, 0, 0), 1, ell),
-                          make_sphere(vec3_make(1e4, 0, 0), 10, mat4_identity())};
+                    make_sphere(vec3_make(1e4, 0, 0), 10, mat4_identity())};
     for (int k = 0; k < 3; k++)
         for (int i = 0; i < 20000; i++) {
             /* hit the sphere from a random outside point */
@@ -250,7 +262,7 @@ START_TEST(test_sphere_far_from_the_origin_keeps_precision)
     vec3 c = vec3_make(1e6, 3e5, -2e5);
     /* centre in the object coordinates, and centre by a translation: both must be precise */
     sphere ss[2] = {make_sphere(c, 1, mat4_identity()),
-                          make_sphere(vec3_make(0, 0, 0), 1, mat4_translate(c))};
+                    make_sphere(vec3_make(0, 0, 0), 1, mat4_translate(c))};
     for (int k = 0; k < 2; k++)
         for (int i = 0; i < 5000; i++) {
             vec3 o = vec3_scale(random_unit(&g), 3);
@@ -284,7 +296,6 @@ START_TEST(test_sphere_nan_or_zero_ray_misses_without_crashing)
     EXPECT(t == 123); /* untouched on a miss */
 }
 END_TEST
-
 
 /* point and normals equal bit for bit (memcmp: -0 and +0 differ) */
 static int same_hit_bits(const hit *a, const hit *b)

@@ -8,13 +8,25 @@
 
 /* Checks for long loops: every passing ck_assert costs a system call (Check records the last
  * passing line), which would dominate the run time; these report failures only. */
-#define EXPECT(c) do { if (!(c)) ck_abort_msg("failed: %s", #c); } while (0)
-#define EXPECT_MSG(c, ...) do { if (!(c)) ck_abort_msg(__VA_ARGS__); } while (0)
-#define EXPECT_INT_EQ(a, b) do { long long a_ = (a), b_ = (b); \
-        if (a_ != b_) ck_abort_msg("%s == %lld, %s == %lld", #a, a_, #b, b_); } while (0)
-#define EXPECT_NEAR(a, b, tol) do { double a_ = (a), b_ = (b), t_ = (tol); \
-        if (!(fabs(a_ - b_) <= t_)) \
-            ck_abort_msg("%s == %.17g, %s == %.17g, tolerance %g", #a, a_, #b, b_, t_); } while (0)
+#define EXPECT(c)                                                                                  \
+    do {                                                                                           \
+        if (!(c)) ck_abort_msg("failed: %s", #c);                                                  \
+    } while (0)
+#define EXPECT_MSG(c, ...)                                                                         \
+    do {                                                                                           \
+        if (!(c)) ck_abort_msg(__VA_ARGS__);                                                       \
+    } while (0)
+#define EXPECT_INT_EQ(a, b)                                                                        \
+    do {                                                                                           \
+        long long a_ = (a), b_ = (b);                                                              \
+        if (a_ != b_) ck_abort_msg("%s == %lld, %s == %lld", #a, a_, #b, b_);                      \
+    } while (0)
+#define EXPECT_NEAR(a, b, tol)                                                                     \
+    do {                                                                                           \
+        double a_ = (a), b_ = (b), t_ = (tol);                                                     \
+        if (!(fabs(a_ - b_) <= t_))                                                                \
+            ck_abort_msg("%s == %.17g, %s == %.17g, tolerance %g", #a, a_, #b, b_, t_);            \
+    } while (0)
 
 static ray make_ray(vec3 o, vec3 d) { return (ray){o, d, 0.0, INFINITY}; }
 
@@ -45,20 +57,21 @@ END_TEST
 START_TEST(test_triangle_edges_and_vertices_are_inside)
 {
     double t, b1, b2;
-    const double pts[][2] = {{0, 0}, {1, 0}, {0, 1},          /* vertices */
-                             {0.5, 0}, {0, 0.5}, {0.5, 0.5},  /* edge midpoints */
+    const double pts[][2] = {{0, 0},    {1, 0},    {0, 1},     /* vertices */
+                             {0.5, 0},  {0, 0.5},  {0.5, 0.5}, /* edge midpoints */
                              {0.25, 0}, {0, 0.75}, {0.75, 0.25}};
     for (unsigned i = 0; i < sizeof pts / sizeof pts[0]; i++) {
         ray r = down_at(pts[i][0], pts[i][1]);
         EXPECT_MSG(triangle_intersect(P0, P1, P2, &r, &t, &b1, &b2) == 1, "missed (%g, %g)",
-                      pts[i][0], pts[i][1]);
+                   pts[i][0], pts[i][1]);
     }
     /* just outside each edge misses (1e-9 is far beyond the 1e-12 tolerance) */
-    const double out[][2] = {{0.5, -1e-9}, {-1e-9, 0.5}, {0.5 + 1e-9, 0.5 + 1e-9}, {1 + 1e-9, 0}, {-1e-9, -1e-9}};
+    const double out[][2] = {
+        {0.5, -1e-9}, {-1e-9, 0.5}, {0.5 + 1e-9, 0.5 + 1e-9}, {1 + 1e-9, 0}, {-1e-9, -1e-9}};
     for (unsigned i = 0; i < sizeof out / sizeof out[0]; i++) {
         ray r = down_at(out[i][0], out[i][1]);
-        EXPECT_MSG(triangle_intersect(P0, P1, P2, &r, &t, &b1, &b2) == 0, "hit (%g, %g)",
-                      out[i][0], out[i][1]);
+        EXPECT_MSG(triangle_intersect(P0, P1, P2, &r, &t, &b1, &b2) == 0, "hit (%g, %g)", out[i][0],
+                   out[i][1]);
     }
 }
 END_TEST
@@ -72,10 +85,18 @@ START_TEST(test_triangle_edge_tolerance_is_the_same_at_every_edge_and_vertex)
 {
     double t, b1, b2;
     const double e = 0.5 * TRIANGLE_EDGE_EPS;
-    const double pts[][2] = {{0.5, -e}, {-e, 0.5}, {0.5 + e / 2, 0.5 + e / 2}, /* edges */
-                             {-e, -e}, {-e, 0}, {0, -e},                       /* beyond p0 */
-                             {1 + e, 0}, {1 + e / 2, -e / 2}, {1, -e},         /* beyond p1 */
-                             {0, 1 + e}, {-e / 2, 1 + e / 2}, {-e, 1}};        /* beyond p2 */
+    const double pts[][2] = {{0.5, -e},
+                             {-e, 0.5},
+                             {0.5 + e / 2, 0.5 + e / 2}, /* edges */
+                             {-e, -e},
+                             {-e, 0},
+                             {0, -e}, /* beyond p0 */
+                             {1 + e, 0},
+                             {1 + e / 2, -e / 2},
+                             {1, -e}, /* beyond p1 */
+                             {0, 1 + e},
+                             {-e / 2, 1 + e / 2},
+                             {-e, 1}}; /* beyond p2 */
     for (unsigned i = 0; i < sizeof pts / sizeof pts[0]; i++) {
         ray r = down_at(pts[i][0], pts[i][1]);
         EXPECT_MSG(triangle_intersect(P0, P1, P2, &r, &t, &b1, &b2) == 1, "missed (%.17g, %.17g)",
@@ -142,12 +163,16 @@ START_TEST(test_triangle_degenerate_triangles_are_never_hit)
                       {{-1, 0.5, 2}, {0, 0.5, 2}, {4, 0.5, 2}}};
     for (unsigned k = 0; k < sizeof tris / sizeof tris[0]; k++)
         for (int i = 0; i < 20000; i++) {
-            vec3 o = vec3_make(rng_uniform(&g) * 6 - 3, rng_uniform(&g) * 6 - 3, rng_uniform(&g) * 6 - 3);
-            vec3 target = vec3_add(tris[k][i % 3], vec3_scale(vec3_sub(tris[k][(i + 1) % 3], tris[k][i % 3]), rng_uniform(&g)));
+            vec3 o = vec3_make(rng_uniform(&g) * 6 - 3, rng_uniform(&g) * 6 - 3,
+                               rng_uniform(&g) * 6 - 3);
+            vec3 target =
+                vec3_add(tris[k][i % 3], vec3_scale(vec3_sub(tris[k][(i + 1) % 3], tris[k][i % 3]),
+                                                    rng_uniform(&g)));
             ray r = make_ray(o, vec3_sub(target, o)); /* aimed exactly at the segment */
             double t, b1, b2;
-            EXPECT_MSG(triangle_intersect(tris[k][0], tris[k][1], tris[k][2], &r, &t, &b1, &b2) == 0,
-                          "degenerate triangle %u hit", k);
+            EXPECT_MSG(triangle_intersect(tris[k][0], tris[k][1], tris[k][2], &r, &t, &b1, &b2) ==
+                           0,
+                       "degenerate triangle %u hit", k);
         }
 }
 END_TEST
@@ -163,10 +188,12 @@ START_TEST(test_triangle_slivers_left_by_rounding_collinear_corners_are_never_hi
         vec3 v = vec3_make(rng_uniform(&g) - 0.5, rng_uniform(&g) - 0.5, rng_uniform(&g) - 0.5);
         vec3 b = vec3_madd(a, v, 0.3), c = vec3_madd(a, v, 0.7);
         for (int i = 0; i < 100; i++) {
-            vec3 o = vec3_make(rng_uniform(&g) * 4 - 2, rng_uniform(&g) * 4 - 2, rng_uniform(&g) * 4 - 2);
+            vec3 o = vec3_make(rng_uniform(&g) * 4 - 2, rng_uniform(&g) * 4 - 2,
+                               rng_uniform(&g) * 4 - 2);
             ray r = make_ray(o, vec3_sub(vec3_madd(a, v, 0.1 + 0.5 * rng_uniform(&g)), o));
             double t, b1, b2;
-            EXPECT_MSG(!triangle_intersect(a, b, c, &r, &t, &b1, &b2), "sliver %d hit by ray %d", k, i);
+            EXPECT_MSG(!triangle_intersect(a, b, c, &r, &t, &b1, &b2), "sliver %d hit by ray %d", k,
+                       i);
         }
     }
 }
@@ -214,7 +241,8 @@ START_TEST(test_triangle_sliver_test_last_gives_the_same_answers_as_first)
         double off = pow(10, -12 * rng_uniform(&g)) * (k % 3 != 0);
         vec3 b = vec3_madd(a, v, 0.3), c = vec3_madd(vec3_madd(a, v, 0.7), w, off);
         for (int i = 0; i < 20; i++) {
-            vec3 o = vec3_make(rng_uniform(&g) * 4 - 2, rng_uniform(&g) * 4 - 2, rng_uniform(&g) * 4 - 2);
+            vec3 o = vec3_make(rng_uniform(&g) * 4 - 2, rng_uniform(&g) * 4 - 2,
+                               rng_uniform(&g) * 4 - 2);
             vec3 aim = vec3_madd(vec3_madd(a, vec3_sub(b, a), 1.4 * rng_uniform(&g) - 0.2),
                                  vec3_sub(c, a), 1.4 * rng_uniform(&g) - 0.2);
             ray r = make_ray(o, vec3_sub(aim, o));
@@ -223,12 +251,14 @@ START_TEST(test_triangle_sliver_test_last_gives_the_same_answers_as_first)
             int h0 = reference_sliver_test_first(a, b, c, &r, &t0, &u0, &v0);
             int h1 = triangle_intersect(a, b, c, &r, &t1, &u1, &v1);
             EXPECT_MSG(h1 == h0, "triangle %d ray %d: hit %d, reference %d", k, i, h1, h0);
-            EXPECT_MSG(!h0 || (t1 == t0 && u1 == u0 && v1 == v0), "triangle %d ray %d: another hit", k, i);
+            EXPECT_MSG(!h0 || (t1 == t0 && u1 == u0 && v1 == v0), "triangle %d ray %d: another hit",
+                       k, i);
             hits += h0;
             slivers_missed += !h0 && k % 3 == 0;
         }
     }
-    EXPECT_MSG(hits > 5000 && slivers_missed == 20000, "hits %d, slivers missed %d", hits, slivers_missed);
+    EXPECT_MSG(hits > 5000 && slivers_missed == 20000, "hits %d, slivers missed %d", hits,
+               slivers_missed);
 }
 END_TEST
 
@@ -281,10 +311,12 @@ START_TEST(test_triangle_random_hits_reproduce_the_aimed_point)
     for (int i = 0; i < 20000; i++) {
         vec3 q[3];
         for (int k = 0; k < 3; k++)
-            q[k] = vec3_make(rng_uniform(&g) * 4 - 2, rng_uniform(&g) * 4 - 2, rng_uniform(&g) * 4 - 2);
+            q[k] = vec3_make(rng_uniform(&g) * 4 - 2, rng_uniform(&g) * 4 - 2,
+                             rng_uniform(&g) * 4 - 2);
         double w1 = rng_uniform(&g), w2 = rng_uniform(&g);
         if (w1 + w2 > 1) w1 = 1 - w1, w2 = 1 - w2;
-        vec3 p = vec3_add(q[0], vec3_add(vec3_scale(vec3_sub(q[1], q[0]), w1), vec3_scale(vec3_sub(q[2], q[0]), w2)));
+        vec3 p = vec3_add(q[0], vec3_add(vec3_scale(vec3_sub(q[1], q[0]), w1),
+                                         vec3_scale(vec3_sub(q[2], q[0]), w2)));
         vec3 o = vec3_make(rng_uniform(&g) * 10 - 5, rng_uniform(&g) * 10 - 5, 6);
         ray r = make_ray(o, vec3_sub(p, o)); /* t = 1 at p */
         vec3 n = vec3_cross(vec3_sub(q[1], q[0]), vec3_sub(q[2], q[0]));
@@ -311,7 +343,8 @@ START_TEST(test_triangle_hits_do_not_depend_on_the_scene_scale)
         double s = pow(10, e);
         ray r = make_ray(vec3_scale(o, s), vec3_scale(d, s));
         double t, b1, b2;
-        EXPECT_MSG(triangle_intersect(vec3_scale(a, s), vec3_scale(b, s), vec3_scale(c, s), &r, &t, &b1, &b2),
+        EXPECT_MSG(triangle_intersect(vec3_scale(a, s), vec3_scale(b, s), vec3_scale(c, s), &r, &t,
+                                      &b1, &b2),
                    "scale 1e%d: no hit", e);
         /* o + t d = b0 a + b1 b + b2 c at scale 1: t = 2.7 / 1.005 ... check against scale 1 */
         ray r1 = make_ray(o, d);
@@ -322,7 +355,8 @@ START_TEST(test_triangle_hits_do_not_depend_on_the_scene_scale)
         EXPECT_NEAR(b2, c2, 1e-13);
         /* a unit direction at that scale: t scales instead */
         r = make_ray(vec3_scale(o, s), vec3_normalize(d));
-        EXPECT_MSG(triangle_intersect(vec3_scale(a, s), vec3_scale(b, s), vec3_scale(c, s), &r, &t, &b1, &b2),
+        EXPECT_MSG(triangle_intersect(vec3_scale(a, s), vec3_scale(b, s), vec3_scale(c, s), &r, &t,
+                                      &b1, &b2),
                    "scale 1e%d, unit direction: no hit", e);
         EXPECT_NEAR(t / (s * vec3_length(d)), t1, 1e-13);
     }

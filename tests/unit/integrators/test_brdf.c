@@ -19,12 +19,12 @@
 #include "sphchisq.h"
 #include "unit.h"
 
-#define N_SAMPLES 200000L /* per chi-square test */
-#define N_U 16
-#define N_PHI 32
-#define GL_SUB 12         /* quadrature sub-intervals per bin (see test_sampling.c) */
+#define N_SAMPLES   200000L /* per chi-square test */
+#define N_U         16
+#define N_PHI       32
+#define GL_SUB      12    /* quadrature sub-intervals per bin (see test_sampling.c) */
 #define PDF_REL_TOL 1e-5  /* the pdf returned with a sample against brdf_pdf (issue 4) */
-#define RECIP_TOL 1e-12   /* f(wo, wi) = f(wi, wo): the same formulas, a few roundings */
+#define RECIP_TOL   1e-12 /* f(wo, wi) = f(wi, wo): the same formulas, a few roundings */
 
 typedef struct brdf_case {
     const char *name;
@@ -48,7 +48,7 @@ static const brdf_case cases[] = {
     {"hemisphere", BRDF_PHONG, SAMPLING_HEMISPHERE, 0.3, 0.5, 10, 0, 40},
     {"cosine", BRDF_GGX, SAMPLING_COSINE, 0.3, 0.5, 0, 0.3, 40},
 };
-#define N_CASES ((int)(sizeof cases / sizeof cases[0]))
+#define N_CASES       ((int)(sizeof cases / sizeof cases[0]))
 #define N_CHISQ_TESTS N_CASES
 
 static surface make_surface(const brdf_case *c)
@@ -72,7 +72,11 @@ static vec3 wo_of(double theta_deg)
     return vec3_make(sin(t) * cos(0.7), sin(t) * sin(0.7), cos(t));
 }
 
-typedef struct pdf_ctx { const surface *s; vec3 wo; sampling_kind strategy; } pdf_ctx;
+typedef struct pdf_ctx {
+    const surface *s;
+    vec3 wo;
+    sampling_kind strategy;
+} pdf_ctx;
 
 static double pdf_of(void *ctx, vec3 w)
 {

@@ -33,7 +33,8 @@
 #include "sphchisq.h"
 #include "unit.h"
 
-#define Z_SE 4.0          /* standard errors allowed between an estimate and its known value:
+#define Z_SE                                                                                       \
+    4.0                   /* standard errors allowed between an estimate and its known value:
                            * a correct estimator fails one comparison with probability 6e-5 */
 #define FURNACE_TOL 0.005 /* issue 4: rho L within 0.5% */
 
@@ -96,7 +97,10 @@ static void pixel_stats(const image *im, int ch, double *mean, double *se, doubl
 }
 
 /* an integrator on a scene, outside render_scene, to call its functions directly */
-typedef struct rig { bvh b; integrator it; } rig;
+typedef struct rig {
+    bvh b;
+    integrator it;
+} rig;
 
 static void rig_init(rig *r, const scene *sc)
 {
@@ -111,7 +115,9 @@ static void rig_free(rig *r)
     bvh_free(&r->b);
 }
 
-typedef struct stats { double mean, se, var; } stats;
+typedef struct stats {
+    double mean, se, var;
+} stats;
 
 /* n estimates of render_radiance along ray r (channel ch) */
 static stats radiance_stats(rig *rg, ray r, int ch, long n, uint64_t seed)
@@ -152,19 +158,22 @@ static stats stats_towards(const char *base, const char *mode, vec3 target, long
 /* ---- white furnace --------------------------------------------------------------------------- */
 
 /* a sphere filling the whole frame: every pixel sees its interior */
-#define FURNACE_SCENE                       \
-    "size 16 16\n"                          \
-    "camera 0 0 4  0 0 0  0 1 0  16\n"      \
-    "maxdepth 5\n"                          \
-    "ambient 0 0 0\n"                       \
-    "diffuse 0.5 0.5 0.5\n"                 \
+#define FURNACE_SCENE                                                                              \
+    "size 16 16\n"                                                                                 \
+    "camera 0 0 4  0 0 0  0 1 0  16\n"                                                             \
+    "maxdepth 5\n"                                                                                 \
+    "ambient 0 0 0\n"                                                                              \
+    "diffuse 0.5 0.5 0.5\n"                                                                        \
     "sphere 0 0 0 1\n"
 
 /* light sampling on a 4 x 4 grid of strata: the variance of the furnace drops ~10x, so 0.5% is
  * many standard errors at 16 spp (unstratified, the same needs ~16x the samples) */
 #define PT_STRAT "integrator pathtracer\nspp 16\nlightsamples 16\nlightstratify on\n"
 #define DI_STRAT "integrator direct\nspp 16\nlightsamples 16\nlightstratify on\n"
-typedef struct strategy { const char *name; const char *lines; } strategy;
+typedef struct strategy {
+    const char *name;
+    const char *lines;
+} strategy;
 static const strategy strategies[] = {
     {"pathtracer, nee off, hemisphere",
      "integrator pathtracer\nspp 256\nnexteventestimation off\nimportancesampling hemisphere\n"},
@@ -308,7 +317,9 @@ END_TEST
 
 /* ---- direct light against the brute-force sum over texels ------------------------------------ */
 
-typedef struct cos_ctx { vec3 n; } cos_ctx;
+typedef struct cos_ctx {
+    vec3 n;
+} cos_ctx;
 static double clamped_cos(void *ctx, vec3 w) { return fmax(0, vec3_dot(((cos_ctx *)ctx)->n, w)); }
 
 /* E = sum over texels of L(texel) integral over the texel of max(0, n.w) dOmega, per channel */
@@ -338,7 +349,8 @@ START_TEST(test_integrators_direct_lighting_matches_the_sum_over_texels)
     char text[1024];
     snprintf(text, sizeof text,
              "size 4 4\ncamera 0 -5 0  0 0 0  0 0 1  30\nintegrator direct\nlightsamples 16\n%s"
-             "diffuse 0.5 0.5 0.5\nsphere 0 0 -100 1\n", modes[m]);
+             "diffuse 0.5 0.5 0.5\nsphere 0 0 -100 1\n",
+             modes[m]);
     scene sc;
     load(&sc, text);
     set_env(&sc, GENENV_SUN, 64, m == 4 ? 10 : 1e3); /* uniform sampling of a 10^3 sun: too noisy */
@@ -598,9 +610,9 @@ END_TEST
  * weight 0, an infinite one weight 1. */
 START_TEST(test_integrators_power_heuristic_values)
 {
-    ck_assert_near(integrator_power_heuristic(1, 2, 1, 1), 0.8, 1e-15);      /* 4 / (4 + 1) */
-    ck_assert_near(integrator_power_heuristic(1, 1, 3, 1), 0.1, 1e-15);      /* 1 / (1 + 9) */
-    ck_assert_near(integrator_power_heuristic(4, 0.5, 1, 1), 0.8, 1e-15);    /* n_f p_f = 2 */
+    ck_assert_near(integrator_power_heuristic(1, 2, 1, 1), 0.8, 1e-15);   /* 4 / (4 + 1) */
+    ck_assert_near(integrator_power_heuristic(1, 1, 3, 1), 0.1, 1e-15);   /* 1 / (1 + 9) */
+    ck_assert_near(integrator_power_heuristic(4, 0.5, 1, 1), 0.8, 1e-15); /* n_f p_f = 2 */
     ck_assert(integrator_power_heuristic(1, 0, 1, 1) == 0);
     ck_assert(integrator_power_heuristic(1, NAN, 1, 1) == 0);
     ck_assert(integrator_power_heuristic(1, INFINITY, 1, 1e300) == 1);
@@ -1145,7 +1157,7 @@ START_TEST(test_integrators_analyticdirect_matches_direct_and_is_zero_behind_the
         "vertex -5 -5 0\nvertex 5 -5 0\nvertex 5 5 0\nvertex -5 5 0\ntri 0 1 2\ntri 0 2 3\n";
     const char *down =
         "quadLight -1 -1 2  2 0 0  0 2 0  3 3 3\n"; /* ac x ab = -z: emits down, on the floor */
-    const char *up = "quadLight -1 -1 2  0 2 0  2 0 0  3 3 3\n";   /* emits up, away from it */
+    const char *up = "quadLight -1 -1 2  0 2 0  2 0 0  3 3 3\n"; /* emits up, away from it */
     char text[1024];
     scene sc;
     image im;

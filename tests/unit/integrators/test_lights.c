@@ -17,22 +17,22 @@
 
 /* y is up; the quad at height 2 has ab x ac = +y, so it emits DOWN (ac x ab), onto the floor
  * (FORMAT.md: the official scenes light a floor below a light whose ab x ac points up) */
-static const char *scene_text =
-    "size 8 8\n"
-    "camera 0 1 5  0 0 0  0 1 0  45\n"
-    "quadLight -0.5 2 -0.5  0 0 1  1 0 0  6 3 9\n"
-    "quadLight 3 1 0  0 2 0  0 0 0.5  1 1 1\n"
-    "point 0 3 0  2 4 6\n"
-    "directional 0 1 0  0.5 0.5 0.5\n"
-    "diffuse 0.5 0.5 0.5\n"
-    "sphere 0 0.5 0 0.5\n";
+static const char *scene_text = "size 8 8\n"
+                                "camera 0 1 5  0 0 0  0 1 0  45\n"
+                                "quadLight -0.5 2 -0.5  0 0 1  1 0 0  6 3 9\n"
+                                "quadLight 3 1 0  0 2 0  0 0 0.5  1 1 1\n"
+                                "point 0 3 0  2 4 6\n"
+                                "directional 0 1 0  0.5 0.5 0.5\n"
+                                "diffuse 0.5 0.5 0.5\n"
+                                "sphere 0 0.5 0 0.5\n";
 
 static void load(scene *sc)
 {
     scene_load_opts o = scene_load_defaults();
     o.load_images = 0;
     error err = {0};
-    if (scene_load_string(scene_text, "lights.test", &o, sc, &err)) ck_abort_msg("scene: line %d: %s", err.line, err.msg);
+    if (scene_load_string(scene_text, "lights.test", &o, sc, &err))
+        ck_abort_msg("scene: line %d: %s", err.line, err.msg);
     ck_assert_int_eq(sc->n_lights, 4);
 }
 
@@ -62,16 +62,17 @@ START_TEST(test_lights_pick_probability_is_proportional_to_power)
     ck_assert_int_eq(genenv_make(GENENV_CONSTANT, &gp, &im, &err), 0);
     envmap env = latlong_env(&im, 2.0);
     envlight el;
-    ck_assert_int_eq(envlight_build(&el, &env, ENVSAMPLING_CDF, ENVSAMPLER_BINARY, 0, NULL, &err), 0);
+    ck_assert_int_eq(envlight_build(&el, &env, ENVSAMPLING_CDF, ENVSAMPLER_BINARY, 0, NULL, &err),
+                     0);
     double R = 3.0;
     lights ls;
     ck_assert_int_eq(lights_build(&ls, &sc, &el, R, NULL, &err), 0);
     ck_assert_int_eq(ls.n, 5);
     ck_assert_int_eq(lights_env_index(&ls), 4);
-    double pw[5] = {M_PI * 1.0 * 6.0,          /* 1 x 1 quad, L_avg = 6 */
-                    M_PI * 1.0 * 1.0,          /* 2 x 0.5 quad, L_avg = 1 */
-                    4 * M_PI * 4.0,            /* point, I_avg = 4 */
-                    M_PI * R * R * 0.5,        /* directional, E_avg = 0.5 */
+    double pw[5] = {M_PI * 1.0 * 6.0,               /* 1 x 1 quad, L_avg = 6 */
+                    M_PI * 1.0 * 1.0,               /* 2 x 0.5 quad, L_avg = 1 */
+                    4 * M_PI * 4.0,                 /* point, I_avg = 4 */
+                    M_PI * R * R * 0.5,             /* directional, E_avg = 0.5 */
                     M_PI * R * R * 4 * M_PI * 0.5}; /* env: |L| = 4 pi x 0.25 x 2 */
     double total = 0;
     for (int k = 0; k < 5; k++) total += pw[k];
@@ -86,9 +87,10 @@ START_TEST(test_lights_pick_probability_is_proportional_to_power)
         ck_require(prob == lights_pick_prob(&ls, k));
     }
     for (int k = 0; k < 5; k++) {
-        ck_assert_msg(fabs(lights_pick_prob(&ls, k) - pw[k] / total) < 1e-12, "light %d: %.17g, want %.17g", k,
-                      lights_pick_prob(&ls, k), pw[k] / total);
-        ck_assert_msg(fabs((double)count[k] / N - pw[k] / total) < 2.0 / N, "light %d picked %ld times", k, count[k]);
+        ck_assert_msg(fabs(lights_pick_prob(&ls, k) - pw[k] / total) < 1e-12,
+                      "light %d: %.17g, want %.17g", k, lights_pick_prob(&ls, k), pw[k] / total);
+        ck_assert_msg(fabs((double)count[k] / N - pw[k] / total) < 2.0 / N,
+                      "light %d picked %ld times", k, count[k]);
     }
     /* MIS's envmap fraction c: the envmap is kept at c of its picks, with pick probability c P;
      * other lights are unchanged; c = 0 never samples it; an out-of-range c means 1 */
@@ -100,14 +102,21 @@ START_TEST(test_lights_pick_probability_is_proportional_to_power)
         for (int i = 0; i < N; i++) {
             int k;
             double prob;
-            if (!lights_pick(&ls, (i + 0.5) / N, &k, &prob)) { none++; continue; }
+            if (!lights_pick(&ls, (i + 0.5) / N, &k, &prob)) {
+                none++;
+                continue;
+            }
             kept[k]++;
             ck_require(prob == lights_pick_prob(&ls, k));
         }
-        ck_assert_msg(fabs(lights_pick_prob(&ls, 4) - c * pw[4] / total) < 1e-12, "c %g: %g", c, lights_pick_prob(&ls, 4));
-        ck_assert_msg(fabs((double)kept[4] / N - c * pw[4] / total) < 2.0 / N, "c %g: env kept %ld times", c, kept[4]);
-        ck_assert_msg(fabs((double)none / N - (1 - c) * pw[4] / total) < 2.0 / N, "c %g: %ld skipped", c, none);
-        for (int k = 0; k < 4; k++) ck_assert(fabs(lights_pick_prob(&ls, k) - pw[k] / total) < 1e-12);
+        ck_assert_msg(fabs(lights_pick_prob(&ls, 4) - c * pw[4] / total) < 1e-12, "c %g: %g", c,
+                      lights_pick_prob(&ls, 4));
+        ck_assert_msg(fabs((double)kept[4] / N - c * pw[4] / total) < 2.0 / N,
+                      "c %g: env kept %ld times", c, kept[4]);
+        ck_assert_msg(fabs((double)none / N - (1 - c) * pw[4] / total) < 2.0 / N,
+                      "c %g: %ld skipped", c, none);
+        for (int k = 0; k < 4; k++)
+            ck_assert(fabs(lights_pick_prob(&ls, k) - pw[k] / total) < 1e-12);
     }
     lights_set_env_fraction(&ls, NAN);
     ck_assert(ls.env_fraction == 1);
@@ -141,7 +150,8 @@ START_TEST(test_lights_selection_probability_follows_the_selection)
         ck_assert_int_eq(genenv_make(GENENV_CONSTANT, &gp, &im, &err), 0);
         envmap env = latlong_env(&im, 1.0);
         envlight el;
-        ck_assert_int_eq(envlight_build(&el, &env, ENVSAMPLING_CDF, ENVSAMPLER_BINARY, 0, NULL, &err), 0);
+        ck_assert_int_eq(
+            envlight_build(&el, &env, ENVSAMPLING_CDF, ENVSAMPLER_BINARY, 0, NULL, &err), 0);
         lights ls;
         ck_assert_int_eq(lights_build(&ls, &sc, &el, 3.0, NULL, &err), 0);
         const double fractions[] = {1.0, 0.3, 0.0};
@@ -150,15 +160,16 @@ START_TEST(test_lights_selection_probability_follows_the_selection)
             lights_set_env_fraction(&ls, fractions[f]);
             double sum = 0;
             for (int k = 0; k < ls.n; k++) {
-                double p = lights_selection_prob(&ls, k), want = mode ? lights_pick_prob(&ls, k)
-                                                                   : k == 4 ? fractions[f] : 1.0;
-                ck_assert_msg(p == want, "%s, c %g, light %d: %.17g, want %.17g", mode ? "power" : "all",
-                              fractions[f], k, p, want);
+                double p = lights_selection_prob(&ls, k), want = mode     ? lights_pick_prob(&ls, k)
+                                                                 : k == 4 ? fractions[f]
+                                                                          : 1.0;
+                ck_assert_msg(p == want, "%s, c %g, light %d: %.17g, want %.17g",
+                              mode ? "power" : "all", fractions[f], k, p, want);
                 sum += p;
             }
             double want_sum = mode ? 1 - (1 - fractions[f]) * p_env : 4 + fractions[f];
-            ck_assert_msg(fabs(sum - want_sum) < 1e-12, "%s, c %g: probabilities sum to %.17g", mode ? "power" : "all",
-                          fractions[f], sum);
+            ck_assert_msg(fabs(sum - want_sum) < 1e-12, "%s, c %g: probabilities sum to %.17g",
+                          mode ? "power" : "all", fractions[f], sum);
         }
         lights_free(&ls);
         envlight_free(&el);
@@ -176,7 +187,8 @@ END_TEST
 START_TEST(test_lights_pick_probabilities_of_powers_past_the_largest_double)
 {
     const char *texts[3] = {
-        "size 8 8\ncamera 0 1 5  0 0 0  0 1 0  45\npoint 0 3 0  1e307 1e307 1e307\npoint 0 3 1  2e307 2e307 2e307\n",
+        "size 8 8\ncamera 0 1 5  0 0 0  0 1 0  45\npoint 0 3 0  1e307 1e307 1e307\npoint 0 3 1  "
+        "2e307 2e307 2e307\n",
         "size 8 8\ncamera 0 1 5  0 0 0  0 1 0  45\npoint 0 3 0  0.85e308 0.85e308 0.85e308\n"
         "point 0 3 1  1.7e308 1.7e308 1.7e308\n",
         "size 8 8\ncamera 0 1 5  0 0 0  0 1 0  45\nquadLight 0 3 0  1e154 0 0  0 0 1e154  1 1 1\n"
@@ -186,12 +198,14 @@ START_TEST(test_lights_pick_probabilities_of_powers_past_the_largest_double)
         scene_load_opts o = scene_load_defaults();
         o.load_images = 0;
         error err = {0};
-        if (scene_load_string(texts[i], "huge.test", &o, &sc, &err)) ck_abort_msg("scene %d: %s", i, err.msg);
+        if (scene_load_string(texts[i], "huge.test", &o, &sc, &err))
+            ck_abort_msg("scene %d: %s", i, err.msg);
         lights ls;
         ck_assert_msg(lights_build(&ls, &sc, NULL, 3, NULL, &err) == 0, "scene %d: %s", i, err.msg);
         double p0 = lights_pick_prob(&ls, 0), p1 = lights_pick_prob(&ls, 1);
         if (i < 2) {
-            ck_assert_msg(fabs(p0 - 1.0 / 3) < 1e-12 && fabs(p1 - 2.0 / 3) < 1e-12, "scene %d: %g %g", i, p0, p1);
+            ck_assert_msg(fabs(p0 - 1.0 / 3) < 1e-12 && fabs(p1 - 2.0 / 3) < 1e-12,
+                          "scene %d: %g %g", i, p0, p1);
         } else {
             ck_assert_msg(p0 == 1.0 && p1 == 0.0, "scene %d: %g %g", i, p0, p1);
         }
@@ -220,7 +234,8 @@ START_TEST(test_lights_quad_sample_pdf_matches_lights_quad_pdf)
     enum { N = 40000 };
     for (int i = 0; i < N; i++) {
         light_sample s;
-        ck_require(lights_sample(&ls, 0, p, ng, rng_uniform(&g), rng_uniform(&g), rng_uniform(&g), 0, &s));
+        ck_require(
+            lights_sample(&ls, 0, p, ng, rng_uniform(&g), rng_uniform(&g), rng_uniform(&g), 0, &s));
         vec3 q = vec3_add(s.shadow.o, s.shadow.d); /* the shadow ray ends at the sampled point */
         double t = vec3_length(vec3_sub(q, p));
         double pq = lights_quad_pdf(&ls, 0, s.wi, t);
@@ -230,8 +245,10 @@ START_TEST(test_lights_quad_sample_pdf_matches_lights_quad_pdf)
         sum += 1 / s.pdf;
     }
     ck_assert_int_eq(bad, 0);
-    double a = 0.5, b = 0.5, d = 2, omega = 4 * asin(a * b / sqrt((a * a + d * d) * (b * b + d * d)));
-    ck_assert_msg(fabs(sum / N - omega) < 2e-3 * omega, "mean 1/pdf %g, solid angle %g", sum / N, omega);
+    double a = 0.5, b = 0.5, d = 2,
+           omega = 4 * asin(a * b / sqrt((a * a + d * d) * (b * b + d * d)));
+    ck_assert_msg(fabs(sum / N - omega) < 2e-3 * omega, "mean 1/pdf %g, solid angle %g", sum / N,
+                  omega);
     lights_free(&ls);
     scene_free(&sc);
 }
@@ -259,7 +276,8 @@ START_TEST(test_lights_quad_emits_on_the_side_of_ac_cross_ab)
     ck_assert_near(t, 3, 1e-12);
     ck_assert(rgb_is_black(lights_quad_radiance(&ls, 0, down.d)));
     light_sample s;
-    ck_assert(!lights_sample(&ls, 0, vec3_make(0, 3, 0), vec3_make(0, -1, 0), 0.3, 0.6, 0.5, 0, &s));
+    ck_assert(
+        !lights_sample(&ls, 0, vec3_make(0, 3, 0), vec3_make(0, -1, 0), 0.3, 0.6, 0.5, 0, &s));
     ck_assert(lights_quad_pdf(&ls, 0, vec3_make(0, -1, 0), 1) == 0);
     ck_assert(lights_quad_pdf(&ls, 0, vec3_make(0, 1, 0), 2) > 0);
     lights_free(&ls);
@@ -325,7 +343,8 @@ START_TEST(test_lights_median_cut_shadow_ray_is_jittered_in_the_stratum)
     ck_assert_int_eq(genenv_make(GENENV_SKY, &gp, &im, &err), 0);
     envmap env = latlong_env(&im, 1.0);
     envlight el;
-    ck_assert_int_eq(envlight_build(&el, &env, ENVSAMPLING_MEDIANCUT, ENVSAMPLER_BINARY, 4, NULL, &err), 0);
+    ck_assert_int_eq(
+        envlight_build(&el, &env, ENVSAMPLING_MEDIANCUT, ENVSAMPLER_BINARY, 4, NULL, &err), 0);
     lights ls;
     ck_assert_int_eq(lights_build(&ls, &sc, &el, 3, NULL, &err), 0);
     int ke = lights_env_index(&ls);
@@ -340,9 +359,11 @@ START_TEST(test_lights_median_cut_shadow_ray_is_jittered_in_the_stratum)
         ck_assert(lights_sample(&ls, ke, p, n, xi, xi1, xi2, 0, &s));
         ck_assert(envlight_mediancut_pick(&el, xi, xi1, xi2, &k, &sd, &prob));
         ck_assert(s.is_delta);
-        ck_assert(vec3_dot(s.wi, el.points[k].dir) > 1 - 1e-12);         /* shaded with the centroid */
-        ck_assert_near(s.Li.g, el.points[k].power.g / prob, 1e-9 * s.Li.g); /* its power / P(pick) */
-        ck_assert_msg(vec3_dot(vec3_normalize(s.shadow.d), sd) > 1 - 1e-12, "shadow ray %d is not the jittered one", i);
+        ck_assert(vec3_dot(s.wi, el.points[k].dir) > 1 - 1e-12); /* shaded with the centroid */
+        ck_assert_near(s.Li.g, el.points[k].power.g / prob,
+                       1e-9 * s.Li.g); /* its power / P(pick) */
+        ck_assert_msg(vec3_dot(vec3_normalize(s.shadow.d), sd) > 1 - 1e-12,
+                      "shadow ray %d is not the jittered one", i);
         moved += vec3_dot(sd, s.wi) < 1 - 1e-6;
     }
     ck_assert_int_gt(moved, 8); /* the jitter does move it off the centroid */
@@ -375,7 +396,8 @@ static void load_many_quads(scene *sc, int n_quads, uint64_t seed)
     scene_load_opts o = scene_load_defaults();
     o.load_images = 0;
     error err = {0};
-    if (scene_load_string(text, "quads.test", &o, sc, &err)) ck_abort_msg("scene: line %d: %s", err.line, err.msg);
+    if (scene_load_string(text, "quads.test", &o, sc, &err))
+        ck_abort_msg("scene: line %d: %s", err.line, err.msg);
     free(text);
     ck_assert_int_eq(sc->n_lights, 3 * n_quads);
 }
@@ -390,7 +412,8 @@ static int nearest_quad_by_testing_all(const scene *sc, const ray *r, int *k, do
         if (l->kind != LIGHT_QUAD) continue;
         vec3 a = l->pos, b = vec3_add(a, l->ab), c = vec3_add(b, l->ac), d = vec3_add(a, l->ac);
         double t, b1, b2;
-        if (triangle_intersect(a, b, c, &rr, &t, &b1, &b2) || triangle_intersect(a, c, d, &rr, &t, &b1, &b2)) {
+        if (triangle_intersect(a, b, c, &rr, &t, &b1, &b2) ||
+            triangle_intersect(a, c, d, &rr, &t, &b1, &b2)) {
             found = 1;
             *k = i;
             *t_out = t;
@@ -418,10 +441,12 @@ START_TEST(test_lights_intersect_quad_finds_the_nearest_quad_of_many)
         int hits = 0;
         for (int i = 0; i < 4000; i++) {
             double s = i % 2 ? 4 : 12; /* inside the cube, or from around it */
-            vec3 o = vec3_make(s * (2 * rng_uniform(&g) - 1), s * (2 * rng_uniform(&g) - 1), s * (2 * rng_uniform(&g) - 1));
+            vec3 o = vec3_make(s * (2 * rng_uniform(&g) - 1), s * (2 * rng_uniform(&g) - 1),
+                               s * (2 * rng_uniform(&g) - 1));
             /* towards a random point of a random quad (the nearest hit may be another one) */
             const scene_light *l = &sc.lights[3 * (int)(rng_uniform(&g) * counts[c]) + 2];
-            vec3 q = vec3_add(l->pos, vec3_add(vec3_scale(l->ab, rng_uniform(&g)), vec3_scale(l->ac, rng_uniform(&g))));
+            vec3 q = vec3_add(l->pos, vec3_add(vec3_scale(l->ab, rng_uniform(&g)),
+                                               vec3_scale(l->ac, rng_uniform(&g))));
             vec3 d = vec3_normalize(vec3_sub(q, o));
             ray r = {o, d, 0, i % 3 ? INFINITY : 6};
             int k0 = -1, k1 = -1;
@@ -509,7 +534,8 @@ START_TEST(test_lights_quads_get_a_bvh_and_other_lights_none)
     lights_free(&ls);
     scene_free(&sc);
 
-    const char *points = "size 8 8\ncamera 0 0 5  0 0 0  0 1 0  45\npoint 0 3 0  1 1 1\ndirectional 0 1 0  1 1 1\n";
+    const char *points =
+        "size 8 8\ncamera 0 0 5  0 0 0  0 1 0  45\npoint 0 3 0  1 1 1\ndirectional 0 1 0  1 1 1\n";
     scene_load_opts o = scene_load_defaults();
     o.load_images = 0;
     ck_assert_int_eq(scene_load_string(points, "points.test", &o, &sc, &err), 0);

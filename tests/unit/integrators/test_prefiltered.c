@@ -71,7 +71,10 @@ static void render_ok(const scene *sc, image *out)
 }
 
 /* an integrator on a scene, outside render_scene */
-typedef struct rig { bvh b; integrator it; } rig;
+typedef struct rig {
+    bvh b;
+    integrator it;
+} rig;
 
 static int rig_init(rig *r, const scene *sc, error *err)
 {

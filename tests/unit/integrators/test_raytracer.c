@@ -71,13 +71,12 @@ static void assert_rgb_near(rgb a, rgb b, double tol)
 }
 
 /* The orientation scene: world z up, camera on -y looking at a mirror ball at the origin. */
-static const char *mirror_ball =
-    "size 65 65\n"
-    "camera 0 -5 0  0 0 0  0 0 1  40\n"
-    "ambient 0 0 0\n"
-    "brdf mirror\n"
-    "specular 1 1 1\n"
-    "sphere 0 0 0 1\n";
+static const char *mirror_ball = "size 65 65\n"
+                                 "camera 0 -5 0  0 0 0  0 0 1  40\n"
+                                 "ambient 0 0 0\n"
+                                 "brdf mirror\n"
+                                 "specular 1 1 1\n"
+                                 "sphere 0 0 0 1\n";
 
 START_TEST(test_raytracer_mirror_ball_reflects_the_axes_environment_the_right_way_round)
 {
@@ -249,16 +248,15 @@ END_TEST
 
 /* A diffuse and glossy ball at the origin seen from +z; the centre pixel hits (0,0,1) with
  * normal N = V = (0,0,1). */
-static const char *lit_ball =
-    "size 65 65\n"
-    "camera 0 0 5  0 0 0  0 1 0  30\n"
-    "attenuation 1 0.5 0.25\n"
-    "point 2 0 3  1 0.8 0.6\n"
-    "ambient 0.1 0.05 0.02\n"
-    "diffuse 0.5 0.4 0.3\n"
-    "specular 0.2 0.2 0.2\n"
-    "shininess 10\n"
-    "sphere 0 0 0 1\n";
+static const char *lit_ball = "size 65 65\n"
+                              "camera 0 0 5  0 0 0  0 1 0  30\n"
+                              "attenuation 1 0.5 0.25\n"
+                              "point 2 0 3  1 0.8 0.6\n"
+                              "ambient 0.1 0.05 0.02\n"
+                              "diffuse 0.5 0.4 0.3\n"
+                              "specular 0.2 0.2 0.2\n"
+                              "shininess 10\n"
+                              "sphere 0 0 0 1\n";
 
 START_TEST(test_raytracer_whitted_lighting_matches_the_hand_computation)
 {
@@ -417,14 +415,13 @@ END_TEST
 
 /* A glass ball in a constant environment L: every path ends in the environment, weighted by
  * Fresnel fractions that sum to one, so each pixel is L minus what is cut at maxdepth. */
-static const char *glass_ball =
-    "size 33 33\n"
-    "camera 0 0 5  0 0 0  0 1 0  30\n"
-    "maxdepth 12\n"
-    "ambient 0 0 0\n"
-    "brdf glass\n"
-    "ior 1.5\n"
-    "sphere 0 0 0 1\n";
+static const char *glass_ball = "size 33 33\n"
+                                "camera 0 0 5  0 0 0  0 1 0  30\n"
+                                "maxdepth 12\n"
+                                "ambient 0 0 0\n"
+                                "brdf glass\n"
+                                "ior 1.5\n"
+                                "sphere 0 0 0 1\n";
 
 START_TEST(test_raytracer_glass_ball_in_a_constant_environment_conserves_energy)
 {

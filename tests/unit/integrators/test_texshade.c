@@ -15,8 +15,8 @@
 #include "envtex/scene/scene_load.h"
 #include "unit.h"
 
-#define STEP 1e-3       /* the differential's scale: a thousandth of a pixel */
-#define FD_REL 2e-3     /* first-order agreement, relative to the derivative's length */
+#define STEP   1e-3 /* the differential's scale: a thousandth of a pixel */
+#define FD_REL 2e-3 /* first-order agreement, relative to the derivative's length */
 
 typedef struct rig {
     scene sc;
@@ -45,7 +45,11 @@ static void rig_free(rig *r)
 }
 
 /* The hit of pixel (x, y)'s ray with differentials (*h0), and of its x and y neighbours. */
-typedef struct hits { scene_hit h0, hx, hy; ray r; ray_diff rd; } hits;
+typedef struct hits {
+    scene_hit h0, hx, hy;
+    ray r;
+    ray_diff rd;
+} hits;
 
 static void trace3(rig *r, double x, double y, hits *out)
 {

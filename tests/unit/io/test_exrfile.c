@@ -81,9 +81,11 @@ static exr_result_t write_test_exr(const char *path, int tiled, exr_compression_
     int part = 0;
     exr_attr_v2f_t center = {.x = 0.0f, .y = 0.0f};
     r = exr_add_part(ctx, "test", tiled ? EXR_STORAGE_TILED : EXR_STORAGE_SCANLINE, &part);
-    if (!r) r = exr_initialize_required_attr(ctx, part, &disp, &dw, 1.0f, &center, 1.0f,
-                                             EXR_LINEORDER_INCREASING_Y, comp);
-    if (!r && tiled) r = exr_set_tile_descriptor(ctx, part, 16, 16, EXR_TILE_ONE_LEVEL, EXR_TILE_ROUND_DOWN);
+    if (!r)
+        r = exr_initialize_required_attr(ctx, part, &disp, &dw, 1.0f, &center, 1.0f,
+                                         EXR_LINEORDER_INCREASING_Y, comp);
+    if (!r && tiled)
+        r = exr_set_tile_descriptor(ctx, part, 16, 16, EXR_TILE_ONE_LEVEL, EXR_TILE_ROUND_DOWN);
     for (int c = 0; c < nch && !r; c++)
         r = exr_add_channel(ctx, part, ch[c].name, ch[c].type, EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
     if (!r && test_header_hook) r = test_header_hook(ctx, part);
@@ -99,7 +101,9 @@ static exr_result_t write_test_exr(const char *path, int tiled, exr_compression_
             exr_chunk_info_t ci;
             r = tiled ? exr_write_tile_chunk_info(ctx, part, tx, ty, 0, 0, &ci)
                       : exr_write_scanline_chunk_info(ctx, part, dw.min.y + ty * lines, &ci);
-            if (!r) r = ready ? exr_encoding_update(ctx, part, &ci, &enc) : exr_encoding_initialize(ctx, part, &ci, &enc);
+            if (!r)
+                r = ready ? exr_encoding_update(ctx, part, &ci, &enc)
+                          : exr_encoding_initialize(ctx, part, &ci, &enc);
             if (r) break;
             ready = 1;
             for (int c = 0; c < enc.channel_count; c++) {
@@ -110,7 +114,8 @@ static exr_result_t write_test_exr(const char *path, int tiled, exr_compression_
                 enc.channels[c].encode_from_ptr = (const uint8_t *)t->data + off;
                 enc.channels[c].user_pixel_stride = 4;
                 enc.channels[c].user_line_stride = 4 * dww;
-                enc.channels[c].user_data_type = t->type == EXR_PIXEL_UINT ? EXR_PIXEL_UINT : EXR_PIXEL_FLOAT;
+                enc.channels[c].user_data_type =
+                    t->type == EXR_PIXEL_UINT ? EXR_PIXEL_UINT : EXR_PIXEL_FLOAT;
                 enc.channels[c].user_bytes_per_element = 4;
             }
             r = exr_encoding_choose_default_routines(ctx, part, &enc);
@@ -137,7 +142,8 @@ static float *planar(int w, int h, int c)
     float *d = malloc(sizeof *d * (size_t)w * (size_t)h);
     ck_assert_ptr_nonnull(d);
     for (int y = 0; y < h; y++)
-        for (int x = 0; x < w; x++) d[y * w + x] = 0.25f * (float)(c + 1) + 0.01f * (float)x + 0.1f * (float)y;
+        for (int x = 0; x < w; x++)
+            d[y * w + x] = 0.25f * (float)(c + 1) + 0.01f * (float)x + 0.1f * (float)y;
     return d;
 }
 
@@ -171,11 +177,13 @@ START_TEST(test_barely_incompressible_exr_chunk_roundtrips_exactly)
     make_dir();
     image im = {0}, back = {0};
     error err = {0};
-    ck_assert_msg(pfm_read("tests/unit/data/nearly_incompressible.pfm", &im, NULL, &err) == 0, "%s", err.msg);
+    ck_assert_msg(pfm_read("tests/unit/data/nearly_incompressible.pfm", &im, NULL, &err) == 0, "%s",
+                  err.msg);
     ck_assert_int_eq(exrfile_write(in_dir("noise.exr"), &im, 0, &err), 0);
     ck_assert_msg(exrfile_read(in_dir("noise.exr"), &back, NULL, &err) == 0, "%s", err.msg);
     long bad = 0;
-    for (size_t i = 0; i < (size_t)im.w * im.h * 3; i++) bad += memcmp(&im.px[i], &back.px[i], sizeof(float)) != 0;
+    for (size_t i = 0; i < (size_t)im.w * im.h * 3; i++)
+        bad += memcmp(&im.px[i], &back.px[i], sizeof(float)) != 0;
     ck_assert_msg(bad == 0, "%ld of %d values came back wrong", bad, im.w * im.h * 3);
     image_free(&im);
     image_free(&back);
@@ -230,8 +238,9 @@ START_TEST(test_tiled_exr_with_partial_edge_tiles_reads)
     int w = 37, h = 21; /* not multiples of the 16 x 16 tiles */
     float *r = planar(w, h, 0), *g = planar(w, h, 1), *b = planar(w, h, 2);
     tchan ch[3] = {{"R", EXR_PIXEL_HALF, r}, {"G", EXR_PIXEL_FLOAT, g}, {"B", EXR_PIXEL_HALF, b}};
-    ck_assert_int_eq(write_test_exr(in_dir("t.exr"), 1, EXR_COMPRESSION_ZIP, box(0, 0, w - 1, h - 1),
-                                    box(0, 0, w - 1, h - 1), ch, 3), 0);
+    ck_assert_int_eq(write_test_exr(in_dir("t.exr"), 1, EXR_COMPRESSION_ZIP,
+                                    box(0, 0, w - 1, h - 1), box(0, 0, w - 1, h - 1), ch, 3),
+                     0);
     image im = {0};
     error err = {0};
     ck_assert_msg(imageio_read(in_dir("t.exr"), &im, NULL, &err) == 0, "%s", err.msg);
@@ -256,21 +265,25 @@ START_TEST(test_every_compression_openexrcore_writes_reads_back)
 {
     make_dir();
     static const exr_compression_t comps[] = {
-        EXR_COMPRESSION_NONE, EXR_COMPRESSION_RLE, EXR_COMPRESSION_ZIPS, EXR_COMPRESSION_ZIP,
-        EXR_COMPRESSION_PIZ, EXR_COMPRESSION_PXR24, EXR_COMPRESSION_B44, EXR_COMPRESSION_B44A};
+        EXR_COMPRESSION_NONE, EXR_COMPRESSION_RLE,   EXR_COMPRESSION_ZIPS, EXR_COMPRESSION_ZIP,
+        EXR_COMPRESSION_PIZ,  EXR_COMPRESSION_PXR24, EXR_COMPRESSION_B44,  EXR_COMPRESSION_B44A};
     int w = 40, h = 40;
     float *r = planar(w, h, 0), *g = planar(w, h, 1), *b = planar(w, h, 2);
     tchan ch[3] = {{"R", EXR_PIXEL_HALF, r}, {"G", EXR_PIXEL_HALF, g}, {"B", EXR_PIXEL_HALF, b}};
     for (size_t c = 0; c < sizeof comps / sizeof comps[0]; c++)
         for (int tiled = 0; tiled < 2; tiled++) {
-            ck_assert_int_eq(write_test_exr(in_dir("c.exr"), tiled, comps[c], box(0, 0, w - 1, h - 1),
-                                            box(0, 0, w - 1, h - 1), ch, 3), 0);
+            ck_assert_int_eq(write_test_exr(in_dir("c.exr"), tiled, comps[c],
+                                            box(0, 0, w - 1, h - 1), box(0, 0, w - 1, h - 1), ch,
+                                            3),
+                             0);
             image im = {0};
             error err = {0};
-            ck_assert_msg(exrfile_read(in_dir("c.exr"), &im, NULL, &err) == 0, "compression %d tiled %d: %s",
-                          (int)comps[c], tiled, err.msg);
+            ck_assert_msg(exrfile_read(in_dir("c.exr"), &im, NULL, &err) == 0,
+                          "compression %d tiled %d: %s", (int)comps[c], tiled, err.msg);
             /* lossless ones within half rounding; B44 is lossy (4x4 blocks, about 1%) */
-            double tol = comps[c] == EXR_COMPRESSION_B44 || comps[c] == EXR_COMPRESSION_B44A ? 2e-2 : 0x1p-11;
+            double tol = comps[c] == EXR_COMPRESSION_B44 || comps[c] == EXR_COMPRESSION_B44A
+                             ? 2e-2
+                             : 0x1p-11;
             double worst = 0.0; /* largest relative error of channel B */
             for (int y = 0; y < h; y++)
                 for (int x = 0; x < w; x++)
@@ -291,7 +304,9 @@ START_TEST(test_y_only_exr_is_grey)
     make_dir();
     float *yv = planar(9, 5, 3);
     tchan ch[1] = {{"Y", EXR_PIXEL_HALF, yv}};
-    ck_assert_int_eq(write_test_exr(in_dir("y.exr"), 0, EXR_COMPRESSION_ZIP, box(0, 0, 8, 4), box(0, 0, 8, 4), ch, 1), 0);
+    ck_assert_int_eq(write_test_exr(in_dir("y.exr"), 0, EXR_COMPRESSION_ZIP, box(0, 0, 8, 4),
+                                    box(0, 0, 8, 4), ch, 1),
+                     0);
     image im = {0};
     error err = {0};
     ck_assert_msg(exrfile_read(in_dir("y.exr"), &im, NULL, &err) == 0, "%s", err.msg);
@@ -313,8 +328,11 @@ START_TEST(test_uint_channels_read_as_their_values)
     uint32_t u[3][12];
     for (int c = 0; c < 3; c++)
         for (int i = 0; i < 12; i++) u[c][i] = (uint32_t)(c * 1000 + i * 7);
-    tchan ch[3] = {{"R", EXR_PIXEL_UINT, u[0]}, {"G", EXR_PIXEL_UINT, u[1]}, {"B", EXR_PIXEL_UINT, u[2]}};
-    ck_assert_int_eq(write_test_exr(in_dir("u.exr"), 0, EXR_COMPRESSION_NONE, box(0, 0, 3, 2), box(0, 0, 3, 2), ch, 3), 0);
+    tchan ch[3] = {
+        {"R", EXR_PIXEL_UINT, u[0]}, {"G", EXR_PIXEL_UINT, u[1]}, {"B", EXR_PIXEL_UINT, u[2]}};
+    ck_assert_int_eq(write_test_exr(in_dir("u.exr"), 0, EXR_COMPRESSION_NONE, box(0, 0, 3, 2),
+                                    box(0, 0, 3, 2), ch, 3),
+                     0);
     image im = {0};
     error err = {0};
     ck_assert_msg(exrfile_read(in_dir("u.exr"), &im, NULL, &err) == 0, "%s", err.msg);
@@ -332,7 +350,9 @@ START_TEST(test_data_window_is_placed_in_the_display_window_and_the_rest_is_zero
     int dww = 7, dwh = 6;
     float *r = planar(dww, dwh, 0), *g = planar(dww, dwh, 1), *b = planar(dww, dwh, 2);
     tchan ch[3] = {{"R", EXR_PIXEL_FLOAT, r}, {"G", EXR_PIXEL_FLOAT, g}, {"B", EXR_PIXEL_FLOAT, b}};
-    ck_assert_int_eq(write_test_exr(in_dir("d.exr"), 0, EXR_COMPRESSION_ZIP, box(0, 0, 9, 7), box(6, -2, 12, 3), ch, 3), 0);
+    ck_assert_int_eq(write_test_exr(in_dir("d.exr"), 0, EXR_COMPRESSION_ZIP, box(0, 0, 9, 7),
+                                    box(6, -2, 12, 3), ch, 3),
+                     0);
     image im = {0};
     error err = {0};
     ck_assert_msg(exrfile_read(in_dir("d.exr"), &im, NULL, &err) == 0, "%s", err.msg);
@@ -347,7 +367,9 @@ START_TEST(test_data_window_is_placed_in_the_display_window_and_the_rest_is_zero
         }
     image_free(&im);
     /* the same data window overhanging the left and the bottom: x -3..3, y 4..9 */
-    ck_assert_int_eq(write_test_exr(in_dir("d2.exr"), 0, EXR_COMPRESSION_ZIP, box(0, 0, 9, 7), box(-3, 4, 3, 9), ch, 3), 0);
+    ck_assert_int_eq(write_test_exr(in_dir("d2.exr"), 0, EXR_COMPRESSION_ZIP, box(0, 0, 9, 7),
+                                    box(-3, 4, 3, 9), ch, 3),
+                     0);
     ck_assert_msg(exrfile_read(in_dir("d2.exr"), &im, NULL, &err) == 0, "%s", err.msg);
     for (int y = 0; y < 8; y++)
         for (int x = 0; x < 10; x++) {
@@ -368,21 +390,31 @@ START_TEST(test_one_layer_of_prefixed_channels_is_read_and_two_are_refused)
 {
     make_dir();
     float *v = planar(4, 4, 0);
-    tchan one[3] = {{"beauty.B", EXR_PIXEL_HALF, v}, {"beauty.G", EXR_PIXEL_HALF, v}, {"beauty.R", EXR_PIXEL_HALF, v}};
-    ck_assert_int_eq(write_test_exr(in_dir("l.exr"), 0, EXR_COMPRESSION_ZIP, box(0, 0, 3, 3), box(0, 0, 3, 3), one, 3), 0);
+    tchan one[3] = {{"beauty.B", EXR_PIXEL_HALF, v},
+                    {"beauty.G", EXR_PIXEL_HALF, v},
+                    {"beauty.R", EXR_PIXEL_HALF, v}};
+    ck_assert_int_eq(write_test_exr(in_dir("l.exr"), 0, EXR_COMPRESSION_ZIP, box(0, 0, 3, 3),
+                                    box(0, 0, 3, 3), one, 3),
+                     0);
     image im = {0};
     error err = {0};
     ck_assert_msg(exrfile_read(in_dir("l.exr"), &im, NULL, &err) == 0, "%s", err.msg);
     image_free(&im);
-    tchan two[6] = {{"a.R", EXR_PIXEL_HALF, v}, {"a.G", EXR_PIXEL_HALF, v}, {"a.B", EXR_PIXEL_HALF, v},
-                    {"b.R", EXR_PIXEL_HALF, v}, {"b.G", EXR_PIXEL_HALF, v}, {"b.B", EXR_PIXEL_HALF, v}};
-    ck_assert_int_eq(write_test_exr(in_dir("l2.exr"), 0, EXR_COMPRESSION_ZIP, box(0, 0, 3, 3), box(0, 0, 3, 3), two, 6), 0);
+    tchan two[6] = {{"a.R", EXR_PIXEL_HALF, v}, {"a.G", EXR_PIXEL_HALF, v},
+                    {"a.B", EXR_PIXEL_HALF, v}, {"b.R", EXR_PIXEL_HALF, v},
+                    {"b.G", EXR_PIXEL_HALF, v}, {"b.B", EXR_PIXEL_HALF, v}};
+    ck_assert_int_eq(write_test_exr(in_dir("l2.exr"), 0, EXR_COMPRESSION_ZIP, box(0, 0, 3, 3),
+                                    box(0, 0, 3, 3), two, 6),
+                     0);
     ck_assert_int_eq(exrfile_read(in_dir("l2.exr"), &im, NULL, &err), -1);
     ck_assert_ptr_nonnull(strstr(err.msg, "several layers"));
     ck_assert_ptr_null(im.px);
     tchan lower[3] = {{"r", EXR_PIXEL_HALF, v}, {"g", EXR_PIXEL_HALF, v}, {"b", EXR_PIXEL_HALF, v}};
-    ck_assert_int_eq(write_test_exr(in_dir("lc.exr"), 0, EXR_COMPRESSION_ZIP, box(0, 0, 3, 3), box(0, 0, 3, 3), lower, 3), 0);
-    ck_assert_int_eq(exrfile_read(in_dir("lc.exr"), &im, NULL, &err), -1); /* names are case-sensitive */
+    ck_assert_int_eq(write_test_exr(in_dir("lc.exr"), 0, EXR_COMPRESSION_ZIP, box(0, 0, 3, 3),
+                                    box(0, 0, 3, 3), lower, 3),
+                     0);
+    ck_assert_int_eq(exrfile_read(in_dir("lc.exr"), &im, NULL, &err),
+                     -1); /* names are case-sensitive */
     ck_assert_ptr_nonnull(strstr(err.msg, "no R, G, B or Y channels"));
     free(v);
     remove_dir();
@@ -399,7 +431,8 @@ START_TEST(test_deep_and_luminance_chroma_exr_are_refused)
     exr_result_t r = exr_start_write(&ctx, in_dir("deep.exr"), EXR_WRITE_FILE_DIRECTLY, &init);
     if (!r) r = exr_add_part(ctx, "deep", EXR_STORAGE_DEEP_SCANLINE, &part);
     if (!r) r = exr_initialize_required_attr_simple(ctx, part, 4, 4, EXR_COMPRESSION_NONE);
-    if (!r) r = exr_add_channel(ctx, part, "R", EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
+    if (!r)
+        r = exr_add_channel(ctx, part, "R", EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1);
     if (!r) r = exr_write_header(ctx);
     for (int y = 0; y < 4 && !r; y++) { /* no samples in any pixel */
         exr_chunk_info_t ci;
@@ -417,7 +450,9 @@ START_TEST(test_deep_and_luminance_chroma_exr_are_refused)
 
     float *v = planar(4, 4, 0);
     tchan yc[3] = {{"BY", EXR_PIXEL_HALF, v}, {"RY", EXR_PIXEL_HALF, v}, {"Y", EXR_PIXEL_HALF, v}};
-    ck_assert_int_eq(write_test_exr(in_dir("yc.exr"), 0, EXR_COMPRESSION_ZIP, box(0, 0, 3, 3), box(0, 0, 3, 3), yc, 3), 0);
+    ck_assert_int_eq(write_test_exr(in_dir("yc.exr"), 0, EXR_COMPRESSION_ZIP, box(0, 0, 3, 3),
+                                    box(0, 0, 3, 3), yc, 3),
+                     0);
     ck_assert_int_eq(exrfile_read(in_dir("yc.exr"), &im, NULL, &err), -1);
     ck_assert_ptr_nonnull(strstr(err.msg, "luminance-chroma images (Y, RY, BY) are not supported"));
     ck_assert_ptr_null(im.px);
@@ -442,7 +477,9 @@ START_TEST(test_exr_header_claims_are_checked_before_decoding)
     make_dir();
     float *r = planar(8, 8, 0), *g = planar(8, 8, 1), *b = planar(8, 8, 2);
     tchan ch[3] = {{"B", EXR_PIXEL_FLOAT, b}, {"G", EXR_PIXEL_FLOAT, g}, {"R", EXR_PIXEL_FLOAT, r}};
-    ck_assert_int_eq(write_test_exr(in_dir("n.exr"), 0, EXR_COMPRESSION_NONE, box(0, 0, 7, 7), box(0, 0, 7, 7), ch, 3), 0);
+    ck_assert_int_eq(write_test_exr(in_dir("n.exr"), 0, EXR_COMPRESSION_NONE, box(0, 0, 7, 7),
+                                    box(0, 0, 7, 7), ch, 3),
+                     0);
     size_t n;
     unsigned char *d = slurp(in_dir("n.exr"), &n);
     unsigned char *e = malloc(n);
@@ -474,7 +511,8 @@ START_TEST(test_exr_header_claims_are_checked_before_decoding)
     memcpy(e + at + 17 + 4 + 8, most, sizeof most); /* after the size field and min.x, min.y */
     write_bytes(in_dir("dw.exr"), e, n);
     ck_assert_int_eq(exrfile_read(in_dir("dw.exr"), &im, NULL, &err), -1);
-    ck_assert_msg(strstr(err.msg, "data window: image size 32768 x 16384 is over the limit"), "%s", err.msg);
+    ck_assert_msg(strstr(err.msg, "data window: image size 32768 x 16384 is over the limit"), "%s",
+                  err.msg);
 
     /* an uncompressed chunk whose leader says 48 bytes where its 8 pixels take 96: the chunks
      * hold 720 bytes, the pixels need 768 (compressed, up to 4096 times as many could be fine) */
@@ -485,8 +523,10 @@ START_TEST(test_exr_header_claims_are_checked_before_decoding)
     memcpy(e + c0, shorter, sizeof shorter);
     write_bytes(in_dir("short.exr"), e, n);
     ck_assert_int_eq(exrfile_read(in_dir("short.exr"), &im, NULL, &err), -1);
-    ck_assert_msg(strstr(err.msg, "corrupt or truncated OpenEXR file: 8 x 8 pixels need 768 bytes, more than "
-                                  "its 720 bytes of chunks can hold"), "%s", err.msg);
+    ck_assert_msg(
+        strstr(err.msg, "corrupt or truncated OpenEXR file: 8 x 8 pixels need 768 bytes, more than "
+                        "its 720 bytes of chunks can hold"),
+        "%s", err.msg);
     ck_assert_ptr_null(im.px);
     free(d);
     free(e);
@@ -548,7 +588,8 @@ START_TEST(test_truncated_exr_is_an_error_at_every_offset)
         if (offsets[i] < 0 || offsets[i] >= size) continue;
         truncate_copy(in_dir("full.exr"), in_dir("cut.exr"), offsets[i]);
         image back = {0};
-        ck_assert_msg(exrfile_read(in_dir("cut.exr"), &back, NULL, &err) == -1, "cut at %ld read", offsets[i]);
+        ck_assert_msg(exrfile_read(in_dir("cut.exr"), &back, NULL, &err) == -1, "cut at %ld read",
+                      offsets[i]);
         ck_assert_ptr_null(back.px);
         ck_assert(err.msg[0] != '\0');
     }
@@ -580,7 +621,8 @@ START_TEST(test_corrupted_exr_bytes_never_crash)
         fclose(f);
         free(c);
         image back = {0};
-        if (exrfile_read(in_dir("bad.exr"), &back, NULL, &err) == 0) { /* a flip in pixel data may still decode */
+        if (exrfile_read(in_dir("bad.exr"), &back, NULL, &err) ==
+            0) { /* a flip in pixel data may still decode */
             ck_assert_int_eq(back.w, 33);
             image_free(&back);
         } else {

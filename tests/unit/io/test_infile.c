@@ -150,7 +150,7 @@ START_TEST(test_the_input_list_holds_each_file_once_and_finds_the_one_an_output_
     char spelled[300];
     snprintf(spelled, sizeof spelled, "%s/./a.obj", dir);
     ck_assert_int_eq(infile_list_add(&l, in_dir("a.obj"), &err), 0);
-    ck_assert_int_eq(infile_list_add(&l, spelled, &err), 0);          /* the same file */
+    ck_assert_int_eq(infile_list_add(&l, spelled, &err), 0);            /* the same file */
     ck_assert_int_eq(infile_list_add(&l, in_dir("link.obj"), &err), 0); /* the same file */
     ck_assert_int_eq(infile_list_add(&l, in_dir("missing"), &err), 0);  /* nothing to protect */
     ck_assert_int_eq(l.n, 1);

@@ -34,7 +34,8 @@ START_TEST(test_every_corner_form_is_read)
 {
     obj_mesh m;
     load_ok(QUAD "vt 0 0\nvt 1 0\nvt 1 1\nvn 0 0 1\n"
-                 "f 1 2 3\nf 1/1 2/2 3/3\nf 1//1 2//1 3//1\nf 1/1/1 2/2/1 3/3/1\n", &m);
+                 "f 1 2 3\nf 1/1 2/2 3/3\nf 1//1 2//1 3//1\nf 1/1/1 2/2/1 3/3/1\n",
+            &m);
     ck_assert_int_eq(m.n_v, 4);
     ck_assert_int_eq(m.n_vt, 3);
     ck_assert_int_eq(m.n_vn, 1);

@@ -155,7 +155,9 @@ START_TEST(test_malformed_pfm_header_tokens_are_refused)
     make_dir();
     char longscale[128];
     snprintf(longscale, sizeof longscale, "PF\n1 1\n-1.%0*d\n", 70, 0); /* a 73-byte scale token */
-    static const struct { const char *head, *msg; } cases[] = {
+    static const struct {
+        const char *head, *msg;
+    } cases[] = {
         {"PF\n1 1\n-1.0x\n", "bad PFM scale \"-1.0x\""},
         {"PF\n4 -1\n-1.0\n", "bad PFM size \"4 -1\""},
         {"PF\n4 1x\n-1.0\n", "bad PFM size \"4 1x\""},

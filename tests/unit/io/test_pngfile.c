@@ -34,8 +34,10 @@ static void write_tagged_png(const char *path, int w, int h, int type, int depth
         png_color pal[2] = {{255, 0, 0}, {0, 0, 255}};
         png_set_PLTE(png, info, pal, 2);
     }
-    if (srgb) png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
-    else if (file_gamma > 0) png_set_gAMA(png, info, file_gamma);
+    if (srgb)
+        png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
+    else if (file_gamma > 0)
+        png_set_gAMA(png, info, file_gamma);
     png_write_info(png, info);
     png_bytep rows[64];
     for (int y = 0; y < h; y++) rows[y] = (png_bytep)data + (size_t)y * rowbytes;
@@ -177,8 +179,8 @@ START_TEST(test_a_gamma_no_gama_chunk_can_hold_is_an_error_and_writes_nothing)
     const double ends[2] = {PNGFILE_GAMMA_MAX, 1.0 / PNGFILE_GAMMA_MAX};
     const uint32_t stored[2] = {16, 625000000};
     for (int k = 0; k < 2; k++) {
-        ck_assert_msg(pngfile_write_rgb8_gamma(in_dir("x.png"), 1, 1, px, ends[k], &err) == 0,
-                      "%s", err.msg);
+        ck_assert_msg(pngfile_write_rgb8_gamma(in_dir("x.png"), 1, 1, px, ends[k], &err) == 0, "%s",
+                      err.msg);
         size_t n;
         unsigned char *d = slurp(in_dir("x.png"), &n);
         const unsigned char *gama = find_chunk(d, n, "gAMA");
@@ -248,8 +250,7 @@ START_TEST(test_a_gama_chunk_alone_means_a_power_law_and_srgb_wins_over_it)
     write_tagged_png(in_dir("g22.png"), 2, 1, PNG_COLOR_TYPE_RGB, 8, PNG_INTERLACE_NONE, c8, 6, 0,
                      1.0 / 2.2);
     ck_assert_msg(pngfile_read(in_dir("g22.png"), &im, NULL, &err) == 0, "%s", err.msg);
-    for (int i = 0; i < 6; i++)
-        ck_assert_near(im.px[i], pow(c8[i] / 255.0, 1.0 / 0.45455), 1e-6);
+    for (int i = 0; i < 6; i++) ck_assert_near(im.px[i], pow(c8[i] / 255.0, 1.0 / 0.45455), 1e-6);
     ck_assert(im.px[4] == 1.0f && im.px[0] == 0.0f);
     image_free(&im);
     /* gAMA 1 alone, 16 bit: the codes are linear */

@@ -112,7 +112,10 @@ START_TEST(test_handmade_flat_file_with_comments_and_exposure_reads)
     const char h[] = "#?RGBE\n# made by hand\nEXPOSURE=2.0\nFORMAT=32-bit_rle_rgbe\n\n-Y 2 +X 1\n";
     unsigned char d[sizeof h - 1 + 8];
     memcpy(d, h, sizeof h - 1);
-    memcpy(d + sizeof h - 1, "\x80\x40\x00\x81" "\x00\x00\x00\x00", 8);
+    memcpy(d + sizeof h - 1,
+           "\x80\x40\x00\x81"
+           "\x00\x00\x00\x00",
+           8);
     write_bytes(in_dir("hand.hdr"), d, sizeof d);
     image im = {0};
     error err = {0};
@@ -133,7 +136,11 @@ START_TEST(test_old_style_runs_repeat_the_previous_pixel)
     const char h[] = "#?RADIANCE\n\n-Y 1 +X 6\n";
     unsigned char d[sizeof h - 1 + 12];
     memcpy(d, h, sizeof h - 1);
-    memcpy(d + sizeof h - 1, "\x80\x80\x80\x81" "\x01\x01\x01\x04" "\x40\x40\x40\x81", 12);
+    memcpy(d + sizeof h - 1,
+           "\x80\x80\x80\x81"
+           "\x01\x01\x01\x04"
+           "\x40\x40\x40\x81",
+           12);
     write_bytes(in_dir("old.hdr"), d, sizeof d);
     image im = {0};
     error err = {0};

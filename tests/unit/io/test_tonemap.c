@@ -15,7 +15,7 @@ START_TEST(test_srgb_curve_matches_iec_61966_values)
     ck_assert_near(tonemap_srgb_encode(0.0), 0.0, 1e-12);
     ck_assert_near(tonemap_srgb_encode(1.0), 1.0, 1e-12);
     ck_assert_near(tonemap_srgb_encode(0.0031308), 0.04045, 1e-5); /* the two pieces meet */
-    ck_assert_near(tonemap_srgb_encode(0.001), 0.01292, 1e-12);     /* linear piece: 12.92 l */
+    ck_assert_near(tonemap_srgb_encode(0.001), 0.01292, 1e-12);    /* linear piece: 12.92 l */
     ck_assert_near(tonemap_srgb_decode(0.5), 0.214041140, 1e-8);
     ck_assert_near(tonemap_srgb_decode(0.04045), 0.04045 / 12.92, 1e-12);
     for (int i = 0; i <= 100; i++) {

@@ -83,12 +83,13 @@ START_TEST(test_relmse_trim_leaves_out_the_largest_tenth_of_a_percent)
             float *p = a.px + 3 * i, *q = ref.px + 3 * i;
             int nan_px = i % W >= 59; /* 22 a row */
             int firefly = !nan_px && (i == 0 || i == W * H - 23 || i == 1777 || i % 397 == 5);
-            float size = order == 0 ? (float)(i + 1) / 10 : order == 1 ? (float)(W * H - i) / 10
-                                                                       : (float)(i % 7 + 1) * 100;
+            float size = order == 0   ? (float)(i + 1) / 10
+                         : order == 1 ? (float)(W * H - i) / 10
+                                      : (float)(i % 7 + 1) * 100;
             double t = 0;
             for (int k = 0; k < 3; k++) {
                 s = s * 1103515245u + 12345u;
-                q[k] = (float)((s >> 8) % 1000) / 500.0f;         /* 0 .. 2 */
+                q[k] = (float)((s >> 8) % 1000) / 500.0f;        /* 0 .. 2 */
                 p[k] = q[k] + (float)((s >> 4) % 100) / 1000.0f; /* + 0 .. 0.1 */
                 if (firefly) { /* on a reference of 1: its term grows with its size */
                     q[k] = 1.0f;
@@ -97,8 +98,10 @@ START_TEST(test_relmse_trim_leaves_out_the_largest_tenth_of_a_percent)
                 double d = (double)p[k] - (double)q[k];
                 t += d * d / ((double)q[k] * q[k] + COMPARE_RELMSE_EPSILON);
             }
-            if (nan_px) p[1] = NAN;
-            else term[n++] = t;
+            if (nan_px)
+                p[1] = NAN;
+            else
+                term[n++] = t;
         }
         ck_assert_int_eq(n, 2950);
         for (int i = 1; i < n; i++) /* insertion sort, descending */
@@ -118,7 +121,8 @@ START_TEST(test_relmse_trim_leaves_out_the_largest_tenth_of_a_percent)
         ck_assert_int_eq(m.pixels, 2950);
         ck_assert_double_eq_tol(m.relmse, all / (3.0 * n), 1e-12 * m.relmse);
         ck_assert_msg(fabs(m.relmse_trim - rest / (3.0 * (n - 2))) <= 1e-9 * m.relmse_trim,
-                      "order %d: relmse_trim %.12g, want %.12g", order, m.relmse_trim, rest / (3.0 * (n - 2)));
+                      "order %d: relmse_trim %.12g, want %.12g", order, m.relmse_trim,
+                      rest / (3.0 * (n - 2)));
         ck_assert(m.relmse_trim < m.relmse);
         image_free(&a);
         image_free(&ref);
@@ -307,13 +311,15 @@ START_TEST(test_difference_image_uses_one_colour_per_decade)
     image_px(&a, 5, 0)[0] = NAN;
     error err = {0};
     ck_assert_int_eq(compare_diff_image(&a, &ref, &d, &err), 0);
-    static const uint8_t want[6][3] = {{0, 0, 0}, {0, 0, 255}, {0, 255, 0}, {255, 255, 0}, {255, 0, 0}, {255, 0, 255}};
+    static const uint8_t want[6][3] = {{0, 0, 0},     {0, 0, 255}, {0, 255, 0},
+                                       {255, 255, 0}, {255, 0, 0}, {255, 0, 255}};
     tonemap_params tm = tonemap_defaults(); /* what imageio_write uses for a .png */
     for (int x = 0; x < 6; x++) {
         uint8_t o[3];
         tonemap_pixel(&tm, image_get(&d, x, 0), o);
         for (int k = 0; k < 3; k++)
-            ck_assert_msg(abs(o[k] - want[x][k]) <= 1, "pixel %d channel %d: %d, want %d", x, k, o[k], want[x][k]);
+            ck_assert_msg(abs(o[k] - want[x][k]) <= 1, "pixel %d channel %d: %d, want %d", x, k,
+                          o[k], want[x][k]);
     }
     image_free(&a);
     image_free(&ref);

@@ -18,8 +18,8 @@
 
 enum bug { CORRECT, NO_INV_PI, PDF_WITHOUT_SINTHETA, RR_NOT_DIVIDED, NO_COSINE };
 
-#define W 24
-#define H 24
+#define W   24
+#define H   24
 #define SPP 64
 
 static image sky;
@@ -111,7 +111,8 @@ START_TEST(test_gradetest_passes_a_correct_render_with_other_seeds)
 {
     for (uint64_t seed = 2; seed < 7; seed++) {
         gradetest_result r = grade(CORRECT, seed);
-        ck_assert_msg(r.pass, "seed %lu: %s (failed %ld, Z %.2f)", (unsigned long)seed, r.why, r.failed, r.mean_z);
+        ck_assert_msg(r.pass, "seed %lu: %s (failed %ld, Z %.2f)", (unsigned long)seed, r.why,
+                      r.failed, r.mean_z);
     }
 }
 END_TEST
@@ -126,7 +127,8 @@ END_TEST
 START_TEST(test_gradetest_fails_a_pdf_off_by_sin_theta)
 {
     gradetest_result r = grade(PDF_WITHOUT_SINTHETA, 2);
-    ck_assert_msg(!r.pass, "a pdf without sin theta passed (failed %ld, Z %.2f)", r.failed, r.mean_z);
+    ck_assert_msg(!r.pass, "a pdf without sin theta passed (failed %ld, Z %.2f)", r.failed,
+                  r.mean_z);
 }
 END_TEST
 
@@ -203,8 +205,8 @@ static void free3(image *a, image *b, image *c)
     image_free(c);
 }
 
-static gradetest_result run_ok(const image *img, const image *ref, const image *var, const gradetest_params *p,
-                               image *map)
+static gradetest_result run_ok(const image *img, const image *ref, const image *var,
+                               const gradetest_params *p, image *map)
 {
     gradetest_result r;
     error err = {0};
@@ -220,7 +222,7 @@ START_TEST(test_gradetest_pixel_z_uses_both_variances_scaled_by_the_spp_ratio)
     synthetic(1.0, 0.01, &img, &ref, &var);
     gradetest_params p = gradetest_defaults();
     p.img_spp = 16;
-    p.ref_spp = 64; /* var_img = 4 V */
+    p.ref_spp = 64;   /* var_img = 4 V */
     p.global_z = 1e9; /* the image total is tested below */
     double thr = gradetest_z_for_alpha(p.alpha / (SW * SH));
     double floor_sd = p.rel_floor * 1.0;
@@ -304,7 +306,8 @@ START_TEST(test_gradetest_pixel_variance_is_the_neighbourhood_largest)
         image_set(&var, 5 + nb[k][0], 5 + nb[k][1], rgb_gray(0.04));
         image_set(&img, 5, 5, rgb_gray(1.0 + 0.2)); /* z = 0.2 / sqrt(2 x 0.04) = 0.71 */
         gradetest_result r = run_ok(&img, &ref, &var, &p, NULL);
-        ck_assert_msg(r.failed == 0, "neighbour (%d, %d): its variance was not used", nb[k][0], nb[k][1]);
+        ck_assert_msg(r.failed == 0, "neighbour (%d, %d): its variance was not used", nb[k][0],
+                      nb[k][1]);
         free3(&img, &ref, &var);
     }
 }
@@ -323,7 +326,9 @@ START_TEST(test_gradetest_image_total_catches_a_thin_bias_with_own_variances)
         double sum_d = 0, sum_v = 0, fl = p.rel_floor * 1.0;
         for (int y = 0; y < SH; y++)
             for (int x = 0; x < SW; x++) {
-                double v = (x + y) % 2 ? 0.01 : 0.0025; /* a checker: each pixel's neighbourhood max is 0.01 */
+                double v = (x + y) % 2
+                               ? 0.01
+                               : 0.0025; /* a checker: each pixel's neighbourhood max is 0.01 */
                 image_set(&var, x, y, rgb_gray(v));
                 image_set(&img, x, y, rgb_gray(1.0 + bias[k]));
                 sum_d += image_get(&img, x, y).r - 1.0; /* the stored floats */
@@ -333,7 +338,8 @@ START_TEST(test_gradetest_image_total_catches_a_thin_bias_with_own_variances)
         ck_assert_int_eq(r.failed, 0); /* |z| = 0.08 / sqrt(0.02) = 0.57 per pixel; |Z| = 7.2 */
         ck_assert_near(r.mean_z, sum_d / sqrt(sum_v), 1e-9 * fabs(sum_d / sqrt(sum_v)));
         ck_assert_near(r.global_stat, fabs(sum_d / sqrt(sum_v)), 1e-9);
-        ck_assert_msg(r.global_stat > p.global_z && !r.pass, "a bias of %g passed (Z %.2f)", bias[k], r.mean_z);
+        ck_assert_msg(r.global_stat > p.global_z && !r.pass, "a bias of %g passed (Z %.2f)",
+                      bias[k], r.mean_z);
         ck_assert_ptr_nonnull(strstr(r.why, "mean z"));
         gradetest_params q = p;
         q.global_z = r.global_stat; /* the bound itself passes */

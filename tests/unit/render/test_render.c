@@ -43,13 +43,12 @@ static void set_env(scene *sc, genenv_kind kind)
 
 /* A mirror ball and a diffuse ball under a light, in the axes environment: edges everywhere, so
  * jittered samples change pixels. */
-static const char *balls =
-    "size 24 16\n"
-    "camera 0 -5 1  0 0 0  0 0 1  45\n"
-    "directional 1 -1 2  0.8 0.8 0.8\n"
-    "ambient 0 0 0\n"
-    "brdf mirror\nspecular 0.9 0.9 0.9\nsphere -1 0 0 1\n"
-    "brdf phong\nspecular 0 0 0\ndiffuse 0.6 0.5 0.4\nsphere 1.2 0 0 0.8\n";
+static const char *balls = "size 24 16\n"
+                           "camera 0 -5 1  0 0 0  0 0 1  45\n"
+                           "directional 1 -1 2  0.8 0.8 0.8\n"
+                           "ambient 0 0 0\n"
+                           "brdf mirror\nspecular 0.9 0.9 0.9\nsphere -1 0 0 1\n"
+                           "brdf phong\nspecular 0 0 0\ndiffuse 0.6 0.5 0.4\nsphere 1.2 0 0 0.8\n";
 
 static int render(const scene *sc, int spp, uint64_t seed, image *out, render_stats *st)
 {
@@ -238,8 +237,10 @@ START_TEST(test_render_warns_once_when_a_black_envmap_falls_back)
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         scene sc;
         char text[512];
-        snprintf(text, sizeof text, "size 4 4\ncamera 0 0 4  0 0 0  0 1 0  45\nenvmap black.exr\n%s"
-                 "diffuse 0.5 0.5 0.5\nsphere 0 0 0 1\n", cases[i].lines);
+        snprintf(text, sizeof text,
+                 "size 4 4\ncamera 0 0 4  0 0 0  0 1 0  45\nenvmap black.exr\n%s"
+                 "diffuse 0.5 0.5 0.5\nsphere 0 0 0 1\n",
+                 cases[i].lines);
         load(&sc, text);
         set_env_value(&sc, GENENV_CONSTANT, cases[i].value);
         render_opts o = render_defaults();

@@ -25,8 +25,8 @@ static scene load(const char *text)
 
 START_TEST(test_scenes_without_displacement_need_none)
 {
-    scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX("1")
-                    "bumpmap h 1\nsphere 0 0 0 1\n");
+    scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX(
+        "1") "bumpmap h 1\nsphere 0 0 0 1\n");
     ck_assert(!displacemap_needed(&sc));
     scene_free(&sc);
 }
@@ -34,8 +34,8 @@ END_TEST
 
 START_TEST(test_displaced_sphere_vertices_lie_at_radius_plus_scale_times_height)
 {
-    scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX("0.5")
-                    "displacementmap h 0.2\nsphere 1 0 0 2\nnomaps\nsphere -3 0 0 0.5\n");
+    scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX(
+        "0.5") "displacementmap h 0.2\nsphere 1 0 0 2\nnomaps\nsphere -3 0 0 0.5\n");
     ck_assert(displacemap_needed(&sc));
     scene out;
     displacemap_stats st;
@@ -70,9 +70,9 @@ END_TEST
 
 START_TEST(test_displaced_triangle_moves_along_its_normal_and_keeps_object_corners)
 {
-    scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX("0.5")
-                    "displacementmap h 0.2\ntranslate 0 0 3\n"
-                    "vertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\ntri 0 1 2\n");
+    scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX(
+        "0.5") "displacementmap h 0.2\ntranslate 0 0 3\n"
+               "vertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\ntri 0 1 2\n");
     scene out;
     displacemap_stats st;
     error err = {0};
@@ -83,8 +83,8 @@ START_TEST(test_displaced_triangle_moves_along_its_normal_and_keeps_object_corne
     for (long i = 0; i < out.n_triangles; i++)
         for (int k = 0; k < 3; k++) {
             const triangle *t = &out.triangles[i];
-            ck_assert(fabs(t->p[k].z - 3.1) < 1e-12);   /* z = 3 + 0.2 * 0.5 along +z */
-            ck_assert(fabs(t->q[k].z) < 1e-12);         /* object space: before translate */
+            ck_assert(fabs(t->p[k].z - 3.1) < 1e-12); /* z = 3 + 0.2 * 0.5 along +z */
+            ck_assert(fabs(t->q[k].z) < 1e-12);       /* object space: before translate */
             ck_assert(fabs(t->q[k].x - t->p[k].x) < 1e-12 && fabs(t->q[k].y - t->p[k].y) < 1e-12);
             ck_assert(fabs(t->st[k].u - t->p[k].x) < 1e-12); /* default st = (b1, b2) */
         }
@@ -99,17 +99,17 @@ END_TEST
  * along the corners' shared mean normal, (0, 0, 1) here, they stay together. */
 START_TEST(test_triangles_without_normals_that_share_an_edge_are_displaced_without_a_crack)
 {
-    scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX("0.5")
-                    "displacementmap h 0.2\n"
-                    "vertex -1 0 0\nvertex 0 0 1\nvertex 0 1 1\nvertex 1 0 0\n"
-                    "tri 0 1 2\ntri 1 3 2\n");
+    scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX(
+        "0.5") "displacementmap h 0.2\n"
+               "vertex -1 0 0\nvertex 0 0 1\nvertex 0 1 1\nvertex 1 0 0\n"
+               "tri 0 1 2\ntri 1 3 2\n");
     scene out;
     displacemap_stats st;
     error err = {0};
     ck_assert_msg(displacemap_apply(&sc, 0, NULL, &out, &st, &err) == 0, "%s", err.msg);
     long n = DISPLACEMAP_TRIANGLE_RATE, shared = 0;
     ck_assert_int_eq(out.n_triangles, 2 * n * n);
-    for (long a = 0; a < n * n; a++)          /* the first triangle's patch */
+    for (long a = 0; a < n * n; a++)             /* the first triangle's patch */
         for (long b = n * n; b < 2 * n * n; b++) /* the second's */
             for (int i = 0; i < 3; i++)
                 for (int j = 0; j < 3; j++) {
@@ -199,7 +199,8 @@ START_TEST(test_patches_with_a_solid_texture_share_their_edge_bit_for_bit)
         snprintf(text, sizeof text,
                  "size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n%sdisplacementmap h 0.2\n"
                  "vertex 0.1 0.2 0.3\nvertex 1.3 0.1 0.7\nvertex 0.7 1.9 0.2\nvertex 1.7 1.3 1.1\n"
-                 "rotate 0.3 1 0.2 37\ntri 0 1 2\ntri 2 1 3\n", maps[k]);
+                 "rotate 0.3 1 0.2 37\ntri 0 1 2\ntri 2 1 3\n",
+                 maps[k]);
         scene sc = load(text), out;
         displacemap_stats st;
         error err = {0};
@@ -239,8 +240,10 @@ START_TEST(test_a_displaced_sphere_under_a_mirror_keeps_its_triangles_facing_out
                                      "rotate 0 1 0 30\nscale 1 -2 1\n"};
     for (int k = 0; k < 4; k++) {
         char text[512];
-        snprintf(text, sizeof text, "size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX("0.5")
-                 "displacementmap h 0.1\n%ssphere 0.5 0 0 1\n", xf[k]);
+        snprintf(text, sizeof text,
+                 "size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX(
+                     "0.5") "displacementmap h 0.1\n%ssphere 0.5 0 0 1\n",
+                 xf[k]);
         scene sc = load(text), out;
         displacemap_stats st;
         error err = {0};
@@ -263,8 +266,8 @@ END_TEST
 
 START_TEST(test_rates_are_halved_until_the_budget_fits_and_an_impossible_budget_fails)
 {
-    scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX("1")
-                    "displacementmap h 0.1\nsphere 0 0 0 1\n");
+    scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX(
+        "1") "displacementmap h 0.1\nsphere 0 0 0 1\n");
     scene out;
     displacemap_stats st;
     error err = {0};
@@ -309,10 +312,10 @@ START_TEST(test_a_displaced_sphere_keeps_its_texture_mapping)
     for (int k = 0; k < 5; k++) {
         char text[1024];
         snprintf(text, sizeof text,
-                 "size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX("0")
-                 "texture c checker 4  1 0 0  0 1 0\n"
-                 "texmapping %s\ndiffusemap c\ndisplacementmap h 0.3\n"
-                 "translate 0.2 -0.4 0.3\nscale 1.2 0.8 1.1\nsphere 1 0.5 -0.3 1.5\n",
+                 "size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX(
+                     "0") "texture c checker 4  1 0 0  0 1 0\n"
+                          "texmapping %s\ndiffusemap c\ndisplacementmap h 0.3\n"
+                          "translate 0.2 -0.4 0.3\nscale 1.2 0.8 1.1\nsphere 1 0.5 -0.3 1.5\n",
                  mappings[k]);
         scene sc = load(text), out;
         displacemap_stats st;
@@ -325,7 +328,8 @@ START_TEST(test_a_displaced_sphere_keeps_its_texture_mapping)
             uv2 want = st_seen_from_above(&sc, x, z), got = st_seen_from_above(&out, x, z);
             ck_assert_msg(fabs(got.u - want.u) < 2e-3 && fabs(got.v - want.v) < 2e-3,
                           "texmapping %s at (%g, %g): displaced copy reads (%g, %g), the sphere "
-                          "(%g, %g)", mappings[k], x, z, got.u, got.v, want.u, want.v);
+                          "(%g, %g)",
+                          mappings[k], x, z, got.u, got.v, want.u, want.v);
         }
         displacemap_free(&out);
         scene_free(&sc);
@@ -343,16 +347,16 @@ START_TEST(test_the_budget_counts_the_whole_scene_exactly)
     scene out;
     displacemap_stats st;
     error err = {0};
-    scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX("1")
-                    "displacementmap h 0.1\nsphere 0 0 0 1\n");
+    scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX(
+        "1") "displacementmap h 0.1\nsphere 0 0 0 1\n");
     ck_assert_msg(displacemap_apply(&sc, 4 * 48 * 47, NULL, &out, &st, &err) == 0, "%s", err.msg);
     ck_assert_int_eq(st.sphere_rate, 48);
     displacemap_free(&out);
     scene_free(&sc);
     /* a displaced sphere, a displaced triangle and a plain one: 8 + 1 + 1 at rates 2 and 1 */
-    sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX("1")
-              "displacementmap h 0.1\nsphere 0 0 0 1\n"
-              "vertex 0 0 3\nvertex 1 0 3\nvertex 0 1 3\ntri 0 1 2\nnomaps\ntri 0 1 2\n");
+    sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX(
+        "1") "displacementmap h 0.1\nsphere 0 0 0 1\n"
+             "vertex 0 0 3\nvertex 1 0 3\nvertex 0 1 3\ntri 0 1 2\nnomaps\ntri 0 1 2\n");
     ck_assert_msg(displacemap_apply(&sc, 10, NULL, &out, &st, &err) == 0, "%s", err.msg);
     ck_assert_int_eq(st.sphere_rate, 2);
     ck_assert_int_eq(st.triangle_rate, 1);
@@ -428,10 +432,10 @@ END_TEST
  * undisplaced neighbours counted in it. */
 START_TEST(test_a_corner_without_normals_moves_along_the_angle_weighted_mean_of_displaced_faces)
 {
-    scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX("0.5")
-                    "displacementmap h 0.2\n"
-                    "vertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nvertex 0 -1 0\nvertex 0.5 -1 1\n"
-                    "vertex 1 1 1\ntri 0 1 2\ntri 0 3 4\nnomaps\ntri 1 5 2\n");
+    scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX(
+        "0.5") "displacementmap h 0.2\n"
+               "vertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nvertex 0 -1 0\nvertex 0.5 -1 1\n"
+               "vertex 1 1 1\ntri 0 1 2\ntri 0 3 4\nnomaps\ntri 1 5 2\n");
     scene out;
     displacemap_stats st;
     error err = {0};
@@ -467,8 +471,8 @@ END_TEST
  * not q.  Catches the object-space normal copied as it is. */
 START_TEST(test_a_displaced_sphere_under_a_scale_has_the_ellipsoids_normals)
 {
-    scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX("0.5")
-                    "displacementmap h 0.2\nscale 1 0.5 1\nsphere 0 0 0 1\n");
+    scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX(
+        "0.5") "displacementmap h 0.2\nscale 1 0.5 1\nsphere 0 0 0 1\n");
     scene out;
     displacemap_stats st;
     error err = {0};
@@ -590,8 +594,8 @@ END_TEST
  * one message naming the scene and the budget. */
 START_TEST(test_the_memory_budget_lowers_the_rates_until_the_triangles_fit)
 {
-    scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX("0.5")
-                    "displacementmap h 0.2\nsphere 0 0 0 1\n");
+    scene sc = load("size 4 4\ncamera 0 0 5  0 0 0  0 1 0  40\n" CONST_TEX(
+        "0.5") "displacementmap h 0.2\nsphere 0 0 0 1\n");
     snprintf(sc.path, sizeof sc.path, "d.test");
     double per_tri = sizeof(triangle) + bvh_bytes_per_prim();
     budget mem;

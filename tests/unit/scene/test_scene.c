@@ -213,7 +213,8 @@ static const bad_case bad_cases[] = {
     {"envmap cube a b c d e f 0\n", 3, "'envmap' argument 8 must be > 0, got '0'"},
     {"envmap cube a b c d e f 1 2\n", 3, "got 8 arguments"},
     {"scale 1 0 1\nenvmap cube a b c d e f\n", 4, "'envmap' needs the inverse"},
-    {"envsampling cdf 4\n", 3, "'envsampling cdf' takes no count (only 'mediancut N' and 'sis N' do)"},
+    {"envsampling cdf 4\n", 3,
+     "'envsampling cdf' takes no count (only 'mediancut N' and 'sis N' do)"},
     /* a corner that overflows where the transform itself does not */
     {"scale 1e300 1 1\nvertex 0 0 0\nvertex 1e10 0 0\nvertex 0 1 0\ntri 0 1 2\n", 7,
      "'tri' corner 1 overflows under the current transform"},
@@ -427,9 +428,8 @@ START_TEST(test_unknown_commands_are_warnings_with_file_and_line)
     scene_load_opts o = opts_counting(&ws);
     scene sc;
     error err = {0};
-    ck_assert_int_eq(scene_load_string(HEAD "foo 1 2\nsphere 0 0 0 1\nbar\n", "t.test", &o, &sc,
-                                       &err),
-                     0);
+    ck_assert_int_eq(
+        scene_load_string(HEAD "foo 1 2\nsphere 0 0 0 1\nbar\n", "t.test", &o, &sc, &err), 0);
     ck_assert_int_eq(ws.n, 2);
     ck_assert_str_eq(ws.last.file, "t.test");
     ck_assert_int_eq(ws.last.line, 5);
@@ -953,7 +953,8 @@ START_TEST(test_trinormal_transforms_normals_by_the_inverse_transpose)
     scene_free(&sc);
     /* a transform whose inverse transpose makes a unit normal ~1e300 long */
     load_ok(HEAD "vertexnormal 0 0 0 1 1 0\nvertexnormal 1 0 0 0 0 1\nvertexnormal 0 1 0 0 0 1\n"
-                 "scale 1e-300 1 1\ntrinormal 0 1 2\n", &sc);
+                 "scale 1e-300 1 1\ntrinormal 0 1 2\n",
+            &sc);
     assert_vec_near(sc.triangles[0].n[0], 1, 0, 0); /* (1e300, 1, 0) normalised */
     scene_free(&sc);
 }
@@ -1036,9 +1037,9 @@ START_TEST(test_envmap_paths_are_relative_to_the_scene_folder)
     o.load_images = 0;
     scene sc;
     error err = {0};
-    ck_assert_int_eq(scene_load_string(HEAD "envmap sky.exr\noutput out/a.png\n", "dir/x.test",
-                                       &o, &sc, &err),
-                     0);
+    ck_assert_int_eq(
+        scene_load_string(HEAD "envmap sky.exr\noutput out/a.png\n", "dir/x.test", &o, &sc, &err),
+        0);
     ck_assert_str_eq(sc.envmap.path, "dir/sky.exr");
     ck_assert_str_eq(sc.output, "out/a.png"); /* output stays relative to the working folder */
     ck_assert_str_eq(sc.path, "dir/x.test");
@@ -1047,9 +1048,8 @@ START_TEST(test_envmap_paths_are_relative_to_the_scene_folder)
                      0);
     ck_assert_str_eq(sc.envmap.path, "/abs/sky.exr");
     scene_free(&sc);
-    ck_assert_int_eq(scene_load_string(HEAD "envmap ../hdri/sky.exr\n", "a/b/x.test", &o, &sc,
-                                       &err),
-                     0);
+    ck_assert_int_eq(
+        scene_load_string(HEAD "envmap ../hdri/sky.exr\n", "a/b/x.test", &o, &sc, &err), 0);
     ck_assert_str_eq(sc.envmap.path, "a/b/../hdri/sky.exr");
     scene_free(&sc);
     /* no folder, "-" and NULL: the working folder */
@@ -1097,9 +1097,9 @@ START_TEST(test_an_unreadable_envmap_is_an_error_at_its_line_with_the_reason)
 {
     scene sc;
     error err = {0};
-    ck_assert_int_eq(scene_load_string(HEAD "# sky\nenvmap missing.exr\n", "nowhere/x.test", NULL,
-                                       &sc, &err),
-                     -1);
+    ck_assert_int_eq(
+        scene_load_string(HEAD "# sky\nenvmap missing.exr\n", "nowhere/x.test", NULL, &sc, &err),
+        -1);
     ck_assert_str_eq(err.file, "nowhere/x.test");
     ck_assert_int_eq(err.line, 4);
     ck_assert_str_eq(err.msg,
@@ -1208,12 +1208,16 @@ END_TEST
 
 START_TEST(test_envmap_keyword_names_the_representation_after_an_optional_scale)
 {
-    static const struct { const char *line; convert_kind kind; double scale; } cases[] = {
+    static const struct {
+        const char *line;
+        convert_kind kind;
+        double scale;
+    } cases[] = {
         {"envmap p.exr mirrorball\n", CONVERT_MIRRORBALL, 1},
         {"envmap p.exr 3 angular\n", CONVERT_ANGULAR, 3},
         {"envmap p.exr 0.5 latlong\n", CONVERT_LATLONG, 0.5},
-        {"envmap p.exr cross\n", CONVERT_CUBE, 1},  /* one image: a cross */
-        {"envmap p.exr cube\n", CONVERT_CUBE, 1},   /* the same */
+        {"envmap p.exr cross\n", CONVERT_CUBE, 1}, /* one image: a cross */
+        {"envmap p.exr cube\n", CONVERT_CUBE, 1},  /* the same */
         {"envmap p.exr cylindrical\n", CONVERT_CYLINDRICAL, 1},
         {"envmap p.exr 2 equalarea\n", CONVERT_EQUALAREA, 2},
     };
@@ -1246,7 +1250,9 @@ START_TEST(test_envmap_cube_takes_six_faces_relative_to_the_scene_folder)
     scene sc;
     error err = {0};
     ck_assert_int_eq(scene_load_string(HEAD "envmap cube px.exr nx.exr py.exr ny.exr pz.exr "
-                                            "/abs/nz.exr 2\n", "dir/x.test", &o, &sc, &err), 0);
+                                            "/abs/nz.exr 2\n",
+                                       "dir/x.test", &o, &sc, &err),
+                     0);
     ck_assert_int_eq(sc.envmap.kind, CONVERT_CUBE);
     ck_assert_int_eq(sc.envmap.six_files, 1);
     ck_assert_int_eq(sc.envmap.kind_given, 1);
@@ -1265,7 +1271,10 @@ START_TEST(test_envmap_cube_takes_six_faces_relative_to_the_scene_folder)
 END_TEST
 
 /* A folder with images for the loading tests below. */
-typedef struct img_dir { char dir[64]; char scene[128]; } img_dir;
+typedef struct img_dir {
+    char dir[64];
+    char scene[128];
+} img_dir;
 
 static void img_dir_make(img_dir *d)
 {
@@ -1391,7 +1400,8 @@ START_TEST(test_six_cube_faces_load_and_a_bad_face_is_named)
     scene sc;
     error err = {0};
     ck_assert_msg(img_scene_load(&d, "envmap cube px.pfm nx.pfm py.pfm ny.pfm pz.pfm nz.pfm 2\n",
-                                 &sc, &err) == 0, "%s", err.msg);
+                                 &sc, &err) == 0,
+                  "%s", err.msg);
     ck_assert_int_eq(sc.envmap.kind, CONVERT_CUBE);
     ck_assert_int_eq(sc.envmap.cube.size, 4);
     for (int f = 0; f < 6; f++)
@@ -1405,12 +1415,14 @@ START_TEST(test_six_cube_faces_load_and_a_bad_face_is_named)
     ck_assert_msg(strstr(err.msg, "'small.pfm'") && strstr(err.msg, "differ in size"), "%s",
                   err.msg);
     ck_assert_ptr_null(sc.envmap.cube.face[0].px);
-    ck_assert_int_eq(img_scene_load(&d, "envmap cube px.pfm nx.pfm py.pfm ny.pfm flat.pfm nz.pfm\n",
-                                    &sc, &err), -1);
+    ck_assert_int_eq(
+        img_scene_load(&d, "envmap cube px.pfm nx.pfm py.pfm ny.pfm flat.pfm nz.pfm\n", &sc, &err),
+        -1);
     ck_assert_msg(strstr(err.msg, "'flat.pfm'") && strstr(err.msg, "square, not 4 x 2"), "%s",
                   err.msg);
-    ck_assert_int_eq(img_scene_load(&d, "envmap cube px.pfm nx.pfm py.pfm ny.pfm pz.pfm gone.pfm\n",
-                                    &sc, &err), -1);
+    ck_assert_int_eq(
+        img_scene_load(&d, "envmap cube px.pfm nx.pfm py.pfm ny.pfm pz.pfm gone.pfm\n", &sc, &err),
+        -1);
     ck_assert_msg(strstr(err.msg, "'gone.pfm'") && strstr(err.msg, "No such file"), "%s", err.msg);
     /* a scale that takes the brightest face's texel (6) past the largest float */
     ck_assert_int_eq(img_scene_load(&d,
@@ -1471,7 +1483,8 @@ START_TEST(test_tritex_keeps_object_corners_world_corners_and_st)
     scene sc;
     load_ok(HEAD "vertextex 0 0 0 0 0\nvertextex 1 0 0 2 0\nvertextex 0 1 0 0 0.5\n"
                  "translate 0 0 -3\ntritex 0 1 2\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
-                 "tri 0 1 2\n", &sc);
+                 "tri 0 1 2\n",
+            &sc);
     ck_assert_int_eq(sc.n_triangles, 2);
     const triangle *t = &sc.triangles[0];
     ck_assert_int_eq(t->has_st, 1);
@@ -1504,10 +1517,13 @@ START_TEST(test_a_mirroring_transform_keeps_triangles_counter_clockwise_from_out
                                       "rotate 1 2 3 40\nscale -1 -1 -1\n"};
     for (int x = 0; x < 5; x++) {
         char text[1024];
-        snprintf(text, sizeof text, HEAD "vertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
+        snprintf(text, sizeof text,
+                 HEAD
+                 "vertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\n"
                  "vertextex 0 0 0 0.1 0.2\nvertextex 1 0 0 0.3 0.4\nvertextex 0 1 0 0.5 0.6\n"
                  "vertexnormal 0 0 0 1 0 1\nvertexnormal 1 0 0 0 1 1\nvertexnormal 0 1 0 0 0 1\n"
-                 "%stri 0 1 2\ntritex 0 1 2\ntrinormal 0 1 2\n", xfs[x]);
+                 "%stri 0 1 2\ntritex 0 1 2\ntrinormal 0 1 2\n",
+                 xfs[x]);
         scene sc;
         load_ok(text, &sc);
         ck_assert_int_eq(sc.n_triangles, 3);
@@ -1533,7 +1549,7 @@ START_TEST(test_a_mirroring_transform_keeps_triangles_counter_clockwise_from_out
             for (int k = 0; k < 3; k++) {
                 vec3 q = t->q[k], pw = mat4_point(&m, q);
                 assert_vec_near(t->p[k], pw.x, pw.y, pw.z); /* world corner = M object corner */
-                int c = q.x == 1 ? 1 : q.y == 1 ? 2 : 0;      /* which corner as written */
+                int c = q.x == 1 ? 1 : q.y == 1 ? 2 : 0;    /* which corner as written */
                 if (i == 0) { /* tri: st = (b1, b2) of the corners as written */
                     ck_assert_double_eq(t->st[k].u, c == 1);
                     ck_assert_double_eq(t->st[k].v, c == 2);
@@ -1560,7 +1576,8 @@ START_TEST(test_map_commands_are_material_state_stored_once)
                  "sphere 0 0 0 1\n"
                  "diffusemap c\nsphere 0 0 0 1\nsphere 1 0 0 1\n"
                  "bumpmap w 0.25\ntexmapping cube\ntexfilter ewa\nsphere 2 0 0 1\n"
-                 "nomaps\nsphere 3 0 0 1\n", &sc);
+                 "nomaps\nsphere 3 0 0 1\n",
+            &sc);
     ck_assert_int_eq(sc.n_textures, 2);
     ck_assert_int_eq(sc.n_materials, 4);
     ck_assert_int_eq(sc.spheres[1].material, sc.spheres[2].material); /* dedup still works */
@@ -1603,7 +1620,8 @@ START_TEST(test_procedural_textures_take_their_documented_parameters)
                  "texture d turbulence 2 5 0 0 0 1 1 1\n"
                  "texture e marble 1.5 4 8 6 0.1 0.1 0.1 0.9 0.9 0.9\n"
                  "texture f wood 2 8 0.5 0.4 0.2 0 0.8 0.5 0.2\n"
-                 "texture g img.exr clamp\n", &sc);
+                 "texture g img.exr clamp\n",
+            &sc);
     ck_assert_int_eq(sc.n_textures, 7);
     ck_assert_int_eq(sc.textures[0].tex.kind, TEXTURE_CHECKER);
     ck_assert_double_eq(sc.textures[0].tex.frequency, 8);
@@ -1634,12 +1652,15 @@ START_TEST(test_texture_errors_name_their_line_and_token)
     load_fails(HEAD "texture a fbm 1 2.5 0 0 0 1 1 1\n", 3, "expected an integer");
     load_fails(HEAD "texture a wood 1 -8 0 0 0 0 1 1 1\n", 3, "got '-8'");
     load_fails(HEAD "texture a perlin 1 0 0 0 1 1 -1\n", 3, "got '-1'");
-    load_fails(HEAD "texture a img.png wrap\n", 3, "wrap mode must be 'repeat', 'clamp' or "
-                                                   "'mirror', got 'wrap'");
+    load_fails(HEAD "texture a img.png wrap\n", 3,
+               "wrap mode must be 'repeat', 'clamp' or "
+               "'mirror', got 'wrap'");
     load_fails(HEAD "texture a img.png clamp x\n", 3, "got 'x' after it");
-    load_fails(HEAD "texture a\n", 3, "'texture' takes NAME FILE [WRAP] or NAME KIND PARAMS... "
-                                       "R0 G0 B0 R1 G1 B1, got 1 argument");
-    load_fails(HEAD "texture a marble 1 2 3 4 0 0 0 1 1 1 9\n", 3, "'texture' takes NAME FILE "
+    load_fails(HEAD "texture a\n", 3,
+               "'texture' takes NAME FILE [WRAP] or NAME KIND PARAMS... "
+               "R0 G0 B0 R1 G1 B1, got 1 argument");
+    load_fails(HEAD "texture a marble 1 2 3 4 0 0 0 1 1 1 9\n", 3,
+               "'texture' takes NAME FILE "
                "[WRAP] or NAME KIND PARAMS... R0 G0 B0 R1 G1 B1, got 13 arguments");
     load_fails(HEAD "texmapping sphere\n", 3, "got 'sphere'");
     load_fails(HEAD "texfilter linear\n", 3, "got 'linear'");
@@ -1792,8 +1813,9 @@ START_TEST(test_obj_meshes_load_under_the_transform_and_material)
 {
     char dir[] = "/tmp/test_scene_XXXXXX";
     ck_assert_ptr_nonnull(mkdtemp(dir));
-    write_file(dir, "quad.obj", "o quad\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\n"
-                                "vt 1 1\nvt 0 1\nvn 0 0 2\nf 1/1/1 2/2/1 3/3/1 4/4/1\nf 1 2 4\n");
+    write_file(dir, "quad.obj",
+               "o quad\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\n"
+               "vt 1 1\nvt 0 1\nvn 0 0 2\nf 1/1/1 2/2/1 3/3/1 4/4/1\nf 1 2 4\n");
     write_file(dir, "bad.obj", "v 0 0 0\nv 1 0 0\nf 1 2 3\n");
     write_file(dir, "x.test", HEAD "diffuse 1 0 0\nscale 2 2 2\nobj quad.obj\nobj bad.obj\n");
     char path[512];
@@ -1864,11 +1886,12 @@ START_TEST(test_texture_images_are_read_once_and_pyramids_built_only_when_needed
     image_set(&im, 1, 0, rgb_make(0.5, 0.25, 2));
     ck_assert_msg(imageio_write(img_path, &im, NULL, &err) == 0, "%s", err.msg);
     image_free(&im);
-    write_file(dir, "x.test", HEAD "texture a wood.pfm\ntexture b wood.pfm mirror\n"
-                                   "texture c wood.pfm clamp\ntexture d wood.pfm\n"
-                                   "texfilter nearest\ndiffusemap a\nsphere 0 0 0 1\n"
-                                   "texfilter trilinear\ndiffusemap b\nsphere 0 0 0 1\n"
-                                   "texfilter ewa\ndiffusemap c\nsphere 0 0 0 1\n");
+    write_file(dir, "x.test",
+               HEAD "texture a wood.pfm\ntexture b wood.pfm mirror\n"
+                    "texture c wood.pfm clamp\ntexture d wood.pfm\n"
+                    "texfilter nearest\ndiffusemap a\nsphere 0 0 0 1\n"
+                    "texfilter trilinear\ndiffusemap b\nsphere 0 0 0 1\n"
+                    "texfilter ewa\ndiffusemap c\nsphere 0 0 0 1\n");
     scene sc;
     ck_assert_msg(scene_load(path, NULL, &sc, &err) == 0, "%s", err.msg);
     ck_assert_int_eq(sc.n_texture_images, 1); /* three textures, one file read */
@@ -1924,9 +1947,9 @@ START_TEST(test_files_named_many_ways_are_read_once_and_listed_as_inputs)
     ck_assert_int_eq(sc.textures[1].tex.has_mip + sc.textures[2].tex.has_mip, 0);
     for (int m = 0; m < sc.n_materials; m++)
         ck_assert(sc.materials[m].diffusemap == 0 || sc.materials[m].diffusemap == 1);
-    ck_assert_int_eq(sc.n_triangles, 6); /* three lines of two triangles */
+    ck_assert_int_eq(sc.n_triangles, 6);            /* three lines of two triangles */
     assert_vec_near(sc.triangles[4].p[1], 2, 0, 0); /* the last line's own transform */
-    ck_assert_int_eq(sc.inputs.n, 3); /* wood.pfm, quad.obj, the scene */
+    ck_assert_int_eq(sc.inputs.n, 3);               /* wood.pfm, quad.obj, the scene */
     ck_assert_str_eq(sc.inputs.at[2].path, path);
     ck_assert_ptr_nonnull(strstr(sc.inputs.at[0].path, "quad.obj")); /* at its line */
     ck_assert_ptr_nonnull(strstr(sc.inputs.at[1].path, "wood.pfm")); /* at the end */

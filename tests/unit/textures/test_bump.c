@@ -51,7 +51,7 @@ START_TEST(test_a_curved_height_matches_the_finite_difference_normal)
     double hs = 3 * cos(3 * s) * cos(2 * t), ht = -2 * sin(3 * s) * sin(2 * t);
     vec3 out;
     ck_assert_int_eq(bump_normal(n, n, u, v, hs, ht, k, &out), 0);
-#define Q(S, T) vec3_madd(vec3_add(vec3_scale(u, S), vec3_scale(v, T)), n, k * height(S, T))
+#define Q(S, T) vec3_madd(vec3_add(vec3_scale(u, S), vec3_scale(v, T)), n, k *height(S, T))
     vec3 qs = vec3_scale(vec3_sub(Q(s + e, t), Q(s - e, t)), 0.5 / e);
     vec3 qt = vec3_scale(vec3_sub(Q(s, t + e), Q(s, t - e)), 0.5 / e);
 #undef Q
@@ -97,8 +97,8 @@ START_TEST(test_a_bump_below_the_minimum_cosine_is_tilted_to_exactly_it)
         vec3 out, plain = vec3_normalize(vec3_make(-slopes[i], 0, 1));
         double c0 = vec3_dot(plain, ng);
         ck_assert(c0 < BUMP_MIN_COS); /* the guard must act */
-        ck_assert_int_eq(bump_normal(Z, ng, vec3_make(1, 0, 0), vec3_make(0, 1, 0), slopes[i], 0, 1,
-                                     &out), 0);
+        ck_assert_int_eq(
+            bump_normal(Z, ng, vec3_make(1, 0, 0), vec3_make(0, 1, 0), slopes[i], 0, 1, &out), 0);
         ck_assert_near(vec3_dot(out, ng), BUMP_MIN_COS, 1e-12);
         ck_assert_near(vec3_length(out), 1, 1e-12);
         /* tilted along ng only: the tangential part keeps its direction (y component stays 0,

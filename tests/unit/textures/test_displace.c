@@ -187,9 +187,9 @@ END_TEST
  * corner normals.  On tri_p, b1 = x / 2 and b2 = y / 2 at vertex (x, y, 0).  The callback
  * records its largest error in the context. */
 typedef struct seen {
-    const uv2 *st;   /* the triangle's corner st (NULL: the sphere's mapping) */
-    const vec3 *n;   /* the corner normals */
-    double err;      /* largest error so far */
+    const uv2 *st; /* the triangle's corner st (NULL: the sphere's mapping) */
+    const vec3 *n; /* the corner normals */
+    double err;    /* largest error so far */
     long calls;
 } seen;
 

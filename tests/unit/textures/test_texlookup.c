@@ -86,8 +86,9 @@ END_TEST
 
 START_TEST(test_wrap_floor_agrees_with_exact_integer_wrapping_far_beyond_int_range)
 {
-    const double xs[] = {0.5,    -0.5,    2.999,   -3.001, 1e9 * 7 + 0.25, -1e9 * 7 - 0.25,
-                         3e12 + 1.5, -3e12 - 1.5, 0x1p52, -0x1p52 - 2, 1e15 + 3};
+    const double xs[] = {
+        0.5,        -0.5,        2.999,  -3.001,      1e9 * 7 + 0.25, -1e9 * 7 - 0.25,
+        3e12 + 1.5, -3e12 - 1.5, 0x1p52, -0x1p52 - 2, 1e15 + 3};
     const int ns[] = {1, 3, 7, 1000};
     for (int m = 0; m < 3; m++)
         for (int k = 0; k < 4; k++)

@@ -37,10 +37,10 @@ START_TEST(test_spherical_known_values_follow_the_envmap_frame)
     ck_uv_near(texmapping_spherical(vec3_make(0, 1, 0)), 0.25, 0.5, 1e-15); /* phi pi/2 */
     ck_uv_near(texmapping_spherical(vec3_make(-1, 0, 0)), 0.5, 0.5, 1e-15);
     ck_uv_near(texmapping_spherical(vec3_make(0, -2, 0)), 0.75, 0.5, 1e-15); /* any radius */
-    ck_uv_near(texmapping_spherical(vec3_make(0, 0, 1)), 0, 1, 0);          /* north pole: top */
+    ck_uv_near(texmapping_spherical(vec3_make(0, 0, 1)), 0, 1, 0);           /* north pole: top */
     ck_uv_near(texmapping_spherical(vec3_make(0, 0, -1)), 0, 0, 0);
     double c = cos(M_PI / 4);
-    ck_uv_near(texmapping_spherical(vec3_make(c, 0, c)), 0, 0.75, 1e-15);   /* theta 45 deg */
+    ck_uv_near(texmapping_spherical(vec3_make(c, 0, c)), 0, 0.75, 1e-15); /* theta 45 deg */
     /* any radius, however large or small: sqrt(x^2 + y^2) overflowed at 1e200 (t = 0.5) and
      * underflowed at 1e-200 (t = 1) where (1, 1, 1) / sqrt 3 gives t = 1 - acos(1/sqrt 3) / pi */
     double t3 = 1 - acos(1 / sqrt(3.0)) / M_PI;
@@ -72,11 +72,15 @@ END_TEST
 
 START_TEST(test_cube_picks_the_largest_component_and_orients_faces_from_outside)
 {
-    static const struct { vec3 q; int face; double s, t; } cases[] = {
-        {{2, 0, 0}, 0, 0.5, 0.5},   {{1, 0.5, 0.5}, 0, 0.75, 0.75}, {{-1, 0.5, 0.5}, 1, 0.25, 0.75},
-        {{0.5, 1, 0.5}, 2, 0.25, 0.75}, {{0.5, -1, 0.5}, 3, 0.75, 0.75},
-        {{0.5, 0.5, 1}, 4, 0.75, 0.75}, {{0.5, 0.5, -1}, 5, 0.75, 0.25},
-        {{1, 1, 1}, 0, 1, 1}, /* a corner: x wins the tie */
+    static const struct {
+        vec3 q;
+        int face;
+        double s, t;
+    } cases[] = {
+        {{2, 0, 0}, 0, 0.5, 0.5},        {{1, 0.5, 0.5}, 0, 0.75, 0.75},
+        {{-1, 0.5, 0.5}, 1, 0.25, 0.75}, {{0.5, 1, 0.5}, 2, 0.25, 0.75},
+        {{0.5, -1, 0.5}, 3, 0.75, 0.75}, {{0.5, 0.5, 1}, 4, 0.75, 0.75},
+        {{0.5, 0.5, -1}, 5, 0.75, 0.25}, {{1, 1, 1}, 0, 1, 1}, /* a corner: x wins the tie */
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         int f = -1;
@@ -91,8 +95,13 @@ START_TEST(test_cube_faces_are_right_handed_seen_from_outside)
 {
     /* right x up must point out of the cube: catches a mirrored face */
     for (int f = 0; f < 6; f++) {
-        vec3 c = vec3_make(f < 2 ? (f == 0 ? 1 : -1) : 0, f == 2 ? 1 : f == 3 ? -1 : 0,
-                           f == 4 ? 1 : f == 5 ? -1 : 0);
+        vec3 c = vec3_make(f < 2 ? (f == 0 ? 1 : -1) : 0,
+                           f == 2   ? 1
+                           : f == 3 ? -1
+                                    : 0,
+                           f == 4   ? 1
+                           : f == 5 ? -1
+                                    : 0);
         uv2 o = texmapping_cube_face(c, f);
         ck_uv_near(o, 0.5, 0.5, 0);
         /* numerically: a point moved a little along s and along t */
@@ -193,18 +202,21 @@ START_TEST(test_tangents_invert_the_mapping_jacobian)
     ck_assert_near(dqs.z, 0, 1e-6);
     ck_assert_near(dqt.z, M_PI, 1e-6);
     /* planar: (1, 0, 0) and (0, 1, 0) */
-    ck_assert_int_eq(texmapping_tangents(TEXMAPPING_PLANAR, vec3_make(3, 4, 0),
-                                         vec3_make(0, 0, 1), &dqs, &dqt), 0);
+    ck_assert_int_eq(
+        texmapping_tangents(TEXMAPPING_PLANAR, vec3_make(3, 4, 0), vec3_make(0, 0, 1), &dqs, &dqt),
+        0);
     ck_assert_near(dqs.x, 1, 1e-9);
     ck_assert_near(dqt.y, 1, 1e-9);
     ck_assert_near(dqs.y, 0, 1e-9);
     /* at the seam the tangents are the same as just beside it (no wrap blow-up) */
     ck_assert_int_eq(texmapping_tangents(TEXMAPPING_SPHERICAL, vec3_make(1, 0, 0),
-                                         vec3_make(1, 0, 0), &dqs, &dqt), 0);
+                                         vec3_make(1, 0, 0), &dqs, &dqt),
+                     0);
     ck_assert_near(dqs.y, 2 * M_PI, 1e-6);
     /* planar seen edge-on: singular, a basis is returned */
-    ck_assert_int_eq(texmapping_tangents(TEXMAPPING_PLANAR, vec3_make(0, 0, 0),
-                                         vec3_make(1, 0, 0), &dqs, &dqt), -1);
+    ck_assert_int_eq(
+        texmapping_tangents(TEXMAPPING_PLANAR, vec3_make(0, 0, 0), vec3_make(1, 0, 0), &dqs, &dqt),
+        -1);
     ck_assert_near(vec3_length(dqs), 1, 1e-12);
 }
 END_TEST
@@ -220,7 +232,8 @@ START_TEST(test_triangle_tangents_and_differentials_agree_with_a_known_plane)
     ck_assert_near(dt.y, 3, 1e-15);
     uv2 dx, dy;
     ck_assert_int_eq(texmapping_triangle_differentials(p, st, vec3_make(0.2, 0, 0.7),
-                                                       vec3_make(0, 0.3, 0), &dx, &dy), 0);
+                                                       vec3_make(0, 0.3, 0), &dx, &dy),
+                     0);
     ck_uv_near(dx, 0.1, 0, 1e-15); /* the part along the normal (z) is dropped */
     ck_uv_near(dy, 0, 0.1, 1e-15);
     /* degenerate st: a basis of the plane and -1 */
@@ -230,7 +243,8 @@ START_TEST(test_triangle_tangents_and_differentials_agree_with_a_known_plane)
     /* zero-area triangle: no differentials, guarded */
     const vec3 line[3] = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};
     ck_assert_int_eq(texmapping_triangle_differentials(line, st, vec3_make(1, 0, 0),
-                                                       vec3_make(0, 1, 0), &dx, &dy), -1);
+                                                       vec3_make(0, 1, 0), &dx, &dy),
+                     -1);
     ck_uv_near(dx, 0, 0, 0);
     ck_assert_int_eq(texmapping_triangle_tangents(line, st, &ds, &dt), -1);
     /* the thresholds are relative: a tiny st patch (extents 1e-7, det 1e-14) is not degenerate,
@@ -244,7 +258,8 @@ START_TEST(test_triangle_tangents_and_differentials_agree_with_a_known_plane)
     for (int k = 0; k < 3; k++)
         sg[k] = (uv2){0.3 * pg[k].x + 0.1 * pg[k].y + 0.2, -0.2 * pg[k].x + 0.4 * pg[k].y + 0.5};
     ck_assert_int_eq(texmapping_triangle_differentials(pg, sg, vec3_make(0.2, 0.1, 0.7),
-                                                       vec3_make(0, 0.3, 0), &dx, &dy), 0);
+                                                       vec3_make(0, 0.3, 0), &dx, &dy),
+                     0);
     ck_uv_near(dx, 0.07, 0.0, 1e-15);
     ck_uv_near(dy, 0.03, 0.12, 1e-15);
     const uv2 tiny[3] = {{0.5, 0.5}, {0.5 + 1e-7, 0.5}, {0.5, 0.5 + 1e-7}};
@@ -253,7 +268,8 @@ START_TEST(test_triangle_tangents_and_differentials_agree_with_a_known_plane)
     ck_assert_near(dt.y / 3e7, 1, 1e-6);
     const vec3 sliver[3] = {{0, 0, 0}, {1, 0, 0}, {2, 1e-7, 0}};
     ck_assert_int_eq(texmapping_triangle_differentials(sliver, st, vec3_make(1, 0, 0),
-                                                       vec3_make(0, 1, 0), &dx, &dy), -1);
+                                                       vec3_make(0, 1, 0), &dx, &dy),
+                     -1);
 }
 END_TEST
 

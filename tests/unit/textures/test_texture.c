@@ -172,7 +172,9 @@ START_TEST(test_checker_box_filter_matches_a_brute_force_average)
     texture tx;
     error err = {0};
     ck_assert_int_eq(texture_init_checker(&tx, rgb_gray(0), rgb_gray(1), 3, &err), 0);
-    const double pts[][4] = {{0.31, 0.47, 0.05, 0.02}, {0.1, 0.9, 0.4, 0.4}, {-0.7, 2.2, 0.9, 0.01},
+    const double pts[][4] = {{0.31, 0.47, 0.05, 0.02},
+                             {0.1, 0.9, 0.4, 0.4},
+                             {-0.7, 2.2, 0.9, 0.01},
                              {0.5, 0.5, 3.0, 5.0}};
     for (int k = 0; k < 4; k++) {
         texture_query q;
@@ -193,8 +195,7 @@ START_TEST(test_checker_box_filter_matches_a_brute_force_average)
                 p.st.v += pts[k][3] * ((j + 0.5) / n - 0.5);
                 sum += texture_eval(&tx, &p).r;
             }
-        ck_assert_msg(fabs(got - sum / (n * n)) < 4e-3, "case %d: %g vs %g", k, got,
-                      sum / (n * n));
+        ck_assert_msg(fabs(got - sum / (n * n)) < 4e-3, "case %d: %g vs %g", k, got, sum / (n * n));
     }
 }
 END_TEST
@@ -263,8 +264,13 @@ END_TEST
 
 START_TEST(test_solids_without_footprint_are_the_perlin_functions)
 {
-    texture_solid_params sp = {.scale = 2, .octaves = 5, .frequency = 4, .amplitude = 3,
-                               .rings = 6, .c0 = {0, 0, 0}, .c1 = {1, 1, 1}};
+    texture_solid_params sp = {.scale = 2,
+                               .octaves = 5,
+                               .frequency = 4,
+                               .amplitude = 3,
+                               .rings = 6,
+                               .c0 = {0, 0, 0},
+                               .c1 = {1, 1, 1}};
     vec3 p = vec3_make(0.37, -1.21, 2.5), x = vec3_scale(p, 2);
     double expect[5];
     expect[0] = 0.5 + 0.5 * perlin_noise(x.x, x.y, x.z);
@@ -288,10 +294,15 @@ END_TEST
 
 START_TEST(test_solids_fade_to_their_mean_under_a_huge_footprint)
 {
-    texture_solid_params sp = {.scale = 1, .octaves = 6, .frequency = 4, .amplitude = 3,
-                               .rings = 6, .c0 = {0, 0, 0}, .c1 = {1, 1, 1}};
-    const double mean[5] = {0.5, 0.5, PERLIN_MEAN_ABS * (2 - 1.0 / 32) /* gains 1 .. 1/32 */,
-                            0.5, 0.5};
+    texture_solid_params sp = {.scale = 1,
+                               .octaves = 6,
+                               .frequency = 4,
+                               .amplitude = 3,
+                               .rings = 6,
+                               .c0 = {0, 0, 0},
+                               .c1 = {1, 1, 1}};
+    const double mean[5] = {0.5, 0.5, PERLIN_MEAN_ABS * (2 - 1.0 / 32) /* gains 1 .. 1/32 */, 0.5,
+                            0.5};
     for (int k = 0; k < 5; k++) {
         texture tx;
         error err = {0};
