@@ -4,9 +4,8 @@
  *     brdf_surface_from_material(&s, &sc->materials[h.material]);  // s's frame set from h
  *     texshade_surface(sc, &h, &r, &rd, &s);                       // differentials, maps
  *
- * A sphere maps q = (P_object - center) / radius (default spherical); a triangle interpolates
- * its st (or maps P_object).  No differentials: no footprint (texture.h).  No malloc.  Details:
- * docs/texture-mapping.md, section 11.
+ * A sphere maps q = (P_object - center) / radius; a triangle interpolates its st (or maps
+ * P_object).  No differentials: no footprint.  No malloc.  docs/texture-mapping.md, section 11.
  */
 #ifndef ENVTEX_TEXSHADE_H
 #define ENVTEX_TEXSHADE_H
