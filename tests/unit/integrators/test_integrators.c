@@ -451,8 +451,8 @@ START_TEST(test_integrators_nee_off_on_and_mis_agree_under_a_sun_map)
         "nexteventestimation off\nimportancesampling cosine\n",
         "nexteventestimation on\nimportancesampling cosine\n",
         "nexteventestimation mis\nimportancesampling brdf\n",
-        "nexteventestimation mis\nimportancesampling brdf\nenvsampling cdf-sintheta\nenvsampler "
-        "alias\n",
+        ("nexteventestimation mis\nimportancesampling brdf\nenvsampling cdf-sintheta\n"
+         "envsampler alias\n"),
         /* the envmap sampled at 30% of its light samples: still unbiased (lights.h) */
         "nexteventestimation mis\nimportancesampling brdf\nenvsamplefraction 0.3\n"};
     long ns[] = {400000, 60000, 60000, 60000, 60000};
