@@ -20,8 +20,7 @@
 #define SH_K20 0.31539156525252005 /* sqrt(5 / (16 pi)) */
 #define SH_K22 0.5462742152960396  /* sqrt(15 / (16 pi)) */
 
-/* A disc texel whose centre is outside the disc is taken at its centre pulled this fraction
- * inside the rim, so that the representation's uv -> direction accepts it despite rounding. */
+/* A disc texel's centre outside the disc is pulled this fraction inside the rim (for rounding). */
 #define RIM_PULL 1e-9
 
 static const int sh_l[PREFILTER_SH9] = {0, 1, 1, 1, 2, 2, 2, 2, 2};
@@ -325,8 +324,7 @@ int prefilter_irradiance_sh9(const prefilter_sh9 *sh, int width, image *out, err
     return 0;
 }
 
-/* t^S for t = r . w > 0: si = S when S is a whole number, by squaring (within a few ulps of pow,
- * and far cheaper), else si = -1 and pow */
+/* t^S, t = r . w > 0: by squaring when S is whole (si = S; within a few ulps of pow), else pow */
 static double pow_s(double t, double s, long si)
 {
     if (si < 0) return pow(t, s);
@@ -577,8 +575,7 @@ typedef struct phong_job {
 
 static int gcd(int a, int b) { return b ? gcd(b, a % b) : a; }
 
-/* sum over m in [m0, m1) of L(column c0 + m - m0, row r) kern[m], per channel, added to e (two
- * sums per channel, for the even and the odd m: the adds need not wait for each other) */
+/* e += sum over m in [m0, m1) of L(column c0 + m - m0) kern[m] (even and odd m summed apart) */
 static void dot_span(const float *L, const double *kern, int m0, int m1, double e[3])
 {
     double a0 = 0, a1 = 0, a2 = 0, b0 = 0, b1 = 0, b2 = 0;
@@ -599,8 +596,7 @@ static void arc_dot(const image *img, int r, int k0, int n, const double *kern, 
     dot_span(image_px(img, 0, r), kern, n1, n, e); /* the arc wraps past the last column */
 }
 
-/* Input row r's share of the Phong map at every output texel: over the arc where r . w > c,
- * sum L (r . w)^S dOmega (times (S + 1) / (2 pi) at the end). */
+/* Row r's share of each Phong texel: sum L (r . w)^S dOmega where r . w > c ((S+1)/2pi later) */
 static void phong_row(phong_job *job, int r)
 {
     const rows *rw = job->rw;
