@@ -16,9 +16,7 @@
 #include "chisq.h"
 #include "unit.h"
 
-#define N_SAMPLES                                                                                  \
-    200000L /* per chi-square test: ~0.02 s, and a 5% error in a 10% bin is 7 sigma  \
-                           */
+#define N_SAMPLES 200000L /* per chi-square test: a 5% error in a 10% bin is 7 sigma */
 #define PMF_REL_TOL    1e-12 /* pmf agreement: the maths is exact up to a few roundings of double */
 #define REM_BUCKETS_1D 4     /* each bin's remapped value is tested in 4 sub-bins ... */
 #define REM_BUCKETS_2D 2     /* ... and each cell's (rem_outer, rem_inner) in 2 x 2 */
