@@ -6,6 +6,8 @@
 #include <string.h>
 #include <time.h>
 
+#include "bvh_leaf.h"
+
 /* ---- build -------------------------------------------------------------------------------- */
 
 typedef struct box {
@@ -56,9 +58,8 @@ static void prim_box(vec3 lo, vec3 hi, build_prim *p)
     double pad = BVH_BOX_PAD_REL * (m + vec3_max_abs(vec3_sub(hi, lo)));
     for (int a = 0; a < 3; a++) {
         double l = vec3_get(lo, a) - pad, h = vec3_get(hi, a) + pad;
-        float fl = (float)l, fh = (float)h;
-        p->b.lo[a] = fl > l ? nextafterf(fl, -INFINITY) : fl;
-        p->b.hi[a] = fh < h ? nextafterf(fh, INFINITY) : fh;
+        p->b.lo[a] = bvh_float_down(l);
+        p->b.hi[a] = bvh_float_up(h);
         p->c[a] = (float)fmin(fmax(0.5 * l + 0.5 * h, -FLT_MAX), FLT_MAX);
     }
 }
@@ -315,33 +316,15 @@ typedef struct fray {
     int neg[3];
 } fray;
 
-typedef struct best_hit {
-    long id;
-    double t, b1, b2;
-} best_hit;
-
-static float float_up(double x)
-{
-    float f = (float)x;
-    return f < x ? nextafterf(f, INFINITY) : f;
-}
-
 static fray fray_make(const ray *r)
 {
     fray f;
     for (int a = 0; a < 3; a++) {
-        f.o[a] = (float)vec3_get(r->o, a);
         f.d[a] = (float)vec3_get(r->d, a);
         f.inv[a] = 1.0f / f.d[a];
         f.neg[a] = f.inv[a] < 0;
-        /* the slabs' near ends from an origin a float ulp ahead of o (or at it), the far ends
-         * from one behind: the rounding of o to float never narrows a slab */
-        double o = vec3_get(r->o, a);
-        f.o_lo[a] = (float)(o - f.o[a]); /* o = o + o_lo to ~2^-48: the triangles' s = o - p0 */
-        float up = f.o[a] < o ? nextafterf(f.o[a], INFINITY) : f.o[a];
-        float down = f.o[a] > o ? nextafterf(f.o[a], -INFINITY) : f.o[a];
-        f.o_near[a] = f.neg[a] ? down : up;
-        f.o_far[a] = f.neg[a] ? up : down;
+        bvh_float_origin(vec3_get(r->o, a), f.neg[a], &f.o[a], &f.o_lo[a], &f.o_near[a],
+                         &f.o_far[a]);
     }
     return f;
 }
@@ -413,6 +396,15 @@ static int quad_intersect(const bvh_quad *q, const ray *r, double *t)
     return triangle_intersect(q->a, c, d, &rr, t, &b1, &b2) || h;
 }
 
+int bvh_prim_hit(const bvh *b, uint32_t id, const ray *r, double *t, double *b1, double *b2)
+{
+    *b1 = *b2 = 0;
+    if (id < b->n_spheres) return sphere_intersect(&b->prims_of.spheres[id], r, t);
+    if (id >= b->n_surfaces) return quad_intersect(&b->quads[id - b->n_surfaces], r, t);
+    const vec3 *p = b->prims_of.triangles[id - b->n_spheres].p;
+    return triangle_intersect(p[0], p[1], p[2], r, t, b1, b2);
+}
+
 /* The primitives prims[first .. first + count) against ray *r: each hit shrinks r->tmax (and
  * *tmax_f) and is recorded in *best; any = 1 stops at the first hit (shadow rays). */
 static int leaf_hits(const bvh *b, const fray *f, ray *r, float *tmax_f, long first, int count,
@@ -421,23 +413,14 @@ static int leaf_hits(const bvh *b, const fray *f, ray *r, float *tmax_f, long fi
     int found = 0;
     for (long i = first; i < first + count; i++) {
         uint32_t id = b->prims[i];
-        double t, b1 = 0, b2 = 0;
-        int h;
-        if (id < b->n_spheres) {
-            h = sphere_intersect(&b->prims_of.spheres[id], r, &t);
-        } else if (!tri_maybe(&b->tris[i], f, *tmax_f, id >= b->n_surfaces)) {
-            continue;
-        } else if (id < b->n_surfaces) {
-            const vec3 *p = b->prims_of.triangles[id - b->n_spheres].p;
-            h = triangle_intersect(p[0], p[1], p[2], r, &t, &b1, &b2);
-        } else {
-            h = quad_intersect(&b->quads[id - b->n_surfaces], r, &t);
-        }
-        if (!h) continue;
+        double t, b1, b2;
+        if (id >= b->n_spheres && !tri_maybe(&b->tris[i], f, *tmax_f, id >= b->n_surfaces))
+            continue; /* the float filter: the double test cannot hit */
+        if (!bvh_prim_hit(b, id, r, &t, &b1, &b2)) continue;
         if (any) return 1;
         found = 1;
         r->tmax = t; /* closest so far: shrink the ray */
-        *tmax_f = float_up(t);
+        *tmax_f = bvh_float_up(t);
         *best = (best_hit){id, t, b1, b2};
     }
     return found;
@@ -449,8 +432,7 @@ static int traverse(const bvh *b, const ray *r0, int any, best_hit *best)
 {
     ray r = *r0;
     fray f = fray_make(&r);
-    float tmin_f = (float)r.tmin, tmax_f = float_up(r.tmax);
-    if (tmin_f > r.tmin) tmin_f = nextafterf(tmin_f, -INFINITY);
+    float tmin_f = bvh_float_down(r.tmin), tmax_f = bvh_float_up(r.tmax);
     /* no tree (a few primitives): the one leaf's box is all space, so no slab test */
     if (!b->is_tree) return leaf_hits(b, &f, &r, &tmax_f, 0, (int)b->n_prims, any, best);
     int32_t stack[BVH_MAX_DEPTH];
@@ -482,21 +464,26 @@ int bvh_intersect(const bvh *b, const ray *r, hit *h)
 {
     best_hit bh;
     if (b->n_prims == 0 || !traverse(b, r, 0, &bh)) return BVH_MISS;
-    h->t = bh.t;
-    if (bh.id >= b->n_surfaces) {
-        h->prim = bh.id - b->n_surfaces;
+    return bvh_hit_of(b, r, &bh, h);
+}
+
+int bvh_hit_of(const bvh *b, const ray *r, const best_hit *bh, hit *h)
+{
+    h->t = bh->t;
+    if (bh->id >= b->n_surfaces) {
+        h->prim = bh->id - b->n_surfaces;
         return BVH_QUAD;
     }
-    if (bh.id < b->n_spheres) {
-        const sphere *s = &b->prims_of.spheres[bh.id];
-        sphere_hit(s, r, bh.t, h);
-        h->prim = bh.id;
+    if (bh->id < b->n_spheres) {
+        const sphere *s = &b->prims_of.spheres[bh->id];
+        sphere_hit(s, r, bh->t, h);
+        h->prim = bh->id;
         h->is_sphere = 1;
         h->material = s->material;
         return BVH_SURFACE;
     }
-    const triangle *tr = &b->prims_of.triangles[bh.id - b->n_spheres];
-    double b1 = bh.b1, b2 = bh.b2, b0 = 1 - b1 - b2;
+    const triangle *tr = &b->prims_of.triangles[bh->id - b->n_spheres];
+    double b1 = bh->b1, b2 = bh->b2, b0 = 1 - b1 - b2;
     /* p = b0 p0 + b1 p1 + b2 p2 : the barycentric interpolation of the lecture */
     h->p = vec3_add(vec3_add(vec3_scale(tr->p[0], b0), vec3_scale(tr->p[1], b1)),
                     vec3_scale(tr->p[2], b2));
@@ -511,7 +498,7 @@ int bvh_intersect(const bvh *b, const ray *r, hit *h)
         h->ns = h->ng;
     }
     h->bary = (uv2){b1, b2};
-    h->prim = bh.id - b->n_spheres;
+    h->prim = bh->id - b->n_spheres;
     h->is_sphere = 0;
     h->material = tr->material;
     return BVH_SURFACE;
