@@ -74,12 +74,18 @@ rgb analyticdirect_radiance(integrator *it, ray r, rng *g)
 
 rgb analyticdirect_radiance_diff(integrator *it, ray r, const ray_diff *rd, rng *g)
 {
-    (void)g;
     scene_hit sh;
     integrator_intersect_diff(it, &r, rd, &sh); /* the footprint filters kd and emission maps */
-    if (sh.kind == SCENE_HIT_NOTHING) return envmap_radiance(&it->env, r.d);
-    if (sh.kind == SCENE_HIT_LIGHT) return lights_quad_radiance(&it->ls, sh.light, r.d);
-    const surface *s = &sh.s;
+    return analyticdirect_radiance_hit(it, r, rd, &sh, g);
+}
+
+rgb analyticdirect_radiance_hit(integrator *it, ray r, const ray_diff *rd, const scene_hit *sh,
+                                rng *g)
+{
+    (void)rd, (void)g;
+    if (sh->kind == SCENE_HIT_NOTHING) return envmap_radiance(&it->env, r.d);
+    if (sh->kind == SCENE_HIT_LIGHT) return lights_quad_radiance(&it->ls, sh->light, r.d);
+    const surface *s = &sh->s;
     rgb L = s->emission;
     for (int i = 0; i < it->sc->n_lights; i++) {
         const scene_light *l = &it->sc->lights[i];

@@ -102,14 +102,21 @@ static rgb escaped(integrator *it, vec3 d, int depth)
 
 rgb direct_radiance(integrator *it, ray r, rng *g) { return direct_radiance_diff(it, r, NULL, g); }
 
-rgb direct_radiance_diff(integrator *it, ray r, const ray_diff *rd0, rng *g)
+rgb direct_radiance_diff(integrator *it, ray r, const ray_diff *rd, rng *g)
+{
+    scene_hit sh;
+    integrator_intersect_diff(it, &r, rd, &sh);
+    return direct_radiance_hit(it, r, rd, &sh, g);
+}
+
+rgb direct_radiance_hit(integrator *it, ray r, const ray_diff *rd0, const scene_hit *first, rng *g)
 {
     rgb L = rgb_gray(0), beta = rgb_gray(1);
     ray_diff rd = {0};
     if (rd0) rd = *rd0;
+    scene_hit sh = *first;
     for (int depth = 0;; depth++) {
-        scene_hit sh;
-        integrator_intersect_diff(it, &r, &rd, &sh);
+        if (depth > 0) integrator_intersect_diff(it, &r, &rd, &sh);
         if (sh.kind == SCENE_HIT_NOTHING) return rgb_fma(L, beta, escaped(it, r.d, depth));
         if (sh.kind == SCENE_HIT_LIGHT)
             return rgb_fma(L, beta, lights_quad_radiance(&it->ls, sh.light, r.d));

@@ -126,10 +126,15 @@ void integrator_intersect(integrator *it, const ray *r, scene_hit *out)
 
 void integrator_intersect_diff(integrator *it, const ray *r, const ray_diff *rd, scene_hit *out)
 {
+    int got = bvh_intersect(it->accel, r, &out->h);
+    integrator_scene_hit(it, r, rd, got, out);
+}
+
+void integrator_scene_hit(integrator *it, const ray *r, const ray_diff *rd, int got, scene_hit *out)
+{
     it->rays++;
     ray rr = *r;
     out->kind = SCENE_HIT_NOTHING;
-    int got = bvh_intersect(it->accel, &rr, &out->h);
     if (got == BVH_QUAD) { /* the quads are in the scene's BVH (lights_scene_bvh) */
         out->kind = SCENE_HIT_LIGHT;
         out->light = it->ls.quad_light[out->h.prim];

@@ -79,16 +79,24 @@ static int path_survives(const scene *sc, rgb *beta, rng *g)
 /* Ray differentials follow the path while it is a chain of perfect mirror / glass bounces from
  * the camera; the first diffuse or glossy bounce drops them (raydiff.h: no differential of a
  * random direction), and textures further on use their no-footprint fallback. */
-rgb pathtracer_radiance_diff(integrator *it, ray r, const ray_diff *rd0, rng *g)
+rgb pathtracer_radiance_diff(integrator *it, ray r, const ray_diff *rd, rng *g)
+{
+    scene_hit sh;
+    integrator_intersect_diff(it, &r, rd, &sh);
+    return pathtracer_radiance_hit(it, r, rd, &sh, g);
+}
+
+rgb pathtracer_radiance_hit(integrator *it, ray r, const ray_diff *rd0, const scene_hit *first,
+                            rng *g)
 {
     ray_diff rd = {0};
     if (rd0) rd = *rd0;
     const scene *sc = it->sc;
     path_state ps = {it->has_lights ? it->nee : NEE_OFF, sc->lightsamples, 1, 1, 0};
     rgb L = rgb_gray(0), beta = rgb_gray(1);
+    scene_hit sh = *first;
     for (int bounce = 0;; bounce++) {
-        scene_hit sh;
-        integrator_intersect_diff(it, &r, &rd, &sh);
+        if (bounce > 0) integrator_intersect_diff(it, &r, &rd, &sh); /* the next vertex */
         if (sh.kind == SCENE_HIT_NOTHING)
             return rgb_fma(L, beta, escaped_radiance(it, &ps, r.d, bounce));
         if (sh.kind == SCENE_HIT_LIGHT)

@@ -13,6 +13,9 @@
 rgb analyticdirect_radiance(integrator *it, ray r, rng *g);
 /* ... with the camera ray's differentials (NULL: none), which filter the hit's textures. */
 rgb analyticdirect_radiance_diff(integrator *it, ray r, const ray_diff *rd, rng *g);
+/* ... from the camera ray's first hit sh, found already (integrator_scene_hit). */
+rgb analyticdirect_radiance_hit(integrator *it, ray r, const ray_diff *rd, const scene_hit *sh,
+                                rng *g);
 
 /* Phi(p) of quad light l's whole parallelogram (unclipped: below p's horizon counts < 0). */
 vec3 analyticdirect_irradiance_vector(const scene_light *l, vec3 p);

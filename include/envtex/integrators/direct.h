@@ -12,6 +12,8 @@
 rgb direct_radiance(integrator *it, ray r, rng *g);
 /* ... with the camera ray's differentials (NULL: none), carried by mirrors and glass. */
 rgb direct_radiance_diff(integrator *it, ray r, const ray_diff *rd, rng *g);
+/* ... from the camera ray's first hit sh, found already (integrator_scene_hit). */
+rgb direct_radiance_hit(integrator *it, ray r, const ray_diff *rd, const scene_hit *sh, rng *g);
 
 /* The sum above without Le (0 at a mirror or glass, or without lights); each sample draws
  * four numbers from g: the selection's, then lights_sample's xi1, xi2, xi3. */

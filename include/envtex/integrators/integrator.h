@@ -73,6 +73,11 @@ void integrator_intersect(integrator *it, const ray *r, scene_hit *out);
 /* The same with differentials rd (NULL: none): the surface's footprint filters its maps. */
 void integrator_intersect_diff(integrator *it, const ray *r, const ray_diff *rd, scene_hit *out);
 
+/* The rest of integrator_intersect_diff, for a ray whose closest hit bvh_intersect (or
+ * bvh_intersect_packet) found already: got its return value, out->h the hit it filled. */
+void integrator_scene_hit(integrator *it, const ray *r, const ray_diff *rd, int got,
+                          scene_hit *out);
+
 /* 1 if geometry or a quad light (opaque from both sides) blocks the shadow ray. */
 int integrator_occluded(integrator *it, const ray *shadow);
 

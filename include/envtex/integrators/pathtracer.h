@@ -15,5 +15,7 @@
 rgb pathtracer_radiance(integrator *it, ray r, rng *g);
 /* ... with the camera ray's differentials (NULL: none), kept to the first non-delta bounce. */
 rgb pathtracer_radiance_diff(integrator *it, ray r, const ray_diff *rd, rng *g);
+/* ... from the camera ray's first hit sh, found already (integrator_scene_hit). */
+rgb pathtracer_radiance_hit(integrator *it, ray r, const ray_diff *rd, const scene_hit *sh, rng *g);
 
 #endif
