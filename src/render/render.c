@@ -6,6 +6,7 @@
 
 #include "envtex/integrators/analyticdirect.h"
 #include "envtex/geometry/bvh.h"
+#include "envtex/geometry/bvh_packet.h"
 #include "envtex/geometry/camera.h"
 #include "envtex/integrators/direct.h"
 #include "envtex/scene/displacemap.h"
@@ -24,6 +25,21 @@ rgb render_radiance_diff(integrator *it, ray r, const ray_diff *rd, rng *g)
     case INTEGRATOR_ANALYTICDIRECT: return analyticdirect_radiance_diff(it, r, rd, g);
     case INTEGRATOR_DIRECT: return direct_radiance_diff(it, r, rd, g);
     default: return pathtracer_radiance_diff(it, r, rd, g);
+    }
+}
+
+rgb render_radiance_hit(integrator *it, ray r, const ray_diff *rd, int got, const hit *h, rng *g)
+{
+    integrator_kind kind = it->sc->integrator;
+    if (kind == INTEGRATOR_RAYTRACER || kind == INTEGRATOR_PREFILTERED)
+        return raytracer_trace_hit(&it->rt, r, rd, got, h);
+    scene_hit sh;
+    if (got) sh.h = *h;
+    integrator_scene_hit(it, &r, rd, got, &sh);
+    switch (kind) {
+    case INTEGRATOR_ANALYTICDIRECT: return analyticdirect_radiance_hit(it, r, rd, &sh, g);
+    case INTEGRATOR_DIRECT: return direct_radiance_hit(it, r, rd, &sh, g);
+    default: return pathtracer_radiance_hit(it, r, rd, &sh, g);
     }
 }
 
@@ -142,57 +158,95 @@ typedef struct pixel_sampler {
     double diff_scale;
 } pixel_sampler;
 
-/* One camera sample through (x + jx, y + jy) of the image plane. */
-static rgb sample_radiance(integrator *it, const pixel_sampler *ps, double px, double py, rng *r)
+/* A tile of pixels: RENDER_TILE x RENDER_TILE (BVH_PACKET) at most, cut by the image's edge. */
+#define RENDER_TILE 4
+
+typedef struct tile {
+    int x0, y0, w, h;
+    rng r[BVH_PACKET];                    /* pixel i's random stream */
+    rgb mean[BVH_PACKET], m2[BVH_PACKET]; /* its samples' mean and sum of squared deviations */
+} tile;
+
+/* Sample v, the n-th, into the running mean and M2 (the sum of squared deviations). */
+static void welford_add(rgb *mean, rgb *m2, rgb v, int n)
 {
-    if (!ps->with_diff) return render_radiance(it, camera_ray(&ps->cam, px, py), r);
-    ray_diff rd;
-    ray cr = camera_ray_differential(&ps->cam, px, py, ps->diff_scale, &rd);
-    return render_radiance_diff(it, cr, &rd, r);
+    rgb d = rgb_make(v.r - mean->r, v.g - mean->g, v.b - mean->b);
+    rgb m = rgb_madd(*mean, d, 1.0 / n); /* mean += (v - mean) / n */
+    *m2 = rgb_add(*m2, rgb_make(d.r * (v.r - m.r), d.g * (v.g - m.g),
+                                d.b * (v.b - m.b))); /* M2 += (v - mean_old)(v - mean) */
+    *mean = m;
 }
 
-/* Pixel (x, y): the mean of its spp samples (the box filter), and in *m2 the sum of their
- * squared deviations, by Welford's running update in double.  Stream y * width + x of seed. */
-static rgb render_pixel(integrator *it, const pixel_sampler *ps, uint64_t seed, int x, int y,
-                        rgb *m2_out)
+/* Sample s of every pixel of t: the camera rays through (x + jx, y + jy), traced together
+ * (bvh_packet.h: the hits bvh_intersect would find), then each pixel's sample goes on through
+ * the integrator from its own hit, drawing from its own stream: the same numbers as pixel by
+ * pixel.  Welford's running update in double keeps each pixel's mean and M2. */
+static void tile_sample(integrator *it, const pixel_sampler *ps, tile *t, int s)
 {
-    rng r;
-    rng_seed(&r, seed, (uint64_t)y * (uint64_t)it->sc->width + (uint64_t)x);
-    rgb mean = rgb_gray(0), m2 = rgb_gray(0);
-    for (int s = 0; s < ps->spp; s++) {
+    int n = t->w * t->h, got[BVH_PACKET];
+    ray cr[BVH_PACKET];
+    ray_diff rd[BVH_PACKET];
+    hit hits[BVH_PACKET];
+    for (int i = 0; i < n; i++) {
         double jx = 0.5, jy = 0.5; /* one sample: the pixel's centre */
         if (ps->spp > 1) {
-            jx = rng_uniform(&r);
-            jy = rng_uniform(&r);
+            jx = rng_uniform(&t->r[i]);
+            jy = rng_uniform(&t->r[i]);
         }
-        rgb v = sample_radiance(it, ps, x + jx, y + jy, &r);
-        rgb d = rgb_make(v.r - mean.r, v.g - mean.g, v.b - mean.b);
-        mean = rgb_madd(mean, d, 1.0 / (s + 1)); /* mean += (v - mean) / n */
-        m2 = rgb_add(m2, rgb_make(d.r * (v.r - mean.r), d.g * (v.g - mean.g),
-                                  d.b * (v.b - mean.b))); /* M2 += (v - mean_old)(v - mean) */
+        double px = t->x0 + i % t->w + jx, py = t->y0 + i / t->w + jy;
+        cr[i] = ps->with_diff ? camera_ray_differential(&ps->cam, px, py, ps->diff_scale, &rd[i])
+                              : camera_ray(&ps->cam, px, py);
     }
-    *m2_out = m2;
-    return mean;
+    bvh_intersect_packet(it->accel, cr, n, got, hits);
+    for (int i = 0; i < n; i++) {
+        const ray_diff *rdi = ps->with_diff ? &rd[i] : NULL;
+        rgb v = render_radiance_hit(it, cr[i], rdi, got[i], &hits[i], &t->r[i]);
+        welford_add(&t->mean[i], &t->m2[i], v, s + 1);
+    }
 }
 
-/* Every pixel into out (and the variance of its mean into opts->variance). */
+/* The tile's pixels: the mean of each one's spp samples (the box filter) into out, and the
+ * variance of that mean, M2 / (n - 1) / n, into opts->variance.  Pixel (x, y) draws from
+ * stream y * width + x of the seed. */
+static void render_tile(integrator *it, const pixel_sampler *ps, const render_opts *opts, tile *t,
+                        image *out, render_stats *stats)
+{
+    int n = t->w * t->h, spp = ps->spp;
+    for (int i = 0; i < n; i++) {
+        uint64_t x = (uint64_t)(t->x0 + i % t->w), y = (uint64_t)(t->y0 + i / t->w);
+        rng_seed(&t->r[i], opts->seed, y * (uint64_t)it->sc->width + x);
+        t->mean[i] = t->m2[i] = rgb_gray(0);
+    }
+    for (int s = 0; s < spp; s++) tile_sample(it, ps, t, s);
+    for (int i = 0; i < n; i++) {
+        int x = t->x0 + i % t->w, y = t->y0 + i / t->w;
+        if (opts->variance) {
+            image_set(opts->variance, x, y, rgb_scale(t->m2[i], 1.0 / ((double)(spp - 1) * spp)));
+            stats->nonfinite_variance += !image_px_is_finite(image_px(opts->variance, x, y));
+        }
+        image_set(out, x, y, t->mean[i]);
+        /* counted as stored: a finite double above FLT_MAX becomes Inf in the float image */
+        stats->nonfinite_pixels += !image_px_is_finite(image_px(out, x, y));
+    }
+}
+
+/* Every pixel into out (and the variance of its mean into opts->variance), a row of tiles at
+ * a time. */
 static void render_pixels(integrator *it, const pixel_sampler *ps, const render_opts *opts,
                           image *out, render_stats *stats)
 {
-    int w = it->sc->width, h = it->sc->height, spp = ps->spp;
-    for (int y = 0; y < h; y++) {
-        for (int x = 0; x < w; x++) {
-            rgb m2;
-            rgb c = render_pixel(it, ps, opts->seed, x, y, &m2);
-            if (opts->variance) { /* variance of the mean: M2 / (n - 1) / n */
-                image_set(opts->variance, x, y, rgb_scale(m2, 1.0 / ((double)(spp - 1) * spp)));
-                stats->nonfinite_variance += !image_px_is_finite(image_px(opts->variance, x, y));
-            }
-            image_set(out, x, y, c);
-            /* counted as stored: a finite double above FLT_MAX becomes Inf in the float image */
-            stats->nonfinite_pixels += !image_px_is_finite(image_px(out, x, y));
+    int w = it->sc->width, h = it->sc->height;
+    tile t;
+    for (int y = 0; y < h; y += RENDER_TILE) {
+        for (int x = 0; x < w; x += RENDER_TILE) {
+            t.x0 = x;
+            t.y0 = y;
+            t.w = w - x < RENDER_TILE ? w - x : RENDER_TILE;
+            t.h = h - y < RENDER_TILE ? h - y : RENDER_TILE;
+            render_tile(it, ps, opts, &t, out, stats);
         }
-        if (opts->progress) opts->progress(opts->progress_ctx, y + 1, h);
+        for (int row = y; row < y + t.h; row++)
+            if (opts->progress) opts->progress(opts->progress_ctx, row + 1, h);
     }
 }
 

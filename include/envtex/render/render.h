@@ -81,4 +81,8 @@ rgb render_radiance(integrator *it, ray r, rng *g);
 /* The same with the camera ray's differentials (NULL: none), for texture filtering. */
 rgb render_radiance_diff(integrator *it, ray r, const ray_diff *rd, rng *g);
 
+/* The same from the camera ray's closest hit, found already: got and *h as bvh_intersect (or
+ * bvh_intersect_packet) returns and fills them. */
+rgb render_radiance_hit(integrator *it, ray r, const ray_diff *rd, int got, const hit *h, rng *g);
+
 #endif
