@@ -6,12 +6,14 @@
 The scene is a stand-in for the course's hw4 dragon: gen_mesh's displaced sphere (about 100k
 triangles, written as OBJ here, at bench time), two quad lights, 1280 x 960 pixels, one primary
 ray a pixel.  envtex casts them through its integrator (bench_bvh primary: the scene's BVH and
-its quad lights); Mitsuba renders the same camera, mesh and two rectangles at 1 sample a pixel
+its quad lights), sixteen at a time as its renders do (bvh_packet.h), and one at a time; Mitsuba
+renders the same camera, mesh and two rectangles at 1 sample a pixel
 in llvm_ad_rgb, limited to one thread (Embree, ray wavefronts), with its `aov` integrator (depth
 only) and its `path` integrator at max_depth 1 (the emission seen), and in scalar_rgb (aov).
 Each renderer runs in a process of its own, all of them interleaved round by round; each time
-is the CPU time of that process (all its threads), so a busy machine slows every one alike.  Prints Mrays per CPU-second, medians over the rounds, and
-envtex's ratio to each Mitsuba variant round by round.  Exits 0 with a note when Mitsuba 3 is
+is the CPU time of that process (all its threads), so a busy machine slows every one alike.
+Prints Mrays per CPU-second, medians over the rounds, and envtex's ratio to each Mitsuba variant
+round by round.  Exits 0 with a note when Mitsuba 3 is
 not importable (pip install mitsuba).
 """
 import glob
@@ -110,12 +112,13 @@ def main():
                                    stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
                for v in variants}
     rays = W * H / 1e6
-    rates = {"envtex": [], **{v: [] for v in variants}}
+    rates = {"envtex": [], "envtex1": [], **{v: [] for v in variants}}
     for _ in range(rounds):
         out = subprocess.run([os.path.join(build, "tools", "bench_bvh"), "primary", scene, "1"],
                              check=True, capture_output=True, text=True).stdout
-        cpu = float(re.search(r"\bcpu_s=([0-9.]+)", out.splitlines()[-1]).group(1))
-        rates["envtex"].append(rays / cpu)
+        last = out.splitlines()[-1]
+        rates["envtex"].append(rays / float(re.search(r"\bcpu_s=([0-9.]+)", last).group(1)))
+        rates["envtex1"].append(rays / float(re.search(r"single_cpu_s=([0-9.]+)", last).group(1)))
         for v, p in workers.items():
             p.stdin.write("go\n")
             p.stdin.flush()
@@ -125,16 +128,18 @@ def main():
         p.wait()
     print(f"primary rays, dragon stand-in ({W}x{H}, 99856 triangles, 2 quad lights), "
           f"Mrays per CPU-second, median of {rounds} interleaved rounds:")
-    label = {"envtex": "envtex", "llvm_ad_rgb:aov": "Mitsuba llvm_ad_rgb, 1 thread, aov",
+    label = {"envtex": "envtex, 16 rays at a time", "envtex1": "envtex, one ray at a time",
+             "llvm_ad_rgb:aov": "Mitsuba llvm_ad_rgb, 1 thread, aov",
              "llvm_ad_rgb:path": "Mitsuba llvm_ad_rgb, 1 thread, path",
              "scalar_rgb:aov": "Mitsuba scalar_rgb, aov"}
     for k, v in rates.items():
-        print(f"  {label[k]:32s} {statistics.median(v):7.3f}   rounds: "
+        print(f"  {label[k]:36s} {statistics.median(v):7.3f}   rounds: "
               + " ".join(f"{x:.3f}" for x in v))
-    for v in variants:
-        ratio = [a / b for a, b in zip(rates["envtex"], rates[v])]
-        print(f"  envtex / {v:16s} median {statistics.median(ratio):.3f}   rounds: "
-              + " ".join(f"{x:.3f}" for x in ratio))
+    for mine in ("envtex", "envtex1"):
+        for v in variants:
+            ratio = [a / b for a, b in zip(rates[mine], rates[v])]
+            print(f"  {mine:7s} / {v:16s} median {statistics.median(ratio):.3f}   rounds: "
+                  + " ".join(f"{x:.3f}" for x in ratio))
     return 0
 
 

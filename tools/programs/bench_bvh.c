@@ -1,7 +1,9 @@
 /* bench_bvh - ray-tracing throughput of the BVH, in CPU time (the machines are shared).
  *
  *     bench_bvh primary SCENE [ROUNDS]   primary rays of SCENE (one a pixel, through the
- *                                        integrator: the scene's BVH with its quad lights)
+ *                                        integrator: the scene's BVH with its quad lights),
+ *                                        traced as renders trace them, sixteen at a time
+ *                                        (cpu_s), and one at a time (single_cpu_s)
  *     bench_bvh mesh sphere|soup N       build time, memory and closest-hit rays of a mesh of
  *                                        about N triangles made in memory
  *
@@ -17,6 +19,7 @@
 #include <time.h>
 
 #include "envtex/geometry/bvh.h"
+#include "envtex/geometry/bvh_packet.h"
 #include "envtex/integrators/integrator.h"
 #include "envtex/core/rng.h"
 #include "envtex/geometry/camera.h"
@@ -34,6 +37,44 @@ static double heap_bytes(void)
 {
     struct mallinfo2 m = mallinfo2();
     return (double)m.uordblks + (double)m.hblkhd;
+}
+
+/* Every pixel's camera ray through the integrator as render.c traces them: 4 x 4 pixels at a
+ * time, their closest hits found together, then each made a scene_hit.  Returns the hits. */
+static long primary_packets(integrator *it, const camera *cam, int w, int h)
+{
+    long hits = 0;
+    for (int y0 = 0; y0 < h; y0 += 4)
+        for (int x0 = 0; x0 < w; x0 += 4) {
+            int tw = w - x0 < 4 ? w - x0 : 4, th = h - y0 < 4 ? h - y0 : 4, n = tw * th;
+            ray r[BVH_PACKET];
+            int got[BVH_PACKET];
+            hit ht[BVH_PACKET];
+            for (int i = 0; i < n; i++)
+                r[i] = camera_ray(cam, x0 + i % tw + 0.5, y0 + i / tw + 0.5);
+            bvh_intersect_packet(it->accel, r, n, got, ht);
+            for (int i = 0; i < n; i++) {
+                scene_hit sh;
+                if (got[i]) sh.h = ht[i];
+                integrator_scene_hit(it, &r[i], NULL, got[i], &sh);
+                hits += sh.kind != SCENE_HIT_NOTHING;
+            }
+        }
+    return hits;
+}
+
+/* The same one ray at a time (integrator_intersect). */
+static long primary_single(integrator *it, const camera *cam, int w, int h)
+{
+    long hits = 0;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            ray r = camera_ray(cam, x + 0.5, y + 0.5);
+            scene_hit sh;
+            integrator_intersect(it, &r, &sh);
+            hits += sh.kind != SCENE_HIT_NOTHING;
+        }
+    return hits;
 }
 
 static int primary(const char *path, int rounds)
@@ -55,20 +96,15 @@ static int primary(const char *path, int rounds)
     printf("scene=%s triangles=%ld build_cpu_s=%.3f\n", path, sc.n_triangles, cpu_seconds() - t0);
     camera cam;
     camera_init(&cam, sc.eye, sc.center, sc.up, sc.fovy, sc.width, sc.height);
-    long hits = 0;
-    for (int k = 0; k < rounds; k++) {
+    for (int k = 0; k < rounds; k++) { /* the two ways, interleaved */
         double t1 = cpu_seconds();
-        for (int y = 0; y < sc.height; y++)
-            for (int x = 0; x < sc.width; x++) {
-                ray r = camera_ray(&cam, x + 0.5, y + 0.5);
-                scene_hit h;
-                integrator_intersect(&it, &r, &h);
-                hits += h.kind != 0;
-            }
-        double s = cpu_seconds() - t1, rays = (double)sc.width * sc.height;
-        printf("round=%d rays=%.0f cpu_s=%.4f mrays_per_cpu_s=%.3f hits=%ld\n", k + 1, rays, s,
-               rays / s * 1e-6, hits);
-        hits = 0;
+        long hits = primary_packets(&it, &cam, sc.width, sc.height);
+        double t2 = cpu_seconds();
+        long hits1 = primary_single(&it, &cam, sc.width, sc.height);
+        double s = t2 - t1, s1 = cpu_seconds() - t2, rays = (double)sc.width * sc.height;
+        printf("round=%d rays=%.0f hits=%ld single_hits=%ld single_cpu_s=%.4f "
+               "single_mrays_per_cpu_s=%.3f cpu_s=%.4f mrays_per_cpu_s=%.3f\n",
+               k + 1, rays, hits, hits1, s1, rays / s1 * 1e-6, s, rays / s * 1e-6);
     }
     integrator_free(&it);
     bvh_free(&accel);
