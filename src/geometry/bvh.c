@@ -191,15 +191,6 @@ double bvh_bytes(long n, double *scratch)
     return (double)max_nodes * sizeof(bvh_node) + (double)m * (sizeof(uint32_t) + sizeof(bvh_tri));
 }
 
-static void store_tri(bvh_tri *t, vec3 p0, vec3 e1, vec3 e2)
-{
-    for (int a = 0; a < 3; a++) {
-        t->p0[a] = (float)vec3_get(p0, a);
-        t->e1[a] = (float)vec3_get(e1, a);
-        t->e2[a] = (float)vec3_get(e2, a);
-    }
-}
-
 /* The primitives' padded float boxes, in id order. */
 static void prim_boxes(const bvh *b, build_prim *bp)
 {
@@ -223,18 +214,24 @@ static void prim_boxes(const bvh *b, build_prim *bp)
     }
 }
 
-/* The float triangles and quads in leaf order (spheres' slots stay unused). */
+/* The float triangles and quads in leaf order (spheres' slots stay unused): p0, e1, e2. */
 static void leaf_tris(bvh *b)
 {
     for (long i = 0; i < b->n_prims; i++) {
         uint32_t id = b->prims[i];
         if (id < b->n_spheres) continue;
+        vec3 v[3];
         if (id < b->n_surfaces) {
             const vec3 *p = b->prims_of.triangles[id - b->n_spheres].p;
-            store_tri(&b->tris[i], p[0], vec3_sub(p[1], p[0]), vec3_sub(p[2], p[0]));
+            v[0] = p[0], v[1] = vec3_sub(p[1], p[0]), v[2] = vec3_sub(p[2], p[0]);
         } else {
             const bvh_quad *q = &b->quads[id - b->n_surfaces];
-            store_tri(&b->tris[i], q->a, q->ab, q->ac);
+            v[0] = q->a, v[1] = q->ab, v[2] = q->ac;
+        }
+        for (int a = 0; a < 3; a++) {
+            b->tris[i].p0[a] = (float)vec3_get(v[0], a);
+            b->tris[i].e1[a] = (float)vec3_get(v[1], a);
+            b->tris[i].e2[a] = (float)vec3_get(v[2], a);
         }
     }
 }
@@ -385,22 +382,14 @@ static inline int tri_maybe(const bvh_tri *t, const fray *f, float tmax, int qua
     return tt <= tmax + fabsf(tt) * BVH_FILTER_EPS; /* no lower bound: the double test's */
 }
 
-/* The double test of quad q: its two triangles (a, a+ab, a+ab+ac) and (a, a+ab+ac, a+ac). */
-static int quad_intersect(const bvh_quad *q, const ray *r, double *t)
-{
-    vec3 b = vec3_add(q->a, q->ab), c = vec3_add(b, q->ac), d = vec3_add(q->a, q->ac);
-    double b1, b2;
-    ray rr = *r;
-    int h = triangle_intersect(q->a, b, c, &rr, t, &b1, &b2);
-    if (h) rr.tmax = *t;
-    return triangle_intersect(q->a, c, d, &rr, t, &b1, &b2) || h;
-}
-
 int bvh_prim_hit(const bvh *b, uint32_t id, const ray *r, double *t, double *b1, double *b2)
 {
     *b1 = *b2 = 0;
     if (id < b->n_spheres) return sphere_intersect(&b->prims_of.spheres[id], r, t);
-    if (id >= b->n_surfaces) return quad_intersect(&b->quads[id - b->n_surfaces], r, t);
+    if (id >= b->n_surfaces) {
+        const bvh_quad *q = &b->quads[id - b->n_surfaces];
+        return triangle_intersect_parallelogram(q->a, q->ab, q->ac, r, t);
+    }
     const vec3 *p = b->prims_of.triangles[id - b->n_spheres].p;
     return triangle_intersect(p[0], p[1], p[2], r, t, b1, b2);
 }
@@ -483,21 +472,7 @@ int bvh_hit_of(const bvh *b, const ray *r, const best_hit *bh, hit *h)
         return BVH_SURFACE;
     }
     const triangle *tr = &b->prims_of.triangles[bh->id - b->n_spheres];
-    double b1 = bh->b1, b2 = bh->b2, b0 = 1 - b1 - b2;
-    /* p = b0 p0 + b1 p1 + b2 p2 : the barycentric interpolation of the lecture */
-    h->p = vec3_add(vec3_add(vec3_scale(tr->p[0], b0), vec3_scale(tr->p[1], b1)),
-                    vec3_scale(tr->p[2], b2));
-    h->ng = vec3_normalize(vec3_cross(vec3_sub(tr->p[1], tr->p[0]), vec3_sub(tr->p[2], tr->p[0])));
-    if (tr->has_normals) {
-        vec3 n = vec3_add(vec3_add(vec3_scale(tr->n[0], b0), vec3_scale(tr->n[1], b1)),
-                          vec3_scale(tr->n[2], b2));
-        h->ns = vec3_normalize(n);
-        /* the given normals define the outside: turn the winding's normal to agree with them */
-        if (vec3_dot(h->ns, h->ng) < 0) h->ng = vec3_neg(h->ng);
-    } else {
-        h->ns = h->ng;
-    }
-    h->bary = (uv2){b1, b2};
+    triangle_hit(tr, bh->b1, bh->b2, h);
     h->prim = bh->id - b->n_spheres;
     h->is_sphere = 0;
     h->material = tr->material;

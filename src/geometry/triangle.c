@@ -32,3 +32,32 @@ int triangle_intersect(vec3 p0, vec3 p1, vec3 p2, const ray *r, double *t_out, d
     *b2_out = b2;
     return 1;
 }
+
+int triangle_intersect_parallelogram(vec3 a, vec3 ab, vec3 ac, const ray *r, double *t)
+{
+    vec3 b = vec3_add(a, ab), c = vec3_add(b, ac), d = vec3_add(a, ac);
+    double b1, b2;
+    ray rr = *r;
+    int h = triangle_intersect(a, b, c, &rr, t, &b1, &b2); /* (a, a+ab, a+ab+ac) */
+    if (h) rr.tmax = *t;
+    return triangle_intersect(a, c, d, &rr, t, &b1, &b2) || h; /* (a, a+ab+ac, a+ac) */
+}
+
+void triangle_hit(const triangle *tr, double b1, double b2, hit *h)
+{
+    double b0 = 1 - b1 - b2;
+    /* p = b0 p0 + b1 p1 + b2 p2 : the barycentric interpolation of the lecture */
+    h->p = vec3_add(vec3_add(vec3_scale(tr->p[0], b0), vec3_scale(tr->p[1], b1)),
+                    vec3_scale(tr->p[2], b2));
+    h->ng = vec3_normalize(vec3_cross(vec3_sub(tr->p[1], tr->p[0]), vec3_sub(tr->p[2], tr->p[0])));
+    if (tr->has_normals) {
+        vec3 n = vec3_add(vec3_add(vec3_scale(tr->n[0], b0), vec3_scale(tr->n[1], b1)),
+                          vec3_scale(tr->n[2], b2));
+        h->ns = vec3_normalize(n);
+        /* the given normals define the outside: turn the winding's normal to agree with them */
+        if (vec3_dot(h->ns, h->ng) < 0) h->ng = vec3_neg(h->ng);
+    } else {
+        h->ns = h->ng;
+    }
+    h->bary = (uv2){b1, b2};
+}

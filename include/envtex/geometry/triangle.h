@@ -38,4 +38,11 @@ typedef struct triangle {
 /* 1 if the ray meets the triangle at t in (r->tmin, r->tmax); b1, b2: the weights of p1, p2. */
 int triangle_intersect(vec3 p0, vec3 p1, vec3 p2, const ray *r, double *t, double *b1, double *b2);
 
+/* The same for the parallelogram a, a+ab, a+ab+ac, a+ac, as its two triangles: 1 and *t. */
+int triangle_intersect_parallelogram(vec3 a, vec3 ab, vec3 ac, const ray *r, double *t);
+
+/* h->p, h->ng (unit, from the winding, turned to agree with given normals), h->ns (the unit
+ * interpolated normal, or ng) and h->bary of the hit at barycentrics (b1, b2). */
+void triangle_hit(const triangle *tr, double b1, double b2, hit *h);
+
 #endif
