@@ -21,8 +21,8 @@ typedef struct build_prim { /* a primitive's box and its centre */
 
 typedef struct builder {
     bvh *b;
-    build_prim *bp;
-    uint32_t *ids; /* the leaf order, permuted in place as the build partitions */
+    build_prim *bp; /* bp[i]: primitive ids[i]'s (moved with it: the passes read in order) */
+    uint32_t *ids;  /* the leaf order, permuted in place as the build partitions */
 } builder;
 
 /* From this depth on, a node is split in half by count instead of by the SAH: the 22 levels
@@ -34,12 +34,14 @@ static box box_empty(void)
     return (box){{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
 }
 
+static float min_f(float a, float b) { return a < b ? a : b; }
+static float max_f(float a, float b) { return a > b ? a : b; }
+
 static void box_grow(box *b, const float lo[3], const float hi[3])
 {
-    for (int a = 0; a < 3; a++) {
-        b->lo[a] = lo[a] < b->lo[a] ? lo[a] : b->lo[a];
-        b->hi[a] = hi[a] > b->hi[a] ? hi[a] : b->hi[a];
-    }
+    b->lo[0] = min_f(lo[0], b->lo[0]), b->hi[0] = max_f(hi[0], b->hi[0]);
+    b->lo[1] = min_f(lo[1], b->lo[1]), b->hi[1] = max_f(hi[1], b->hi[1]);
+    b->lo[2] = min_f(lo[2], b->lo[2]), b->hi[2] = max_f(hi[2], b->hi[2]);
 }
 
 static double box_area(const box *b)
@@ -70,45 +72,75 @@ static int bin_of(float c, double cmin, double k)
     return j < 0 ? 0 : j >= BVH_BINS ? BVH_BINS - 1 : j;
 }
 
+/* Primitives ids[first, first + count): the box around them, and the box of their centres. */
+typedef struct span {
+    long first, count;
+    box bb, cb;
+} span;
+
+static span span_of(const builder *bd, long first, long count)
+{
+    span s = {first, count, box_empty(), box_empty()};
+    for (long i = first; i < first + count; i++) {
+        const build_prim *p = &bd->bp[i];
+        box_grow(&s.bb, p->b.lo, p->b.hi);
+        box_grow(&s.cb, p->c, p->c);
+    }
+    return s;
+}
+
 typedef struct split {
     int axis, bin; /* bins 0..bin go to the first child; axis -1: no split */
     double cost;   /* C_trav A + A_1 N_1 + A_2 N_2 (A: areas, N: counts) */
 } split;
 
-/* The binned SAH's best split of ids[first, first + count), whose centres span cb. */
-static split find_split(const builder *bd, long first, long count, const box *cb, double area)
+/* The binned SAH's best split of span s (area: of its box), the three axes binned together. */
+static split find_split(const builder *bd, const span *s, double area)
 {
     split best = {-1, -1, INFINITY};
+    double cmin[3], k[3];
+    long n[3][BVH_BINS] = {{0}};
+    box bins[3][BVH_BINS];
     for (int axis = 0; axis < 3; axis++) {
-        double cmin = cb->lo[axis], cmax = cb->hi[axis];
-        if (!(cmax > cmin)) continue;
-        double k = BVH_BINS * (1 - 1e-9) / (cmax - cmin);
-        long n[BVH_BINS] = {0};
-        box bins[BVH_BINS];
-        for (int j = 0; j < BVH_BINS; j++) bins[j] = box_empty();
-        for (long i = first; i < first + count; i++) {
-            const build_prim *p = &bd->bp[bd->ids[i]];
-            int j = bin_of(p->c[axis], cmin, k);
-            n[j]++;
-            box_grow(&bins[j], p->b.lo, p->b.hi);
+        cmin[axis] = s->cb.lo[axis];
+        double extent = s->cb.hi[axis] - cmin[axis]; /* k = 0: the centres share this axis */
+        k[axis] = extent > 0 ? BVH_BINS * (1 - 1e-9) / extent : 0;
+        for (int j = 0; j < BVH_BINS; j++) bins[axis][j] = box_empty();
+    }
+    for (long i = s->first; i < s->first + s->count; i++) {
+        const build_prim *p = &bd->bp[i];
+        for (int axis = 0; axis < 3; axis++) {
+            if (k[axis] == 0) continue;
+            int j = bin_of(p->c[axis], cmin[axis], k[axis]);
+            n[axis][j]++;
+            box_grow(&bins[axis][j], p->b.lo, p->b.hi);
         }
+    }
+    for (int axis = 0; axis < 3; axis++) {
+        if (k[axis] == 0) continue;
         /* sweep: the second child's areas and counts from the top, then the first's */
         double area2[BVH_BINS];
         long n2[BVH_BINS];
         box acc = box_empty();
         long m = 0;
+        double a2 = 0;
         for (int j = BVH_BINS - 1; j > 0; j--) {
-            box_grow(&acc, bins[j].lo, bins[j].hi);
-            m += n[j];
-            area2[j] = box_area(&acc);
+            if (n[axis][j]) { /* (an empty bin changes nothing) */
+                box_grow(&acc, bins[axis][j].lo, bins[axis][j].hi);
+                m += n[axis][j];
+                a2 = box_area(&acc);
+            }
+            area2[j] = a2;
             n2[j] = m;
         }
         acc = box_empty();
         m = 0;
         for (int j = 0; j < BVH_BINS - 1; j++) {
-            box_grow(&acc, bins[j].lo, bins[j].hi);
-            m += n[j];
-            if (m == 0 || n2[j + 1] == 0) continue;
+            /* after an empty bin the split is the one before it, whose equal cost won */
+            if (n[axis][j] == 0) continue;
+            box_grow(&acc, bins[axis][j].lo, bins[axis][j].hi);
+            m += n[axis][j];
+            if (n2[j + 1] == 0) continue;
             double cost = BVH_TRAVERSAL_COST * area + box_area(&acc) * (double)m +
                           area2[j + 1] * (double)n2[j + 1];
             if (cost < best.cost) best = (split){axis, j, cost};
@@ -117,61 +149,65 @@ static split find_split(const builder *bd, long first, long count, const box *cb
     return best;
 }
 
-/* Move the primitives of bins 0..s.bin to the front; returns how many they are. */
-static long partition(builder *bd, long first, long count, split s, const box *cb)
+/* Span s cut by split sp: the primitives of bins 0..sp.bin moved to the front, into *left,
+ * the others into *right, each with its bounds. */
+static void partition(builder *bd, const span *s, split sp, span *left, span *right)
 {
-    double cmin = cb->lo[s.axis], k = BVH_BINS * (1 - 1e-9) / ((double)cb->hi[s.axis] - cmin);
-    long i = first, j = first + count - 1;
+    double cmin = s->cb.lo[sp.axis], k = BVH_BINS * (1 - 1e-9) / ((double)s->cb.hi[sp.axis] - cmin);
+    *left = (span){s->first, 0, box_empty(), box_empty()};
+    *right = *left;
+    long i = s->first, j = s->first + s->count - 1;
     while (i <= j) {
-        if (bin_of(bd->bp[bd->ids[i]].c[s.axis], cmin, k) <= s.bin)
+        const build_prim *p = &bd->bp[i];
+        span *side = bin_of(p->c[sp.axis], cmin, k) <= sp.bin ? left : right;
+        box_grow(&side->bb, p->b.lo, p->b.hi);
+        box_grow(&side->cb, p->c, p->c);
+        if (side == left) {
             i++;
-        else {
+        } else {
             uint32_t t = bd->ids[i];
-            bd->ids[i] = bd->ids[j];
-            bd->ids[j--] = t;
+            build_prim q = bd->bp[i];
+            bd->ids[i] = bd->ids[j], bd->bp[i] = bd->bp[j];
+            bd->ids[j] = t, bd->bp[j--] = q;
         }
     }
-    return i - first;
+    left->count = i - s->first;
+    right->first = i;
+    right->count = s->count - left->count;
 }
 
-/* Node `node` over ids[first, first + count) and, unless it is a leaf, its subtree.  The SAH
- * decides: a leaf when it holds at most BVH_LEAF_MAX and costs no more than its best split. */
-static int build_rec(builder *bd, long node, long first, long count, int depth)
+/* Node `node` over span s and, unless it is a leaf, its subtree.  The SAH decides: a leaf
+ * when it holds at most BVH_LEAF_MAX and costs no more than its best split. */
+static int build_rec(builder *bd, long node, const span *s, int depth)
 {
-    box bb = box_empty(), cb = box_empty();
-    for (long i = first; i < first + count; i++) {
-        const build_prim *p = &bd->bp[bd->ids[i]];
-        box_grow(&bb, p->b.lo, p->b.hi);
-        box_grow(&cb, p->c, p->c);
-    }
     bvh_node *nd = &bd->b->nodes[node];
-    memcpy(nd->box[0], bb.lo, sizeof bb.lo);
-    memcpy(nd->box[1], bb.hi, sizeof bb.hi);
+    memcpy(nd->box[0], s->bb.lo, sizeof s->bb.lo);
+    memcpy(nd->box[1], s->bb.hi, sizeof s->bb.hi);
     if (depth + 1 > bd->b->depth) bd->b->depth = depth + 1;
-    long n1 = 0;
+    span kids[2] = {{0}, {0}};
     int axis = 0;
-    if (count > 1 && depth < BVH_MAX_DEPTH - 2) {
-        double area = box_area(&bb);
-        split s =
-            depth < BVH_HALVE_DEPTH ? find_split(bd, first, count, &cb, area) : (split){-1, 0, 0};
-        if (count <= BVH_LEAF_MAX && !(s.cost < area * (double)count)) s.axis = -2; /* a leaf */
-        if (s.axis >= 0) {
-            n1 = partition(bd, first, count, s, &cb);
-            axis = s.axis;
+    if (s->count > 1 && depth < BVH_MAX_DEPTH - 2) {
+        double area = box_area(&s->bb);
+        split sp = depth < BVH_HALVE_DEPTH ? find_split(bd, s, area) : (split){-1, 0, 0};
+        if (s->count <= BVH_LEAF_MAX && !(sp.cost < area * (double)s->count)) sp.axis = -2;
+        if (sp.axis >= 0) {
+            partition(bd, s, sp, &kids[0], &kids[1]);
+            axis = sp.axis;
+        } else if (sp.axis == -1 && s->count > BVH_LEAF_MAX) { /* no split: halves by count */
+            kids[0] = span_of(bd, s->first, s->count / 2);
+            kids[1] = span_of(bd, s->first + s->count / 2, s->count - s->count / 2);
         }
-        if (s.axis != -2 && (n1 == 0 || n1 == count)) n1 = count > BVH_LEAF_MAX ? count / 2 : 0;
     }
-    if (n1 == 0) {
-        if (count > UINT16_MAX) return -1; /* the depth limit with that many left: no leaf fits */
-        nd->offset = (int32_t)first;
-        nd->count = (uint16_t)count;
+    if (kids[0].count == 0) {
+        if (s->count > UINT16_MAX) return -1; /* the depth limit with that many left: no leaf */
+        nd->offset = (int32_t)s->first;
+        nd->count = (uint16_t)s->count;
         nd->axis = 0;
         return 0;
     }
-    long second;
-    if (build_rec(bd, bd->b->n_nodes++, first, n1, depth + 1)) return -1;
-    second = bd->b->n_nodes++;
-    if (build_rec(bd, second, first + n1, count - n1, depth + 1)) return -1;
+    if (build_rec(bd, bd->b->n_nodes++, &kids[0], depth + 1)) return -1;
+    long second = bd->b->n_nodes++;
+    if (build_rec(bd, second, &kids[1], depth + 1)) return -1;
     nd = &bd->b->nodes[node]; /* (the array does not move: reserved up front) */
     nd->offset = (int32_t)second;
     nd->count = 0;
@@ -266,7 +302,8 @@ int bvh_build(bvh *b, bvh_prims prims, budget *mem, error *err)
     b->is_tree = n > BVH_MIN_PRIMS;
     if (b->is_tree) {
         builder bd = {b, bp, b->prims};
-        if (build_rec(&bd, 0, 0, n, 0)) goto done;
+        span all = span_of(&bd, 0, n);
+        if (build_rec(&bd, 0, &all, 0)) goto done;
     } else { /* one leaf, no tree (its box, never tested, is all space) */
         bvh_node *all = &b->nodes[0];
         for (int a = 0; a < 3; a++) all->box[0][a] = -INFINITY, all->box[1][a] = INFINITY;
