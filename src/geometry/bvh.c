@@ -419,7 +419,9 @@ static inline int tri_maybe(const bvh_tri *t, const fray *f, float tmax, int qua
     return tt <= tmax + fabsf(tt) * BVH_FILTER_EPS; /* no lower bound: the double test's */
 }
 
-int bvh_prim_hit(const bvh *b, uint32_t id, const ray *r, double *t, double *b1, double *b2)
+/* bvh_prim_hit, inlined in this file's leaf loop */
+static inline int prim_hit(const bvh *b, uint32_t id, const ray *r, double *t, double *b1,
+                           double *b2)
 {
     *b1 = *b2 = 0;
     if (id < b->n_spheres) return sphere_intersect(&b->prims_of.spheres[id], r, t);
@@ -429,6 +431,11 @@ int bvh_prim_hit(const bvh *b, uint32_t id, const ray *r, double *t, double *b1,
     }
     const vec3 *p = b->prims_of.triangles[id - b->n_spheres].p;
     return triangle_intersect(p[0], p[1], p[2], r, t, b1, b2);
+}
+
+int bvh_prim_hit(const bvh *b, uint32_t id, const ray *r, double *t, double *b1, double *b2)
+{
+    return prim_hit(b, id, r, t, b1, b2);
 }
 
 /* The primitives prims[first .. first + count) against ray *r: each hit shrinks r->tmax (and
@@ -442,7 +449,7 @@ static int leaf_hits(const bvh *b, const fray *f, ray *r, float *tmax_f, long fi
         double t, b1, b2;
         if (id >= b->n_spheres && !tri_maybe(&b->tris[i], f, *tmax_f, id >= b->n_surfaces))
             continue; /* the float filter: the double test cannot hit */
-        if (!bvh_prim_hit(b, id, r, &t, &b1, &b2)) continue;
+        if (!prim_hit(b, id, r, &t, &b1, &b2)) continue;
         if (any) return 1;
         found = 1;
         r->tmax = t; /* closest so far: shrink the ray */
