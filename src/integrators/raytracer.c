@@ -78,21 +78,23 @@ static rgb miss(raytracer *rt, vec3 d, int depth)
     /* END STEP(reflection) */
 }
 
-static rgb shade(raytracer *rt, ray r, const ray_diff *rd, int depth, double weight, int got,
-                 hit h);
+static rgb shade(raytracer *rt, ray r, const ray_diff *rd, int depth, double weight,
+                 const hit *found);
 
 static rgb trace(raytracer *rt, ray r, const ray_diff *rd, int depth, double weight)
 {
     hit h;
     int got = bvh_intersect(rt->accel, &r, &h);
-    return shade(rt, r, rd, depth, weight, got, h);
+    return shade(rt, r, rd, depth, weight, got ? &h : NULL);
 }
 
-/* What ray r sees at its closest hit h (got: bvh_intersect's answer), at depth `depth`. */
-static rgb shade(raytracer *rt, ray r, const ray_diff *rd, int depth, double weight, int got, hit h)
+/* What ray r sees at its closest hit, found (NULL: it missed), at depth `depth`. */
+static rgb shade(raytracer *rt, ray r, const ray_diff *rd, int depth, double weight,
+                 const hit *found)
 {
     rt->rays++;
-    if (!got) return miss(rt, r.d, depth);
+    if (!found) return miss(rt, r.d, depth);
+    const hit h = *found;
     const material *m = &rt->sc->materials[h.material];
     vec3 d = vec3_normalize(r.d), view = vec3_neg(d);
     int outside = vec3_dot(d, h.ng) < 0;
@@ -164,5 +166,5 @@ rgb raytracer_trace_diff(raytracer *rt, ray r, const ray_diff *rd)
 
 rgb raytracer_trace_hit(raytracer *rt, ray r, const ray_diff *rd, int got, const hit *h)
 {
-    return shade(rt, r, rd, 0, 1.0, got, got ? *h : (hit){0});
+    return shade(rt, r, rd, 0, 1.0, got ? h : NULL);
 }
