@@ -1,4 +1,4 @@
-/* bvh_packet.c - camera rays traced sixteen at a time (see include/envtex/geometry/bvh_packet.h).
+/* bvh_packet.c - camera rays traced a packet at a time (see include/envtex/geometry/bvh_packet.h).
  *
  * The tree is bvh.c's and so is the order: depth first, the near child first by the sign of the
  * direction on the split axis, which all the packet's rays share.  An inner node is tested once

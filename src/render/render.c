@@ -158,8 +158,9 @@ typedef struct pixel_sampler {
     double diff_scale;
 } pixel_sampler;
 
-/* A tile of pixels: RENDER_TILE x RENDER_TILE (BVH_PACKET) at most, cut by the image's edge. */
-#define RENDER_TILE 4
+_Static_assert(RENDER_TILE *RENDER_TILE <= BVH_PACKET, "a tile's camera rays are one packet");
+
+/* A tile of pixels: RENDER_TILE x RENDER_TILE at most, cut by the image's edge. */
 
 typedef struct tile {
     int x0, y0, w, h;
@@ -187,16 +188,18 @@ static void tile_sample(integrator *it, const pixel_sampler *ps, tile *t, int s)
     ray cr[BVH_PACKET];
     ray_diff rd[BVH_PACKET];
     hit hits[BVH_PACKET];
-    for (int i = 0; i < n; i++) {
-        double jx = 0.5, jy = 0.5; /* one sample: the pixel's centre */
-        if (ps->spp > 1) {
-            jx = rng_uniform(&t->r[i]);
-            jy = rng_uniform(&t->r[i]);
+    for (int y = 0, i = 0; y < t->h; y++)
+        for (int x = 0; x < t->w; x++, i++) {
+            double jx = 0.5, jy = 0.5; /* one sample: the pixel's centre */
+            if (ps->spp > 1) {
+                jx = rng_uniform(&t->r[i]);
+                jy = rng_uniform(&t->r[i]);
+            }
+            double px = t->x0 + x + jx, py = t->y0 + y + jy;
+            cr[i] = ps->with_diff
+                        ? camera_ray_differential(&ps->cam, px, py, ps->diff_scale, &rd[i])
+                        : camera_ray(&ps->cam, px, py);
         }
-        double px = t->x0 + i % t->w + jx, py = t->y0 + i / t->w + jy;
-        cr[i] = ps->with_diff ? camera_ray_differential(&ps->cam, px, py, ps->diff_scale, &rd[i])
-                              : camera_ray(&ps->cam, px, py);
-    }
     bvh_intersect_packet(it->accel, cr, n, got, hits);
     for (int i = 0; i < n; i++) {
         const ray_diff *rdi = ps->with_diff ? &rd[i] : NULL;

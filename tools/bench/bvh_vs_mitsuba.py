@@ -6,7 +6,7 @@
 The scene is a stand-in for the course's hw4 dragon: gen_mesh's displaced sphere (about 100k
 triangles, written as OBJ here, at bench time), two quad lights, 1280 x 960 pixels, one primary
 ray a pixel.  envtex casts them through its integrator (bench_bvh primary: the scene's BVH and
-its quad lights), sixteen at a time as its renders do (bvh_packet.h), and one at a time; Mitsuba
+its quad lights), 8 x 8 pixels at a time as its renders do (bvh_packet.h), and one at a time; Mitsuba
 renders the same camera, mesh and two rectangles at 1 sample a pixel
 in llvm_ad_rgb, limited to one thread (Embree, ray wavefronts), with its `aov` integrator (depth
 only) and its `path` integrator at max_depth 1 (the emission seen), and in scalar_rgb (aov).
@@ -128,7 +128,7 @@ def main():
         p.wait()
     print(f"primary rays, dragon stand-in ({W}x{H}, 99856 triangles, 2 quad lights), "
           f"Mrays per CPU-second, median of {rounds} interleaved rounds:")
-    label = {"envtex": "envtex, 16 rays at a time", "envtex1": "envtex, one ray at a time",
+    label = {"envtex": "envtex, 64 rays at a time", "envtex1": "envtex, one ray at a time",
              "llvm_ad_rgb:aov": "Mitsuba llvm_ad_rgb, 1 thread, aov",
              "llvm_ad_rgb:path": "Mitsuba llvm_ad_rgb, 1 thread, path",
              "scalar_rgb:aov": "Mitsuba scalar_rgb, aov"}

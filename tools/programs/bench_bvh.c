@@ -2,7 +2,7 @@
  *
  *     bench_bvh primary SCENE [ROUNDS]   primary rays of SCENE (one a pixel, through the
  *                                        integrator: the scene's BVH with its quad lights),
- *                                        traced as renders trace them, sixteen at a time
+ *                                        traced as renders trace them, a tile at a time
  *                                        (cpu_s), and one at a time (single_cpu_s)
  *     bench_bvh mesh sphere|soup N       build time, memory and closest-hit rays of a mesh of
  *                                        about N triangles made in memory
@@ -24,6 +24,7 @@
 #include "envtex/core/rng.h"
 #include "envtex/geometry/camera.h"
 #include "envtex/scene/scene.h"
+#include "envtex/render/render.h"
 #include "envtex/scene/scene_load.h"
 
 static double cpu_seconds(void)
@@ -39,14 +40,16 @@ static double heap_bytes(void)
     return (double)m.uordblks + (double)m.hblkhd;
 }
 
-/* Every pixel's camera ray through the integrator as render.c traces them: 4 x 4 pixels at a
- * time, their closest hits found together, then each made a scene_hit.  Returns the hits. */
+/* Every pixel's camera ray through the integrator as render.c traces them: a tile of pixels
+ * at a time, their closest hits found together, then each made a scene_hit.  Returns the hits. */
 static long primary_packets(integrator *it, const camera *cam, int w, int h)
 {
     long hits = 0;
-    for (int y0 = 0; y0 < h; y0 += 4)
-        for (int x0 = 0; x0 < w; x0 += 4) {
-            int tw = w - x0 < 4 ? w - x0 : 4, th = h - y0 < 4 ? h - y0 : 4, n = tw * th;
+    const int size = RENDER_TILE;
+    for (int y0 = 0; y0 < h; y0 += size)
+        for (int x0 = 0; x0 < w; x0 += size) {
+            int tw = w - x0 < size ? w - x0 : size, th = h - y0 < size ? h - y0 : size;
+            int n = tw * th;
             ray r[BVH_PACKET];
             int got[BVH_PACKET];
             hit ht[BVH_PACKET];

@@ -18,7 +18,7 @@
 
 #include "envtex/geometry/bvh.h"
 
-#define BVH_PACKET 16 /* rays in a packet: four groups of four lanes */
+#define BVH_PACKET 64 /* rays in a packet at most: groups of four lanes */
 
 /* For i in [0, n), n <= BVH_PACKET: got[i] = bvh_intersect(b, &r[i], &h[i]), with h[i] filled
  * as bvh_intersect fills it. */

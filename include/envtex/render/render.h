@@ -16,6 +16,10 @@
 #include "envtex/integrators/integrator.h"
 #include "envtex/scene/scene.h"
 
+/* The pixels go a tile of RENDER_TILE x RENDER_TILE at a time, their camera rays one packet
+ * (bvh_packet.h); progress is reported when a row of tiles is done. */
+#define RENDER_TILE 8
+
 typedef void (*render_progress_fn)(void *ctx, int rows_done, int rows);
 typedef void (*render_start_fn)(void *ctx);
 
