@@ -5,7 +5,8 @@
  *                                        traced as renders trace them, a tile at a time
  *                                        (cpu_s), and one at a time (single_cpu_s)
  *     bench_bvh mesh sphere|soup N       build time, memory and closest-hit rays of a mesh of
- *                                        about N triangles made in memory
+ *                                        about N triangles made in memory (camera rays one at
+ *                                        a time, and a tile at a time)
  *
  * Prints one key=value line per measurement.  The memory figure is what the allocator holds
  * after the build minus before it (glibc's mallinfo2): the same measure for any BVH layout.
@@ -165,7 +166,7 @@ static int mesh(const char *kind, long n)
     camera cam;
     int w = 640, h = 480;
     camera_init(&cam, vec3_make(0, 0.6, 3), vec3_make(0, 0, 0), vec3_make(0, 1, 0), 45, w, h);
-    long hits = 0;
+    long hits = 0, packet_hits = 0;
     double t1 = cpu_seconds();
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
@@ -173,11 +174,23 @@ static int mesh(const char *kind, long n)
             hit ht;
             hits += bvh_intersect(&b, &r, &ht) != 0;
         }
-    double s = cpu_seconds() - t1;
+    double t2 = cpu_seconds();
+    for (int y0 = 0; y0 < h; y0 += RENDER_TILE) /* (RENDER_TILE divides 640 and 480) */
+        for (int x0 = 0; x0 < w; x0 += RENDER_TILE) {
+            ray r[BVH_PACKET];
+            int got[BVH_PACKET], k = 0;
+            hit ht[BVH_PACKET];
+            for (int y = y0; y < y0 + RENDER_TILE; y++)
+                for (int x = x0; x < x0 + RENDER_TILE; x++)
+                    r[k++] = camera_ray(&cam, x + 0.5, y + 0.5);
+            bvh_intersect_packet(&b, r, k, got, ht);
+            for (int i = 0; i < k; i++) packet_hits += got[i] != 0;
+        }
+    double s = t2 - t1, sp = cpu_seconds() - t2, rays = (double)w * h;
     printf("mesh=%s triangles=%ld build_cpu_s=%.3f mbytes=%.1f bytes_per_tri=%.1f "
-           "mrays_per_cpu_s=%.3f hit_fraction=%.3f\n",
-           kind, n, build, bytes / 1048576, bytes / (double)n, (double)w * h / s * 1e-6,
-           (double)hits / ((double)w * h));
+           "mrays_per_cpu_s=%.3f packet_mrays_per_cpu_s=%.3f hit_fraction=%.3f%s\n",
+           kind, n, build, bytes / 1048576, bytes / (double)n, rays / s * 1e-6, rays / sp * 1e-6,
+           (double)hits / rays, packet_hits == hits ? "" : " packet_hits_differ");
     bvh_free(&b);
     free(t);
     return 0;
