@@ -502,24 +502,18 @@ int bvh_intersect(const bvh *b, const ray *r, hit *h)
 
 int bvh_hit_of(const bvh *b, const ray *r, const best_hit *bh, hit *h)
 {
+    long id = bh->id;
     h->t = bh->t;
-    if (bh->id >= b->n_surfaces) {
-        h->prim = bh->id - b->n_surfaces;
-        return BVH_QUAD;
+    h->prim = id < b->n_spheres ? id : id < b->n_surfaces ? id - b->n_spheres : id - b->n_surfaces;
+    if (id >= b->n_surfaces) return BVH_QUAD;
+    h->is_sphere = id < b->n_spheres;
+    if (h->is_sphere) {
+        sphere_hit(&b->prims_of.spheres[id], r, bh->t, h);
+        h->material = b->prims_of.spheres[id].material;
+    } else {
+        triangle_hit(&b->prims_of.triangles[h->prim], bh->b1, bh->b2, h);
+        h->material = b->prims_of.triangles[h->prim].material;
     }
-    if (bh->id < b->n_spheres) {
-        const sphere *s = &b->prims_of.spheres[bh->id];
-        sphere_hit(s, r, bh->t, h);
-        h->prim = bh->id;
-        h->is_sphere = 1;
-        h->material = s->material;
-        return BVH_SURFACE;
-    }
-    const triangle *tr = &b->prims_of.triangles[bh->id - b->n_spheres];
-    triangle_hit(tr, bh->b1, bh->b2, h);
-    h->prim = bh->id - b->n_spheres;
-    h->is_sphere = 0;
-    h->material = tr->material;
     return BVH_SURFACE;
 }
 
