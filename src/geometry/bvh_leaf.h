@@ -1,5 +1,5 @@
 /* bvh_leaf.h - what the BVH's two traversals share (private to src/geometry/): bvh.c's, one ray
- * at a time, and bvh_packet.c's, sixteen camera rays at a time.  A ray in float for the
+ * at a time, and bvh_packet.c's, a tile's camera rays at a time.  A ray in float for the
  * conservative filters, the double test that decides a primitive, and the hit it leaves. */
 #ifndef ENVTEX_BVH_LEAF_H
 #define ENVTEX_BVH_LEAF_H

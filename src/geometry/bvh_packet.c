@@ -9,6 +9,8 @@
  */
 #include "envtex/geometry/bvh_packet.h"
 
+#include <assert.h>
+
 #include "bvh_leaf.h"
 #include "envtex/core/simd.h"
 
@@ -27,16 +29,16 @@ typedef struct lanes {
 typedef struct packet {
     lanes g[GROUPS];
     int n_groups;
-    /* what the rays share: the origin in float (bvh_float_origin), tmin, the signs */
+    /* what the rays share: the origin in float (bvh_float_origin), tmin, the signs (neg[a]:
+     * the rays enter a node's box by its upper corner's plane on axis a) */
     float o[3], o_lo[3], o_near[3], o_far[3], tmin;
-    int neg[3], near[3], far[3]; /* near, far: each axis's entry and exit plane in a node's box
-                                  * (its six floats: lower corner, then upper corner) */
-    float inv_lo[3], inv_hi[3];  /* the smallest and largest 1 / d over the rays, axis by axis */
+    int neg[3];
+    float inv_lo[3], inv_hi[3]; /* the smallest and largest 1 / d over the rays, axis by axis */
 } packet;
 
 /* Lanes g from rays r[i] (i < n, else r[first]: a last group of fewer than four repeats
  * its first ray).  0 when a ray does not share r[0]'s origin, tmin, tmax and p's direction
- * signs, or a component of its direction is 0 in float. */
+ * signs, or a component of its direction is 0 or infinite in float. */
 static int lanes_make(const packet *p, lanes *g, const ray *r, int first, int n)
 {
     int fits = 1;
@@ -52,9 +54,10 @@ static int lanes_make(const packet *p, lanes *g, const ray *r, int first, int n)
     }
     for (int a = 0; a < 3; a++) {
         g->inv[a] = 1 / g->d[a];
-        /* the same sign in every lane, and |1 / d| finite: no lane's slab is NaN */
+        /* the same sign in every lane, and d and 1 / d finite (not 0): no slab is 0 x Inf */
         fits &= f4_mask(g->inv[a] < 0) == (p->neg[a] ? 15 : 0) &&
-                f4_mask(f4_abs(g->inv[a]) < INFINITY) == 15;
+                f4_mask(f4_abs(g->inv[a]) < INFINITY) == 15 &&
+                f4_mask(f4_abs(g->d[a]) < INFINITY) == 15;
     }
     g->tmax = f4_set(bvh_float_up(r->tmax));
     g->tmax_box = g->tmax * (1 + BVH_SLAB_SLACK);
@@ -69,8 +72,6 @@ static int packet_make(packet *p, const ray *r, int n)
         p->neg[a] = vec3_get(r[0].d, a) < 0;
         bvh_float_origin(vec3_get(r[0].o, a), p->neg[a], &p->o[a], &p->o_lo[a], &p->o_near[a],
                          &p->o_far[a]);
-        p->near[a] = p->neg[a] ? 3 + a : a;
-        p->far[a] = p->neg[a] ? a : 3 + a;
         /* (an origin beyond float's range: one ray at a time) */
         if (!(fabsf(p->o_near[a]) < INFINITY && fabsf(p->o_far[a]) < INFINITY)) return 0;
     }
@@ -95,16 +96,19 @@ static int packet_make(packet *p, const ray *r, int n)
 }
 
 /* Can any ray of p cross the node's box for t in [tmin, tmax_hi] (tmax_hi: the largest of the
- * rays' slab tmax)?  Interval arithmetic: with one origin, a plane b is at t = (b - o) / d_l
- * on ray l, and float rounding keeps that order, so the rays with the smallest and largest
- * 1 / d bound every ray's t.  Only when even the earliest entry comes after the latest exit
- * does every ray miss; the slab test of each ray, lanes_cross, is then false too. */
+ * rays' slab tmax)?  Interval arithmetic: with one origin, ray l meets a plane at
+ * t_l = B x (1 / d_l), where B = (plane - o) is one float for all the rays; float rounding
+ * never reverses an order, so the rays with the smallest and the largest 1 / d bound every
+ * t_l.  Only when even the earliest entry comes after the latest exit does every ray miss; the
+ * slab test of each ray, lanes_cross, is then false too.  Testing the rays one by one at the
+ * leaves alone is enough: a child's box lies inside its parent's, and the slab test is never
+ * looser on a smaller box, so a ray that passes a leaf's test passes every ancestor's. */
 static inline int packet_may_cross(const packet *p, const bvh_node *nd, float tmax_hi)
 {
-    const float *box = &nd->box[0][0], grow = 1 + BVH_SLAB_SLACK;
+    const float grow = 1 + BVH_SLAB_SLACK;
     float enter = p->tmin, leave = tmax_hi;
     for (int a = 0; a < 3; a++) {
-        float b0 = box[p->near[a]] - p->o_near[a], b1 = box[p->far[a]] - p->o_far[a];
+        float b0 = nd->box[p->neg[a]][a] - p->o_near[a], b1 = nd->box[!p->neg[a]][a] - p->o_far[a];
         float e0 = b0 * p->inv_lo[a], e1 = b0 * p->inv_hi[a];
         float x0 = b1 * p->inv_lo[a] * grow, x1 = b1 * p->inv_hi[a] * grow;
         float e = e0 < e1 ? e0 : e1, x = x0 > x1 ? x0 : x1; /* earliest entry, latest exit */
@@ -117,12 +121,11 @@ static inline int packet_may_cross(const packet *p, const bvh_node *nd, float tm
 /* bvh.c's slab test (box_hit) for the four rays of g: bit l set when ray l may cross. */
 static inline int lanes_cross(const packet *p, const lanes *g, const bvh_node *nd)
 {
-    const float *box = &nd->box[0][0];
     f4 enter = f4_set(p->tmin), leave = g->tmax_box;
     for (int a = 0; a < 3; a++) {
-        enter = f4_max(f4_set(box[p->near[a]] - p->o_near[a]) * g->inv[a], enter);
-        leave =
-            f4_min(f4_set(box[p->far[a]] - p->o_far[a]) * g->inv[a] * (1 + BVH_SLAB_SLACK), leave);
+        float b0 = nd->box[p->neg[a]][a] - p->o_near[a], b1 = nd->box[!p->neg[a]][a] - p->o_far[a];
+        enter = f4_max(b0 * g->inv[a], enter);
+        leave = f4_min(b1 * g->inv[a] * (1 + BVH_SLAB_SLACK), leave);
     }
     return f4_mask(enter <= leave);
 }
@@ -212,6 +215,8 @@ static void packet_traverse(const bvh *b, packet *p)
 
 void bvh_intersect_packet(const bvh *b, const ray *r, int n, int *got, hit *h)
 {
+    assert(n >= 0 && n <= BVH_PACKET);
+    if (n == 0) return;
     packet p;
     if (!b->is_tree || !packet_make(&p, r, n)) { /* one at a time */
         for (int i = 0; i < n; i++) got[i] = bvh_intersect(b, &r[i], &h[i]);

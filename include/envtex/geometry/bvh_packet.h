@@ -20,8 +20,8 @@
 
 #define BVH_PACKET 64 /* rays in a packet at most: groups of four lanes */
 
-/* For i in [0, n), n <= BVH_PACKET: got[i] = bvh_intersect(b, &r[i], &h[i]), with h[i] filled
- * as bvh_intersect fills it. */
+/* For i in [0, n), 0 <= n <= BVH_PACKET: got[i] = bvh_intersect(b, &r[i], &h[i]), with h[i]
+ * filled as bvh_intersect fills it (untouched on a miss). */
 void bvh_intersect_packet(const bvh *b, const ray *r, int n, int *got, hit *h);
 
 #endif
