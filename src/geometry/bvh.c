@@ -1,6 +1,7 @@
 /* bvh.c - binned-SAH bounding volume hierarchy in float (see include/envtex/geometry/bvh.h). */
 #include "envtex/geometry/bvh.h"
 
+#include <assert.h>
 #include <float.h>
 #include <stdlib.h>
 #include <string.h>
@@ -66,6 +67,9 @@ static void prim_box(vec3 lo, vec3 hi, build_prim *p)
     }
 }
 
+/* A centre's bin: (c - cmin) k with k = BVH_BINS (1 - BVH_BIN_SHRINK) / (cmax - cmin), so that
+ * the largest centre falls in the last bin, not one past it (clamped too, for rounding). */
+#define BVH_BIN_SHRINK 1e-9
 static int bin_of(float c, double cmin, double k)
 {
     int j = (int)((c - cmin) * k);
@@ -90,21 +94,22 @@ static span span_of(const builder *bd, long first, long count)
 }
 
 typedef struct split {
-    int axis, bin; /* bins 0..bin go to the first child; axis -1: no split */
-    double cost;   /* C_trav A + A_1 N_1 + A_2 N_2 (A: areas, N: counts) */
+    int axis, bin;  /* bins 0..bin go to the first child; axis -1: no split */
+    double cost;    /* C_trav A + A_1 N_1 + A_2 N_2 (A: areas, N: counts) */
+    double cmin, k; /* the axis's binning (bin_of) */
 } split;
 
 /* The binned SAH's best split of span s (area: of its box), the three axes binned together. */
 static split find_split(const builder *bd, const span *s, double area)
 {
-    split best = {-1, -1, INFINITY};
+    split best = {-1, -1, INFINITY, 0, 0};
     double cmin[3], k[3];
     long n[3][BVH_BINS] = {{0}};
     box bins[3][BVH_BINS];
     for (int axis = 0; axis < 3; axis++) {
         cmin[axis] = s->cb.lo[axis];
         double extent = s->cb.hi[axis] - cmin[axis]; /* k = 0: the centres share this axis */
-        k[axis] = extent > 0 ? BVH_BINS * (1 - 1e-9) / extent : 0;
+        k[axis] = extent > 0 ? BVH_BINS * (1 - BVH_BIN_SHRINK) / extent : 0;
         for (int j = 0; j < BVH_BINS; j++) bins[axis][j] = box_empty();
     }
     for (long i = s->first; i < s->first + s->count; i++) {
@@ -143,23 +148,22 @@ static split find_split(const builder *bd, const span *s, double area)
             if (n2[j + 1] == 0) continue;
             double cost = BVH_TRAVERSAL_COST * area + box_area(&acc) * (double)m +
                           area2[j + 1] * (double)n2[j + 1];
-            if (cost < best.cost) best = (split){axis, j, cost};
+            if (cost < best.cost) best = (split){axis, j, cost, cmin[axis], k[axis]};
         }
     }
     return best;
 }
 
 /* Span s cut by split sp: the primitives of bins 0..sp.bin moved to the front, into *left,
- * the others into *right, each with its bounds. */
+ * the others into *right, each with its bounds (both sides hold some: find_split's counts). */
 static void partition(builder *bd, const span *s, split sp, span *left, span *right)
 {
-    double cmin = s->cb.lo[sp.axis], k = BVH_BINS * (1 - 1e-9) / ((double)s->cb.hi[sp.axis] - cmin);
     *left = (span){s->first, 0, box_empty(), box_empty()};
     *right = *left;
     long i = s->first, j = s->first + s->count - 1;
     while (i <= j) {
         const build_prim *p = &bd->bp[i];
-        span *side = bin_of(p->c[sp.axis], cmin, k) <= sp.bin ? left : right;
+        span *side = bin_of(p->c[sp.axis], sp.cmin, sp.k) <= sp.bin ? left : right;
         box_grow(&side->bb, p->b.lo, p->b.hi);
         box_grow(&side->cb, p->c, p->c);
         if (side == left) {
@@ -174,6 +178,7 @@ static void partition(builder *bd, const span *s, split sp, span *left, span *ri
     left->count = i - s->first;
     right->first = i;
     right->count = s->count - left->count;
+    assert(left->count > 0 && right->count > 0);
 }
 
 /* Node `node` over span s and, unless it is a leaf, its subtree.  The SAH decides: a leaf
@@ -188,7 +193,7 @@ static int build_rec(builder *bd, long node, const span *s, int depth)
     int axis = 0;
     if (s->count > 1 && depth < BVH_MAX_DEPTH - 2) {
         double area = box_area(&s->bb);
-        split sp = depth < BVH_HALVE_DEPTH ? find_split(bd, s, area) : (split){-1, 0, 0};
+        split sp = depth < BVH_HALVE_DEPTH ? find_split(bd, s, area) : (split){-1, 0, 0, 0, 0};
         if (s->count <= BVH_LEAF_MAX && !(sp.cost < area * (double)s->count)) sp.axis = -2;
         if (sp.axis >= 0) {
             partition(bd, s, sp, &kids[0], &kids[1]);
@@ -202,7 +207,7 @@ static int build_rec(builder *bd, long node, const span *s, int depth)
         if (s->count > UINT16_MAX) return -1; /* the depth limit with that many left: no leaf */
         nd->offset = (int32_t)s->first;
         nd->count = (uint16_t)s->count;
-        nd->axis = 0;
+        nd->axis = nd->pad = 0;
         return 0;
     }
     if (build_rec(bd, bd->b->n_nodes++, &kids[0], depth + 1)) return -1;
@@ -212,6 +217,7 @@ static int build_rec(builder *bd, long node, const span *s, int depth)
     nd->offset = (int32_t)second;
     nd->count = 0;
     nd->axis = (uint8_t)axis;
+    nd->pad = 0;
     return 0;
 }
 
@@ -309,7 +315,7 @@ int bvh_build(bvh *b, bvh_prims prims, budget *mem, error *err)
         for (int a = 0; a < 3; a++) all->box[0][a] = -INFINITY, all->box[1][a] = INFINITY;
         all->offset = 0;
         all->count = (uint16_t)n;
-        all->axis = 0;
+        all->axis = all->pad = 0;
     }
     leaf_tris(b);
     bvh_node *fit = realloc(b->nodes, (size_t)b->n_nodes * sizeof *b->nodes);
