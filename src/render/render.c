@@ -241,14 +241,15 @@ static void render_pixels(integrator *it, const pixel_sampler *ps, const render_
     int w = it->sc->width, h = it->sc->height;
     tile t;
     for (int y = 0; y < h; y += RENDER_TILE) {
+        int th = h - y < RENDER_TILE ? h - y : RENDER_TILE;
         for (int x = 0; x < w; x += RENDER_TILE) {
             t.x0 = x;
             t.y0 = y;
             t.w = w - x < RENDER_TILE ? w - x : RENDER_TILE;
-            t.h = h - y < RENDER_TILE ? h - y : RENDER_TILE;
+            t.h = th;
             render_tile(it, ps, opts, &t, out, stats);
         }
-        for (int row = y; row < y + t.h; row++)
+        for (int row = y; row < y + th; row++)
             if (opts->progress) opts->progress(opts->progress_ctx, row + 1, h);
     }
 }

@@ -45,8 +45,8 @@ rgb raytracer_trace(raytracer *rt, ray r);
 /* The same with its differentials (NULL or has = 0: none), carried by mirrors and glass. */
 rgb raytracer_trace_diff(raytracer *rt, ray r, const ray_diff *rd);
 
-/* The same from the camera ray's closest hit, found already: got and *h as bvh_intersect
- * returns and fills them. */
+/* The same from the camera ray's closest hit, found already: got (BVH_MISS or BVH_SURFACE: the
+ * ray tracer's BVH holds no quad lights) and *h as bvh_intersect returns and fills them. */
 rgb raytracer_trace_hit(raytracer *rt, ray r, const ray_diff *rd, int got, const hit *h);
 
 #endif

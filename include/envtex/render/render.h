@@ -26,7 +26,8 @@ typedef void (*render_start_fn)(void *ctx);
 typedef struct render_opts {
     int spp;                     /* samples per pixel; 0: the scene's `spp` */
     uint64_t seed;               /* default 0 */
-    render_progress_fn progress; /* called after each row (may be NULL) */
+    render_progress_fn progress; /* called for each row, rows_done = 1, 2, ... h, the rows
+                                  * of a row of tiles together when it is done (may be NULL) */
     void *progress_ctx;
     render_start_fn start; /* once everything is built, before the first pixel (may be
                                 * NULL); never for a refused render */
