@@ -8,6 +8,7 @@
 #include "envtex/geometry/camera.h"
 #include "envtex/envmaps/genenv.h"
 #include "envtex/integrators/integrator.h"
+#include "envtex/integrators/lights.h"
 #include "envtex/core/rng.h"
 #include "envtex/integrators/raytracer.h"
 #include "envtex/scene/scene_load.h"
@@ -354,6 +355,81 @@ END_TEST
 
 /* A size and an spp each in range whose product of camera samples is over 2^34 is refused
  * before anything is allocated or traced. */
+/* The tiles' packets change no pixel: a scene with a BVH tree (more than BVH_MIN_PRIMS spheres
+ * and triangles), 19 x 11 pixels (the tiles of the last column and row cut short), spp 3,
+ * replayed pixel by pixel through render_radiance with each pixel's own stream and Welford's
+ * update, must give the same floats, bit for bit, in the image and the variance: for the path
+ * tracer (next-event estimation, a quad light in the BVH) and the ray tracer (a mirror). */
+START_TEST(test_render_by_tiles_is_the_pixel_by_pixel_replay_bit_for_bit)
+{
+    const char *heads[2] = {"integrator pathtracer\nnexteventestimation on\nspp 3\n"
+                            "quadLight -1 -1 4  2 0 0  0 2 0  5 5 5\n",
+                            "integrator raytracer\nspp 3\npoint 0 -2 4  6 6 6\n"};
+    for (int k = 0; k < 2; k++) {
+        char text[16384];
+        int len = snprintf(
+            text, sizeof text,
+            "size 19 11\ncamera -4 -7 4  1 1 -0.5  0 0 1  30\n%sdiffuse 0.5 0.5 0.5\n", heads[k]);
+        for (int i = 0; i < 48; i++) /* spheres in rows, every third a mirror */
+            len += snprintf(text + len, sizeof text - (size_t)len, "%ssphere %g %g %g 0.3\n",
+                            i % 3 ? "brdf phong\n" : "brdf mirror\nspecular 0.8 0.8 0.8\n",
+                            -2.8 + 0.75 * (i % 8), -1.5 + 0.6 * (i / 8), 0.4 * (i % 3));
+        len += snprintf(text + len, sizeof text - (size_t)len,
+                        "brdf phong\nvertex -5 -5 -1\nvertex 5 -5 -1\nvertex 5 5 -1\n"
+                        "vertex -5 5 -1\ntri 0 1 2\ntri 0 2 3\n");
+        scene sc;
+        load(&sc, text);
+        image img, var;
+        render_opts o = render_defaults();
+        o.seed = 7;
+        o.variance = &var;
+        render_stats st;
+        error err = {0};
+        ck_assert_msg(render_scene(&sc, &o, &img, &st, &err) == 0, "%s", err.msg);
+        ck_assert_int_eq(st.bvh_is_tree, 1);
+        bvh accel;
+        integrator it;
+        ck_assert_int_eq(lights_scene_bvh(&accel, &sc, NULL, &err), 0);
+        ck_assert_int_eq(integrator_init(&it, &sc, &accel, NULL, &err), 0);
+        camera cam;
+        camera_init(&cam, sc.eye, sc.center, sc.up, sc.fovy, sc.width, sc.height);
+        int differ = 0;
+        double spread = 0;
+        for (int y = 0; y < sc.height; y++)
+            for (int x = 0; x < sc.width; x++) {
+                rng g;
+                rng_seed(&g, 7, (uint64_t)y * (uint64_t)sc.width + (uint64_t)x);
+                rgb mean = rgb_gray(0), m2 = rgb_gray(0);
+                for (int s = 0; s < 3; s++) {
+                    double jx = rng_uniform(&g), jy = rng_uniform(&g);
+                    rgb v = render_radiance(&it, camera_ray(&cam, x + jx, y + jy), &g);
+                    rgb d = rgb_make(v.r - mean.r, v.g - mean.g, v.b - mean.b);
+                    mean = rgb_madd(mean, d, 1.0 / (s + 1));
+                    m2 = rgb_add(m2, rgb_make(d.r * (v.r - mean.r), d.g * (v.g - mean.g),
+                                              d.b * (v.b - mean.b)));
+                }
+                image replay = {0};
+                ck_assert_int_eq(image_alloc(&replay, 2, 1, &err), 0);
+                image_set(&replay, 0, 0, mean);
+                image_set(&replay, 1, 0, rgb_scale(m2, 1.0 / 6));
+                differ +=
+                    memcmp(image_px(&replay, 0, 0), image_px(&img, x, y), 3 * sizeof(float)) ||
+                    memcmp(image_px(&replay, 1, 0), image_px(&var, x, y), 3 * sizeof(float));
+                spread = fmax(spread, m2.g);
+                image_free(&replay);
+            }
+        ck_assert_msg(differ == 0, "%s: %d of %d pixels differ from the replay", heads[k], differ,
+                      sc.width * sc.height);
+        ck_assert_msg(spread > 0, "%s: no pixel varies: the test sees no jitter", heads[k]);
+        integrator_free(&it);
+        bvh_free(&accel);
+        image_free(&img);
+        image_free(&var);
+        scene_free(&sc);
+    }
+}
+END_TEST
+
 START_TEST(test_render_refuses_too_many_camera_samples)
 {
     scene sc;
@@ -438,6 +514,7 @@ Suite *render_suite(void)
     tcase_add_test(tc, test_render_refuses_an_out_of_range_spp_naming_the_scene);
     tcase_add_test(tc, test_render_counts_nonfinite_pixels);
     tcase_add_test(tc, test_render_replays_as_documented_mean_variance_and_differential_scale);
+    tcase_add_test(tc, test_render_by_tiles_is_the_pixel_by_pixel_replay_bit_for_bit);
     tcase_add_test(tc, test_render_refuses_too_many_camera_samples);
     tcase_add_test(tc, test_render_reports_progress_after_every_row);
     suite_add_tcase(s, tc);
