@@ -6,10 +6,10 @@
 The scene is a stand-in for the course's hw4 dragon: gen_mesh's displaced sphere (about 100k
 triangles, written as OBJ here, at bench time), two quad lights, 1280 x 960 pixels, one primary
 ray a pixel.  envtex casts them through its integrator (bench_bvh primary: the scene's BVH and
-its quad lights), 8 x 8 pixels at a time as its renders do (bvh_packet.h), and one at a time; Mitsuba
-renders the same camera, mesh and two rectangles at 1 sample a pixel
-in llvm_ad_rgb, limited to one thread (Embree, ray wavefronts), with its `aov` integrator (depth
-only) and its `path` integrator at max_depth 1 (the emission seen), and in scalar_rgb (aov).
+its quad lights), 8 x 8 pixels at a time as its renders do (bvh_packet.h), and one at a time;
+Mitsuba renders the same camera, mesh and two rectangles at 1 sample a pixel in llvm_ad_rgb,
+limited to one thread (Embree, ray wavefronts), with its `aov` integrator (depth only) and its
+`path` integrator at max_depth 1 (the emission seen), and in scalar_rgb (aov).
 Each renderer runs in a process of its own, all of them interleaved round by round; each time
 is the CPU time of that process (all its threads), so a busy machine slows every one alike.
 Prints Mrays per CPU-second, medians over the rounds, and envtex's ratio to each Mitsuba variant
@@ -47,7 +47,8 @@ def write_scene(build, folder):
 # what Mitsuba does at each primary ray's hit: `aov` the depth alone (the leanest: a ray cast
 # and its surface interaction), `path` at max_depth 1 the emission seen (a renderer's pass of
 # primary rays that shades what it finds)
-INTEGRATORS = {"aov": {"type": "aov", "aovs": "dd.y:depth"}, "path": {"type": "path", "max_depth": 1}}
+INTEGRATORS = {"aov": {"type": "aov", "aovs": "dd.y:depth"},
+               "path": {"type": "path", "max_depth": 1}}
 
 
 def mitsuba_scene(mi, folder, integrator):
@@ -55,7 +56,8 @@ def mitsuba_scene(mi, folder, integrator):
                          "bsdf": {"type": "diffuse"}}}
     for k, (a, ab, ac, L) in enumerate(QUADS):
         # rectangle: [-1, 1]^2 in z = 0; columns ab / 2, ac / 2, their normal, the centre
-        n = [ab[1] * ac[2] - ab[2] * ac[1], ab[2] * ac[0] - ab[0] * ac[2], ab[0] * ac[1] - ab[1] * ac[0]]
+        n = [ab[1] * ac[2] - ab[2] * ac[1], ab[2] * ac[0] - ab[0] * ac[2],
+             ab[0] * ac[1] - ab[1] * ac[0]]
         c = [a[i] + 0.5 * ab[i] + 0.5 * ac[i] for i in range(3)]
         m = [[ab[i] / 2, ac[i] / 2, n[i], c[i]] for i in range(3)] + [[0, 0, 0, 1]]
         shapes[f"quad{k}"] = {"type": "rectangle", "to_world": mi.ScalarTransform4f(m),
