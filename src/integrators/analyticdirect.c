@@ -67,18 +67,6 @@ double analyticdirect_irradiance(const scene_light *l, vec3 p, vec3 n)
     return fmax(0.0, vec3_dot(polygon_irradiance_vector(c, m, p), n));
 }
 
-rgb analyticdirect_radiance(integrator *it, ray r, rng *g)
-{
-    return analyticdirect_radiance_diff(it, r, NULL, g);
-}
-
-rgb analyticdirect_radiance_diff(integrator *it, ray r, const ray_diff *rd, rng *g)
-{
-    scene_hit sh;
-    integrator_intersect_diff(it, &r, rd, &sh); /* the footprint filters kd and emission maps */
-    return analyticdirect_radiance_hit(it, r, rd, &sh, g);
-}
-
 rgb analyticdirect_radiance_hit(integrator *it, ray r, const ray_diff *rd, const scene_hit *sh,
                                 rng *g)
 {

@@ -100,15 +100,6 @@ static rgb escaped(integrator *it, vec3 d, int depth)
     return envmap_radiance(&it->env, d); /* bilinear: no other strategy competes here */
 }
 
-rgb direct_radiance(integrator *it, ray r, rng *g) { return direct_radiance_diff(it, r, NULL, g); }
-
-rgb direct_radiance_diff(integrator *it, ray r, const ray_diff *rd, rng *g)
-{
-    scene_hit sh;
-    integrator_intersect_diff(it, &r, rd, &sh);
-    return direct_radiance_hit(it, r, rd, &sh, g);
-}
-
 rgb direct_radiance_hit(integrator *it, ray r, const ray_diff *rd0, const scene_hit *first, rng *g)
 {
     rgb L = rgb_gray(0), beta = rgb_gray(1);

@@ -5,11 +5,6 @@
 #include "envtex/integrators/direct.h"
 #include "envtex/integrators/texshade.h"
 
-rgb pathtracer_radiance(integrator *it, ray r, rng *g)
-{
-    return pathtracer_radiance_diff(it, r, NULL, g);
-}
-
 /* What the path remembers of its last bounce, to weigh the light it finds. */
 typedef struct path_state {
     nee_mode nee;       /* as run: off without lights */
@@ -79,13 +74,6 @@ static int path_survives(const scene *sc, rgb *beta, rng *g)
 /* Ray differentials follow the path while it is a chain of perfect mirror / glass bounces from
  * the camera; the first diffuse or glossy bounce drops them (raydiff.h: no differential of a
  * random direction), and textures further on use their no-footprint fallback. */
-rgb pathtracer_radiance_diff(integrator *it, ray r, const ray_diff *rd, rng *g)
-{
-    scene_hit sh;
-    integrator_intersect_diff(it, &r, rd, &sh);
-    return pathtracer_radiance_hit(it, r, rd, &sh, g);
-}
-
 rgb pathtracer_radiance_hit(integrator *it, ray r, const ray_diff *rd0, const scene_hit *first,
                             rng *g)
 {

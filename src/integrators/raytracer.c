@@ -159,11 +159,6 @@ static rgb shade(raytracer *rt, ray r, const ray_diff *rd, int depth, double wei
 
 rgb raytracer_trace(raytracer *rt, ray r) { return trace(rt, r, NULL, 0, 1.0); }
 
-rgb raytracer_trace_diff(raytracer *rt, ray r, const ray_diff *rd)
-{
-    return trace(rt, r, rd, 0, 1.0);
-}
-
 rgb raytracer_trace_hit(raytracer *rt, ray r, const ray_diff *rd, int got, const hit *h)
 {
     return shade(rt, r, rd, 0, 1.0, got ? h : NULL);

@@ -19,19 +19,15 @@ rgb render_radiance(integrator *it, ray r, rng *g) { return render_radiance_diff
 
 rgb render_radiance_diff(integrator *it, ray r, const ray_diff *rd, rng *g)
 {
-    switch (it->sc->integrator) {
-    case INTEGRATOR_RAYTRACER:
-    case INTEGRATOR_PREFILTERED: return raytracer_trace_diff(&it->rt, r, rd); /* its own shade */
-    case INTEGRATOR_ANALYTICDIRECT: return analyticdirect_radiance_diff(it, r, rd, g);
-    case INTEGRATOR_DIRECT: return direct_radiance_diff(it, r, rd, g);
-    default: return pathtracer_radiance_diff(it, r, rd, g);
-    }
+    hit h;
+    int got = bvh_intersect(it->accel, &r, &h); /* the first hit, then what follows from it */
+    return render_radiance_hit(it, r, rd, got, &h, g);
 }
 
 rgb render_radiance_hit(integrator *it, ray r, const ray_diff *rd, int got, const hit *h, rng *g)
 {
     integrator_kind kind = it->sc->integrator;
-    if (kind == INTEGRATOR_RAYTRACER || kind == INTEGRATOR_PREFILTERED)
+    if (kind == INTEGRATOR_RAYTRACER || kind == INTEGRATOR_PREFILTERED) /* its own shade */
         return raytracer_trace_hit(&it->rt, r, rd, got, h);
     scene_hit sh;
     if (got) sh.h = *h;

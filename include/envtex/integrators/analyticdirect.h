@@ -10,10 +10,8 @@
 
 #include "envtex/integrators/integrator.h"
 
-rgb analyticdirect_radiance(integrator *it, ray r, rng *g);
-/* ... with the camera ray's differentials (NULL: none), which filter the hit's textures. */
-rgb analyticdirect_radiance_diff(integrator *it, ray r, const ray_diff *rd, rng *g);
-/* ... from the camera ray's first hit sh, found already (integrator_scene_hit). */
+/* Radiance along camera ray r from its first hit sh (integrator_intersect_diff's; its
+ * differentials rd, NULL: none, filtered the hit's textures).  render_radiance calls it. */
 rgb analyticdirect_radiance_hit(integrator *it, ray r, const ray_diff *rd, const scene_hit *sh,
                                 rng *g);
 

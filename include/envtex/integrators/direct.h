@@ -9,10 +9,8 @@
 
 #include "envtex/integrators/integrator.h"
 
-rgb direct_radiance(integrator *it, ray r, rng *g);
-/* ... with the camera ray's differentials (NULL: none), carried by mirrors and glass. */
-rgb direct_radiance_diff(integrator *it, ray r, const ray_diff *rd, rng *g);
-/* ... from the camera ray's first hit sh, found already (integrator_scene_hit). */
+/* Radiance along camera ray r from its first hit sh (integrator_intersect_diff's), the
+ * differentials rd (NULL: none) carried by mirrors and glass.  render_radiance calls it. */
 rgb direct_radiance_hit(integrator *it, ray r, const ray_diff *rd, const scene_hit *sh, rng *g);
 
 /* The sum above without Le (0 at a mirror or glass, or without lights); each sample draws

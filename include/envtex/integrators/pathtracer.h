@@ -5,17 +5,16 @@
  * hit; `mis` weighs both by the power heuristic.  Emissive geometry counts when hit; a
  * direction below ng ends the path.  docs/design-notes.md.
  *
- *     rgb L = pathtracer_radiance(&it, camera_ray(&cam, x, y), &rng);
+ *     rgb L = render_radiance(&it, camera_ray(&cam, x, y), &rng); // render.h calls
+ *                                                                 // pathtracer_radiance_hit
  */
 #ifndef ENVTEX_PATHTRACER_H
 #define ENVTEX_PATHTRACER_H
 
 #include "envtex/integrators/integrator.h"
 
-rgb pathtracer_radiance(integrator *it, ray r, rng *g);
-/* ... with the camera ray's differentials (NULL: none), kept to the first non-delta bounce. */
-rgb pathtracer_radiance_diff(integrator *it, ray r, const ray_diff *rd, rng *g);
-/* ... from the camera ray's first hit sh, found already (integrator_scene_hit). */
+/* Radiance along camera ray r from its first hit sh (integrator_intersect_diff's), the
+ * differentials rd (NULL: none) kept to the first non-delta bounce. */
 rgb pathtracer_radiance_hit(integrator *it, ray r, const ray_diff *rd, const scene_hit *sh, rng *g);
 
 #endif

@@ -42,11 +42,9 @@ void raytracer_init(raytracer *rt, const scene *sc, const bvh *accel);
 /* Radiance along a camera ray (depth 0). */
 rgb raytracer_trace(raytracer *rt, ray r);
 
-/* The same with its differentials (NULL or has = 0: none), carried by mirrors and glass. */
-rgb raytracer_trace_diff(raytracer *rt, ray r, const ray_diff *rd);
-
 /* The same from the camera ray's closest hit, found already: got (BVH_MISS or BVH_SURFACE: the
- * ray tracer's BVH holds no quad lights) and *h as bvh_intersect returns and fills them. */
+ * ray tracer's BVH holds no quad lights) and *h as bvh_intersect returns and fills them, with
+ * the ray's differentials rd (NULL or has = 0: none), carried by mirrors and glass. */
 rgb raytracer_trace_hit(raytracer *rt, ray r, const ray_diff *rd, int got, const hit *h);
 
 #endif
