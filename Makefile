@@ -3,7 +3,7 @@
 #   make run        install missing packages, build, render the demo to out/demo.{exr,png}
 #   make test       the grading suite: unit, golden-image, command-line tests (alias: make check)
 #   make check-all  make test plus the slower checks a grade does not need (CI runs it)
-#   make asan       the whole test suite (check-all) under AddressSanitizer + UBSan
+#   make asan       the test suite (check-all, but its kit and grade suites) under ASan + UBSan
 #   make bench      benchmarks (medians of repeated runs)
 #   make update-golden   re-render the golden references (look at them before committing)
 #   make docs-images     re-render the pictures in docs/images/ from data/scenes/
@@ -112,7 +112,7 @@ check: test
 
 # The whole suite again, instrumented.  Its own build folder, so it never mixes objects.
 asan:
-	$(MAKE) BUILD=build-asan CK_TIMEOUT_MULTIPLIER=10 \
+	CHECK_ALL_AGAIN=1 $(MAKE) BUILD=build-asan CK_TIMEOUT_MULTIPLIER=10 \
 		CFLAGS="-O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all" \
 		LDFLAGS="-fsanitize=address,undefined" check-all
 
@@ -128,10 +128,15 @@ grade: $(BUILD)/envtex
 .PHONY: grade
 
 # assignment starter kits (docs/teaching.md)
+# (a kit has neither: it is made in the instructor's tree)
+IN_KIT = [ -d tools/starter ] || { echo "envtex: make $@: this is a starter kit; make $@ runs in the" \
+	"instructor's tree (docs/teaching.md)" >&2; exit 1; }
 starter:
+	@$(IN_KIT)
 	@BUILD=$(BUILD) STEPS="$(STEPS)" tools/starter/make-starter
 
 starter-check:
+	@$(IN_KIT)
 	+@BUILD=$(BUILD) tests/starter/check
 
 docs-images: $(BUILD)/envtex

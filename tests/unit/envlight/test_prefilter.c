@@ -72,11 +72,12 @@ static rgb constant_fn(vec3 d, const void *ctx)
 static rgb basis_fn(vec3 d, const void *ctx)
 {
     const double(*w)[3] = ctx;
-    double y[PREFILTER_SH9], e[3] = {0, 0, 0};
-    prefilter_sh9_basis(vec3_normalize(d), y);
+    double Y[PREFILTER_SH9];
+    prefilter_sh9_basis(vec3_normalize(d), Y);
+    rgb sum = rgb_gray(0);
     for (int k = 0; k < PREFILTER_SH9; k++)
-        for (int ch = 0; ch < 3; ch++) e[ch] += w[k][ch] * y[k];
-    return rgb_make(e[0], e[1], e[2]);
+        sum = rgb_add(sum, rgb_scale(rgb_make(w[k][0], w[k][1], w[k][2]), Y[k]));
+    return sum;
 }
 
 static prefilter_sh9 project(const convert_map *m)

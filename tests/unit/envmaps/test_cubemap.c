@@ -112,10 +112,11 @@ END_TEST
 /* The face the tie rule "x before y before z" must pick for a direction. */
 static int tie_rule_face(vec3 d)
 {
-    double ax = fabs(d.x), ay = fabs(d.y), az = fabs(d.z);
-    if (ax >= ay && ax >= az) return d.x > 0 ? 0 : 1;
-    if (ay >= az) return d.y > 0 ? 2 : 3;
-    return d.z > 0 ? 4 : 5;
+    const double c[3] = {d.x, d.y, d.z};
+    int axis = 0;
+    for (int i = 1; i < 3; i++)
+        if (fabs(c[i]) > fabs(c[axis])) axis = i; /* strictly larger: a tie keeps the earlier */
+    return 2 * axis + (c[axis] > 0 ? 0 : 1);
 }
 
 /* Every point on every edge of every face (including the corners) maps to a direction that
