@@ -128,10 +128,10 @@ static int build_rows(envlight *el, const envmap *env, envsampling_mode mode,
     /* row r spans theta in [pi r / h, pi (r + 1) / h]: u = cos theta from 1 down to -1 */
     for (int r = 0; r <= h; r++) el->cos_edge[r] = r == 0 ? 1.0 : r == h ? -1.0 : cos(M_PI * r / h);
     for (int r = 0; r < h; r++) {
-        /* STEP(cdf): the exact solid angle of a texel of row r, in the lecture's u = cos theta,
-         * v = phi where d(omega) = du dv: (cos theta_top - cos theta_bottom) (2 pi / w), with
-         * cos_edge[r] = cos theta_top (slide 22); it weights each texel's probability and the
-         * map's power |L| */
+        /* STEP(cdf): the exact solid angle of a texel of row r, in the lecture's u = cos theta, v =
+         * phi where d(omega) = du dv: (cos theta_top - cos theta_bottom) (2 pi / w), with
+         * cos_edge[r] = cos theta_top (slide 22 (Sampling General 2D Distributions)); it weights
+         * each texel's probability and the map's power |L| */
         /* STUB: el->row_omega[r] = 4 * M_PI / ((double)w * h); */
         el->row_omega[r] = (el->cos_edge[r] - el->cos_edge[r + 1]) * 2 * M_PI / w;
         /* END STEP(cdf) */
@@ -398,8 +398,9 @@ int envlight_sample(const envlight *el, double xi1, double xi2, envlight_sample_
 {
     if (el->mode == ENVSAMPLING_UNIFORM) return sample_uniform(el, xi1, xi2, out);
     if (el->mode != ENVSAMPLING_CDF && el->mode != ENVSAMPLING_CDF_SINTHETA) return 0;
-    /* slide 22: the column (phi) from the marginal CDF, then the row (u = cos theta) from the
-     * column's conditional CDF; alias tables pick the same cells in O(1) */
+    /* slide 23 (How to Sample 2D Distribution): the column (phi) from the marginal CDF, then the
+     * row (u = cos theta) from the column's conditional CDF; alias tables pick the same cells in
+     * O(1) */
     int c, r;
     double pmf, rc, rr;
     if (el->sampler == ENVSAMPLER_ALIAS)

@@ -1,5 +1,5 @@
-/* mediancut.c - Debevec's median cut: strata of equal energy, each a point light
- * (see include/envtex/envlight/mediancut.h; lecture slides 18-21). */
+/* mediancut.c - Debevec's median cut: strata of equal energy, each a point light (see
+ * include/envtex/envlight/mediancut.h; lecture slides 18-21 (Structured Importance Sampling)). */
 #include "envtex/envlight/mediancut.h"
 
 #include <float.h>
@@ -40,7 +40,7 @@ static int split_region(int w, int h, const double *S, const region *g, region *
     /* STEP(mediancut): the median cut: split across the longer side in angle (phi's side
      * shortened by sin theta at the middle row), at the first cut whose part [c0, k) or
      * [r0, k) holds half the energy (sat_sum; a binary search), k in (c0, c1) or (r0, r1); a
-     * side of one texel never splits (slides 18-21) */
+     * side of one texel never splits (slides 18-21 (Structured Importance Sampling)) */
     /* STUB: (void)w;
      * *a = *b = *g;
      * if (cw >= rh) a->c1 = b->c0 = g->c0 + cw / 2; else a->r1 = b->r0 = g->r0 + rh / 2; */

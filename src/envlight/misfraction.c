@@ -1,5 +1,5 @@
-/* misfraction.c - how often MIS should sample the map: a variance model of a diffuse surface
- * (see include/envtex/envlight/misfraction.h; lecture slide 23). */
+/* misfraction.c - how often MIS should sample the map: a variance model of a diffuse surface (see
+ * include/envtex/envlight/misfraction.h; lecture slide 22 (Sampling General 2D Distributions)). */
 #include "envtex/envlight/misfraction.h"
 
 #include <math.h>

@@ -184,7 +184,7 @@ void prefilter_sh9_basis(vec3 d, double y[PREFILTER_SH9])
 static void project_texel(double acc[PREFILTER_SH9][3], const float *L, vec3 w, double omega)
 {
     /* STEP(sh9): the projection L_lm = sum over texels of L Y_lm(w) dOmega: add this texel's share
-     * to each of the 9 coefficients, per channel (slide 44; prefilter.h) */
+     * to each of the 9 coefficients, per channel (Ramamoorthi & Hanrahan 2001; prefilter.h) */
     /* STUB: (void)acc; (void)L; (void)w; (void)omega; */
     double y[PREFILTER_SH9];
     prefilter_sh9_basis(w, y);

@@ -48,7 +48,7 @@ static uv2 face_st(int f, vec3 d)
     double sc, tc, ma;
     face_axes(f, d, &sc, &tc, &ma);
     /* STEP(cubemap): "divide by the biggest": s = (sc / |ma| + 1) / 2, t = (tc / |ma| + 1) / 2
-     * (slides 13-14) */
+     * (slide 9 (Environment Map Representations)) */
     /* STUB: (void)sc; (void)tc; (void)ma; return (uv2){0.5, 0.5}; */
     double m = fabs(ma); /* divide, not multiply by 1/|ma|: 1/|ma| overflows for subnormal d */
     return (uv2){0.5 * (sc / m + 1.0), 0.5 * (tc / m + 1.0)};
@@ -59,7 +59,7 @@ static uv2 face_st(int f, vec3 d)
 static int major_face(vec3 d)
 {
     /* STEP(cubemap): "take the biggest abs of (x, y, z)": the major axis and its sign pick the
-     * face; ties: x before y before z (slides 13-14) */
+     * face; ties: x before y before z (slide 9 (Environment Map Representations)) */
     /* STUB: (void)d; return CUBEMAP_POS_X; */
     double ax = fabs(d.x), ay = fabs(d.y), az = fabs(d.z);
     if (ax >= ay && ax >= az) return d.x > 0 ? CUBEMAP_POS_X : CUBEMAP_NEG_X;
@@ -83,7 +83,7 @@ int cubemap_dir_to_face(vec3 d, int *face, uv2 *st)
 static vec3 face_point(int f, uv2 st)
 {
     /* STEP(cubemap): cube map coordinates back to a point on the face's plane (the face table
-     * read backwards; normalized by the caller) (slides 13-14) */
+     * read backwards; normalized by the caller) (slide 9 (Environment Map Representations)) */
     /* STUB: (void)f; (void)st; return vec3_make(1, 0, 0); */
     double sc = 2.0 * st.u - 1.0, tc = 2.0 * st.v - 1.0;
     switch (f) {

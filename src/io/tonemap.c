@@ -27,7 +27,7 @@ int tonemap_op_parse(const char *name, tonemap_op *op)
 double tonemap_srgb_encode(double l)
 {
     /* STEP(tonemap): the sRGB curve for display: 12.92 l on the linear toe l <= 0.0031308,
-     * else 1.055 l^(1 / 2.4) - 0.055 (IEC 61966-2-1; tonemap.h) (slide 10) */
+     * else 1.055 l^(1 / 2.4) - 0.055 (IEC 61966-2-1; tonemap.h) (slide 10 (High Dynamic Range)) */
     /* STUB: return l; */
     return l <= 0.0031308 ? 12.92 * l : 1.055 * pow(l, 1.0 / 2.4) - 0.055;
     /* END STEP(tonemap) */

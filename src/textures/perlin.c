@@ -69,7 +69,7 @@ double perlin_noise(double x, double y, double z)
      * chain (A = p[X] + Y, AA = p[A] + Z, ...: docs/texture-mapping.md, section 11), dot each
      * corner's gradient with the offset (grad), blend with fade(t) = 6t^5 - 15t^4 + 10t^3
      * (lerp); the cell of any finite x is lattice_cell(floor(x)) (fast_floor(x) & 255 below
-     * PERLIN_INT_SAFE), a NaN or infinite coordinate gives 0 (slides 44-46) */
+     * PERLIN_INT_SAFE), a NaN or infinite coordinate gives 0 (slides 45-46 (Solid textures)) */
     /* STUB: (void)perm; (void)fade; (void)lerp; (void)grad; (void)lattice_cell;
      * (void)fast_floor; (void)x; (void)y; (void)z;
      * return 0.0; */

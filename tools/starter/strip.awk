@@ -2,7 +2,7 @@
 #
 # A solution region in the source reads
 #       /* STEP(latlong): direction -> (u, v): theta = acos z, phi = atan2(y, x)
-#        * (slide 12) */
+#        * (slide 9 (Environment Map Representations)) */
 #       /* STUB: uv->u = 0; uv->v = 0;
 #        * return -1; */
 #       ... the solution ...
@@ -10,7 +10,7 @@
 # The STEP comment and the STUB comment may each span lines (continuation lines start with
 # " * ").  With `steps` (space separated) naming latlong, the region becomes
 #       /* TODO(latlong): direction -> (u, v): theta = acos z, phi = atan2(y, x)
-#        * (slide 12) */
+#        * (slide 9 (Environment Map Representations)) */
 #       uv->u = 0; uv->v = 0;
 #       return -1;
 # Regions of other steps keep their solution (the marker lines stay as comments).

@@ -1,5 +1,5 @@
 /* image.h - the linear RGB float image every module shares: HDR maps, textures, renders
- * (slide 10: "HDR images").
+ * (slide 10 (High Dynamic Range): "HDR images").
  *
  *     if (image_alloc(&im, 512, 256, &err)) return -1;   // zero filled
  *     image_px(&im, x, y)[0] = 1.0f;                      // red of pixel (x, y)

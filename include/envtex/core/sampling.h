@@ -1,6 +1,6 @@
-/* sampling.h - uniform (xi1, xi2) in [0,1)^2 warped to directions with a known pdf (slides
- * 16-23: "pdfs that cancel the lighting").  Local frame, normal or lobe axis +z; pdfs are per
- * steradian.  Every sampler takes xi in [0, 1] (NaN gives NaN).
+/* sampling.h - uniform (xi1, xi2) in [0,1)^2 warped to directions with a known pdf (slides 16-23
+ * (Environment Maps Generally): "pdfs that cancel the lighting").  Local frame, normal or lobe axis
+ * +z; pdfs are per steradian.  Every sampler takes xi in [0, 1] (NaN gives NaN).
  *
  *     vec3 w = sampling_to_world(sampling_cosine_hemisphere(xi1, xi2), n);
  */

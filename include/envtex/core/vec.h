@@ -74,7 +74,7 @@ static inline vec3 vec3_max(vec3 a, vec3 b)
 {
     return (vec3){a.x > b.x ? a.x : b.x, a.y > b.y ? a.y : b.y, a.z > b.z ? a.z : b.z};
 }
-/* Mirror direction of d about unit n (slide 3). */
+/* Mirror direction of d about unit n (slide 5 (Using Environment for Reflection Map)). */
 static inline vec3 vec3_reflect(vec3 d, vec3 n) { return vec3_madd(d, n, -2.0 * vec3_dot(d, n)); }
 /* Angle in radians between two non-zero directions, atan2(|a x b|, a.b): accurate for tiny
  * angles, where acos(a.b) is not. */

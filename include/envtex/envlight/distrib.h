@@ -1,5 +1,6 @@
-/* distrib.h - sampling 1D and 2D distributions by numerical CDFs (slides 22-23: the OUTER
- * variable from its marginal CDF, then the INNER from the column's conditional).  Pure maths.
+/* distrib.h - sampling 1D and 2D distributions by numerical CDFs (slides 22-23 (Sampling General 2D
+ * Distributions): the OUTER variable from its marginal CDF, then the INNER from the column's
+ * conditional).  Pure maths.
  *
  *     if (distrib2d_init(&d, w, 4, 2, &err)) return -1;      // w[outer * 2 + inner] >= 0
  *     distrib2d_sample(&d, xi1, xi2, &o, &i, &pmf, &ro, &ri); // cell (o, i), probability pmf

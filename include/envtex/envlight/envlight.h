@@ -1,7 +1,7 @@
-/* envlight.h - the environment as a light (slides 16-23).  The lecture's cdf mode: texel (c, r)
- * by its 2D CDF (distrib.h), p = L_avg dOmega_r / |L|, then a point uniform in (u = cos theta,
- * v = phi), d(omega) = du dv: pdf = L_avg / |L|.  Also uniform, cdf-sintheta, mediancut,
- * sis (sis.h).
+/* envlight.h - the environment as a light (slides 16-23 (Environment Maps Generally)).  The
+ * lecture's cdf mode: texel (c, r) by its 2D CDF (distrib.h), p = L_avg dOmega_r / |L|, then a
+ * point uniform in (u = cos theta, v = phi), d(omega) = du dv: pdf = L_avg / |L|.  Also uniform,
+ * cdf-sintheta, mediancut, sis (sis.h).
  *
  *     if (envlight_build(&el, &env, ENVSAMPLING_CDF, ENVSAMPLER_BINARY, 0, &mem, &err)) ...
  *     if (envlight_sample(&el, xi1, xi2, &s)) ... s.wi, s.L, s.pdf ...

@@ -1,5 +1,6 @@
-/* mediancut.h - Debevec's median cut (slides 18-21, structured importance sampling): the map
- * cut into N strata of equal energy, each a point light; shadow rays jittered in the stratum.
+/* mediancut.h - Debevec's median cut (slides 18-21 (Structured Importance Sampling), structured
+ * importance sampling): the map cut into N strata of equal energy, each a point light; shadow rays
+ * jittered in the stratum.
  *
  *     mediancut_map m = {&img, scale, energy, row_omega};      // energy: L_avg dOmega
  *     if (mediancut_build(&m, 64, &pts, &n, &choice, &err)) ...

@@ -1,5 +1,6 @@
-/* misfraction.h - how often MIS (slide 23) light-samples the envmap (`envsamplefraction auto`):
- * diffuse surfaces facing 64 normals, 1 + c samples of p_m = (p_brdf + c p_light) / (1 + c):
+/* misfraction.h - how often MIS (slide 22 (Sampling General 2D Distributions)) light-samples the
+ * envmap (`envsamplefraction auto`): diffuse surfaces facing 64 normals, 1 + c samples of p_m =
+ * (p_brdf + c p_light) / (1 + c):
  *     V(c) = (integral g^2 / p_m / I^2 - 1) / (1 + c),  g = L cos+ / pi,  time 1 + light_cost c
  *
  *     double v[MISFRACTION_COUNT], c = misfraction_choose(&el, 0.6, v);

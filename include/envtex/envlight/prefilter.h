@@ -1,6 +1,6 @@
-/* prefilter.h - illumination maps (slide 44, Miller & Hoffman 1984): the environment convolved
- * once with a lobe, so a diffuse or glossy surface is one lookup; irradiance from 9 spherical
- * harmonics (Ramamoorthi & Hanrahan 2001).  Figures: docs/illumination-maps.md.
+/* prefilter.h - illumination maps (slide 44 (Environment Maps), Miller & Hoffman 1984): the
+ * environment convolved once with a lobe, so a diffuse or glossy surface is one lookup; irradiance
+ * from 9 spherical harmonics (Ramamoorthi & Hanrahan 2001).  Figures: docs/illumination-maps.md.
  *
  *     if (prefilter_sh9_project(&env, &sh, &err)) ...          // env: convert.h, any kind
  *     rgb E = prefilter_sh9_irradiance(&sh, n);                 // E(n), n unit

@@ -1,5 +1,5 @@
-/* sis.h - structured importance sampling (slides 17-21: "reduce the environment to point
- * lights"; Agarwal et al. 2003), `envsampling sis N`.
+/* sis.h - structured importance sampling (slides 18-20 (Structured Importance Sampling): "reduce
+ * the environment to point lights"; Agarwal et al. 2003), `envsampling sis N`.
  *
  *     sis_strata s;  // lum: w * h luminances, row-major; s.label[r * w + c]: a texel's stratum
  *     if (sis_stratify(lum, w, h, 64, NULL, &s, &err)) ...   else ... sis_strata_free(&s);

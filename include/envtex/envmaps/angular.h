@@ -1,5 +1,5 @@
 /* angular.h - Debevec's angular map: a light probe whose radius is proportional to the angle
- * from +x, the whole sphere across the disc (slides 6-9).
+ * from +x, the whole sphere across the disc (slides 6-9 (Environment Maps)).
  *
  *     if (angular_dir_to_uv(d, &uv) == 0) ...     // any non-zero finite d
  *     rgb L = angular_lookup_bilinear(&probe, d);

@@ -1,5 +1,6 @@
-/* convert.h - one environment in any of the six representations, looked up, measured and
- * resampled into any other (slides 13-14: "easy convert between cube, latlong"; slide 22).
+/* convert.h - one environment in any of the six representations, looked up, measured and resampled
+ * into any other (slide 9 (Environment Map Representations): "easy convert between cube, latlong";
+ * slide 22 (Sampling General 2D Distributions)).
  *
  *     convert_env in = convert_view(&ll);                   // ll read by convert_read
  *     if (convert_resample(&in, CONVERT_CUBE, 256, 0, &cube, &err)) ... // 256 x 256 faces

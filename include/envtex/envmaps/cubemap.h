@@ -1,5 +1,5 @@
-/* cubemap.h - six square images on the faces of a cube around the viewer (slides 6-9, 13-14:
- * "take biggest abs of (x,y,z), divide by it ... to vec: normalize").
+/* cubemap.h - six square images on the faces of a cube around the viewer (slides 6-9 (Environment
+ * Maps): "take biggest abs of (x,y,z), divide by it ... to vec: normalize").
  *
  *     if (cubemap_from_cross(&cross, &cm, &err)) return -1;  // 4:3 or 3:4 cross image
  *     rgb c = cubemap_lookup_bilinear(&cm, dir);             // any non-zero finite dir

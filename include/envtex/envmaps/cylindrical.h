@@ -1,5 +1,6 @@
 /* cylindrical.h - the cylindrical panorama: the environment projected onto a vertical unit
- * cylinder, unrolled, cut at heights +-h = max_height (elevations +-atan h) (slides 6-9).
+ * cylinder, unrolled, cut at heights +-h = max_height (elevations +-atan h) (slides 6-9
+ * (Environment Maps)).
  *
  *     if (cylindrical_dir_to_uv(d, 1.0, &uv) == 0) ...      // +-45 degrees of elevation
  *     rgb L = cylindrical_lookup_bilinear(&img, 1.0, d);     // black above and below

@@ -1,5 +1,6 @@
-/* equalarea.h - the equal-area map: rows uniform in cos theta, columns in phi, so every texel
- * has the same solid angle (slides 11-12, 22: d(omega) = d(cos theta) d(phi)).
+/* equalarea.h - the equal-area map: rows uniform in cos theta, columns in phi, so every texel has
+ * the same solid angle (slide 9 (Environment Map Representations), slide 22 (Sampling General 2D
+ * Distributions): d(omega) = d(cos theta) d(phi)).
  *
  *     if (equalarea_dir_to_uv(d, &uv) == 0) ...     // any non-zero finite d
  *     rgb L = equalarea_lookup_bilinear(&img, d);    // wraps in phi, clamps at the poles

@@ -1,5 +1,5 @@
-/* latlong.h - the latitude-longitude map (slide 12: "convert direction to spherical coords,
- * direct lookup").
+/* latlong.h - the latitude-longitude map (slide 9 (Environment Map Representations): "convert
+ * direction to spherical coords, direct lookup").
  *
  *     if (latlong_dir_to_uv(d, &uv) == 0) ...      // any non-zero finite d
  *     rgb L = latlong_lookup_bilinear(&img, d);     // wraps in phi, clamps in theta

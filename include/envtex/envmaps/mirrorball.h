@@ -1,5 +1,6 @@
-/* mirrorball.h - the mirror-ball (light probe) map: a mirrored sphere photographed from far
- * away; the direction is the view ray reflected about its normal (slides 6-9, 15).
+/* mirrorball.h - the mirror-ball (light probe) map: a mirrored sphere photographed from far away;
+ * the direction is the view ray reflected about its normal (slides 6-9 (Environment Maps), slide 10
+ * (High Dynamic Range)).
  *
  *     if (mirrorball_dir_to_uv(d, &uv) == 0) ...      // any non-zero finite d
  *     rgb L = mirrorball_lookup_bilinear(&probe, d);

@@ -1,5 +1,5 @@
 /* raydiff.h - ray differentials (Igehy 1999; pbrt 10.1): how far the hit point moves from one
- * pixel to the next, the footprint a texture filter needs (slides 25-46).
+ * pixel to the next, the footprint a texture filter needs (slides 26-46 (Texture Mapping)).
  *
  *     if (raydiff_at_hit(&r, &rd, p, ng, &dpdx, &dpdy)) ...  // rd: camera_ray_differential
  *

@@ -97,7 +97,7 @@ static inline double integrator_power_heuristic(double nf, double pf, double ng,
 {
     /* STEP(mis): Veach's power heuristic (beta = 2) for the sample of strategy f against g:
      * (nf pf)^2 / ((nf pf)^2 + (ng pg)^2); 0 when nf pf is 0 (or NaN), 1 when it is infinite
-     * (a delta) (slide 23) */
+     * (a delta) (slide 22 (Sampling General 2D Distributions)) */
     /* STUB: (void)nf; (void)pf; (void)ng; (void)pg;
      * return 0.5; */
     double f = nf * pf, g = ng * pg;

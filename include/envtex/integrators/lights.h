@@ -1,5 +1,6 @@
-/* lights.h - the scene's lights for next-event estimation (hw2-hw4; slide 17, NEE extended
- * to envmaps): quad, point, directional and the environment (envlight.h), shared.
+/* lights.h - the scene's lights for next-event estimation (hw2-hw4; slide 16 (Environment Maps
+ * Generally), NEE extended to envmaps): quad, point, directional and the environment (envlight.h),
+ * shared.
  *
  *     lights ls;
  *     lights_build(&ls, sc, el, radius, &mem, &err);

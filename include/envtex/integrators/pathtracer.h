@@ -1,9 +1,9 @@
-/* pathtracer.h - `integrator pathtracer` (CSE 168 hw3-hw4, slides 16-23): a path bounces by
- * `importancesampling`, at most `maxdepth` times (-1: with `russianroulette on`, survival =
- * the throughput's largest component); reaching a light it carries Le prod (f cos / pdf).
- * `nexteventestimation on` adds direct_lighting at each non-delta bounce and drops light then
- * hit; `mis` weighs both by the power heuristic.  Emissive geometry counts when hit; a
- * direction below ng ends the path.  docs/design-notes.md.
+/* pathtracer.h - `integrator pathtracer` (CSE 168 hw3-hw4, slides 16-23 (Environment Maps
+ * Generally)): a path bounces by `importancesampling`, at most `maxdepth` times (-1: with
+ * `russianroulette on`, survival = the throughput's largest component); reaching a light it carries
+ * Le prod (f cos / pdf). `nexteventestimation on` adds direct_lighting at each non-delta bounce and
+ * drops light then hit; `mis` weighs both by the power heuristic.  Emissive geometry counts when
+ * hit; a direction below ng ends the path.  docs/design-notes.md.
  *
  *     rgb L = render_radiance(&it, camera_ray(&cam, x, y), &rng); // render.h calls
  *                                                                 // pathtracer_radiance_hit

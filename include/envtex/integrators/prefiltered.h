@@ -1,7 +1,7 @@
-/* prefiltered.h - `integrator prefiltered` (slide 44; Miller & Hoffman 1984, Ramamoorthi &
- * Hanrahan 2001): the environment's light read from illumination maps.  Camera rays, mirrors
- * and glass are the ray tracer's; at any other (brdf phong) hit, with the maps bilinear in the
- * envmap frame:
+/* prefiltered.h - `integrator prefiltered` (slide 44 (Environment Maps); Miller & Hoffman 1984,
+ * Ramamoorthi & Hanrahan 2001): the environment's light read from illumination maps.  Camera rays,
+ * mirrors and glass are the ray tracer's; at any other (brdf phong) hit, with the maps bilinear in
+ * the envmap frame:
  *     I = emission + kd irr(n) + ks (n . r) phong_S(r),   irr = E / pi, r the mirror direction
  * No shadows, other lights, `ambient` or `brdf ggx` (docs/design-notes.md).
  *

@@ -1,6 +1,6 @@
 /* raytracer.h - `integrator raytracer`: the CSE 167 Whitted ray tracer with the reflection map
- * (slides 3-5): "Color += reflectivity * Color of reflected ray; directly use envmap if miss
- * geometry, otherwise recurse".
+ * (slide 5 (Using Environment for Reflection Map)): "Color += reflectivity * Color of reflected
+ * ray; directly use envmap if miss geometry, otherwise recurse".
  *
  *     raytracer rt; raytracer_init(&rt, sc, &accel);
  *     rgb c = raytracer_trace(&rt, camera_ray(&cam, x, y));

@@ -1,5 +1,5 @@
-/* texshade.h - texture maps at a ray hit (slides 25-46): the hit's (s, t) and footprint, and
- * what the material's maps make of the surface, for every integrator.
+/* texshade.h - texture maps at a ray hit (slides 26-46 (Texture Mapping)): the hit's (s, t) and
+ * footprint, and what the material's maps make of the surface, for every integrator.
  *
  *     brdf_surface_from_material(&s, &sc->materials[h.material]);  // s's frame set from h
  *     texshade_surface(sc, &h, &r, &rd, &s);                       // differentials, maps

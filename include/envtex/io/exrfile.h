@@ -1,5 +1,5 @@
-/* exrfile.h - OpenEXR images (linear half or float radiance, lecture slide 10) through
- * OpenEXRCore 3.1.
+/* exrfile.h - OpenEXR images (linear half or float radiance, lecture slide 10 (High Dynamic Range))
+ * through OpenEXRCore 3.1.
  *
  *     if (exrfile_read("sky.exr", &sky, &mem, &err)) return -1;    // linear RGB float
  *     if (exrfile_write("out.exr", &sky, 1, &err)) return -1;      // half float, ZIP, atomic

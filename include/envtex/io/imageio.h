@@ -1,5 +1,5 @@
-/* imageio.h - images by file name, the entry point the rest of envtex uses (slide 10, HDR
- * images): OpenEXR, Radiance RGBE, PFM, PNG (exrfile.h, rgbe.h, pfm.h, pngfile.h).
+/* imageio.h - images by file name, the entry point the rest of envtex uses (slide 10 (High Dynamic
+ * Range), HDR images): OpenEXR, Radiance RGBE, PFM, PNG (exrfile.h, rgbe.h, pfm.h, pngfile.h).
  *
  *     if (imageio_read("sky.exr", &im, &mem, &err)) ...       // "sky.exr: truncated ..."
  *

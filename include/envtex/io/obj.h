@@ -1,5 +1,6 @@
-/* obj.h - a Wavefront OBJ reader: positions, normals and texture coordinates (slides 25-27:
- * given at the vertices, interpolated across each triangle), faces fan-triangulated.
+/* obj.h - a Wavefront OBJ reader: positions, normals and texture coordinates (slides 36-37
+ * (Interpolating Texture Coordinates): given at the vertices, interpolated across each triangle),
+ * faces fan-triangulated.
  *
  *     if (obj_load("bunny.obj", 0, &m, &mem, &err)) ...  // err: "bunny.obj:12: ..."
  *

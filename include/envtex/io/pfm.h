@@ -1,4 +1,5 @@
-/* pfm.h - Portable Float Map: a text header and raw floats, slide 10's simplest HDR format.
+/* pfm.h - Portable Float Map: a text header and raw floats, slide 10 (High Dynamic Range)'s
+ * simplest HDR format.
  *
  *     if (pfm_write("render.pfm", &im, &err)) return -1;   // exact floats, atomic
  *

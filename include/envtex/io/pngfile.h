@@ -1,5 +1,5 @@
-/* pngfile.h - PNG through libpng (pngfile: it never shadows <png.h>), slide 10's low dynamic
- * range format: reading decodes to linear radiance, writing tone maps first.
+/* pngfile.h - PNG through libpng (pngfile: it never shadows <png.h>), slide 10 (High Dynamic
+ * Range)'s low dynamic range format: reading decodes to linear radiance, writing tone maps first.
  *
  *     if (pngfile_read("wood.png", &tex, &mem, &err)) return -1;     // linear RGB in [0,1]
  *

@@ -1,5 +1,5 @@
 /* rgbe.h - Radiance .hdr (RGBE: three 8-bit mantissas, one shared exponent), the oldest HDR
- * format for environment maps (slide 10).
+ * format for environment maps (slide 10 (High Dynamic Range)).
  *
  *     if (rgbe_read("sky.hdr", &sky, &mem, &err)) return -1;   // linear RGB float
  *     if (rgbe_write("copy.hdr", &sky, &err)) return -1;       // run-length encoded, atomic

@@ -1,4 +1,5 @@
-/* tonemap.h - linear HDR radiance to 8-bit sRGB (slide 10: HDR must be tone mapped to show).
+/* tonemap.h - linear HDR radiance to 8-bit sRGB (slide 10 (High Dynamic Range): HDR must be tone
+ * mapped to show).
  *
  *     tonemap_params tm = tonemap_defaults();   // 0 EV, clamp, sRGB
  *     uint8_t px[3]; tonemap_pixel(&tm, c, px);

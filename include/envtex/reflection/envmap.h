@@ -1,6 +1,6 @@
-/* envmap.h - the environment seen by rays that miss the scene (slides 3-5: "directly use
- * envmap if miss geometry"): a map in any representation (convert.h), the `envmap` scale,
- * and its transform (envmap frame -> world).
+/* envmap.h - the environment seen by rays that miss the scene (slide 5 (Using Environment for
+ * Reflection Map): "directly use envmap if miss geometry"): a map in any representation
+ * (convert.h), the `envmap` scale, and its transform (envmap frame -> world).
  *
  *     scene_environment(sc, &env);                 // scene.h; no envmap: black everywhere
  *     rgb L = envmap_radiance(&env, world_dir);    // seen looking along world_dir

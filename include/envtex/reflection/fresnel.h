@@ -1,5 +1,5 @@
-/* fresnel.h - reflection and refraction at a smooth dielectric (slides 3-5: mirror reflection
- * "and refraction" to an environment map).
+/* fresnel.h - reflection and refraction at a smooth dielectric (slide 5 (Using Environment for
+ * Reflection Map): mirror reflection "and refraction" to an environment map).
  *
  *     double F = fresnel_dielectric(cos_i, eta);   // fraction reflected
  *     vec3 t; if (fresnel_refract(d, n, eta, &t)) ... else total internal reflection

@@ -1,6 +1,6 @@
-/* displacemap.h - `displacementmap NAME SCALE` (slide 43): each sphere and triangle whose
- * material has a displacement map becomes triangles moved along the normal by SCALE times the
- * texture (displace.h), traced instead of it.
+/* displacemap.h - `displacementmap NAME SCALE` (slide 43 (Displacement Mapping)): each sphere and
+ * triangle whose material has a displacement map becomes triangles moved along the normal by SCALE
+ * times the texture (displace.h), traced instead of it.
  *
  *     if (displacemap_needed(sc) && displacemap_apply(sc, 0, &mem, &work, &st, &err)) ...
  *     ... render `work` ...    displacemap_free(&work);

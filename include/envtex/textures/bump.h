@@ -1,4 +1,5 @@
-/* bump.h - bump mapping (Blinn 1978, slide 42): perturb the normal, not the geometry.
+/* bump.h - bump mapping (Blinn 1978, slide 42 (Bump Mapping)): perturb the normal, not the
+ * geometry.
  *
  *     bump_normal(hit.ns, hit.ng, dp_ds, dp_dt, dh_ds, dh_dt, strength, &ns);
  *

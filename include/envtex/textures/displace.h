@@ -1,5 +1,5 @@
-/* displace.h - displacement mapping (slide 43): tessellate, move each vertex along its normal
- * by a height, recompute the normals; silhouettes and shadows change.
+/* displace.h - displacement mapping (slide 43 (Displacement Mapping)): tessellate, move each vertex
+ * along its normal by a height, recompute the normals; silhouettes and shadows change.
  *
  *     if (displace_sphere(32, height, tex, 0.05, 0, &m, &err)) return -1;
  *     ... m.p[], m.n[] (object space), m.tris[i].v[3], .st[3] ...;  displace_mesh_free(&m);

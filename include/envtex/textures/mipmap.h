@@ -1,5 +1,5 @@
 /* mipmap.h - the image pyramid (Williams 1983): trilinear lookups for a scalar footprint, EWA
- * (Heckbert 1989) for an anisotropic one.  Slides 36-39: pick the level that matches the
+ * (Heckbert 1989) for an anisotropic one.  Slides 39-40 (Mip Maps): pick the level that matches the
  * footprint, blend the two nearest.
  *
  *     if (mipmap_build(&m, &img, WRAP_REPEAT, &err)) return -1;  // img must outlive m

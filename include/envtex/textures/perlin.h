@@ -1,5 +1,5 @@
 /* perlin.h - Perlin's Improved Noise (2002) and its solid textures: fbm, turbulence, marble,
- * wood (slides 44-46).
+ * wood (slides 45-46 (Solid textures)).
  *
  *     double n = perlin_noise(p.x, p.y, p.z);                 // about [-1, 1]
  *     double g = perlin_fbm_filtered(p, w, 6, 2.0, 0.5);      // w: the footprint at p

@@ -1,5 +1,5 @@
-/* texlookup.h - an image read as a texture: wrap modes, nearest and bilinear lookups (slides
- * 25-46: tiling, magnification by bilinear interpolation).
+/* texlookup.h - an image read as a texture: wrap modes, nearest and bilinear lookups (slide
+ * 38 (Texture Map Filtering): tiling, magnification by bilinear interpolation).
  *
  *     rgb c = texlookup_bilinear(&img, (uv2){s, t}, WRAP_REPEAT);
  *

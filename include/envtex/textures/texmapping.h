@@ -1,5 +1,6 @@
-/* texmapping.h - where (s, t) comes from (slides 25-31): vertex coordinates interpolated with
- * barycentric weights ("uv"), or a planar, cylindrical, spherical or cube mapping of a point.
+/* texmapping.h - where (s, t) comes from (slides 28-37 (Parameterization)): vertex coordinates
+ * interpolated with barycentric weights ("uv"), or a planar, cylindrical, spherical or cube mapping
+ * of a point.
  *
  *     uv2 st = texmapping_point(TEXMAPPING_SPHERICAL, q);   // q in object space
  *     texmapping_differentials(TEXMAPPING_SPHERICAL, q, dq_dx, dq_dy, &dst_dx, &dst_dy);

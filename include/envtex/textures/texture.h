@@ -1,5 +1,5 @@
 /* texture.h - a texture and its filtered evaluation: images (with their mip pyramid), the
- * checkerboard and Perlin's solid textures (slides 25-46).
+ * checkerboard and Perlin's solid textures (slides 26-46 (Texture Mapping)).
  *
  *     texture_init_image(&tx, &img, WRAP_REPEAT);       // img must outlive tx
  *     if (texture_prepare(&tx, TEXFILTER_TRILINEAR, &mem, &err)) return -1;

@@ -330,7 +330,7 @@ START_TEST(test_lights_point_attenuation_uses_all_three_terms_at_the_distance)
 END_TEST
 
 /* median cut through the light set: the light is the stratum's point (its centroid, its power
- * over the pick probability), but the shadow ray is jittered inside the stratum (slides 18-21),
+ * over the pick probability), but the shadow ray is jittered inside the stratum (slides 18-21 (Structured Importance Sampling)),
  * so it follows envlight_mediancut_pick's direction, not the centroid's. */
 START_TEST(test_lights_median_cut_shadow_ray_is_jittered_in_the_stratum)
 {
