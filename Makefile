@@ -8,7 +8,7 @@
 #   make update-golden   re-render the golden references (look at them before committing)
 #   make docs-images     re-render the pictures in docs/images/ from data/scenes/
 #   make grade SUBMISSIONS=dir   build, test and render each student's tree: out/grade/ (CSV, HTML)
-#   make starter STEPS="latlong cdf"   an assignment starter tree with those steps as stubs (or all)
+#   make starter STEPS="latlong cdf" [HINTS=1|2|3]   a starter kit with those steps as stubs (or all)
 #   make test STEP=cdf   only the tests of one lecture step (tests/steps)
 #   make deps       install the Debian packages envtex needs (apt-get, as root or via sudo)
 #   make fuzz       libFuzzer on every parser, FUZZ_SECONDS each (needs clang; docs/robustness.md)
@@ -133,7 +133,7 @@ IN_KIT = [ -d tools/starter ] || { echo "envtex: make $@: this is a starter kit;
 	"instructor's tree (docs/teaching.md)" >&2; exit 1; }
 starter:
 	@$(IN_KIT)
-	@BUILD=$(BUILD) STEPS="$(STEPS)" tools/starter/make-starter
+	@BUILD=$(BUILD) STEPS="$(STEPS)" HINTS="$(HINTS)" tools/starter/make-starter
 
 starter-check:
 	@$(IN_KIT)

@@ -46,10 +46,10 @@ static rgb bilinear(const image *im, uv2 uv, int wrap_u)
     double x0 = floor(x), y0 = floor(y);
     double ax = x - x0, ay = y - y0;
     int i0 = (int)x0, j0 = (int)y0, i1 = i0 + 1, j1 = j0 + 1;
-    /* STEP(bilinear): the four texels' columns and rows in the image: with wrap_u (lat-long) the
-     * columns wrap across the phi seam (u = 0 and u = 1 are neighbours), else they clamp to the
-     * edge; the rows clamp at the top and bottom (a lat-long map's poles); uv in [0, 1] x [0, 1]
-     * (slide 9 (Environment Map Representations), slide 38 (Texture Map Filtering)) */
+    /* STEP(bilinear): the four texels around uv for a bilinear lookup, slide 38 (Texture Map
+     * Filtering): "interpolate (bilinear) between texel values": the columns wrap across the seam
+     * when wrap_u (a lat-long map, slide 9 (Environment Map Representations)) and clamp otherwise;
+     * the rows clamp (image.h) */
     /* STUB: (void)wrap_u;
      * i0 = i1 = (int)fmin(fmax(uv.u * w, 0), w - 1);
      * j0 = j1 = (int)fmin(fmax(uv.v * h, 0), h - 1); */

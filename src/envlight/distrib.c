@@ -36,9 +36,8 @@ static double weight_at(const double *wd, const float *wf, size_t k, int *n_bad)
 static void cdf_from_weights(double *cdf, const double *wd, const float *wf, size_t off, int n,
                              int *n_bad, double *sum)
 {
-    /* STEP(cdf): the numerical CDF: running sums S_j of the weights in double, cdf[j] = S_j / S_n,
-     * cdf[n] = 1 exactly, uniform j / n if the sum is 0 (slides 22-23 (Sampling General 2D
-     * Distributions)) */
+    /* STEP(cdf): the numerical CDF of the n weights, slide 23 (How to Sample 2D Distribution):
+     * "form (numerical) 1D CDFs" (the contract: distrib.h) */
     /* STUB: (void)weight_at; (void)wd; (void)wf; (void)off; (void)n_bad;
      * for (int j = 0; j <= n; j++) cdf[j] = (double)j / (double)n;
      * *sum = 1.0; */
@@ -64,8 +63,8 @@ static void cdf_from_weights(double *cdf, const double *wd, const float *wf, siz
  * because i is the first, so cdf[i + 1] - cdf[i] > 0: zero-width bins are never returned. */
 static int cdf_search(const double *cdf, int n, double x)
 {
-    /* STEP(cdf): invert the CDF by binary search: the first bin i with cdf[i + 1] > x (slide
-     * 23 (How to Sample 2D Distribution)) */
+    /* STEP(cdf): invert the numerical CDF: the bin whose interval of the CDF holds x, slide 23 (How
+     * to Sample 2D Distribution): "use numerical 1D CDF inversion" (distrib.h) */
     /* STUB: (void)cdf; (void)n; (void)x; return 0; */
     int lo = 0, count = n;
     while (count > 0) {
@@ -104,10 +103,9 @@ static void alias_build_table(const double *cdf, int n, distrib_alias *t, double
         else
             large[nl++] = i;
     }
-    /* STEP(alias): Vose's pairing: while both lists hold a bin, fill small bin s up to 1
-     * (prob_s = q_s as a float) with large bin l as its alias, take 1 - prob_s from q_l, and
-     * move l to the small list once q_l < 1; leftovers keep themselves (prob 1), a zero bin
-     * (prob 0) goes to the largest bin, best (Vose 1991) */
+    /* STEP(alias): Vose's alias table (Vose 1991; no slide: an O(1) alternative to the inversion of
+     * slide 23 (How to Sample 2D Distribution)): each small bin filled up to 1 by a large bin,
+     * which becomes its alias (distrib.h) */
     /* STUB: (void)small; (void)large; (void)ns; (void)nl;
      * for (int i = 0; i < n; i++) {
      *     t[i].prob = q[i] > 0 ? 1.0f : 0.0f;

@@ -129,9 +129,8 @@ static int build_rows(envlight *el, const envmap *env, envsampling_mode mode,
     for (int r = 0; r <= h; r++) el->cos_edge[r] = r == 0 ? 1.0 : r == h ? -1.0 : cos(M_PI * r / h);
     for (int r = 0; r < h; r++) {
         /* STEP(cdf): the exact solid angle of a texel of row r, in the lecture's u = cos theta, v =
-         * phi where d(omega) = du dv: (cos theta_top - cos theta_bottom) (2 pi / w), with
-         * cos_edge[r] = cos theta_top (slide 22 (Sampling General 2D Distributions)); it weights
-         * each texel's probability and the map's power |L| */
+         * phi where d(omega) = du dv (slide 22 (Sampling General 2D Distributions)); cos_edge[r] is
+         * u at the row's top edge. It weights each texel's probability and the map's power |L| */
         /* STUB: el->row_omega[r] = 4 * M_PI / ((double)w * h); */
         el->row_omega[r] = (el->cos_edge[r] - el->cos_edge[r + 1]) * 2 * M_PI / w;
         /* END STEP(cdf) */

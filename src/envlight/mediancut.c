@@ -37,10 +37,10 @@ static int split_region(int w, int h, const double *S, const region *g, region *
 {
     int cw = g->c1 - g->c0, rh = g->r1 - g->r0;
     if (cw < 2 && rh < 2) return 0;
-    /* STEP(mediancut): the median cut: split across the longer side in angle (phi's side
-     * shortened by sin theta at the middle row), at the first cut whose part [c0, k) or
-     * [r0, k) holds half the energy (sat_sum; a binary search), k in (c0, c1) or (r0, r1); a
-     * side of one texel never splits (slides 18-21 (Structured Importance Sampling)) */
+    /* STEP(mediancut): Debevec's median cut, slides 18-21 (Structured Importance Sampling): "reduce
+     * environment to point lights", "integrate lighting in strata": split the region across its
+     * longer side, measured in angle, where half its energy lies (sat_sum: a region's energy); a
+     * side one texel wide never splits */
     /* STUB: (void)w;
      * *a = *b = *g;
      * if (cw >= rh) a->c1 = b->c0 = g->c0 + cw / 2; else a->r1 = b->r0 = g->r0 + rh / 2; */

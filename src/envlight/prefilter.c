@@ -162,10 +162,8 @@ static int list_build(const convert_env *env, texel_list *tl, error *err)
 
 void prefilter_sh9_basis(vec3 d, double y[PREFILTER_SH9])
 {
-    /* STEP(sh9): R&H's real basis at the unit direction d = (x, y, z), +z up (prefilter.h):
-     * Y00 = 1 / (2 sqrt pi), Y1m = sqrt(3 / 4 pi) (y, z, x), Y2-2 = sqrt(15 / 4 pi) xy,
-     * Y2-1 = sqrt(15 / 4 pi) yz, Y20 = sqrt(5 / 16 pi) (3 z^2 - 1), Y21 = sqrt(15 / 4 pi) xz,
-     * Y22 = sqrt(15 / 16 pi) (x^2 - y^2), in that order (the SH_K constants above) */
+    /* STEP(sh9): the 9 real spherical harmonics at the unit direction d, in Ramamoorthi &
+     * Hanrahan's order and with +z up (no slide: Ramamoorthi & Hanrahan 2001; prefilter.h) */
     /* STUB: (void)d; for (int k = 0; k < PREFILTER_SH9; k++) y[k] = 0; */
     double x = d.x, yy = d.y, z = d.z;
     y[0] = SH_K0;                      /* Y00 */
@@ -183,8 +181,8 @@ void prefilter_sh9_basis(vec3 d, double y[PREFILTER_SH9])
 /* L_lm += L Y_lm(w) dOmega, one texel (row sums in acc, in double) */
 static void project_texel(double acc[PREFILTER_SH9][3], const float *L, vec3 w, double omega)
 {
-    /* STEP(sh9): the projection L_lm = sum over texels of L Y_lm(w) dOmega: add this texel's share
-     * to each of the 9 coefficients, per channel (Ramamoorthi & Hanrahan 2001; prefilter.h) */
+    /* STEP(sh9): the projection of the map onto the 9 functions: this texel's share of each
+     * coefficient L_lm, per channel (Ramamoorthi & Hanrahan 2001; prefilter.h) */
     /* STUB: (void)acc; (void)L; (void)w; (void)omega; */
     double y[PREFILTER_SH9];
     prefilter_sh9_basis(w, y);
@@ -238,8 +236,9 @@ int prefilter_sh9_project(const convert_env *env, prefilter_sh9 *out, error *err
 
 rgb prefilter_sh9_irradiance(const prefilter_sh9 *sh, vec3 n)
 {
-    /* STEP(sh9): R&H's irradiance E(n) = sum over the 9 (l, m) of A_l L_lm Y_lm(n),
-     * A_0 = pi, A_1 = 2 pi / 3, A_2 = pi / 4, per channel (prefilter.h) */
+    /* STEP(sh9): the irradiance at the normal n from the 9 coefficients, per channel: a convolution
+     * with the clamped cosine is a product in spherical harmonics (Ramamoorthi & Hanrahan 2001;
+     * prefilter.h) */
     /* STUB: (void)sh; (void)n; return rgb_gray(0); */
     static const double A[3] = {M_PI, 2.0 * M_PI / 3.0, M_PI / 4.0}; /* A_l, l = 0, 1, 2 */
     double y[PREFILTER_SH9], e[3] = {0, 0, 0};
@@ -252,10 +251,8 @@ rgb prefilter_sh9_irradiance(const prefilter_sh9 *sh, vec3 n)
 
 void prefilter_sh9_matrix(const prefilter_sh9 *sh, prefilter_sh9_quadratic *q)
 {
-    /* STEP(sh9): R&H's eq. 12, E(n) = (x, y, z, 1) M (x, y, z, 1)^T, with c1 = A2 k2 / 2,
-     * c2 = A1 k1 / 2, c3 = 3 A2 k20, c4 = A0 k0, c5 = A2 k20 (prefilter.h; k the basis's
-     * constants): M = [c1 L22, c1 L2-2, c1 L21, c2 L11;  c1 L2-2, -c1 L22, c1 L2-1, c2 L1-1;
-     * c1 L21, c1 L2-1, c3 L20, c2 L10;  c2 L11, c2 L1-1, c2 L10, c4 L00 - c5 L20] */
+    /* STEP(sh9): the same irradiance as a quadratic form in (n, 1): Ramamoorthi & Hanrahan 2001's
+     * symmetric 4 x 4 matrix per channel, their equation 12 (prefilter.h) */
     /* STUB: (void)sh; memset(q, 0, sizeof *q); */
     const double c1 = M_PI / 4.0 * SH_K2 / 2.0, c2 = 2.0 * M_PI / 3.0 * SH_K1 / 2.0;
     const double c3 = 3.0 * M_PI / 4.0 * SH_K20, c4 = M_PI * SH_K0, c5 = M_PI / 4.0 * SH_K20;

@@ -47,8 +47,8 @@ static uv2 face_st(int f, vec3 d)
 {
     double sc, tc, ma;
     face_axes(f, d, &sc, &tc, &ma);
-    /* STEP(cubemap): "divide by the biggest": s = (sc / |ma| + 1) / 2, t = (tc / |ma| + 1) / 2
-     * (slide 9 (Environment Map Representations)) */
+    /* STEP(cubemap): a face's coordinates, slide 9 (Environment Map Representations):
+     * "divide/renorm by it [the biggest] to get coords", then map them to [0, 1] (cubemap.h) */
     /* STUB: (void)sc; (void)tc; (void)ma; return (uv2){0.5, 0.5}; */
     double m = fabs(ma); /* divide, not multiply by 1/|ma|: 1/|ma| overflows for subnormal d */
     return (uv2){0.5 * (sc / m + 1.0), 0.5 * (tc / m + 1.0)};
@@ -58,8 +58,8 @@ static uv2 face_st(int f, vec3 d)
 /* Major axis with the tie rule x before y before z; d non-zero. */
 static int major_face(vec3 d)
 {
-    /* STEP(cubemap): "take the biggest abs of (x, y, z)": the major axis and its sign pick the
-     * face; ties: x before y before z (slide 9 (Environment Map Representations)) */
+    /* STEP(cubemap): pick the face, slide 9 (Environment Map Representations): "take biggest (abs)
+     * of (x,y,z)", its sign choosing + or -; a tie goes to x before y before z (cubemap.h) */
     /* STUB: (void)d; return CUBEMAP_POS_X; */
     double ax = fabs(d.x), ay = fabs(d.y), az = fabs(d.z);
     if (ax >= ay && ax >= az) return d.x > 0 ? CUBEMAP_POS_X : CUBEMAP_NEG_X;
@@ -82,8 +82,8 @@ int cubemap_dir_to_face(vec3 d, int *face, uv2 *st)
 /* The point (sc, tc, ma = +-1) on face f's plane, not normalized: the table read backwards. */
 static vec3 face_point(int f, uv2 st)
 {
-    /* STEP(cubemap): cube map coordinates back to a point on the face's plane (the face table
-     * read backwards; normalized by the caller) (slide 9 (Environment Map Representations)) */
+    /* STEP(cubemap): the way back, slide 9 (Environment Map Representations): "cubemap coord to
+     * vec": the point of face f's plane at (s, t), the caller normalizes it (cubemap.h) */
     /* STUB: (void)f; (void)st; return vec3_make(1, 0, 0); */
     double sc = 2.0 * st.u - 1.0, tc = 2.0 * st.v - 1.0;
     switch (f) {

@@ -4,10 +4,9 @@
 int latlong_dir_to_uv(vec3 d, uv2 *uv)
 {
     if (vec3_unit_direction(d, &d)) return -1; /* any finite non-zero length */
-    /* STEP(latlong): direction -> (u, v) in [0, 1) x [0, 1] (latlong.h): theta = acos z, computed
-     * as atan2(sqrt(x^2 + y^2), z) (acos loses the precision near the poles that the tests check),
-     * phi = atan2(y, x) in [0, 2 pi) (0 at the poles), u = phi / 2 pi (never 1: phi = -tiny + 2 pi
-     * rounds to 2 pi), v = theta / pi (slide 9 (Environment Map Representations)) */
+    /* STEP(latlong): the lat-long lookup of a direction: its spherical coordinates (theta from +z,
+     * phi about z) as the map's (u, v) (latlong.h), slide 9 (Environment Map Representations):
+     * "convert direction to spherical coords, direct lookup" */
     /* STUB: uv->u = 0; uv->v = 0; return -1; */
     double rxy = sqrt(d.x * d.x + d.y * d.y);
     double theta = atan2(rxy, d.z);               /* theta = acos(z / |d|), stable form */
@@ -23,8 +22,8 @@ int latlong_dir_to_uv(vec3 d, uv2 *uv)
 
 vec3 latlong_uv_to_dir(uv2 uv)
 {
-    /* STEP(latlong): (u, v) -> direction: theta = pi v, phi = 2 pi u, d = (sin theta cos phi, sin
-     * theta sin phi, cos theta) (slide 9 (Environment Map Representations)) */
+    /* STEP(latlong): the way back: the unit direction whose spherical coordinates the map's (u, v)
+     * stand for (slide 9 (Environment Map Representations)) */
     /* STUB: (void)uv; return vec3_make(0, 0, 1); */
     double theta = M_PI * uv.v, phi = 2 * M_PI * uv.u;
     double s = sin(theta);

@@ -193,9 +193,9 @@ int integrator_strata(int n, int stratify)
 int integrator_stratum(int j, int m, double *xi1, double *xi2)
 {
     if (m <= 0 || j >= m * m) return 0;
-    /* STEP(stratified): stratified light samples: sample j of m x m takes the cell
-     * (j mod m, j / m) of the unit square's m x m grid, (xi1, xi2) jittered inside it, and
-     * returns 1 (slide 23 (How to Sample 2D Distribution)) */
+    /* STEP(stratified): stratified light samples, slide 23 (How to Sample 2D Distribution): "works
+     * with any sampling scheme (stratified etc.)": sample j of m x m moved into a cell of its own
+     * of the unit square's m x m grid; return 1 (integrator.h) */
     /* STUB: (void)xi1; (void)xi2;
      * return 0; */
     *xi1 = ((j % m) + *xi1) / m; /* stratum (j mod m, j / m) of the grid */

@@ -70,8 +70,8 @@ static rgb miss(raytracer *rt, vec3 d, int depth)
     /* camera rays see the environment as the background; reflected rays see it unless the
      * scene asks for the lecture's contrast, `envmiss black` */
     if (depth > 0 && rt->sc->envmiss == ENVMISS_BLACK) return rgb_gray(0);
-    /* STEP(reflection): a ray that misses the scene takes the envmap's colour in its direction d:
-     * envmap_radiance (reflection/envmap.h) (slide 5 (Using Environment for Reflection Map)) */
+    /* STEP(reflection): a ray that misses the scene, slide 5 (Using Environment for Reflection
+     * Map): "directly use envmap if miss geometry" (reflection/envmap.h) */
     /* STUB: (void)rt; (void)d;
      * return rgb_gray(0); */
     return envmap_radiance(&rt->env, d);
@@ -140,10 +140,9 @@ static rgb shade(raytracer *rt, ray r, const ray_diff *rd, int depth, double wei
         }
         return c;
     }
-    /* STEP(reflection): the mirror: reflect d about n (vec3_reflect), recurse on the hit
-     * (trace at depth + 1, the footprint by texshade_delta_diff, the weight times ks, skipped
-     * below RAYTRACER_MIN_WEIGHT or when the shader says !reflect), then Color += reflectivity
-     * ks x the colour of the reflected ray (slide 5 (Using Environment for Reflection Map)) */
+    /* STEP(reflection): the mirror, slide 5 (Using Environment for Reflection Map): "Color +=
+     * reflectivity * Color of reflected ray", the reflected ray traced from the hit, recursively;
+     * its weight, the footprint it carries (texshade_delta_diff) and when it stops: raytracer.h */
     /* STUB: (void)reflect; (void)weight; (void)rd; */
     double ks = rgb_max(s.ks);
     if (reflect && ks > 0 && weight * ks > RAYTRACER_MIN_WEIGHT) {

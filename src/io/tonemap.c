@@ -26,8 +26,8 @@ int tonemap_op_parse(const char *name, tonemap_op *op)
  * at 0.  Values outside [0,1] follow the same two pieces (negatives take the linear one). */
 double tonemap_srgb_encode(double l)
 {
-    /* STEP(tonemap): the sRGB curve for display: 12.92 l on the linear toe l <= 0.0031308,
-     * else 1.055 l^(1 / 2.4) - 0.055 (IEC 61966-2-1; tonemap.h) (slide 10 (High Dynamic Range)) */
+    /* STEP(tonemap): the sRGB transfer curve for display (IEC 61966-2-1; tonemap.h), slide 10 (High
+     * Dynamic Range): "tonemap as needed for display" */
     /* STUB: return l; */
     return l <= 0.0031308 ? 12.92 * l : 1.055 * pow(l, 1.0 / 2.4) - 0.055;
     /* END STEP(tonemap) */
@@ -44,7 +44,8 @@ static double tonemap_channel(const tonemap_params *tm, double scale, double c)
     if (isnan(c)) return 0.0;
     if (isinf(c))
         return c > 0 ? 1.0 : 0.0; /* before the scale: Inf * 0 when 2^exposure underflows */
-    /* STEP(tonemap): exposure: the radiance times scale = 2^exposure (exposure in stops) */
+    /* STEP(tonemap): exposure in stops: the radiance scaled by 2^exposure (slide 10 (High Dynamic
+     * Range); tonemap.h) */
     /* STUB: (void)scale;
      * double x = c; */
     double x = c * scale; /* c * 2^exposure: finite * finite, never NaN */

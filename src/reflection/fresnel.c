@@ -5,8 +5,10 @@
 double fresnel_dielectric(double cos_i, double eta)
 {
     cos_i = fmin(fmax(cos_i, 0.0), 1.0);
-    /* STEP(fresnel): Snell's law for cos_t (total internal reflection if sin_t >= 1), then
-     * F = (r_s^2 + r_p^2) / 2 (slide 5 (Using Environment for Reflection Map)) */
+    /* STEP(fresnel): the fraction of light a smooth dielectric reflects: Snell's law for the
+     * transmitted angle (total internal reflection when there is none), then the unpolarized
+     * Fresnel reflectance (slide 5 (Using Environment for Reflection Map): "mirror reflections
+     * (refraction)"; fresnel.h) */
     /* STUB: (void)eta; return 0.0; */
     double sin2_t = (1 - cos_i * cos_i) / (eta * eta); /* Snell: sin_t = sin_i / eta */
     if (sin2_t >= 1) return 1.0;                       /* total internal reflection */
@@ -19,8 +21,8 @@ double fresnel_dielectric(double cos_i, double eta)
 
 int fresnel_refract(vec3 d, vec3 n, double eta, vec3 *t)
 {
-    /* STEP(fresnel): refract by Snell's law, t = d / eta + (cos_i / eta - cos_t) n; 0 under
-     * total internal reflection (slide 5 (Using Environment for Reflection Map)) */
+    /* STEP(fresnel): the refracted direction by Snell's law, and 0 under total internal reflection
+     * (slide 5 (Using Environment for Reflection Map); fresnel.h) */
     /* STUB: (void)d; (void)n; (void)eta; (void)t; return 0; */
     double cos_i = -vec3_dot(d, n);
     double k = 1 - (1 - cos_i * cos_i) / (eta * eta); /* cos_t^2 */

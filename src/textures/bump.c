@@ -14,8 +14,8 @@ int bump_normal(vec3 n, vec3 ng, vec3 dp_ds, vec3 dp_dt, double dh_ds, double dh
     if (!(side != 0) || !isfinite(side)) return -1; /* no plane, or NaN */
     double ks = strength * dh_ds, kt = strength * dh_dt;
     if (!isfinite(ks) || !isfinite(kt)) return -1;
-    /* STEP(bump): Blinn's perturbed normal
-     * N' = dP/ds x dP/dt + k dh/ds (n x dP/dt) + k dh/dt (dP/ds x n) (slide 42 (Bump Mapping)) */
+    /* STEP(bump): Blinn's bump mapping (Blinn 1978), slide 42 (Bump Mapping): "texture = change in
+     * surface normal": the normal perturbed by the height's derivatives dh/ds and dh/dt (bump.h) */
     /* STUB: vec3 np = base; */
     /* N' = dP/ds x dP/dt + k dh/ds (n x dP/dt) + k dh/dt (dP/ds x n) */
     vec3 np = vec3_add(

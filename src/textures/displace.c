@@ -33,9 +33,8 @@ void displace_mesh_free(displace_mesh *m)
 static void displace_vertices(displace_mesh *m, const uv2 *vst, const vec3 *vq,
                               displace_height_fn height, void *ctx, double scale)
 {
-    /* STEP(displacement): move every vertex k along its normal by the height there:
-     * p' = p + scale h n, h = height(ctx, q, n, st) with q = vq[k] (or p when vq is NULL) and
-     * st = vst[k]; no callback is h = 0 (slide 43 (Displacement Mapping)) */
+    /* STEP(displacement): displacement mapping (slide 43 (Displacement Mapping)): move every vertex
+     * along its normal by the height there, scaled; the callback and its arguments: displace.h */
     /* STUB: (void)m; (void)vst; (void)vq; (void)height; (void)ctx; (void)scale; */
     for (long k = 0; k < m->n_verts; k++) {
         double h = height ? height(ctx, vq ? vq[k] : m->p[k], m->n[k], vst[k]) : 0.0;

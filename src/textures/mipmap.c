@@ -172,8 +172,8 @@ rgb mipmap_lookup_trilinear(const mipmap *m, uv2 st, double footprint_width)
     double lod = mipmap_level_for_footprint(m, footprint_width * max_side(&m->level[0]));
     int l = (int)lod;
     double f = lod - l; /* 0 at the top level, which has no level above */
-    /* STEP(mipmap): trilinear filtering at the level l + f of the footprint (given: l and f):
-     * bilinear lookups in levels l and l + 1, blended by f (slides 39-40 (Mip Maps)) */
+    /* STEP(mipmap): trilinear filtering, slides 39-40 (Mip Maps): "linearly interpolate between two
+     * closest levels"; the footprint's level is l + f (given; mipmap.h) */
     /* STUB: (void)l; (void)f; return texlookup_bilinear(&m->level[0], st, m->wrap); */
     rgb c = texlookup_bilinear(&m->level[l], st, m->wrap);
     if (f > 0) {

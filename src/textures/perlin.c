@@ -65,11 +65,10 @@ static inline int fast_floor(double x)
 
 double perlin_noise(double x, double y, double z)
 {
-    /* STEP(perlin): Improved Noise (perlin.h): hash the 8 lattice corners with perm[] by his
-     * chain (A = p[X] + Y, AA = p[A] + Z, ...: docs/texture-mapping.md, section 11), dot each
-     * corner's gradient with the offset (grad), blend with fade(t) = 6t^5 - 15t^4 + 10t^3
-     * (lerp); the cell of any finite x is lattice_cell(floor(x)) (fast_floor(x) & 255 below
-     * PERLIN_INT_SAFE), a NaN or infinite coordinate gives 0 (slides 45-46 (Solid textures)) */
+    /* STEP(perlin): Perlin's improved noise (Perlin 2002), slides 45-46 (Solid textures): "compute
+     * on the fly, e.g. Perlin noise": the lattice cell of (x, y, z), its 8 corners' hashed
+     * gradients dotted with the offsets to them, blended by the fade curve (the helpers above;
+     * perlin.h); a NaN or infinite coordinate gives 0 */
     /* STUB: (void)perm; (void)fade; (void)lerp; (void)grad; (void)lattice_cell;
      * (void)fast_floor; (void)x; (void)y; (void)z;
      * return 0.0; */

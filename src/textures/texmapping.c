@@ -34,8 +34,8 @@ static double phi_s(vec3 q)
 
 uv2 texmapping_planar(vec3 q)
 {
-    /* STEP(parameterization): planar: project onto the xy plane, (s, t) = (x, y)
-     * (texmapping.h) (slide 31 (Planar mapping)) */
+    /* STEP(parameterization): planar mapping, slide 31 (Planar mapping): "like projections, drop z
+     * coord" (texmapping.h) */
     /* STUB: (void)q;
      * return (uv2){0, 0}; */
     return (uv2){q.x, q.y};
@@ -44,8 +44,8 @@ uv2 texmapping_planar(vec3 q)
 
 uv2 texmapping_cylindrical(vec3 q)
 {
-    /* STEP(parameterization): cylindrical about z: s = phi / 2 pi (phi_s: phi = atan2(y, x)
-     * in [0, 2 pi), the seam at phi = 0), t = z (slide 32 (Cylindrical Mapping)) */
+    /* STEP(parameterization): cylindrical mapping about z, slide 32 (Cylindrical Mapping), with its
+     * seam at phi = 0 (phi_s; texmapping.h) */
     /* STUB: (void)q; (void)phi_s;
      * return (uv2){0, 0}; */
     return (uv2){phi_s(q), q.z};
@@ -54,8 +54,8 @@ uv2 texmapping_cylindrical(vec3 q)
 
 uv2 texmapping_spherical(vec3 q)
 {
-    /* STEP(parameterization): spherical: s = phi / 2 pi (phi_s), t = 1 - theta / pi with theta
-     * the angle from +z, pi / 2 for q = 0 (texmapping.h) (slide 33 (Spherical Mapping)) */
+    /* STEP(parameterization): spherical mapping, slide 33 (Spherical Mapping): "use
+     * latitude/long.", t = 1 at the pole +z; q = 0 maps to the equator (phi_s; texmapping.h) */
     /* STUB: (void)q; (void)phi_s;
      * return (uv2){0, 0}; */
     /* theta = atan2(sqrt(x^2 + y^2), z): the angle from +z, exact near the poles (acos is not),
@@ -88,9 +88,9 @@ static int cube_face_of(vec3 q)
 uv2 texmapping_cube_face(vec3 q, int face)
 {
     assert(face >= 0 && face < 6);
-    /* STEP(parameterization): cube: the central projection onto the face's plane, divided by
-     * the face axis's |a|: s = (1 + q.right / |a|) / 2, t = (1 + q.up / |a|) / 2 with the face
-     * table's right and up; (0.5, 0.5) for a = 0 (slides 34-35 (Cube Mapping)) */
+    /* STEP(parameterization): cube mapping, slides 34-35 (Cube Mapping): q projected from the
+     * centre onto the plane of the given face, in that face's right and up axes, mapped to [0, 1];
+     * (0.5, 0.5) when q has no component along the face's axis (texmapping.h) */
     /* STUB: (void)q; (void)face;
      * return (uv2){0.5, 0.5}; */
     const face_frame *f = &faces[face];
@@ -123,9 +123,9 @@ uv2 texmapping_point(texmapping_kind k, vec3 q)
 
 uv2 texmapping_uv_interpolate(const uv2 st[3], double b1, double b2)
 {
-    /* STEP(barycentric): (s, t) at the hit from the vertices' (s, t) by its barycentric weights: b1
-     * of vertex 1, b2 of vertex 2, b0 = 1 - b1 - b2 of vertex 0 (slides 36-37 (Interpolating
-     * Texture Coordinates)) */
+    /* STEP(barycentric): interpolate the texture coordinates, slide 36 (Interpolating Texture
+     * Coordinates): "same weights to combine texture coordinates"; b1 and b2 are the weights of
+     * vertices 1 and 2 (texmapping.h) */
     /* STUB: (void)b1; (void)b2;
      * return st[0]; */
     double b0 = 1.0 - b1 - b2;

@@ -95,9 +95,9 @@ int integrator_light_sample(integrator *it, const surface *s, vec3 wo, int k, do
 /* power heuristic with beta = 2: w = (nf pf)^2 / ((nf pf)^2 + (ng pg)^2) */
 static inline double integrator_power_heuristic(double nf, double pf, double ng, double pg)
 {
-    /* STEP(mis): Veach's power heuristic (beta = 2) for the sample of strategy f against g:
-     * (nf pf)^2 / ((nf pf)^2 + (ng pg)^2); 0 when nf pf is 0 (or NaN), 1 when it is infinite
-     * (a delta) (slide 22 (Sampling General 2D Distributions)) */
+    /* STEP(mis): Veach's power heuristic (beta = 2; Veach 1997) weighting strategy f's sample
+     * against g's, slide 22 (Sampling General 2D Distributions): "probability distribution also
+     * enables MIS"; 0 when nf pf is 0 or NaN, 1 when it is infinite (a delta) */
     /* STUB: (void)nf; (void)pf; (void)ng; (void)pg;
      * return 0.5; */
     double f = nf * pf, g = ng * pg;
