@@ -9,6 +9,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "envtex/core/nearmiss.h"
 #include "envtex/io/fileio.h"
 #include "envtex/io/imageio.h"
 #include "envtex/io/infile.h"
@@ -28,6 +29,21 @@ int cli_usage_error(const char *fmt, ...)
     fprintf(stderr, " (envtex --help for usage)\n");
     va_end(ap);
     return 1;
+}
+
+const char *cli_closest(const char *word, const char *const *known)
+{
+    nearmiss m;
+    nearmiss_start(&m, word);
+    for (; *known; known++) nearmiss_offer(&m, *known);
+    return nearmiss_best(&m);
+}
+
+int cli_unknown(const char *kind, const char *word, const char *const *known)
+{
+    const char *best = cli_closest(word, known);
+    if (best) return cli_usage_error("unknown %s '%s' (did you mean '%s'?)", kind, word, best);
+    return cli_usage_error("unknown %s '%s'", kind, word);
 }
 
 int cli_parse_double(const char *s, double *out)

@@ -10,6 +10,15 @@
 #include "envtex/render/compare.h"
 #include "envtex/render/gradetest.h"
 
+/* the options, for "did you mean" (cli_unknown) */
+static const char *const test_options[] = {
+    "--test", "--diff", "--memory-budget", "--img-spp", "--ref-spp", "--var-spp", "--alpha",
+    "--max-fail", NULL};
+
+/* the options, for "did you mean" (cli_unknown) */
+static const char *const compare_options[] = {
+    "--test", "--diff", "--memory-budget", "--fail-percent", "--fail", "--hard", NULL};
+
 /* The sample counts of IMG, REF and VAR: a flag (> 0) wins, else the file's envtex:spp
  * (exrfile.h; an OpenEXR render of envtex has it).  IMG and REF must end with one: the test
  * cannot assume two counts equal, and a 64-spp render against a 1024-spp reference taken as
@@ -87,7 +96,7 @@ static int parse_test_args(int argc, char **argv, test_args *t)
                                        "is 0.5%%), got '%s'",
                                        v);
         } else if (a[0] == '-' && a[1])
-            return cli_usage_error("unknown option '%s'", a);
+            return cli_unknown("option", a, test_options);
         else if (np < 3)
             t->paths[np++] = a;
         else
@@ -193,7 +202,7 @@ int cmd_compare(int argc, char **argv)
                 return cli_usage_error("a threshold must be a number >= 0, got '%s'", v);
             use_thresholds = 1;
         } else if (a[0] == '-' && a[1])
-            return cli_usage_error("unknown option '%s'", a);
+            return cli_unknown("option", a, compare_options);
         else if (!a_path)
             a_path = a;
         else if (!b_path)

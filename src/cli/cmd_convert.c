@@ -6,6 +6,10 @@
 #include "envtex/cli/cli.h"
 #include "envtex/envmaps/convert.h"
 
+/* the options, for "did you mean" (cli_unknown) */
+static const char *const options[] = {
+    "--memory-budget", "--to", "--from", "--width", "--samples", NULL};
+
 /* The command line of `envtex convert`. */
 typedef struct convert_args {
     const char *in, *out, *to, *from;
@@ -35,7 +39,7 @@ static int parse_args(int argc, char **argv, convert_args *a)
             if (cli_parse_long(v, 1, CONVERT_MAX_SAMPLES, &a->samples))
                 return cli_usage_error("--samples needs a whole number from 1 to 64, got '%s'", v);
         } else if (o[0] == '-' && o[1])
-            return cli_usage_error("unknown option '%s'", o);
+            return cli_unknown("option", o, options);
         else if (!a->in)
             a->in = o;
         else if (!a->out)

@@ -6,6 +6,10 @@
 #include "envtex/envmaps/genenv.h"
 #include "envtex/io/imageio.h"
 
+/* the options, for "did you mean" (cli_unknown) */
+static const char *const options[] = {
+    "--width", "--value", "--sun-ratio", "--sun-radius", "--sun-elevation", "--sun-azimuth", NULL};
+
 int cmd_gen_env(int argc, char **argv)
 {
     const char *kind_name = NULL, *out = NULL;
@@ -36,7 +40,7 @@ int cmd_gen_env(int argc, char **argv)
             if (cli_parse_double(v, target))
                 return cli_usage_error("%s needs a finite number, got '%s'", a, v);
         } else if (a[0] == '-' && a[1])
-            return cli_usage_error("unknown option '%s'", a);
+            return cli_unknown("option", a, options);
         else if (!kind_name)
             kind_name = a;
         else if (!out)

@@ -20,6 +20,10 @@
 #include "envtex/envmaps/convert.h"
 #include "envtex/io/imageio.h"
 
+/* the options, for "did you mean" (cli_unknown) */
+static const char *const options[] = {
+    "--memory-budget", "--sh9", "--irradiance", "--phong", "--method", "--width", "--from", NULL};
+
 typedef enum mode { MODE_NONE, MODE_SH9, MODE_IRRADIANCE, MODE_PHONG } mode;
 
 typedef struct args {
@@ -72,7 +76,7 @@ static int parse_args(int argc, char **argv, args *a)
                                        "cylindrical or equalarea, got '%s'",
                                        a->from);
         } else if (o[0] == '-' && o[1])
-            return cli_usage_error("unknown option '%s'", o);
+            return cli_unknown("option", o, options);
         else if (!a->in)
             a->in = o;
         else if (!a->out)

@@ -16,6 +16,11 @@
 #include "envtex/scene/scene.h"
 #include "envtex/scene/scene_load.h"
 
+/* the options, for "did you mean" (cli_unknown) */
+static const char *const options[] = {
+    "-o", "--memory-budget", "--spp", "--seed", "--ref", "--variance", "--quiet", "--verbose",
+    "--strict", NULL};
+
 /* Scene warnings are kept until the scene has loaded: a scene that fails prints only its error
  * (one line), a scene that loads prints its warnings before rendering. */
 #define MAX_WARNINGS_SHOWN 20
@@ -100,7 +105,7 @@ static int parse_args(int argc, char **argv, render_args *a)
         else if (!strcmp(o, "--strict"))
             a->strict = 1;
         else if (o[0] == '-' && o[1])
-            return cli_usage_error("unknown option '%s'", o);
+            return cli_unknown("option", o, options);
         else if (!a->scene_path)
             a->scene_path = o;
         else

@@ -11,6 +11,9 @@
 #include "envtex/envlight/sis.h"
 #include "envtex/io/imageio.h"
 
+/* the options, for "did you mean" (cli_unknown) */
+static const char *const options[] = {"--memory-budget", "-n", "--exposure", NULL};
+
 /* the layers as `strata:` line fields, comma-separated a layer each */
 static void print_layers(const sis_strata *s)
 {
@@ -49,7 +52,7 @@ int cmd_strata(int argc, char **argv)
             if (cli_parse_double(v, &ev))
                 return cli_usage_error("--exposure needs a number, got '%s'", v);
         } else if (a[0] == '-' && a[1])
-            return cli_usage_error("unknown option '%s'", a);
+            return cli_unknown("option", a, options);
         else if (!in)
             in = a;
         else if (!out)

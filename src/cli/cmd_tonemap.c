@@ -7,6 +7,9 @@
 #include "envtex/io/imageio.h"
 #include "envtex/io/tonemap.h"
 
+/* the options, for "did you mean" (cli_unknown) */
+static const char *const options[] = {"--memory-budget", "--exposure", "--op", "--gamma", NULL};
+
 int cmd_tonemap(int argc, char **argv)
 {
     const char *in = NULL, *out = NULL;
@@ -29,7 +32,7 @@ int cmd_tonemap(int argc, char **argv)
             if (cli_parse_double(v, &tm.gamma) || !(tm.gamma > 0))
                 return cli_usage_error("--gamma needs a number > 0, got '%s'", v);
         } else if (a[0] == '-' && a[1])
-            return cli_usage_error("unknown option '%s'", a);
+            return cli_unknown("option", a, options);
         else if (!in)
             in = a;
         else if (!out)

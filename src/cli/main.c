@@ -21,6 +21,7 @@
  */
 #include <stdio.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "envtex/cli/cli.h"
 
@@ -49,6 +50,9 @@ static const char *usage_text =
     "       envtex strata MAP OUT [-n N] [--exposure EV] [--memory-budget SIZE]\n"
     "                      (structured importance sampling's strata of a lat-long map)\n";
 
+static const char *const subcommands[] = {"render",    "compare", "tonemap", "gen-env", "convert",
+                                          "prefilter", "noise",   "strata",  "help",    NULL};
+
 int main(int argc, char **argv)
 {
     if (argc < 2) {
@@ -68,5 +72,8 @@ int main(int argc, char **argv)
     if (!strcmp(cmd, "prefilter")) return cmd_prefilter(argc - 2, argv + 2);
     if (!strcmp(cmd, "noise")) return cmd_noise(argc - 2, argv + 2);
     if (!strcmp(cmd, "strata")) return cmd_strata(argc - 2, argv + 2);
+    /* a word that names no file but is a near miss of a subcommand is a typo, not a scene */
+    if (cmd[0] != '-' && access(cmd, F_OK) != 0 && cli_closest(cmd, subcommands))
+        return cli_unknown("command", cmd, subcommands);
     return cmd_render(argc - 1, argv + 1); /* envtex SCENE [options] */
 }

@@ -10,6 +10,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "envtex/core/nearmiss.h"
+
 /* ---- messages ---------------------------------------------------------------------------- */
 
 int parse_fail(parser *p, const char *fmt, ...)
@@ -318,15 +320,29 @@ static void tokenize(parser *p, char *s)
     }
 }
 
+static const parse_command *const command_tables[] = {commands_course, commands_texture,
+                                                      commands_envtex};
+#define N_TABLES (sizeof command_tables / sizeof command_tables[0])
+
 /* The command called `name` in the tables, or NULL. */
 static const parse_command *find_command(const char *name)
 {
-    static const parse_command *const tables[] = {commands_course, commands_texture,
-                                                  commands_envtex};
-    for (size_t t = 0; t < sizeof tables / sizeof tables[0]; t++)
-        for (const parse_command *c = tables[t]; c->name; c++)
+    for (size_t t = 0; t < N_TABLES; t++)
+        for (const parse_command *c = command_tables[t]; c->name; c++)
             if (strcmp(name, c->name) == 0) return c;
     return NULL;
+}
+
+/* " (did you mean 'NAME'?)" for the command closest to `name` (nearmiss.h), or "" */
+static void did_you_mean(const char *name, char *out, size_t n)
+{
+    nearmiss m;
+    nearmiss_start(&m, name);
+    for (size_t t = 0; t < N_TABLES; t++)
+        for (const parse_command *c = command_tables[t]; c->name; c++) nearmiss_offer(&m, c->name);
+    const char *best = nearmiss_best(&m);
+    if (best) snprintf(out, n, " (did you mean '%s'?)", best);
+    else out[0] = '\0';
 }
 
 int parse_run_line(parser *p, char *line)
@@ -336,8 +352,10 @@ int parse_run_line(parser *p, char *line)
     const char *name = p->tok[0];
     const parse_command *c = find_command(name);
     if (!c) {
-        if (p->strict) return parse_fail(p, "unknown command '%s'", name);
-        parse_warn(p, "unknown command '%s' (ignored)", name);
+        char hint[96];
+        did_you_mean(name, hint, sizeof hint);
+        if (p->strict) return parse_fail(p, "unknown command '%s'%s", name, hint);
+        parse_warn(p, "unknown command '%s'%s (ignored)", name, hint);
         return 0;
     }
     if (strcmp(c->name, "size") == 0) {

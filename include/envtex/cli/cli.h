@@ -24,6 +24,13 @@ int cli_fail(const error *err);
 /* Print `envtex: WHAT (envtex --help for usage)`, WHAT printf'd; return 1. */
 int cli_usage_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 
+/* The word of the NULL-terminated `known` that `word` is a near miss of (nearmiss.h), or NULL. */
+const char *cli_closest(const char *word, const char *const *known);
+
+/* `envtex: unknown KIND 'WORD'`, with " (did you mean 'X'?)" when X of the NULL-terminated
+ * `known` is a near miss of it (nearmiss.h), as cli_usage_error prints it; returns 1. */
+int cli_unknown(const char *kind, const char *word, const char *const *known);
+
 /* The whole token s as a finite double / as a long in [lo, hi]: 0, or -1 (nothing stored). */
 int cli_parse_double(const char *s, double *out);
 int cli_parse_long(const char *s, long lo, long hi, long *out);
