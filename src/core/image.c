@@ -4,6 +4,8 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "envtex/core/stepcheck.h"
+
 int image_check_size(long w, long h, const char *file, error *err)
 {
     if (w < 1 || h < 1)
@@ -66,6 +68,14 @@ static rgb bilinear(const image *im, uv2 uv, int wrap_u)
     if (j1 > h - 1) j1 = h - 1;
     if (j0 > h - 1) j0 = h - 1;
     /* END STEP(bilinear) */
+    if (__builtin_expect(((unsigned)i0 >= (unsigned)w) | ((unsigned)i1 >= (unsigned)w) |
+                             ((unsigned)j0 >= (unsigned)h) | ((unsigned)j1 >= (unsigned)h),
+                         0)) { /* one branch; then which of the four */
+        STEPCHECK_INDEX(i0, w, "bilinear", "column");
+        STEPCHECK_INDEX(i1, w, "bilinear", "column");
+        STEPCHECK_INDEX(j0, h, "bilinear", "row");
+        STEPCHECK_INDEX(j1, h, "bilinear", "row");
+    }
     rgb c00 = image_get(im, i0, j0), c10 = image_get(im, i1, j0);
     rgb c01 = image_get(im, i0, j1), c11 = image_get(im, i1, j1);
     /* L = (1-ax)(1-ay) c00 + ax (1-ay) c10 + (1-ax) ay c01 + ax ay c11 */

@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "envtex/core/stepcheck.h"
+
 /* The largest double below 1 (1 - 2^-53): xi and remapped values are clamped to it so that
  * "in [0, 1)" holds even after rounding (xi * n, (xi - c) / p can round up to exactly 1). */
 #define DISTRIB_ONE_MINUS_ULP 0x1.fffffffffffffp-1
@@ -161,6 +163,7 @@ static inline int alias_pick(const distrib_alias *t, int n, double xi, double *r
         bin = t[i].alias;
         r = (f - prob) / (1.0 - prob);
     }
+    STEPCHECK_INDEX(bin, n, "alias", "bin");
     if (remapped) *remapped = r < DISTRIB_ONE_MINUS_ULP ? r : DISTRIB_ONE_MINUS_ULP;
     return bin;
 }
@@ -249,6 +252,7 @@ int distrib1d_sample(const distrib1d *d, double xi, double *pmf, double *remappe
 {
     double x = clamp_xi(xi);
     int i = cdf_search(d->cdf, d->n, x);
+    STEPCHECK_INDEX(i, d->n, "cdf", "bin");
     double p = d->cdf[i + 1] - d->cdf[i];
     if (pmf) *pmf = p;
     if (remapped) *remapped = cdf_remap(d->cdf, i, x, p);
@@ -410,6 +414,7 @@ void distrib2d_sample(const distrib2d *d, double xi_outer, double xi_inner, int 
     const double *cdf = column_cdf(d, o);
     double x = clamp_xi(xi_inner);
     int i = cdf_search(cdf, d->n_inner, x); /* p(inner | outer): the column's conditional CDF */
+    STEPCHECK_INDEX(i, d->n_inner, "cdf", "bin");
     double p_inner = cdf[i + 1] - cdf[i];
     if (pmf) *pmf = p_outer * p_inner; /* p(outer, inner) = p(outer) p(inner | outer) */
     if (rem_inner) *rem_inner = cdf_remap(cdf, i, x, p_inner);

@@ -8,6 +8,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "envtex/core/stepcheck.h"
 #include "envtex/envmaps/latlong.h"
 #include "envtex/core/sampling.h"
 
@@ -43,6 +44,8 @@ static int world_to_texel(const envlight *el, vec3 wi, int *c, int *r, double *s
     int x = (int)(uv.u * el->w), y = (int)(uv.v * el->h);
     *c = x < el->w ? x : el->w - 1;
     *r = y < el->h ? y : el->h - 1;
+    STEPCHECK_INDEX(*c, el->w, "latlong", "column");
+    STEPCHECK_INDEX(*r, el->h, "latlong", "row");
     if (sin_theta) *sin_theta = sin(M_PI * uv.v);
     return 0;
 }

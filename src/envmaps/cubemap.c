@@ -5,6 +5,8 @@
 #include <assert.h>
 #include <math.h>
 
+#include "envtex/core/stepcheck.h"
+
 /* (sc, tc, ma) of d for face f: one row of the OpenGL face table (cubemap.h). */
 static void face_axes(int f, vec3 d, double *sc, double *tc, double *ma)
 {
@@ -74,8 +76,12 @@ int cubemap_dir_to_face(vec3 d, int *face, uv2 *st)
      * dividing by the largest component cannot overflow or underflow. */
     if (!vec3_is_finite(d) || vec3_max_abs(d) == 0) return -1;
     int f = major_face(d);
+    STEPCHECK_INDEX(f, CUBEMAP_FACES, "cubemap", "face");
+    uv2 c = face_st(f, d);
+    STEPCHECK_COORD(c.u, 0.0, 1.0, "cubemap", "s");
+    STEPCHECK_COORD(c.v, 0.0, 1.0, "cubemap", "t");
     *face = f;
-    *st = face_st(f, d);
+    *st = c;
     return 0;
 }
 

@@ -1,6 +1,8 @@
 /* latlong.c - latitude-longitude environment maps (see include/envtex/envmaps/latlong.h). */
 #include "envtex/envmaps/latlong.h"
 
+#include "envtex/core/stepcheck.h"
+
 int latlong_dir_to_uv(vec3 d, uv2 *uv)
 {
     if (vec3_unit_direction(d, &d)) return -1; /* any finite non-zero length */
@@ -35,6 +37,8 @@ rgb latlong_lookup_bilinear(const image *map, vec3 d)
 {
     uv2 uv;
     if (latlong_dir_to_uv(d, &uv)) return rgb_gray(0);
+    STEPCHECK_COORD(uv.u, 0.0, 1.0, "latlong", "u");
+    STEPCHECK_COORD(uv.v, 0.0, 1.0, "latlong", "v");
     return image_bilinear_wrap_u(map, uv);
 }
 
@@ -42,6 +46,8 @@ rgb latlong_lookup_nearest(const image *map, vec3 d)
 {
     uv2 uv;
     if (latlong_dir_to_uv(d, &uv)) return rgb_gray(0);
+    STEPCHECK_COORD(uv.u, 0.0, 1.0, "latlong", "u");
+    STEPCHECK_COORD(uv.v, 0.0, 1.0, "latlong", "v");
     int x = (int)(uv.u * map->w), y = (int)(uv.v * map->h);
     if (x >= map->w) x = map->w - 1;
     if (y >= map->h) y = map->h - 1;

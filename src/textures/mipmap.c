@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "envtex/core/stepcheck.h"
+
 /* ---- building ------------------------------------------------------------------------------ */
 
 /* Taps of one destination texel along one axis: an interval of length r <= 3 plus a tent's
@@ -166,6 +168,13 @@ double mipmap_level_for_footprint(const mipmap *m, double width_in_texels)
     return l < top ? l : top;
 }
 
+/* Level l of the pyramid, its index checked (stepcheck.h): the trilinear step reads levels here. */
+static inline const image *level(const mipmap *m, int l)
+{
+    STEPCHECK_INDEX(l, m->nlevels, "mipmap", "level");
+    return &m->level[l];
+}
+
 rgb mipmap_lookup_trilinear(const mipmap *m, uv2 st, double footprint_width)
 {
     /* the level from log2 of the footprint in texels: lod = l + f, l = floor(lod) */
@@ -173,11 +182,12 @@ rgb mipmap_lookup_trilinear(const mipmap *m, uv2 st, double footprint_width)
     int l = (int)lod;
     double f = lod - l; /* 0 at the top level, which has no level above */
     /* STEP(mipmap): trilinear filtering, slides 39-40 (Mip Maps): "linearly interpolate between two
-     * closest levels"; the footprint's level is l + f (given; mipmap.h) */
-    /* STUB: (void)l; (void)f; return texlookup_bilinear(&m->level[0], st, m->wrap); */
-    rgb c = texlookup_bilinear(&m->level[l], st, m->wrap);
+     * closest levels"; the footprint's level is l + f (given; mipmap.h); level(m, l)
+     * reads level l */
+    /* STUB: (void)l; (void)f; return texlookup_bilinear(level(m, 0), st, m->wrap); */
+    rgb c = texlookup_bilinear(level(m, l), st, m->wrap);
     if (f > 0) {
-        rgb c1 = texlookup_bilinear(&m->level[l + 1], st, m->wrap);
+        rgb c1 = texlookup_bilinear(level(m, l + 1), st, m->wrap);
         c = rgb_add(rgb_scale(c, 1 - f), rgb_scale(c1, f)); /* (1 - f) c_l + f c_(l+1) */
     }
     return c;

@@ -3,7 +3,8 @@
  * Each tests/unit/test_NAME.c builds into its own program: it defines `Suite *NAME_suite(void)`
  * and ends with UNIT_MAIN(NAME_suite).  Exit status 0 when every test passes, and 1 when one
  * fails or when none ran at all (CK_RUN_SUITE, CK_RUN_CASE or CK_INCLUDE_TAGS in the
- * environment can select nothing: a program that checked nothing has not passed).
+ * environment can select nothing: a program that checked nothing has not passed).  A failed
+ * step check (stepcheck.h) fails the running test case with its message.
  */
 #ifndef ENVTEX_UNIT_H
 #define ENVTEX_UNIT_H
@@ -12,9 +13,15 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "envtex/core/stepcheck.h"
+
+/* A failed step check (stepcheck.h) fails the test case that made it, with its message. */
+static inline void unit_stepcheck_fail(const char *msg) { ck_abort_msg("envtex: %s", msg); }
+
 #define UNIT_MAIN(suite_fn)                                                                        \
     int main(void)                                                                                 \
     {                                                                                              \
+        stepcheck_set_handler(unit_stepcheck_fail);                                                \
         SRunner *sr = srunner_create(suite_fn());                                                  \
         srunner_run_all(sr, CK_NORMAL);                                                            \
         int failed = srunner_ntests_failed(sr), ran = srunner_ntests_run(sr);                      \
