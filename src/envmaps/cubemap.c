@@ -149,6 +149,7 @@ static rgb fetch(const cubemap *cm, int f, int i, int j)
          * by N/(N+1), which keeps it within that texel; see cubemap.h). */
         vec3 p = face_point(f, (uv2){(i + 0.5) / n, (j + 0.5) / n});
         int g = major_face(p);
+        STEPCHECK_INDEX(g, CUBEMAP_FACES, "cubemap", "face");
         uv2 st = face_st(g, p);
         return image_get(&cm->face[g], clamp_index(floor(st.u * n), n),
                          clamp_index(floor(st.v * n), n));
