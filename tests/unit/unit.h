@@ -18,10 +18,30 @@
 /* A failed step check (stepcheck.h) fails the test case that made it, with its message. */
 static inline void unit_stepcheck_fail(const char *msg) { ck_abort_msg("envtex: %s", msg); }
 
+/* Each test case's limit: CASE_TIMEOUT seconds (default 10) times Check's CK_TIMEOUT_MULTIPLIER
+ * (1 in make test, 10 under the sanitizers), so that a case that hangs fails by its own name
+ * instead of holding up its whole program.  Set before the suite's test cases are made (Check
+ * reads CK_DEFAULT_TIMEOUT then). */
+static inline int unit_case_timeout(void)
+{
+    const char *s = getenv("CASE_TIMEOUT");
+    int t = s && *s ? atoi(s) : 10;
+    return t > 0 ? t : 10;
+}
+static inline void unit_set_case_timeout(void)
+{
+    char t[16];
+    snprintf(t, sizeof t, "%d", unit_case_timeout());
+    setenv("CK_DEFAULT_TIMEOUT", t, 1);
+}
+/* A test case that takes over half a second at -O2 (5 s at -O0): three times the limit. */
+static inline void unit_slow(TCase *tc) { tcase_set_timeout(tc, 3.0 * unit_case_timeout()); }
+
 #define UNIT_MAIN(suite_fn)                                                                        \
     int main(void)                                                                                 \
     {                                                                                              \
         stepcheck_set_handler(unit_stepcheck_fail);                                                \
+        unit_set_case_timeout();                                                                   \
         SRunner *sr = srunner_create(suite_fn());                                                  \
         srunner_run_all(sr, CK_NORMAL);                                                            \
         int failed = srunner_ntests_failed(sr), ran = srunner_ntests_run(sr);                      \

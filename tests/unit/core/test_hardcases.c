@@ -573,7 +573,6 @@ Suite *hardcases_suite(void)
     tcase_add_test(geo, test_mirror_far_from_origin_has_no_acne);
     tcase_add_test(geo, test_glass_far_from_origin_has_no_acne);
     tcase_add_test(geo, test_camera_inside_a_sphere_sees_its_inside_everywhere);
-    tcase_set_timeout(geo, 30);
     suite_add_tcase(s, geo);
     TCase *tex = tcase_create("textures and noise");
     tcase_add_test(tex, test_tiny_textures_read_far_outside_stay_inside_their_texels);

@@ -933,13 +933,11 @@ Suite *envlight_suite(void)
 {
     Suite *s = suite_create("envlight");
     TCase *tc = tcase_create("chisq");
-    tcase_set_timeout(tc, 60); /* generous for sanitizer builds */
     tcase_add_loop_test(tc, test_envlight_every_mode_fits_its_pdf_on_every_map, 0,
                         M_COUNT * C_COUNT);
     tcase_add_loop_test(tc, test_envlight_rotated_map_fits_its_pdf, 0, N_ROTATED);
     suite_add_tcase(s, tc);
     tc = tcase_create("numerics");
-    tcase_set_timeout(tc, 60);
     tcase_add_test(tc, test_envlight_rotation_moves_samples_and_pdf_with_the_map);
     tcase_add_test(tc, test_envlight_kappa_and_the_combined_lookup);
     tcase_add_test(tc, test_envlight_tables_are_charged_before_they_are_built);

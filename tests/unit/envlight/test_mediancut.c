@@ -336,7 +336,6 @@ Suite *mediancut_suite(void)
 {
     Suite *s = suite_create("mediancut");
     TCase *tc = tcase_create("mediancut");
-    tcase_set_timeout(tc, 60); /* generous for sanitizer builds */
     tcase_add_test(tc, test_mediancut_two_strata_of_a_two_texel_map_are_its_texels);
     tcase_add_test(tc, test_mediancut_strata_partition_the_map_and_its_power);
     tcase_add_test(tc, test_mediancut_points_lie_inside_their_strata);

@@ -125,7 +125,6 @@ Suite *misfraction_suite(void)
 {
     Suite *s = suite_create("misfraction");
     TCase *tc = tcase_create("model");
-    tcase_set_timeout(tc, 60); /* generous for sanitizer builds */
     tcase_add_test(tc, test_misfraction_model_meets_its_closed_forms);
     tcase_add_test(tc, test_misfraction_minimizes_variance_times_time);
     suite_add_tcase(s, tc);

@@ -575,7 +575,6 @@ Suite *prefilter_suite(void)
 {
     Suite *s = suite_create("prefilter");
     TCase *tc = tcase_create("core");
-    tcase_set_timeout(tc, 60);
     tcase_add_test(tc, test_sh9_basis_is_ramamoorthi_and_hanrahans_real_basis);
     tcase_add_test(tc, test_a_map_that_is_one_basis_function_gives_that_coefficient_alone);
     tcase_add_test(

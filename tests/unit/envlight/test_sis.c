@@ -398,7 +398,6 @@ Suite *sis_suite(void)
 {
     Suite *s = suite_create("sis");
     TCase *tc = tcase_create("strata");
-    tcase_set_timeout(tc, 60);
     tcase_add_test(tc, test_sis_layer_thresholds_are_multiples_of_sigma);
     tcase_add_test(tc, test_sis_region_sample_counts_follow_the_metric);
     tcase_add_test(tc, test_sis_every_texel_lies_in_the_stratum_of_its_nearest_sample);
@@ -407,7 +406,6 @@ Suite *sis_suite(void)
     tcase_add_test(tc, test_sis_refuses_a_black_map_and_bad_counts);
     suite_add_tcase(s, tc);
     tc = tcase_create("lights");
-    tcase_set_timeout(tc, 60);
     tcase_add_test(tc, test_sis_light_powers_sum_to_the_map_power);
     tcase_add_test(tc, test_sis_shadow_rays_stay_inside_their_stratum);
     tcase_add_test(tc, test_sis_memory_is_charged_before_it_is_built);

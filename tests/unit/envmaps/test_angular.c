@@ -241,7 +241,6 @@ Suite *angular_suite(void)
 {
     Suite *s = suite_create("angular");
     TCase *tc = tcase_create("core");
-    tcase_set_timeout(tc, 30);
     tcase_add_test(tc, test_angular_orientation_centre_is_back_at_the_camera_and_up_is_z);
     tcase_add_test(tc, test_angular_distance_from_centre_is_proportional_to_angle);
     tcase_add_test(tc, test_angular_shares_the_mirror_ball_frame);

@@ -551,7 +551,6 @@ Suite *cubemap_suite(void)
 {
     Suite *s = suite_create("cubemap");
     TCase *tc = tcase_create("core");
-    tcase_set_timeout(tc, 30);
     tcase_add_test(tc, test_cubemap_face_centres_are_the_axes);
     tcase_add_test(tc, test_cubemap_face_orientation_follows_the_gl_table);
     tcase_add_test(tc, test_cubemap_roundtrip_is_exact_for_random_directions);

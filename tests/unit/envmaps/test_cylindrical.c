@@ -220,7 +220,6 @@ Suite *cylindrical_suite(void)
 {
     Suite *s = suite_create("cylindrical");
     TCase *tc = tcase_create("core");
-    tcase_set_timeout(tc, 30);
     tcase_add_test(tc, test_cylindrical_orientation_has_up_at_the_top_and_phi_to_the_right);
     tcase_add_test(tc, test_cylindrical_roundtrip_is_exact_inside_the_extent);
     tcase_add_test(tc, test_cylindrical_uv_roundtrip_on_a_grid);

@@ -246,7 +246,6 @@ Suite *equalarea_suite(void)
 {
     Suite *s = suite_create("equalarea");
     TCase *tc = tcase_create("core");
-    tcase_set_timeout(tc, 30);
     tcase_add_test(tc, test_equalarea_orientation_has_the_zenith_at_the_top_and_phi_to_the_right);
     tcase_add_test(tc, test_equalarea_roundtrip_is_exact_for_random_directions);
     tcase_add_test(tc, test_equalarea_roundtrip_is_exact_next_to_the_poles);

@@ -239,7 +239,6 @@ Suite *genenv_suite(void)
 {
     Suite *s = suite_create("genenv");
     TCase *tc = tcase_create("core");
-    tcase_set_timeout(tc, 60); /* generous for sanitizer builds; the tests take well under 1 s */
     tcase_add_test(tc, test_genenv_maps_are_two_to_one);
     tcase_add_test(tc, test_genenv_constant_is_exact_everywhere);
     tcase_add_test(tc, test_genenv_axes_colours_name_their_directions);

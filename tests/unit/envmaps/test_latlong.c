@@ -282,7 +282,6 @@ Suite *latlong_suite(void)
 {
     Suite *s = suite_create("latlong");
     TCase *tc = tcase_create("core");
-    tcase_set_timeout(tc, 60); /* generous for sanitizer builds; the tests take well under 1 s */
     tcase_add_test(tc, test_latlong_axes_land_where_the_convention_says);
     tcase_add_test(tc, test_latlong_uv_to_dir_is_the_documented_formula);
     tcase_add_test(tc, test_latlong_roundtrip_is_exact_away_from_poles);

@@ -250,7 +250,6 @@ Suite *mirrorball_suite(void)
 {
     Suite *s = suite_create("mirrorball");
     TCase *tc = tcase_create("core");
-    tcase_set_timeout(tc, 30);
     tcase_add_test(tc, test_mirrorball_orientation_centre_is_back_at_the_camera_and_up_is_z);
     tcase_add_test(tc, test_mirrorball_directions_obey_the_law_of_reflection);
     tcase_add_test(tc, test_mirrorball_roundtrip_is_exact_for_random_directions);

@@ -529,7 +529,6 @@ Suite *bvh_suite(void)
 {
     Suite *s = suite_create("bvh");
     TCase *tc = tcase_create("core");
-    tcase_set_timeout(tc, 60); /* generous for sanitizer builds; the tests take well under 1 s */
     tcase_add_test(tc, test_bvh_with_3_primitives_builds_no_tree_and_matches_brute_force);
     tcase_add_test(tc, test_bvh_is_a_tree_only_above_bvh_min_prims);
     tcase_add_test(tc, test_bvh_is_charged_to_the_budget_before_it_is_built);

@@ -432,7 +432,6 @@ Suite *bvh_packet_suite(void)
 {
     Suite *s = suite_create("bvh_packet");
     TCase *tc = tcase_create("core");
-    tcase_set_timeout(tc, 60); /* generous for sanitizer builds */
     tcase_add_test(tc, test_bvh_packet_finds_what_bvh_intersect_finds_for_camera_rays);
     tcase_add_test(tc, test_bvh_packet_keeps_hits_along_box_edges_seen_from_far_away);
     tcase_add_test(tc, test_bvh_packet_finds_the_nearer_of_nearly_coincident_triangles);

@@ -556,11 +556,9 @@ Suite *brdf_suite(void)
 {
     Suite *s = suite_create("brdf");
     TCase *tc = tcase_create("sampling");
-    tcase_set_timeout(tc, 60); /* generous for sanitizer builds */
     tcase_add_loop_test(tc, test_brdf_samples_fit_brdf_pdf, 0, N_CASES);
     suite_add_tcase(s, tc);
     tc = tcase_create("eval");
-    tcase_set_timeout(tc, 60);
     tcase_add_test(tc, test_brdf_eval_is_reciprocal);
     tcase_add_test(tc, test_brdf_phong_albedo_never_exceeds_kd_plus_ks);
     tcase_add_test(tc, test_brdf_specular_probability_follows_the_course);

@@ -1398,7 +1398,6 @@ Suite *integrators_suite(void)
 {
     Suite *s = suite_create("integrators");
     TCase *tc = tcase_create("furnace");
-    tcase_set_timeout(tc, 120); /* generous for sanitizer builds */
     tcase_add_loop_test(tc, test_integrators_diffuse_furnace_gives_rho_times_L_with_every_strategy,
                         0, N_STRATEGIES);
     tcase_add_test(tc, test_integrators_diffuse_furnace_with_median_cut_is_close);
@@ -1406,7 +1405,6 @@ Suite *integrators_suite(void)
     tcase_add_test(tc, test_integrators_glossy_furnace_never_exceeds_L);
     suite_add_tcase(s, tc);
     tc = tcase_create("direct");
-    tcase_set_timeout(tc, 120);
     tcase_add_loop_test(tc, test_integrators_direct_lighting_matches_the_sum_over_texels, 0, 5);
     tcase_add_test(tc, test_integrators_lightstratify_lowers_the_variance);
     tcase_add_test(tc, test_integrators_irradiance_vector_matches_a_numerical_integral);
@@ -1416,7 +1414,7 @@ Suite *integrators_suite(void)
     tcase_add_test(tc, test_integrators_analytic_irradiance_in_the_lights_own_plane);
     suite_add_tcase(s, tc);
     tc = tcase_create("paths");
-    tcase_set_timeout(tc, 120);
+    unit_slow(tc); /* a case over half a second at -O2 */
     tcase_add_test(tc, test_integrators_nee_off_on_and_mis_agree_under_a_quad_light);
     tcase_add_test(tc, test_integrators_nee_off_on_and_mis_agree_under_a_sun_map);
     tcase_add_test(tc, test_integrators_quad_lights_block_shadow_rays_as_they_block_brdf_rays);

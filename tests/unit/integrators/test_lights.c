@@ -556,7 +556,6 @@ Suite *lights_suite(void)
 {
     Suite *s = suite_create("lights");
     TCase *tc = tcase_create("lights");
-    tcase_set_timeout(tc, 60); /* generous for sanitizer builds */
     tcase_add_test(tc, test_lights_pick_probability_is_proportional_to_power);
     tcase_add_test(tc, test_lights_selection_probability_follows_the_selection);
     tcase_add_test(tc, test_lights_pick_probabilities_of_powers_past_the_largest_double);

@@ -473,7 +473,6 @@ Suite *raytracer_suite(void)
 {
     Suite *s = suite_create("raytracer");
     TCase *tc = tcase_create("core");
-    tcase_set_timeout(tc, 60); /* generous for sanitizer builds; the tests take well under 1 s */
     tcase_add_test(tc,
                    test_raytracer_mirror_ball_reflects_the_axes_environment_the_right_way_round);
     tcase_add_test(tc, test_raytracer_every_mirror_ball_pixel_shows_the_reflected_direction);

@@ -282,7 +282,6 @@ static Suite *texshade_suite(void)
 {
     Suite *s = suite_create("texshade");
     TCase *tc = tcase_create("core");
-    tcase_set_timeout(tc, 60);
     tcase_add_test(tc, test_texshade_sphere_under_a_transform_matches_finite_differences);
     tcase_add_test(tc, test_texshade_normal_derivatives_of_an_ellipsoid_outside_and_inside);
     tcase_add_test(tc,

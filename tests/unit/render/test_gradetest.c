@@ -430,7 +430,6 @@ static Suite *gradetest_suite(void)
     Suite *s = suite_create("gradetest");
     TCase *tc = tcase_create("core");
     tcase_add_checked_fixture(tc, setup, teardown);
-    tcase_set_timeout(tc, 30);
     tcase_add_test(tc, test_gradetest_passes_a_correct_render_with_other_seeds);
     tcase_add_test(tc, test_gradetest_fails_a_missing_one_over_pi);
     tcase_add_test(tc, test_gradetest_fails_a_pdf_off_by_sin_theta);

@@ -503,7 +503,6 @@ Suite *render_suite(void)
 {
     Suite *s = suite_create("render");
     TCase *tc = tcase_create("core");
-    tcase_set_timeout(tc, 60); /* generous for sanitizer builds; the tests take well under 1 s */
     tcase_add_test(tc, test_render_same_seed_gives_bit_identical_images);
     tcase_add_test(tc, test_render_different_seeds_give_different_images);
     tcase_add_test(tc, test_render_spp_1_traces_through_pixel_centres);

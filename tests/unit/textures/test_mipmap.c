@@ -645,7 +645,6 @@ Suite *mipmap_suite(void)
 {
     Suite *s = suite_create("mipmap");
     TCase *tc = tcase_create("core");
-    tcase_set_timeout(tc, 30);
     tcase_add_test(tc, test_levels_halve_rounding_down_to_one_by_one);
     tcase_add_test(tc, test_level_zero_references_the_base_and_free_leaves_it_alone);
     tcase_add_test(tc, test_every_level_keeps_the_mean_for_odd_and_even_sizes);

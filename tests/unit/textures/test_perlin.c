@@ -340,7 +340,6 @@ Suite *perlin_suite(void)
     Suite *s = suite_create("perlin");
     TCase *tc = tcase_create("core");
     tcase_add_checked_fixture(tc, rng_restart, NULL);
-    tcase_set_timeout(tc, 30);
     tcase_add_test(tc, test_noise_reproduces_perlins_published_value);
     tcase_add_test(tc, test_noise_is_zero_at_every_integer_lattice_point);
     tcase_add_test(tc, test_noise_matches_the_reference_transcription_near_the_origin_and_negative);
