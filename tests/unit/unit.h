@@ -10,10 +10,12 @@
 #define ENVTEX_UNIT_H
 
 #include <check.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
 #include "envtex/core/stepcheck.h"
+#include "envtex/core/vec.h"
 
 /* A failed step check (stepcheck.h) fails the test case that made it, with its message. */
 static inline void unit_stepcheck_fail(const char *msg) { ck_abort_msg("envtex: %s", msg); }
@@ -63,7 +65,66 @@ static inline void unit_slow(TCase *tc) { tcase_set_timeout(tc, 3.0 * unit_case_
         if (!(expr)) ck_abort_msg(__VA_ARGS__);                                                    \
     } while (0)
 
-/* |a - b| <= tol, with the values in the failure message */
-#define ck_assert_near(a, b, tol) ck_assert_double_eq_tol((double)(a), (double)(b), (double)(tol))
+/* ---- comparisons, reported at the line of the check ---------------------------------------
+ * Each failure names what was compared and gives got, want and the tolerance in decimal (17
+ * significant digits), at the FILE:LINE of the macro's call, not of a helper:
+ *     test_mipmap.c:88: uv.u: got 0.30000000000000004, want 0.5, tolerance 1e-06 (off by 0.2)
+ * A helper that checks for its caller takes the caller's file and line and fails with
+ * unit_fail_at (a macro wrapping the helper passes __FILE__ and __LINE__). */
+#define unit_fail_at(file, line, ...) _ck_assert_failed(file, line, "Failed", __VA_ARGS__)
+
+static inline void unit_near(const char *file, int line, const char *what, double got,
+                             double want, double tol)
+{
+    if (!(fabs(got - want) <= tol)) /* NaN fails */
+        unit_fail_at(file, line, "%s: got %.17g, want %.17g, tolerance %.3g (off by %.3g)", what,
+                     got, want, tol, fabs(got - want));
+}
+static inline void unit_vec_near(const char *file, int line, const char *what, vec3 got,
+                                 vec3 want, double tol)
+{
+    double off = fmax(fabs(got.x - want.x), fmax(fabs(got.y - want.y), fabs(got.z - want.z)));
+    if (!(off <= tol) || !vec3_is_finite(got))
+        unit_fail_at(file, line,
+                     "%s: got (%.17g, %.17g, %.17g), want (%.17g, %.17g, %.17g), tolerance %.3g "
+                     "per component (off by %.3g)",
+                     what, got.x, got.y, got.z, want.x, want.y, want.z, tol, off);
+}
+static inline void unit_rgb_near(const char *file, int line, const char *what, rgb got, rgb want,
+                                 double tol)
+{
+    double off = fmax(fabs(got.r - want.r), fmax(fabs(got.g - want.g), fabs(got.b - want.b)));
+    if (!(off <= tol) || !isfinite(got.r + got.g + got.b))
+        unit_fail_at(file, line,
+                     "%s: got (%.17g, %.17g, %.17g), want (%.17g, %.17g, %.17g), tolerance %.3g "
+                     "per channel (off by %.3g)",
+                     what, got.r, got.g, got.b, want.r, want.g, want.b, tol, off);
+}
+static inline void unit_uv_near(const char *file, int line, const char *what, uv2 got, uv2 want,
+                                double tol)
+{
+    double off = fmax(fabs(got.u - want.u), fabs(got.v - want.v));
+    if (!(off <= tol))
+        unit_fail_at(file, line,
+                     "%s: got (%.17g, %.17g), want (%.17g, %.17g), tolerance %.3g (off by %.3g)",
+                     what, got.u, got.v, want.u, want.v, tol, off);
+}
+/* directions: the angle between them, in radians */
+static inline void unit_dir_near(const char *file, int line, const char *what, vec3 got,
+                                 vec3 want, double tol)
+{
+    double angle = vec3_angle(got, want);
+    if (!(angle <= tol))
+        unit_fail_at(file, line,
+                     "%s: got (%.17g, %.17g, %.17g), want (%.17g, %.17g, %.17g), tolerance %.3g "
+                     "radians (off by %.3g)",
+                     what, got.x, got.y, got.z, want.x, want.y, want.z, tol, angle);
+}
+#define ck_assert_near(got, want, tol)                                                             \
+    unit_near(__FILE__, __LINE__, #got, (double)(got), (double)(want), (double)(tol))
+#define ck_vec_near(got, want, tol) unit_vec_near(__FILE__, __LINE__, #got, got, want, tol)
+#define ck_rgb_near(got, want, tol) unit_rgb_near(__FILE__, __LINE__, #got, got, want, tol)
+#define ck_uv_near(got, want, tol)  unit_uv_near(__FILE__, __LINE__, #got, got, want, tol)
+#define ck_dir_near(got, want, tol) unit_dir_near(__FILE__, __LINE__, #got, got, want, tol)
 
 #endif

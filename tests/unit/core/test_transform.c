@@ -23,19 +23,7 @@
         long long a_ = (a), b_ = (b);                                                              \
         if (a_ != b_) ck_abort_msg("%s == %lld, %s == %lld", #a, a_, #b, b_);                      \
     } while (0)
-#define EXPECT_NEAR(a, b, tol)                                                                     \
-    do {                                                                                           \
-        double a_ = (a), b_ = (b), t_ = (tol);                                                     \
-        if (!(fabs(a_ - b_) <= t_))                                                                \
-            ck_abort_msg("%s == %.17g, %s == %.17g, tolerance %g", #a, a_, #b, b_, t_);            \
-    } while (0)
-
-static void assert_vec_near(vec3 a, vec3 b, double tol)
-{
-    EXPECT_NEAR(a.x, b.x, tol);
-    EXPECT_NEAR(a.y, b.y, tol);
-    EXPECT_NEAR(a.z, b.z, tol);
-}
+#define EXPECT_NEAR(a, b, tol) unit_near(__FILE__, __LINE__, #a, (a), (b), (tol))
 
 static double sym(rng *r) { return 2 * rng_uniform(r) - 1; } /* uniform in [-1, 1) */
 
@@ -55,12 +43,12 @@ static mat4 random_affine(rng *r)
 START_TEST(test_transform_rotate_90_about_z_maps_x_to_y)
 {
     mat4 r = mat4_rotate(vec3_make(0, 0, 1), 90);
-    assert_vec_near(mat4_dir(&r, vec3_make(1, 0, 0)), vec3_make(0, 1, 0), 1e-15);
-    assert_vec_near(mat4_dir(&r, vec3_make(0, 1, 0)), vec3_make(-1, 0, 0), 1e-15);
-    assert_vec_near(mat4_dir(&r, vec3_make(0, 0, 1)), vec3_make(0, 0, 1), 1e-15);
+    ck_vec_near(mat4_dir(&r, vec3_make(1, 0, 0)), vec3_make(0, 1, 0), 1e-15);
+    ck_vec_near(mat4_dir(&r, vec3_make(0, 1, 0)), vec3_make(-1, 0, 0), 1e-15);
+    ck_vec_near(mat4_dir(&r, vec3_make(0, 0, 1)), vec3_make(0, 0, 1), 1e-15);
     /* the axis need not be unit length: (0,0,5) is the same axis */
     mat4 r5 = mat4_rotate(vec3_make(0, 0, 5), 90);
-    assert_vec_near(mat4_dir(&r5, vec3_make(1, 0, 0)), vec3_make(0, 1, 0), 1e-15);
+    ck_vec_near(mat4_dir(&r5, vec3_make(1, 0, 0)), vec3_make(0, 1, 0), 1e-15);
 }
 END_TEST
 
@@ -68,15 +56,15 @@ START_TEST(test_transform_rotate_is_right_handed_about_x_and_y)
 {
     /* right hand rule: about x, y goes to z; about y, z goes to x */
     mat4 rx = mat4_rotate(vec3_make(1, 0, 0), 90), ry = mat4_rotate(vec3_make(0, 1, 0), 90);
-    assert_vec_near(mat4_dir(&rx, vec3_make(0, 1, 0)), vec3_make(0, 0, 1), 1e-15);
-    assert_vec_near(mat4_dir(&ry, vec3_make(0, 0, 1)), vec3_make(1, 0, 0), 1e-15);
+    ck_vec_near(mat4_dir(&rx, vec3_make(0, 1, 0)), vec3_make(0, 0, 1), 1e-15);
+    ck_vec_near(mat4_dir(&ry, vec3_make(0, 0, 1)), vec3_make(1, 0, 0), 1e-15);
     /* rotate 1 0 0 -90 (FORMAT.md): the envmap's +z becomes the world's +y */
     mat4 env = mat4_rotate(vec3_make(1, 0, 0), -90);
-    assert_vec_near(mat4_dir(&env, vec3_make(0, 0, 1)), vec3_make(0, 1, 0), 1e-15);
+    ck_vec_near(mat4_dir(&env, vec3_make(0, 0, 1)), vec3_make(0, 1, 0), 1e-15);
     /* 120 degrees about (1,1,1) cycles the axes x -> y -> z */
     mat4 c = mat4_rotate(vec3_make(1, 1, 1), 120);
-    assert_vec_near(mat4_dir(&c, vec3_make(1, 0, 0)), vec3_make(0, 1, 0), 1e-15);
-    assert_vec_near(mat4_dir(&c, vec3_make(0, 1, 0)), vec3_make(0, 0, 1), 1e-15);
+    ck_vec_near(mat4_dir(&c, vec3_make(1, 0, 0)), vec3_make(0, 1, 0), 1e-15);
+    ck_vec_near(mat4_dir(&c, vec3_make(0, 1, 0)), vec3_make(0, 0, 1), 1e-15);
 }
 END_TEST
 
@@ -86,15 +74,15 @@ START_TEST(test_transform_right_multiplication_applies_the_last_command_first)
     mat4 m = mat4_identity();
     m = mat4_mul(m, mat4_translate(vec3_make(0, 1, 0)));
     m = mat4_mul(m, mat4_rotate(vec3_make(0, 0, 1), 90));
-    assert_vec_near(mat4_point(&m, vec3_make(1, 0, 0)), vec3_make(0, 2, 0), 1e-15);
+    ck_vec_near(mat4_point(&m, vec3_make(1, 0, 0)), vec3_make(0, 2, 0), 1e-15);
     /* the other order would give R (T p) = R (1,1,0) = (-1,1,0) */
     mat4 rt = mat4_mul(mat4_rotate(vec3_make(0, 0, 1), 90), mat4_translate(vec3_make(0, 1, 0)));
-    assert_vec_near(mat4_point(&rt, vec3_make(1, 0, 0)), vec3_make(-1, 1, 0), 1e-15);
+    ck_vec_near(mat4_point(&rt, vec3_make(1, 0, 0)), vec3_make(-1, 1, 0), 1e-15);
     /* directions ignore the translation */
-    assert_vec_near(mat4_dir(&m, vec3_make(1, 0, 0)), vec3_make(0, 1, 0), 1e-15);
+    ck_vec_near(mat4_dir(&m, vec3_make(1, 0, 0)), vec3_make(0, 1, 0), 1e-15);
     /* scale then translate: scale applies to the translation written after it */
     mat4 st = mat4_mul(mat4_scale(vec3_make(2, 3, 4)), mat4_translate(vec3_make(1, 1, 1)));
-    assert_vec_near(mat4_point(&st, vec3_make(0, 0, 0)), vec3_make(2, 3, 4), 1e-15);
+    ck_vec_near(mat4_point(&st, vec3_make(0, 0, 0)), vec3_make(2, 3, 4), 1e-15);
 }
 END_TEST
 
@@ -192,7 +180,7 @@ START_TEST(test_transform_normal_stays_perpendicular_under_nonuniform_scale)
     mat4 s = mat4_scale(vec3_make(2, 1, 1)), si;
     EXPECT_INT_EQ(mat4_inverse(s, &si), 0);
     vec3 n = mat4_normal(&si, vec3_make(1, 1, 0));
-    assert_vec_near(n, vec3_make(0.5, 1, 0), 1e-15);
+    ck_vec_near(n, vec3_make(0.5, 1, 0), 1e-15);
     /* the plain matrix would have given (2,1,0), which is not perpendicular */
     vec3 wrong = mat4_dir(&s, vec3_make(1, 1, 0));
     EXPECT(fabs(vec3_dot(vec3_normalize(wrong),

@@ -20,12 +20,7 @@
         long long a_ = (a), b_ = (b);                                                              \
         if (a_ != b_) ck_abort_msg("%s == %lld, %s == %lld", #a, a_, #b, b_);                      \
     } while (0)
-#define EXPECT_NEAR(a, b, tol)                                                                     \
-    do {                                                                                           \
-        double a_ = (a), b_ = (b), t_ = (tol);                                                     \
-        if (!(fabs(a_ - b_) <= t_))                                                                \
-            ck_abort_msg("%s == %.17g, %s == %.17g, tolerance %g", #a, a_, #b, b_, t_);            \
-    } while (0)
+#define EXPECT_NEAR(a, b, tol) unit_near(__FILE__, __LINE__, #a, (a), (b), (tol))
 
 /* A uniformly distributed unit vector (z uniform in [-1,1], phi uniform). */
 static vec3 random_unit(rng *r)
@@ -35,18 +30,16 @@ static vec3 random_unit(rng *r)
     return vec3_make(s * cos(phi), s * sin(phi), z);
 }
 
-static void assert_orthonormal(vec3 n, vec3 t, vec3 b, double tol)
+#define assert_orthonormal(n, t, b, tol) orthonormal_at(__FILE__, __LINE__, n, t, b, tol)
+static void orthonormal_at(const char *file, int line, vec3 n, vec3 t, vec3 b, double tol)
 {
-    EXPECT_NEAR(vec3_length(t), 1, tol);
-    EXPECT_NEAR(vec3_length(b), 1, tol);
-    EXPECT_NEAR(vec3_dot(t, b), 0, tol);
-    EXPECT_NEAR(vec3_dot(t, n), 0, tol);
-    EXPECT_NEAR(vec3_dot(b, n), 0, tol);
+    unit_near(file, line, "|t|", vec3_length(t), 1, tol);
+    unit_near(file, line, "|b|", vec3_length(b), 1, tol);
+    unit_near(file, line, "t . b", vec3_dot(t, b), 0, tol);
+    unit_near(file, line, "t . n", vec3_dot(t, n), 0, tol);
+    unit_near(file, line, "b . n", vec3_dot(b, n), 0, tol);
     /* right-handed: t x b = n */
-    vec3 c = vec3_cross(t, b);
-    EXPECT_NEAR(c.x, n.x, tol);
-    EXPECT_NEAR(c.y, n.y, tol);
-    EXPECT_NEAR(c.z, n.z, tol);
+    unit_vec_near(file, line, "t x b (n)", vec3_cross(t, b), n, tol);
 }
 
 START_TEST(test_vec_cross_of_x_and_y_is_z_and_anticommutes)

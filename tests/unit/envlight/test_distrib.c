@@ -424,10 +424,10 @@ START_TEST(test_distrib1d_edge_xi_give_the_first_and_last_nonzero_bins)
         int low = k < N_XI_LOW;
         double xi = low ? xi_low[k] : xi_high[k - N_XI_LOW], pmf, rem;
         int i = distrib1d_sample(&d, xi, &pmf, &rem);
-        ck_assert_msg(i == (low ? 2 : 4), "xi = %a gave bin %d", xi, i);
+        ck_assert_msg(i == (low ? 2 : 4), "xi = %.17g gave bin %d", xi, i);
         ck_assert(pmf > 0.0 && rem >= 0.0 && rem < 1.0);
         i = distrib1d_sample_alias(&d, xi, &pmf, &rem);
-        ck_assert_msg(i == 2 || i == 4, "alias: xi = %a gave bin %d", xi, i);
+        ck_assert_msg(i == 2 || i == 4, "alias: xi = %.17g gave bin %d", xi, i);
         ck_assert(pmf > 0.0 && rem >= 0.0 && rem < 1.0);
     }
     distrib1d_free(&d);
@@ -466,13 +466,13 @@ START_TEST(test_distrib_remapped_stays_below_one_just_below_a_step)
     double rem;
     ck_assert_int_eq(distrib1d_init(&d, w2, 2, &err), 0);
     ck_assert_int_eq(distrib1d_sample(&d, 1.0 - 0x1p-53, NULL, &rem), 1);
-    ck_assert_msg(rem < 1.0, "remapped %a", rem);
+    ck_assert_msg(rem < 1.0, "remapped %.17g", rem);
     distrib1d_free(&d);
     const double w_alias[2] = {0x3p-55, 1.0};
     ck_assert_int_eq(distrib1d_init(&d, w_alias, 2, &err), 0);
     ck_assert_int_eq(distrib1d_alias_build(&d, &err), 0);
     ck_assert_int_eq(distrib1d_sample_alias(&d, 0.5 - 0x1p-54, NULL, &rem), 1);
-    ck_assert_msg(rem < 1.0, "alias: remapped %a", rem);
+    ck_assert_msg(rem < 1.0, "alias: remapped %.17g", rem);
     distrib1d_free(&d);
     pcg32 rng = pcg32_seeded(29);
     long bad = 0;
@@ -957,9 +957,9 @@ START_TEST(test_distrib2d_edge_xi_give_the_first_and_last_nonzero_cells)
             int o, i;
             double pmf, ro, ri;
             distrib2d_sample(&d, xa, xb, &o, &i, &pmf, &ro, &ri);
-            ck_assert_msg(o == (low_a ? 1 : 5), "xi_outer = %a gave column %d", xa, o);
+            ck_assert_msg(o == (low_a ? 1 : 5), "xi_outer = %.17g gave column %d", xa, o);
             int first = 1, last = 4;
-            ck_assert_msg(i == (low_b ? first : last), "xi_inner = %a gave cell %d", xb, i);
+            ck_assert_msg(i == (low_b ? first : last), "xi_inner = %.17g gave cell %d", xb, i);
             ck_assert(pmf > 0.0 && ro >= 0.0 && ro < 1.0 && ri >= 0.0 && ri < 1.0);
         }
     }

@@ -16,12 +16,7 @@
 #include "unit.h"
 
 /* Checks for long loops: report failures only (a passing ck_assert costs a system call). */
-#define EXPECT_NEAR(a, b, tol)                                                                     \
-    do {                                                                                           \
-        double a_ = (a), b_ = (b), t_ = (tol);                                                     \
-        if (!(fabs(a_ - b_) <= t_))                                                                \
-            ck_abort_msg("%s == %.17g, %s == %.17g, tolerance %g", #a, a_, #b, b_, t_);            \
-    } while (0)
+#define EXPECT_NEAR(a, b, tol) unit_near(__FILE__, __LINE__, #a, (a), (b), (tol))
 
 typedef rgb (*env_fn)(vec3 d, const void *ctx);
 

@@ -24,21 +24,15 @@ static vec3 to_dir(uv2 uv)
     return d;
 }
 
-static void assert_dir_near(vec3 got, vec3 want, double tol)
-{
-    ck_assert_msg(vec3_angle(got, want) <= tol, "got (%.17g %.17g %.17g), want (%g %g %g)", got.x,
-                  got.y, got.z, want.x, want.y, want.z);
-}
-
 /* Known answers: centre +x, up +z, right +y, half-way out 90 degrees, rim -x.
  * Catches a mirrored image, v measured upwards, the mirror ball's radius law (1/sqrt 2 for 90). */
 START_TEST(test_angular_orientation_centre_is_back_at_the_camera_and_up_is_z)
 {
-    assert_dir_near(to_dir((uv2){0.5, 0.5}), vec3_make(1, 0, 0), 0.0);
-    assert_dir_near(to_dir((uv2){0.75, 0.5}), vec3_make(0, 1, 0), 1e-15);  /* right: +y */
-    assert_dir_near(to_dir((uv2){0.25, 0.5}), vec3_make(0, -1, 0), 1e-15); /* left: -y */
-    assert_dir_near(to_dir((uv2){0.5, 0.25}), vec3_make(0, 0, 1), 1e-15);  /* up: +z */
-    assert_dir_near(to_dir((uv2){0.5, 0.75}), vec3_make(0, 0, -1), 1e-15); /* down: -z */
+    ck_dir_near(to_dir((uv2){0.5, 0.5}), vec3_make(1, 0, 0), 0.0);
+    ck_dir_near(to_dir((uv2){0.75, 0.5}), vec3_make(0, 1, 0), 1e-15);  /* right: +y */
+    ck_dir_near(to_dir((uv2){0.25, 0.5}), vec3_make(0, -1, 0), 1e-15); /* left: -y */
+    ck_dir_near(to_dir((uv2){0.5, 0.25}), vec3_make(0, 0, 1), 1e-15);  /* up: +z */
+    ck_dir_near(to_dir((uv2){0.5, 0.75}), vec3_make(0, 0, -1), 1e-15); /* down: -z */
     uv2 uv = to_uv(vec3_make(1, 0, 1)); /* 45 degrees towards +z: rho = 1/4 */
     ck_assert_near(uv.u, 0.5, 1e-15);
     ck_assert_near(uv.v, 0.375, 1e-15);
@@ -142,10 +136,10 @@ END_TEST
 START_TEST(test_angular_rim_is_the_direction_behind_the_probe)
 {
     const uv2 rim[] = {{1, 0.5}, {0, 0.5}, {0.5, 0}, {0.5, 1}};
-    for (int k = 0; k < 4; k++) assert_dir_near(to_dir(rim[k]), vec3_make(-1, 0, 0), 1e-15);
+    for (int k = 0; k < 4; k++) ck_dir_near(to_dir(rim[k]), vec3_make(-1, 0, 0), 1e-15);
     for (int k = 0; k < 360; k++) {
         double t = k * M_PI / 180;
-        assert_dir_near(to_dir((uv2){0.5 + 0.5 * cos(t), 0.5 - 0.5 * sin(t)}), vec3_make(-1, 0, 0),
+        ck_dir_near(to_dir((uv2){0.5 + 0.5 * cos(t), 0.5 - 0.5 * sin(t)}), vec3_make(-1, 0, 0),
                         1e-14);
     }
     uv2 uv = to_uv(vec3_make(-1, 0, 0));

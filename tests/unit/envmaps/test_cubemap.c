@@ -13,17 +13,11 @@
 static const vec3 axes[CUBEMAP_FACES] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
                                          {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
 
-static void assert_dir_near(vec3 got, vec3 want, double tol)
-{
-    ck_assert_msg(vec3_angle(got, want) <= tol, "got (%g %g %g), want (%g %g %g)", got.x, got.y,
-                  got.z, want.x, want.y, want.z);
-}
-
 /* Catches a wrong major axis or a wrong sign in the table. */
 START_TEST(test_cubemap_face_centres_are_the_axes)
 {
     for (int f = 0; f < CUBEMAP_FACES; f++) {
-        assert_dir_near(cubemap_face_to_dir(f, (uv2){0.5, 0.5}), axes[f], 1e-15);
+        ck_dir_near(cubemap_face_to_dir(f, (uv2){0.5, 0.5}), axes[f], 1e-15);
         int g;
         uv2 st;
         ck_assert_int_eq(cubemap_dir_to_face(axes[f], &g, &st), 0);
@@ -49,15 +43,15 @@ START_TEST(test_cubemap_face_orientation_follows_the_gl_table)
     };
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         int f = cases[k].face;
-        assert_dir_near(cubemap_face_to_dir(f, (uv2){1.0, 0.5}), vec3_scale(cases[k].right, h),
+        ck_dir_near(cubemap_face_to_dir(f, (uv2){1.0, 0.5}), vec3_scale(cases[k].right, h),
                         1e-15);
-        assert_dir_near(cubemap_face_to_dir(f, (uv2){0.5, 0.0}), vec3_scale(cases[k].top, h),
+        ck_dir_near(cubemap_face_to_dir(f, (uv2){0.5, 0.0}), vec3_scale(cases[k].top, h),
                         1e-15);
         /* the opposite edges are the mirror images through the face centre */
         vec3 left = vec3_sub(vec3_scale(axes[f], 2.0), cases[k].right);
         vec3 bottom = vec3_sub(vec3_scale(axes[f], 2.0), cases[k].top);
-        assert_dir_near(cubemap_face_to_dir(f, (uv2){0.0, 0.5}), vec3_normalize(left), 1e-15);
-        assert_dir_near(cubemap_face_to_dir(f, (uv2){0.5, 1.0}), vec3_normalize(bottom), 1e-15);
+        ck_dir_near(cubemap_face_to_dir(f, (uv2){0.0, 0.5}), vec3_normalize(left), 1e-15);
+        ck_dir_near(cubemap_face_to_dir(f, (uv2){0.5, 1.0}), vec3_normalize(bottom), 1e-15);
     }
 }
 END_TEST
@@ -139,7 +133,7 @@ START_TEST(test_cubemap_edges_and_corners_follow_the_tie_rule)
                 uv2 back;
                 ck_assert_int_eq(cubemap_dir_to_face(d, &g, &back), 0);
                 ck_assert_int_eq(g, tie_rule_face(d));
-                assert_dir_near(cubemap_face_to_dir(g, back), d, 1e-15);
+                ck_dir_near(cubemap_face_to_dir(g, back), d, 1e-15);
                 if (g == f) {
                     wins++;
                     ck_assert_near(back.u, st.u, ST_TOL);
@@ -349,7 +343,8 @@ END_TEST
 /* A cross made from direction-coloured faces: every pair of neighbouring pixels inside the
  * cross (both in a face cell) holds nearby directions.  Catches a face in the wrong cell or
  * with the wrong rotation. */
-static void assert_cross_is_continuous(const image *cross, int n)
+#define assert_cross_is_continuous(cross, n) cross_is_continuous_at(__FILE__, __LINE__, cross, n)
+static void cross_is_continuous_at(const char *file, int line, const image *cross, int n)
 {
     int pairs = 0;
     for (int y = 0; y < cross->h; y++)
@@ -363,12 +358,13 @@ static void assert_cross_is_continuous(const image *cross, int n)
                 if (rgb_is_black(b)) continue;
                 double ang = vec3_angle(vec3_make(a.r, a.g, a.b), vec3_make(b.r, b.g, b.b));
                 /* neighbouring texel centres are at most ~2/N apart (face centres) */
-                ck_assert_msg(ang < 2.2 / n, "pixels (%d,%d) and (%d,%d) are %g rad apart", x, y,
-                              x2, y2, ang);
+                if (!(ang < 2.2 / n))
+                    unit_fail_at(file, line, "pixels (%d,%d) and (%d,%d) are %.17g rad apart, "
+                                 "want under %.17g", x, y, x2, y2, ang, 2.2 / n);
                 pairs++;
             }
         }
-    ck_assert_int_gt(pairs, 0);
+    if (pairs == 0) unit_fail_at(file, line, "no pair of neighbouring pixels in the cross");
 }
 
 START_TEST(test_cubemap_crosses_are_continuous_across_internal_edges)
@@ -421,7 +417,7 @@ START_TEST(test_cubemap_crosses_put_each_face_in_its_documented_cell)
             for (int j = 0; j < n; j++)
                 for (int i = 0; i < n; i++)
                     sum = rgb_add(sum, image_get(im, cell[0] * n + i, cell[1] * n + j));
-            assert_dir_near(vec3_make(sum.r, sum.g, sum.b), axes[f], 1e-6);
+            ck_dir_near(vec3_make(sum.r, sum.g, sum.b), axes[f], 1e-6);
         }
     }
     /* -Z in the vertical cross is turned 180 degrees: its top-left pixel is the face's

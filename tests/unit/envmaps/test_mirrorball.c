@@ -23,23 +23,17 @@ static vec3 to_dir(uv2 uv)
     return d;
 }
 
-static void assert_dir_near(vec3 got, vec3 want, double tol)
-{
-    ck_assert_msg(vec3_angle(got, want) <= tol, "got (%.17g %.17g %.17g), want (%g %g %g)", got.x,
-                  got.y, got.z, want.x, want.y, want.z);
-}
-
 /* Known answers: the centre reflects straight back at the camera (+x), up is +z, right is +y,
  * the circle rho = 1/sqrt 2 is the horizon of the camera's hemisphere, the rim is -x.
  * Catches a mirrored image (right = -y), v measured upwards, the wrong view axis. */
 START_TEST(test_mirrorball_orientation_centre_is_back_at_the_camera_and_up_is_z)
 {
     const double q = 0.5 * sqrt(0.5); /* rho = 1/sqrt 2 is a distance of q in u or v */
-    assert_dir_near(to_dir((uv2){0.5, 0.5}), vec3_make(1, 0, 0), 1e-15);
-    assert_dir_near(to_dir((uv2){0.5 + q, 0.5}), vec3_make(0, 1, 0), 1e-15);  /* right: +y */
-    assert_dir_near(to_dir((uv2){0.5 - q, 0.5}), vec3_make(0, -1, 0), 1e-15); /* left: -y */
-    assert_dir_near(to_dir((uv2){0.5, 0.5 - q}), vec3_make(0, 0, 1), 1e-15);  /* up: +z */
-    assert_dir_near(to_dir((uv2){0.5, 0.5 + q}), vec3_make(0, 0, -1), 1e-15); /* down: -z */
+    ck_dir_near(to_dir((uv2){0.5, 0.5}), vec3_make(1, 0, 0), 1e-15);
+    ck_dir_near(to_dir((uv2){0.5 + q, 0.5}), vec3_make(0, 1, 0), 1e-15);  /* right: +y */
+    ck_dir_near(to_dir((uv2){0.5 - q, 0.5}), vec3_make(0, -1, 0), 1e-15); /* left: -y */
+    ck_dir_near(to_dir((uv2){0.5, 0.5 - q}), vec3_make(0, 0, 1), 1e-15);  /* up: +z */
+    ck_dir_near(to_dir((uv2){0.5, 0.5 + q}), vec3_make(0, 0, -1), 1e-15); /* down: -z */
     uv2 uv = to_uv(vec3_make(1, 0, 0));
     ck_assert_double_eq(uv.u, 0.5);
     ck_assert_double_eq(uv.v, 0.5);
@@ -127,11 +121,11 @@ END_TEST
 START_TEST(test_mirrorball_rim_is_the_direction_behind_the_ball)
 {
     const uv2 rim[] = {{1, 0.5}, {0, 0.5}, {0.5, 0}, {0.5, 1}};
-    for (int k = 0; k < 4; k++) assert_dir_near(to_dir(rim[k]), vec3_make(-1, 0, 0), 0.0);
+    for (int k = 0; k < 4; k++) ck_dir_near(to_dir(rim[k]), vec3_make(-1, 0, 0), 0.0);
     for (int k = 0; k < 360; k++) { /* rim points made with cos / sin, rounding and all */
         double t = k * M_PI / 180;
         vec3 d = to_dir((uv2){0.5 + 0.5 * cos(t), 0.5 - 0.5 * sin(t)});
-        assert_dir_near(d, vec3_make(-1, 0, 0), 1e-7); /* 1 - rho^2 ~ 1e-16: angle ~ 2e-8 */
+        ck_dir_near(d, vec3_make(-1, 0, 0), 1e-7); /* 1 - rho^2 ~ 1e-16: angle ~ 2e-8 */
     }
     uv2 uv = to_uv(vec3_make(-1, 0, 0));
     ck_assert_double_eq(uv.u, 0.5);

@@ -29,12 +29,7 @@
         long long a_ = (a), b_ = (b);                                                              \
         if (a_ != b_) ck_abort_msg("%s == %lld, %s == %lld", #a, a_, #b, b_);                      \
     } while (0)
-#define EXPECT_NEAR(a, b, tol)                                                                     \
-    do {                                                                                           \
-        double a_ = (a), b_ = (b), t_ = (tol);                                                     \
-        if (!(fabs(a_ - b_) <= t_))                                                                \
-            ck_abort_msg("%s == %.17g, %s == %.17g, tolerance %g", #a, a_, #b, b_, t_);            \
-    } while (0)
+#define EXPECT_NEAR(a, b, tol) unit_near(__FILE__, __LINE__, #a, (a), (b), (tol))
 
 static double sym(rng *g) { return 2 * rng_uniform(g) - 1; }
 

@@ -7,27 +7,20 @@
 
 #include "unit.h"
 
-static void assert_vec_near(vec3 a, vec3 b, double tol)
-{
-    ck_assert_msg(fabs(a.x - b.x) <= tol && fabs(a.y - b.y) <= tol && fabs(a.z - b.z) <= tol,
-                  "(%.17g, %.17g, %.17g) != (%.17g, %.17g, %.17g) within %g", a.x, a.y, a.z, b.x,
-                  b.y, b.z, tol);
-}
-
 START_TEST(test_camera_centre_pixel_looks_at_the_centre)
 {
     camera c;
     vec3 eye = vec3_make(1, 2, 3), at = vec3_make(-2, 0.5, 7);
     camera_init(&c, eye, at, vec3_make(0, 1, 0), 45, 64, 48);
     ray r = camera_ray(&c, 32, 24); /* the image centre (a pixel corner with even sizes) */
-    assert_vec_near(r.o, eye, 0);
-    assert_vec_near(r.d, vec3_normalize(vec3_sub(at, eye)), 1e-15);
+    ck_vec_near(r.o, eye, 0);
+    ck_vec_near(r.d, vec3_normalize(vec3_sub(at, eye)), 1e-15);
     ck_assert_near(vec3_length(r.d), 1, 1e-15);
     ck_assert(r.tmin == 0 && isinf(r.tmax));
     /* odd sizes: the centre of pixel (w/2, h/2) is the image centre */
     camera_init(&c, eye, at, vec3_make(0, 1, 0), 45, 65, 49);
     r = camera_ray(&c, 32 + 0.5, 24 + 0.5);
-    assert_vec_near(r.d, vec3_normalize(vec3_sub(at, eye)), 1e-15);
+    ck_vec_near(r.d, vec3_normalize(vec3_sub(at, eye)), 1e-15);
 }
 END_TEST
 
@@ -61,9 +54,9 @@ START_TEST(test_camera_row_0_is_at_the_top_and_x_grows_to_the_right)
     ray r = camera_ray(&c, 39.5, 15), u = camera_ray(&c, 20, 0.5);
     ck_assert(r.d.x > 0.3 && fabs(r.d.z) < 1e-15);
     ck_assert(u.d.z > 0.3 && fabs(u.d.x) < 1e-15);
-    assert_vec_near(c.u, vec3_make(1, 0, 0), 1e-15);
-    assert_vec_near(c.v, vec3_make(0, 0, 1), 1e-15);
-    assert_vec_near(c.w, vec3_make(0, -1, 0), 1e-15);
+    ck_vec_near(c.u, vec3_make(1, 0, 0), 1e-15);
+    ck_vec_near(c.v, vec3_make(0, 0, 1), 1e-15);
+    ck_vec_near(c.w, vec3_make(0, -1, 0), 1e-15);
 }
 END_TEST
 
@@ -79,7 +72,7 @@ START_TEST(test_camera_frame_is_orthonormal_for_a_slanted_up)
     ck_assert_near(vec3_dot(c.v, c.w), 0, 1e-15);
     ck_assert_near(vec3_dot(c.w, c.u), 0, 1e-15);
     vec3 x = vec3_cross(c.u, c.v); /* right-handed: u x v = w */
-    assert_vec_near(x, c.w, 1e-15);
+    ck_vec_near(x, c.w, 1e-15);
     /* v leans towards the given up, and u is perpendicular to it */
     ck_assert(vec3_dot(c.v, vec3_make(0, 1, 1)) > 0);
     ck_assert_near(vec3_dot(c.u, vec3_make(0, 1, 1)), 0, 1e-15);
@@ -119,14 +112,14 @@ START_TEST(test_camera_frame_handles_tiny_and_huge_vectors_and_names_each_failur
     ck_assert_int_eq(camera_frame(vec3_make(0, 0, 1e10), vec3_make(0, 0, 0),
                                   vec3_make(0, 1e-163, 1e-160), &u, &v, &w),
                      CAMERA_FRAME_OK);
-    assert_vec_near(u, vec3_make(1, 0, 0), 1e-15); /* up's part across the view is +y: right = +x */
+    ck_vec_near(u, vec3_make(1, 0, 0), 1e-15); /* up's part across the view is +y: right = +x */
     ck_assert_near(vec3_length(u), 1, 1e-15);
     ck_assert_near(vec3_length(v), 1, 1e-15);
     ck_assert_near(vec3_dot(u, w), 0, 1e-15);
     ck_assert_int_eq(camera_frame(vec3_make(1e300, 0, 0), vec3_make(0, 0, 0),
                                   vec3_make(0, 1e300, 0), &u, &v, &w),
                      CAMERA_FRAME_OK);
-    assert_vec_near(w, vec3_make(1, 0, 0), 1e-15);
+    ck_vec_near(w, vec3_make(1, 0, 0), 1e-15);
     ck_assert_int_eq(camera_frame(vec3_make(0, 0, 1e308), vec3_make(0, 0, -1e308),
                                   vec3_make(0, 1, 0), &u, &v, &w),
                      CAMERA_FRAME_TOO_FAR);

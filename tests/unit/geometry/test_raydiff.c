@@ -28,11 +28,16 @@ static camera test_camera(void)
     return c;
 }
 
-static void assert_vec_near(vec3 a, vec3 b, double tol, const char *what)
+/* |a - b| <= tol max(1, |b|), reported at the caller's line */
+#define assert_vec_near(a, b, tol, what) vec_near_at(__FILE__, __LINE__, a, b, tol, what)
+static void vec_near_at(const char *file, int line, vec3 a, vec3 b, double tol, const char *what)
 {
     double e = vec3_length(vec3_sub(a, b));
-    ck_assert_msg(e <= tol * fmax(1.0, vec3_length(b)), "%s: (%g %g %g) vs (%g %g %g), error %g",
-                  what, a.x, a.y, a.z, b.x, b.y, b.z, e);
+    if (!(e <= tol * fmax(1.0, vec3_length(b))))
+        unit_fail_at(file, line,
+                     "%s: got (%.17g, %.17g, %.17g), want (%.17g, %.17g, %.17g), tolerance %.3g "
+                     "times max(1, |want|) (off by %.3g)",
+                     what, a.x, a.y, a.z, b.x, b.y, b.z, tol, e);
 }
 
 /* The frame texshade needs at hit h, seen from its front: n = ng, entering, all else 0. */

@@ -24,12 +24,7 @@
         long long a_ = (a), b_ = (b);                                                              \
         if (a_ != b_) ck_abort_msg("%s == %lld, %s == %lld", #a, a_, #b, b_);                      \
     } while (0)
-#define EXPECT_NEAR(a, b, tol)                                                                     \
-    do {                                                                                           \
-        double a_ = (a), b_ = (b), t_ = (tol);                                                     \
-        if (!(fabs(a_ - b_) <= t_))                                                                \
-            ck_abort_msg("%s == %.17g, %s == %.17g, tolerance %g", #a, a_, #b, b_, t_);            \
-    } while (0)
+#define EXPECT_NEAR(a, b, tol) unit_near(__FILE__, __LINE__, #a, (a), (b), (tol))
 
 static sphere make_sphere(vec3 c, double r, mat4 xf)
 {
@@ -54,13 +49,6 @@ static vec3 random_unit(rng *r)
 }
 
 /* |a - b| <= tol per component (tol 0: equal) */
-static void assert_vec_near(vec3 a, vec3 b, double tol)
-{
-    EXPECT_MSG(fabs(a.x - b.x) <= tol && fabs(a.y - b.y) <= tol && fabs(a.z - b.z) <= tol,
-               "(%.17g, %.17g, %.17g) != (%.17g, %.17g, %.17g) within %g", a.x, a.y, a.z, b.x, b.y,
-               b.z, tol);
-}
-
 START_TEST(test_sphere_ray_from_outside_hits_the_near_side)
 {
     sphere s = unit_sphere();
@@ -71,9 +59,9 @@ START_TEST(test_sphere_ray_from_outside_hits_the_near_side)
     hit h;
     sphere_hit(&s, &r, t, &h);
     EXPECT_NEAR(h.t, 4, 1e-15);
-    assert_vec_near(h.p, vec3_make(0, 0, 1), 1e-15);
-    assert_vec_near(h.ng, vec3_make(0, 0, 1), 1e-15);
-    assert_vec_near(h.ns, h.ng, 0);
+    ck_vec_near(h.p, vec3_make(0, 0, 1), 1e-15);
+    ck_vec_near(h.ng, vec3_make(0, 0, 1), 1e-15);
+    ck_vec_near(h.ns, h.ng, 0);
     /* t is in units of |d|: a direction of length 2 halves it */
     r.d = vec3_make(0, 0, -2);
     EXPECT_INT_EQ(sphere_intersect(&s, &r, &t), 1);
@@ -99,7 +87,7 @@ START_TEST(test_sphere_ray_from_inside_hits_the_far_root)
     EXPECT_NEAR(t, 3, 1e-15);
     hit h;
     sphere_hit(&s, &r, t, &h);
-    assert_vec_near(h.ng, vec3_make(0, 0, -1), 1e-15); /* outward, not flipped to the ray */
+    ck_vec_near(h.ng, vec3_make(0, 0, -1), 1e-15); /* outward, not flipped to the ray */
 }
 END_TEST
 
@@ -200,10 +188,10 @@ START_TEST(test_sphere_ellipsoid_normal_is_the_analytic_one)
         vec3 q = vec3_sub(h.p, off);
         EXPECT_NEAR(q.x * q.x / (a * a) + q.y * q.y / (b * b) + q.z * q.z / (c * c), 1, 1e-12);
         vec3 n = vec3_normalize(vec3_make(q.x / (a * a), q.y / (b * b), q.z / (c * c)));
-        assert_vec_near(h.ng, n, 1e-12);
+        ck_vec_near(h.ng, n, 1e-12);
         EXPECT_NEAR(vec3_length(h.ng), 1, 1e-15);
         EXPECT(vec3_dot(h.ng, r.d) < 0); /* from outside: the outward normal faces the ray */
-        assert_vec_near(h.p, vec3_madd(r.o, r.d, t), 1e-12); /* the world point is o + t d */
+        ck_vec_near(h.p, vec3_madd(r.o, r.d, t), 1e-12); /* the world point is o + t d */
     }
     ck_assert_int_gt(hits, 10000);
 }
@@ -379,8 +367,8 @@ START_TEST(test_sphere_bounds_contain_the_transformed_surface)
     /* and for an untransformed sphere they are tight */
     sphere u = make_sphere(vec3_make(1, 2, 3), 0.5, mat4_identity());
     sphere_bounds(&u, &lo, &hi);
-    assert_vec_near(lo, vec3_make(0.5, 1.5, 2.5), 0);
-    assert_vec_near(hi, vec3_make(1.5, 2.5, 3.5), 0);
+    ck_vec_near(lo, vec3_make(0.5, 1.5, 2.5), 0);
+    ck_vec_near(hi, vec3_make(1.5, 2.5, 3.5), 0);
 }
 END_TEST
 

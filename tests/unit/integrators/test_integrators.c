@@ -417,14 +417,18 @@ static stats nee_run(const char *extra, int with_env, uint64_t seed, long n)
 
 /* The estimates st[1 .. n-1] (modes[i]) each agree with st[0], NEE off on a pixel bright
  * enough to compare, within Z_SE standard errors of their difference. */
-static void assert_agree_with_the_first(const stats *st, const char *const *modes, int n)
+#define assert_agree_with_the_first(st, modes, n) agree_at(__FILE__, __LINE__, st, modes, n)
+static void agree_at(const char *file, int line, const stats *st, const char *const *modes, int n)
 {
-    ck_assert_msg(st[0].mean > 0.05, "the pixel is dark: %g", st[0].mean);
-    for (int i = 1; i < n; i++)
-        ck_assert_msg(fabs(st[i].mean - st[0].mean) <
-                          Z_SE * sqrt(st[i].se * st[i].se + st[0].se * st[0].se),
-                      "%s: %.5f vs nee off %.5f (SE %.5f, %.5f)", modes[i], st[i].mean, st[0].mean,
-                      st[i].se, st[0].se);
+    if (!(st[0].mean > 0.05))
+        unit_fail_at(file, line, "the pixel is dark: got %.17g, want over 0.05", st[0].mean);
+    for (int i = 1; i < n; i++) {
+        double tol = Z_SE * sqrt(st[i].se * st[i].se + st[0].se * st[0].se);
+        if (!(fabs(st[i].mean - st[0].mean) < tol))
+            unit_fail_at(file, line,
+                         "%s: got %.9g, want %.9g (NEE off), tolerance %.3g (%g standard errors)",
+                         modes[i], st[i].mean, st[0].mean, tol, (double)Z_SE);
+    }
 }
 
 START_TEST(test_integrators_nee_off_on_and_mis_agree_under_a_quad_light)

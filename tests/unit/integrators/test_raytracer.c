@@ -63,13 +63,6 @@ static rgb pixel(fixture *f, int x, int y)
     return raytracer_trace(&f->rt, camera_ray(&f->cam, x + 0.5, y + 0.5));
 }
 
-static void assert_rgb_near(rgb a, rgb b, double tol)
-{
-    ck_assert_msg(fabs(a.r - b.r) <= tol && fabs(a.g - b.g) <= tol && fabs(a.b - b.b) <= tol,
-                  "(%.12g, %.12g, %.12g) != (%.12g, %.12g, %.12g) within %g", a.r, a.g, a.b, b.r,
-                  b.g, b.b, tol);
-}
-
 /* The orientation scene: world z up, camera on -y looking at a mirror ball at the origin. */
 static const char *mirror_ball = "size 65 65\n"
                                  "camera 0 -5 0  0 0 0  0 0 1  40\n"
@@ -85,7 +78,7 @@ START_TEST(test_raytracer_mirror_ball_reflects_the_axes_environment_the_right_wa
     set_env(&f.sc, GENENV_AXES, 1);
     fixture_start(&f);
     /* the centre pixel reflects straight back to the camera, towards -y: (0.5, 0, 0.5) */
-    assert_rgb_near(pixel(&f, 32, 32), rgb_make(0.5, 0, 0.5), 0.01);
+    ck_rgb_near(pixel(&f, 32, 32), rgb_make(0.5, 0, 0.5), 0.01);
     /* right of centre the ball reflects towards +x (red), above centre towards +z (blue) */
     rgb right = pixel(&f, 44, 32), left = pixel(&f, 20, 32), up = pixel(&f, 32, 20),
         down = pixel(&f, 32, 44);
@@ -147,7 +140,7 @@ START_TEST(test_raytracer_envmiss_black_darkens_reflections_but_not_the_backgrou
     ck_assert(rgb_is_black(pixel(&b, 32, 32)));
     ck_assert(rgb_is_black(pixel(&b, 44, 32)));
     ck_assert(!rgb_is_black(pixel(&a, 32, 32)));
-    assert_rgb_near(pixel(&b, 0, 0), pixel(&a, 0, 0), 0); /* camera rays still see the envmap */
+    ck_rgb_near(pixel(&b, 0, 0), pixel(&a, 0, 0), 0); /* camera rays still see the envmap */
     fixture_end(&a);
     fixture_end(&b);
 }
@@ -192,7 +185,7 @@ START_TEST(test_raytracer_facing_mirrors_sum_emission_over_exactly_maxdepth_boun
         set_env(&f.sc, GENENV_CONSTANT, 1);
         fixture_start(&f);
         double sum = (1 - pow(0.5, depths[i] + 1)) / (1 - 0.5); /* 1 + ks + ... + ks^maxdepth */
-        assert_rgb_near(pixel(&f, 16, 16), rgb_make(0.1 * sum, 0.2 * sum, 0.4 * sum), 1e-12);
+        ck_rgb_near(pixel(&f, 16, 16), rgb_make(0.1 * sum, 0.2 * sum, 0.4 * sum), 1e-12);
         fixture_end(&f);
     }
 }
@@ -211,7 +204,7 @@ START_TEST(test_raytracer_unlimited_depth_stops_where_the_branch_weight_is_negli
     int K = 0;
     while (K < RAYTRACER_UNLIMITED_DEPTH && pow(0.5, K + 1) > RAYTRACER_MIN_WEIGHT) K++;
     double sum = (1 - pow(0.5, K + 1)) / (1 - 0.5);
-    assert_rgb_near(pixel(&f, 16, 16), rgb_make(0.1 * sum, 0.2 * sum, 0.4 * sum), 1e-12);
+    ck_rgb_near(pixel(&f, 16, 16), rgb_make(0.1 * sum, 0.2 * sum, 0.4 * sum), 1e-12);
     ck_assert_near(sum, 2, 1e-8); /* and that is the infinite series' value, 2, to 1e-8 */
     fixture_end(&f);
 }
@@ -240,7 +233,7 @@ START_TEST(test_raytracer_envmiss_black_removes_the_escaping_light_between_mirro
         }
     ck_assert_int_gt(differ, 100);
     /* the centre ray never escapes: both give the emission series */
-    assert_rgb_near(pixel(&a, 16, 16), pixel(&b, 16, 16), 1e-15);
+    ck_rgb_near(pixel(&a, 16, 16), pixel(&b, 16, 16), 1e-15);
     fixture_end(&a);
     fixture_end(&b);
 }
@@ -276,7 +269,7 @@ START_TEST(test_raytracer_whitted_lighting_matches_the_hand_computation)
     /* directional light along the normal: N.L = N.H = 1, no attenuation */
     rgb dir = rgb_scale(rgb_add(kd, rgb_gray(0.2)), 0.3);
     rgb want = rgb_add(rgb_add(rgb_make(0.1, 0.05, 0.02), point), dir);
-    assert_rgb_near(pixel(&f, 32, 32), want, 1e-12);
+    ck_rgb_near(pixel(&f, 32, 32), want, 1e-12);
     fixture_end(&f);
 }
 END_TEST
@@ -289,7 +282,7 @@ START_TEST(test_raytracer_shadowed_point_is_ambient_only)
     snprintf(text, sizeof text, "%ssphere 1 0 2 0.3\n", lit_ball);
     load(&f.sc, text);
     fixture_start(&f);
-    assert_rgb_near(pixel(&f, 32, 32), rgb_make(0.1, 0.05, 0.02), 0);
+    ck_rgb_near(pixel(&f, 32, 32), rgb_make(0.1, 0.05, 0.02), 0);
     fixture_end(&f);
     /* without the blocker the same pixel is lit */
     load(&f.sc, lit_ball);
@@ -307,7 +300,7 @@ START_TEST(test_raytracer_light_behind_the_surface_adds_nothing)
          "directional 0 0 -1  1 1 1\npoint 0 0 -3  1 1 1\n"
          "ambient 0.1 0.2 0.3\ndiffuse 1 1 1\nspecular 1 1 1\nshininess 1\nsphere 0 0 0 1\n");
     fixture_start(&f);
-    assert_rgb_near(pixel(&f, 32, 32), rgb_make(0.1, 0.2, 0.3), 0);
+    ck_rgb_near(pixel(&f, 32, 32), rgb_make(0.1, 0.2, 0.3), 0);
     fixture_end(&f);
 }
 END_TEST
@@ -329,7 +322,7 @@ START_TEST(test_raytracer_a_light_just_below_an_open_floor_still_gives_the_cours
     vec3 l = vec3_normalize(vec3_make(1, -0.1, 0)), v = vec3_normalize(vec3_make(0, 1, 1));
     double ndoth = vec3_normalize(vec3_add(l, v)).y;
     ck_assert(ndoth > 0.1);
-    assert_rgb_near(pixel(&f, 4, 4), rgb_gray(0.5 * ndoth), 1e-12); /* ks (N.H)^1, no kd term */
+    ck_rgb_near(pixel(&f, 4, 4), rgb_gray(0.5 * ndoth), 1e-12); /* ks (N.H)^1, no kd term */
     fixture_end(&f);
 }
 END_TEST
@@ -347,7 +340,7 @@ START_TEST(test_raytracer_no_highlight_where_n_dot_h_is_negative)
     fixture_start(&f);
     vec3 l = vec3_normalize(vec3_make(1, -3, 0)), v = vec3_normalize(vec3_make(0, 1, 1));
     ck_assert(vec3_normalize(vec3_add(l, v)).y < -0.1);
-    assert_rgb_near(pixel(&f, 4, 4), rgb_gray(0), 0);
+    ck_rgb_near(pixel(&f, 4, 4), rgb_gray(0), 0);
     fixture_end(&f);
 }
 END_TEST
@@ -364,7 +357,7 @@ START_TEST(test_raytracer_an_object_beyond_a_point_light_casts_no_shadow)
                 "tri 0 2 1\ntri 0 3 2\n"
                 "sphere 0 3 0 1\n");
     fixture_start(&f);
-    assert_rgb_near(pixel(&f, 4, 4), rgb_gray(0.5), 1e-12);
+    ck_rgb_near(pixel(&f, 4, 4), rgb_gray(0.5), 1e-12);
     fixture_end(&f);
 }
 END_TEST
@@ -379,7 +372,7 @@ START_TEST(test_raytracer_a_coloured_specular_reflects)
                 "ambient 0 0 0\ndiffuse 0 0 0\nspecular 0 0.5 0\nsphere 0 0 0 1\n");
     set_env(&f.sc, GENENV_CONSTANT, 1.0);
     fixture_start(&f);
-    assert_rgb_near(pixel(&f, 4, 4), rgb_make(0, 0.5, 0), 1e-6);
+    ck_rgb_near(pixel(&f, 4, 4), rgb_make(0, 0.5, 0), 1e-6);
     fixture_end(&f);
 }
 END_TEST
@@ -432,7 +425,7 @@ START_TEST(test_raytracer_glass_ball_in_a_constant_environment_conserves_energy)
     double L = 0.75; /* exactly representable as a float */
     /* through the centre: 0.04 L reflected + 0.96^2 L through, + 0.96 * 0.04 * ... inside */
     rgb c = pixel(&f, 16, 16);
-    assert_rgb_near(c, rgb_gray(L), 1e-9);
+    ck_rgb_near(c, rgb_gray(L), 1e-9);
     double sum = 0;
     int n = 0;
     for (int y = 0; y < 33; y++)

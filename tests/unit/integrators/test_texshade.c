@@ -65,28 +65,36 @@ static void trace3(rig *r, double x, double y, hits *out)
     ck_assert(out->h0.s.has_diff);
 }
 
-static void assert_vec_near(vec3 got, vec3 want, double scale, const char *what)
+/* got within FD_REL times `scale` of the finite difference `want`, at the caller's line */
+static void vec_near_at(const char *file, int line, vec3 got, vec3 want, double scale,
+                        const char *what)
 {
     double e = vec3_length(vec3_sub(got, want));
-    ck_assert_msg(
-        e <= FD_REL * scale,
-        "%s: (%.6g, %.6g, %.6g), finite difference (%.6g, %.6g, %.6g): error %.3g of %.3g", what,
-        got.x, got.y, got.z, want.x, want.y, want.z, e, scale);
+    if (!(e <= FD_REL * scale))
+        unit_fail_at(file, line,
+                     "%s: got (%.9g, %.9g, %.9g), want the finite difference (%.9g, %.9g, %.9g), "
+                     "tolerance %.3g (off by %.3g)",
+                     what, got.x, got.y, got.z, want.x, want.y, want.z, FD_REL * scale, e);
 }
 
-static void assert_uv_near(uv2 got, uv2 want, double scale, const char *what)
+static void uv_near_at(const char *file, int line, uv2 got, uv2 want, double scale,
+                       const char *what)
 {
     double e = hypot(got.u - want.u, got.v - want.v);
-    ck_assert_msg(e <= FD_REL * scale,
-                  "%s: (%.6g, %.6g), finite difference (%.6g, %.6g): error %.3g of %.3g", what,
-                  got.u, got.v, want.u, want.v, e, scale);
+    if (!(e <= FD_REL * scale))
+        unit_fail_at(file, line,
+                     "%s: got (%.9g, %.9g), want the finite difference (%.9g, %.9g), tolerance "
+                     "%.3g (off by %.3g)",
+                     what, got.u, got.v, want.u, want.v, FD_REL * scale, e);
 }
 
 static uv2 uv_sub(uv2 a, uv2 b) { return (uv2){a.u - b.u, a.v - b.v}; }
 
 /* texshade_point_at's st, q and footprints, and texshade_differentials' dp and dn, against the
  * neighbours' hits; then the tangents invert the footprint: dp/dx = dp/ds ds/dx + dp/dt dt/dx. */
-static void check_point(rig *r, double x, double y, const char *what)
+#define check_point(r, x, y, what) check_point_at(__FILE__, __LINE__, r, x, y, what)
+static void check_point_at(const char *file, int line, rig *r, double x, double y,
+                           const char *what)
 {
     hits H;
     trace3(r, x, y, &H);
@@ -95,37 +103,37 @@ static void check_point(rig *r, double x, double y, const char *what)
     /* dp and dn (texshade_differentials) */
     double plen = vec3_length(s0->dpdx);
     snprintf(msg, sizeof msg, "%s: dp/dx", what);
-    assert_vec_near(s0->dpdx, vec3_sub(sx->p, s0->p), plen, msg);
+    vec_near_at(file, line, s0->dpdx, vec3_sub(sx->p, s0->p), plen, msg);
     snprintf(msg, sizeof msg, "%s: dn/dx", what);
     vec3 fdn = vec3_sub(sx->n, s0->n);
-    assert_vec_near(s0->dndx, fdn, fmax(vec3_length(fdn), 1e-3 * plen), msg);
+    vec_near_at(file, line, s0->dndx, fdn, fmax(vec3_length(fdn), 1e-3 * plen), msg);
     snprintf(msg, sizeof msg, "%s: dn/dy", what);
     fdn = vec3_sub(sy->n, s0->n);
-    assert_vec_near(s0->dndy, fdn, fmax(vec3_length(fdn), 1e-3 * plen), msg);
+    vec_near_at(file, line, s0->dndy, fdn, fmax(vec3_length(fdn), 1e-3 * plen), msg);
     /* st, q and their footprints (texshade_point_at) */
     texshade_point t0, tx, ty;
     texshade_point_at(&r->sc, &H.h0.h, s0, &t0);
     texshade_point_at(&r->sc, &H.hx.h, sx, &tx);
     texshade_point_at(&r->sc, &H.hy.h, sy, &ty);
     uv2 fst = uv_sub(tx.st, t0.st);
-    ck_assert_msg(fabs(fst.u) < 0.25 && fabs(fst.v) < 0.25, "%s: a seam between the neighbours",
-                  what);
+    if (!(fabs(fst.u) < 0.25 && fabs(fst.v) < 0.25))
+        unit_fail_at(file, line, "%s: a seam between the neighbours", what);
     snprintf(msg, sizeof msg, "%s: dst/dx", what);
-    assert_uv_near(t0.dst_dx, fst, hypot(fst.u, fst.v), msg);
+    uv_near_at(file, line, t0.dst_dx, fst, hypot(fst.u, fst.v), msg);
     snprintf(msg, sizeof msg, "%s: dst/dy", what);
     fst = uv_sub(ty.st, t0.st);
-    assert_uv_near(t0.dst_dy, fst, hypot(fst.u, fst.v), msg);
+    uv_near_at(file, line, t0.dst_dy, fst, hypot(fst.u, fst.v), msg);
     snprintf(msg, sizeof msg, "%s: dq/dx", what);
     vec3 fq = vec3_sub(tx.q, t0.q);
-    assert_vec_near(t0.dq_dx, fq, vec3_length(fq), msg);
+    vec_near_at(file, line, t0.dq_dx, fq, vec3_length(fq), msg);
     /* the tangents: a step (ds, dt) in texture space is dp_ds ds + dp_dt dt in the world */
     texshade_tangents(&r->sc, &H.h0.h, &t0);
     vec3 back = vec3_add(vec3_scale(t0.dp_ds, t0.dst_dx.u), vec3_scale(t0.dp_dt, t0.dst_dx.v));
     snprintf(msg, sizeof msg, "%s: dp/ds ds/dx + dp/dt dt/dx", what);
-    assert_vec_near(back, s0->dpdx, plen, msg);
+    vec_near_at(file, line, back, s0->dpdx, plen, msg);
     vec3 backq = vec3_add(vec3_scale(t0.dq_ds, t0.dst_dx.u), vec3_scale(t0.dq_dt, t0.dst_dx.v));
     snprintf(msg, sizeof msg, "%s: dq/ds ds/dx + dq/dt dt/dx", what);
-    assert_vec_near(backq, t0.dq_dx, vec3_length(t0.dq_dx), msg);
+    vec_near_at(file, line, backq, t0.dq_dx, vec3_length(t0.dq_dx), msg);
 }
 
 #define CAMERA "size 64 64\ncamera 0.2 0.4 6  0 0 0  0 1 0  40\n"

@@ -23,13 +23,6 @@ static void env_scene(scene *sc, genenv_kind kind, mat4 xf, double scale)
     ck_assert_int_eq(mat4_inverse(xf, &sc->envmap.inv), 0);
 }
 
-static void assert_rgb_near(rgb a, rgb b, double tol)
-{
-    ck_assert_msg(fabs(a.r - b.r) <= tol && fabs(a.g - b.g) <= tol && fabs(a.b - b.b) <= tol,
-                  "(%.9g, %.9g, %.9g) != (%.9g, %.9g, %.9g) within %g", a.r, a.g, a.b, b.r, b.g,
-                  b.b, tol);
-}
-
 START_TEST(test_envmap_absent_is_black)
 {
     scene sc;
@@ -60,9 +53,9 @@ START_TEST(test_envmap_identity_transform_is_the_latlong_lookup)
     for (unsigned i = 0; i < sizeof dirs / sizeof dirs[0]; i++) {
         rgb a = envmap_radiance(&env, dirs[i]),
             b = latlong_lookup_bilinear(&sc.envmap.img, dirs[i]);
-        assert_rgb_near(a, b, 0);
+        ck_rgb_near(a, b, 0);
         /* length does not matter */
-        assert_rgb_near(envmap_radiance(&env, vec3_scale(dirs[i], 7.5)), a, 1e-12);
+        ck_rgb_near(envmap_radiance(&env, vec3_scale(dirs[i], 7.5)), a, 1e-12);
     }
     ck_assert(rgb_is_black(envmap_radiance(&env, vec3_make(0, 0, 0))));
     ck_assert(rgb_is_black(envmap_radiance(&env, vec3_make(NAN, 0, 1))));
@@ -79,7 +72,7 @@ START_TEST(test_envmap_scale_multiplies_the_radiance)
     scene_environment(&a, &ea);
     scene_environment(&b, &eb);
     vec3 d = vec3_make(0.2, 0.5, -0.7);
-    assert_rgb_near(envmap_radiance(&eb, d), rgb_scale(envmap_radiance(&ea, d), 2.5), 1e-15);
+    ck_rgb_near(envmap_radiance(&eb, d), rgb_scale(envmap_radiance(&ea, d), 2.5), 1e-15);
     image_free(&a.envmap.img);
     image_free(&b.envmap.img);
 }
@@ -103,7 +96,7 @@ START_TEST(test_envmap_scale_multiplies_every_representation)
         vec3 d = vec3_normalize(vec3_make(0.2, 0.5, 0.3));
         rgb la = envmap_radiance(&ea, d);
         ck_assert_msg(la.g > 0, "kind %d: black", (int)kinds[k]);
-        assert_rgb_near(envmap_radiance(&eb, d), rgb_scale(la, 2.5), 1e-12);
+        ck_rgb_near(envmap_radiance(&eb, d), rgb_scale(la, 2.5), 1e-12);
         image_free(&a.envmap.img);
         image_free(&b.envmap.img);
     }
@@ -125,9 +118,9 @@ START_TEST(test_envmap_rotate_x_minus_90_puts_the_zenith_at_world_plus_y)
     rgb down = envmap_radiance(&env, vec3_make(0, -1, 0));
     ck_assert(down.b < 0.05);
     /* world +z is the envmap's -y (R_x(-90) maps -y to +z): (0.5, 0, 0.5) on the horizon */
-    assert_rgb_near(envmap_radiance(&env, vec3_make(0, 0, 1)), rgb_make(0.5, 0, 0.5), 0.01);
+    ck_rgb_near(envmap_radiance(&env, vec3_make(0, 0, 1)), rgb_make(0.5, 0, 0.5), 0.01);
     /* world +x stays +x */
-    assert_rgb_near(envmap_radiance(&env, vec3_make(1, 0, 0)), rgb_make(1, 0.5, 0.5), 0.01);
+    ck_rgb_near(envmap_radiance(&env, vec3_make(1, 0, 0)), rgb_make(1, 0.5, 0.5), 0.01);
     /* the zenith row itself, by value: a map whose top row is 7 and the rest 1 */
     for (int y = 0; y < sc.envmap.img.h; y++)
         for (int x = 0; x < sc.envmap.img.w; x++)
@@ -145,9 +138,9 @@ START_TEST(test_envmap_rotation_about_z_turns_the_map)
     env_scene(&sc, GENENV_AXES, mat4_rotate(vec3_make(0, 0, 1), 90), 3);
     envmap env;
     scene_environment(&sc, &env);
-    assert_rgb_near(envmap_radiance(&env, vec3_make(0, 1, 0)), rgb_scale(rgb_make(1, 0.5, 0.5), 3),
+    ck_rgb_near(envmap_radiance(&env, vec3_make(0, 1, 0)), rgb_scale(rgb_make(1, 0.5, 0.5), 3),
                     0.03);
-    assert_rgb_near(envmap_radiance(&env, vec3_make(-1, 0, 0)), rgb_scale(rgb_make(0.5, 1, 0.5), 3),
+    ck_rgb_near(envmap_radiance(&env, vec3_make(-1, 0, 0)), rgb_scale(rgb_make(0.5, 1, 0.5), 3),
                     0.03);
     image_free(&sc.envmap.img);
 }

@@ -6,12 +6,7 @@
 #include "envtex/core/rng.h"
 #include "unit.h"
 
-#define EXPECT_NEAR(a, b, tol)                                                                     \
-    do {                                                                                           \
-        double a_ = (a), b_ = (b), t_ = (tol);                                                     \
-        if (!(fabs(a_ - b_) <= t_))                                                                \
-            ck_abort_msg("%s == %.17g, %s == %.17g, tolerance %g", #a, a_, #b, b_, t_);            \
-    } while (0)
+#define EXPECT_NEAR(a, b, tol) unit_near(__FILE__, __LINE__, #a, (a), (b), (tol))
 
 START_TEST(test_fresnel_at_normal_incidence_is_f0)
 {

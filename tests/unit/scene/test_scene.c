@@ -81,12 +81,7 @@ static void load_file_fails(const char *path, int line, const char *what)
                   what);
 }
 
-static void assert_vec_near(vec3 a, double x, double y, double z)
-{
-    ck_assert_near(a.x, x, 1e-12);
-    ck_assert_near(a.y, y, 1e-12);
-    ck_assert_near(a.z, z, 1e-12);
-}
+#define assert_vec_near(a, x, y, z) ck_vec_near(a, vec3_make(x, y, z), 1e-12)
 
 /* ---- every error path ------------------------------------------------------------------- */
 
@@ -484,19 +479,24 @@ END_TEST
 
 /* Load `text` (which must load) and check its warnings: exactly `n` of them, the last at `line`
  * and containing `what` (n = 0: none, line and what unused). */
-static void expect_warnings(const char *text, int n, int line, const char *what)
+#define expect_warnings(text, n, line, what) warnings_at(__FILE__, __LINE__, text, n, line, what)
+static void warnings_at(const char *file, int at, const char *text, int n, int line,
+                        const char *what)
 {
     warnings ws;
     scene_load_opts o = opts_counting(&ws);
     scene sc;
     error err = {0};
-    ck_assert_msg(scene_load_string(text, "t.test", &o, &sc, &err) == 0, "%s", err.msg);
-    ck_assert_msg(ws.n == n, "%d warnings, expected %d (last: %s) for:\n%s", ws.n, n, ws.last.msg,
-                  text);
-    if (n > 0) {
-        ck_assert_int_eq(ws.last.line, line);
-        ck_assert_ptr_nonnull(strstr(ws.last.msg, what));
-    }
+    if (scene_load_string(text, "t.test", &o, &sc, &err) != 0)
+        unit_fail_at(file, at, "the scene does not load: %s", err.msg);
+    if (ws.n != n)
+        unit_fail_at(file, at, "got %d warnings, want %d (the last: %s) for:\n%s", ws.n, n,
+                     ws.last.msg, text);
+    if (n > 0 && ws.last.line != line)
+        unit_fail_at(file, at, "the last warning: got line %d, want %d", ws.last.line, line);
+    if (n > 0 && !strstr(ws.last.msg, what))
+        unit_fail_at(file, at, "the last warning: got '%s', want it to hold '%s'", ws.last.msg,
+                     what);
     scene_free(&sc);
 }
 

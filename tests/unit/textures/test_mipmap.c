@@ -68,13 +68,6 @@ static rgb image_mean(const image *im)
     return rgb_make(s[0] / n, s[1] / n, s[2] / n);
 }
 
-static void ck_rgb_near(rgb a, rgb b, double tol)
-{
-    ck_assert_near(a.r, b.r, tol);
-    ck_assert_near(a.g, b.g, tol);
-    ck_assert_near(a.b, b.b, tol);
-}
-
 START_TEST(test_levels_halve_rounding_down_to_one_by_one)
 {
     const int sizes[][2] = {{5, 3}, {1, 7}, {1, 1}, {8, 8}, {1000, 3}, {2, 1}};

@@ -31,18 +31,6 @@ static image ramp_image(int w, int h)
 }
 
 /* |a - b| <= tol channel by channel; tol = 0 asks for exact equality */
-static void ck_rgb_near(rgb a, rgb b, double tol)
-{
-    if (tol == 0) {
-        ck_assert_msg(a.r == b.r && a.g == b.g && a.b == b.b, "(%g %g %g) != (%g %g %g)", a.r, a.g,
-                      a.b, b.r, b.g, b.b);
-        return;
-    }
-    ck_assert_near(a.r, b.r, tol);
-    ck_assert_near(a.g, b.g, tol);
-    ck_assert_near(a.b, b.b, tol);
-}
-
 START_TEST(test_wrap_matches_its_definition_for_indices_near_and_far)
 {
     const int ns[] = {1, 2, 3, 7, 256};

@@ -6,11 +6,7 @@
 
 #include "unit.h"
 
-static void ck_uv_near(uv2 a, double u, double v, double tol)
-{
-    ck_assert_msg(fabs(a.u - u) <= tol && fabs(a.v - v) <= tol, "(%.17g, %.17g) != (%g, %g)", a.u,
-                  a.v, u, v);
-}
+#define uv_near(a, u, v, tol) ck_uv_near(a, ((uv2){u, v}), tol)
 
 START_TEST(test_names_round_trip_and_unknown_names_are_refused)
 {
@@ -27,25 +23,25 @@ END_TEST
 
 START_TEST(test_planar_is_x_and_y)
 {
-    ck_uv_near(texmapping_planar(vec3_make(0.25, -3, 7)), 0.25, -3, 0);
+    uv_near(texmapping_planar(vec3_make(0.25, -3, 7)), 0.25, -3, 0);
 }
 END_TEST
 
 START_TEST(test_spherical_known_values_follow_the_envmap_frame)
 {
-    ck_uv_near(texmapping_spherical(vec3_make(1, 0, 0)), 0, 0.5, 1e-15);    /* phi 0, equator */
-    ck_uv_near(texmapping_spherical(vec3_make(0, 1, 0)), 0.25, 0.5, 1e-15); /* phi pi/2 */
-    ck_uv_near(texmapping_spherical(vec3_make(-1, 0, 0)), 0.5, 0.5, 1e-15);
-    ck_uv_near(texmapping_spherical(vec3_make(0, -2, 0)), 0.75, 0.5, 1e-15); /* any radius */
-    ck_uv_near(texmapping_spherical(vec3_make(0, 0, 1)), 0, 1, 0);           /* north pole: top */
-    ck_uv_near(texmapping_spherical(vec3_make(0, 0, -1)), 0, 0, 0);
+    uv_near(texmapping_spherical(vec3_make(1, 0, 0)), 0, 0.5, 1e-15);    /* phi 0, equator */
+    uv_near(texmapping_spherical(vec3_make(0, 1, 0)), 0.25, 0.5, 1e-15); /* phi pi/2 */
+    uv_near(texmapping_spherical(vec3_make(-1, 0, 0)), 0.5, 0.5, 1e-15);
+    uv_near(texmapping_spherical(vec3_make(0, -2, 0)), 0.75, 0.5, 1e-15); /* any radius */
+    uv_near(texmapping_spherical(vec3_make(0, 0, 1)), 0, 1, 0);           /* north pole: top */
+    uv_near(texmapping_spherical(vec3_make(0, 0, -1)), 0, 0, 0);
     double c = cos(M_PI / 4);
-    ck_uv_near(texmapping_spherical(vec3_make(c, 0, c)), 0, 0.75, 1e-15); /* theta 45 deg */
+    uv_near(texmapping_spherical(vec3_make(c, 0, c)), 0, 0.75, 1e-15); /* theta 45 deg */
     /* any radius, however large or small: sqrt(x^2 + y^2) overflowed at 1e200 (t = 0.5) and
      * underflowed at 1e-200 (t = 1) where (1, 1, 1) / sqrt 3 gives t = 1 - acos(1/sqrt 3) / pi */
     double t3 = 1 - acos(1 / sqrt(3.0)) / M_PI;
-    ck_uv_near(texmapping_spherical(vec3_make(1e200, 1e200, 1e200)), 0.125, t3, 1e-15);
-    ck_uv_near(texmapping_spherical(vec3_make(1e-200, 1e-200, 1e-200)), 0.125, t3, 1e-15);
+    uv_near(texmapping_spherical(vec3_make(1e200, 1e200, 1e200)), 0.125, t3, 1e-15);
+    uv_near(texmapping_spherical(vec3_make(1e-200, 1e-200, 1e-200)), 0.125, t3, 1e-15);
 }
 END_TEST
 
@@ -59,14 +55,14 @@ START_TEST(test_spherical_seam_stays_below_one_and_poles_give_no_nan)
     uv2 p = texmapping_spherical(vec3_make(0, 0, 5));
     ck_assert(isfinite(p.u) && isfinite(p.v));
     uv2 z = texmapping_spherical(vec3_make(0, 0, 0));
-    ck_uv_near(z, 0, 0.5, 0);
+    uv_near(z, 0, 0.5, 0);
 }
 END_TEST
 
 START_TEST(test_cylindrical_is_phi_and_height)
 {
-    ck_uv_near(texmapping_cylindrical(vec3_make(0, 3, -2.5)), 0.25, -2.5, 1e-15);
-    ck_uv_near(texmapping_cylindrical(vec3_make(0, 0, 4)), 0, 4, 0); /* on the axis: s 0 */
+    uv_near(texmapping_cylindrical(vec3_make(0, 3, -2.5)), 0.25, -2.5, 1e-15);
+    uv_near(texmapping_cylindrical(vec3_make(0, 0, 4)), 0, 4, 0); /* on the axis: s 0 */
 }
 END_TEST
 
@@ -86,7 +82,7 @@ START_TEST(test_cube_picks_the_largest_component_and_orients_faces_from_outside)
         int f = -1;
         uv2 st = texmapping_cube(cases[i].q, &f);
         ck_assert_msg(f == cases[i].face, "case %zu: face %d", i, f);
-        ck_uv_near(st, cases[i].s, cases[i].t, 1e-15);
+        uv_near(st, cases[i].s, cases[i].t, 1e-15);
     }
 }
 END_TEST
@@ -103,7 +99,7 @@ START_TEST(test_cube_faces_are_right_handed_seen_from_outside)
                            : f == 5 ? -1
                                     : 0);
         uv2 o = texmapping_cube_face(c, f);
-        ck_uv_near(o, 0.5, 0.5, 0);
+        uv_near(o, 0.5, 0.5, 0);
         /* numerically: a point moved a little along s and along t */
         vec3 e1, e2;
         vec3_basis(c, &e1, &e2);
@@ -113,20 +109,20 @@ START_TEST(test_cube_faces_are_right_handed_seen_from_outside)
         double det = (a.u - 0.5) * (b.v - 0.5) - (b.u - 0.5) * (a.v - 0.5);
         ck_assert_msg(det > 0, "face %d is mirrored", f);
     }
-    ck_uv_near(texmapping_cube_face(vec3_make(0, 1, 1), 0), 0.5, 0.5, 0); /* a = 0 guard */
+    uv_near(texmapping_cube_face(vec3_make(0, 1, 1), 0), 0.5, 0.5, 0); /* a = 0 guard */
 }
 END_TEST
 
 START_TEST(test_uv_interpolation_hits_vertices_edges_and_degenerate_triangles)
 {
     const uv2 st[3] = {{0, 0}, {1, 0}, {0.5, 2}};
-    ck_uv_near(texmapping_uv_interpolate(st, 0, 0), 0, 0, 0);
-    ck_uv_near(texmapping_uv_interpolate(st, 1, 0), 1, 0, 0);
-    ck_uv_near(texmapping_uv_interpolate(st, 0, 1), 0.5, 2, 0);
-    ck_uv_near(texmapping_uv_interpolate(st, 0.5, 0.5), 0.75, 1, 1e-15); /* edge midpoint */
-    ck_uv_near(texmapping_uv_interpolate(st, 1.0 / 3, 1.0 / 3), 0.5, 2.0 / 3, 1e-15);
+    uv_near(texmapping_uv_interpolate(st, 0, 0), 0, 0, 0);
+    uv_near(texmapping_uv_interpolate(st, 1, 0), 1, 0, 0);
+    uv_near(texmapping_uv_interpolate(st, 0, 1), 0.5, 2, 0);
+    uv_near(texmapping_uv_interpolate(st, 0.5, 0.5), 0.75, 1, 1e-15); /* edge midpoint */
+    uv_near(texmapping_uv_interpolate(st, 1.0 / 3, 1.0 / 3), 0.5, 2.0 / 3, 1e-15);
     const uv2 same[3] = {{0.3, 0.7}, {0.3, 0.7}, {0.3, 0.7}};
-    ck_uv_near(texmapping_uv_interpolate(same, 0.2, 0.3), 0.3, 0.7, 1e-15);
+    uv_near(texmapping_uv_interpolate(same, 0.2, 0.3), 0.3, 0.7, 1e-15);
 }
 END_TEST
 
@@ -182,7 +178,7 @@ START_TEST(test_cube_differentials_match_finite_differences_on_the_face)
     uv2 a = texmapping_cube_face(q, 4), b = texmapping_cube_face(vec3_add(q, d), 4);
     ck_assert_near(dx.u, b.u - a.u, 1e-13);
     ck_assert_near(dx.v, b.v - a.v, 1e-13);
-    ck_uv_near(dy, 0, 0, 0);
+    uv_near(dy, 0, 0, 0);
     /* near an edge the step crosses to another face: the differential stays on q's face */
     q = vec3_make(1.0, 0.999999, 0.2);
     texmapping_differentials(TEXMAPPING_CUBE, q, vec3_make(0, 1e-5, 0), vec3_make(0, 0, 0), &dx,
@@ -234,8 +230,8 @@ START_TEST(test_triangle_tangents_and_differentials_agree_with_a_known_plane)
     ck_assert_int_eq(texmapping_triangle_differentials(p, st, vec3_make(0.2, 0, 0.7),
                                                        vec3_make(0, 0.3, 0), &dx, &dy),
                      0);
-    ck_uv_near(dx, 0.1, 0, 1e-15); /* the part along the normal (z) is dropped */
-    ck_uv_near(dy, 0, 0.1, 1e-15);
+    uv_near(dx, 0.1, 0, 1e-15); /* the part along the normal (z) is dropped */
+    uv_near(dy, 0, 0.1, 1e-15);
     /* degenerate st: a basis of the plane and -1 */
     const uv2 flat[3] = {{0, 0}, {1, 1}, {2, 2}};
     ck_assert_int_eq(texmapping_triangle_tangents(p, flat, &ds, &dt), -1);
@@ -245,7 +241,7 @@ START_TEST(test_triangle_tangents_and_differentials_agree_with_a_known_plane)
     ck_assert_int_eq(texmapping_triangle_differentials(line, st, vec3_make(1, 0, 0),
                                                        vec3_make(0, 1, 0), &dx, &dy),
                      -1);
-    ck_uv_near(dx, 0, 0, 0);
+    uv_near(dx, 0, 0, 0);
     ck_assert_int_eq(texmapping_triangle_tangents(line, st, &ds, &dt), -1);
     /* the thresholds are relative: a tiny st patch (extents 1e-7, det 1e-14) is not degenerate,
      * its tangents are 1e7 times as long; a sliver whose |e1 x e2|^2 is ~1e-14 of |e1|^2 |e2|^2
@@ -260,8 +256,8 @@ START_TEST(test_triangle_tangents_and_differentials_agree_with_a_known_plane)
     ck_assert_int_eq(texmapping_triangle_differentials(pg, sg, vec3_make(0.2, 0.1, 0.7),
                                                        vec3_make(0, 0.3, 0), &dx, &dy),
                      0);
-    ck_uv_near(dx, 0.07, 0.0, 1e-15);
-    ck_uv_near(dy, 0.03, 0.12, 1e-15);
+    uv_near(dx, 0.07, 0.0, 1e-15);
+    uv_near(dy, 0.03, 0.12, 1e-15);
     const uv2 tiny[3] = {{0.5, 0.5}, {0.5 + 1e-7, 0.5}, {0.5, 0.5 + 1e-7}};
     ck_assert_int_eq(texmapping_triangle_tangents(p, tiny, &ds, &dt), 0);
     ck_assert_near(ds.x / 2e7, 1, 1e-6);

@@ -19,12 +19,6 @@ static image ramp(int w, int h)
     return im;
 }
 
-static void ck_rgb_near(rgb a, rgb b, double tol)
-{
-    ck_assert_msg(fabs(a.r - b.r) <= tol && fabs(a.g - b.g) <= tol && fabs(a.b - b.b) <= tol,
-                  "(%.9g %.9g %.9g) != (%.9g %.9g %.9g)", a.r, a.g, a.b, b.r, b.g, b.b);
-}
-
 START_TEST(test_names_round_trip)
 {
     for (int f = TEXFILTER_NEAREST; f <= TEXFILTER_EWA; f++) {
