@@ -24,16 +24,16 @@ static inline void unit_stepcheck_fail(const char *msg) { ck_abort_msg("envtex: 
  * (1 in make test, 10 under the sanitizers), so that a case that hangs fails by its own name
  * instead of holding up its whole program.  Set before the suite's test cases are made (Check
  * reads CK_DEFAULT_TIMEOUT then). */
-static inline int unit_case_timeout(void)
+static inline double unit_case_timeout(void)
 {
     const char *s = getenv("CASE_TIMEOUT");
-    int t = s && *s ? atoi(s) : 10;
-    return t > 0 ? t : 10;
+    double t = s && *s ? strtod(s, NULL) : 10;
+    return t > 0 && t < 1e6 ? t : 10; /* seconds, fractions too */
 }
 static inline void unit_set_case_timeout(void)
 {
-    char t[16];
-    snprintf(t, sizeof t, "%d", unit_case_timeout());
+    char t[32];
+    snprintf(t, sizeof t, "%g", unit_case_timeout());
     setenv("CK_DEFAULT_TIMEOUT", t, 1);
 }
 /* A test case that takes over half a second at -O2 (5 s at -O0): three times the limit. */
