@@ -5,15 +5,6 @@
 
 #include "unit.h"
 
-/* a macro, so that a failure names the test's own line and expressions */
-#define ck_vec_near(a, b, tol)                                                                     \
-    do {                                                                                           \
-        vec3 a_ = (a), b_ = (b);                                                                   \
-        ck_assert_msg(vec3_length(vec3_sub(a_, b_)) <= (tol),                                      \
-                      "%s = (%.12g %.12g %.12g), want %s = (%.12g %.12g %.12g)", #a, a_.x, a_.y,   \
-                      a_.z, #b, b_.x, b_.y, b_.z);                                                 \
-    } while (0)
-
 static const vec3 Z = {0, 0, 1};
 
 START_TEST(test_a_constant_height_leaves_the_normal_unchanged)
