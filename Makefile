@@ -122,12 +122,13 @@ asan:
 update-golden: $(BUILD)/envtex $(TOOL_BIN)
 	@BUILD=$(BUILD) ENVTEX=$(BUILD)/envtex tests/golden/update
 
-# a class's grades: make grade SUBMISSIONS=dir [GRADE_OUT=out/grade] (docs/grading.md)
+# a class's grades: make grade SUBMISSIONS=dir [GRADE_OUT=out/grade] [UNSAFE=1] (docs/grading.md;
+# each submission in a sandbox, tools/grade/sandbox)
 GRADE_OUT ?= out/grade
 grade: $(BUILD)/envtex
 	@[ -n "$(SUBMISSIONS)" ] || { echo "envtex: make grade needs SUBMISSIONS=DIR, a folder of" \
 		"student trees or tarballs" >&2; exit 1; }
-	@ENVTEX=$(BUILD)/envtex tools/grade/run "$(SUBMISSIONS)" "$(GRADE_OUT)"
+	@UNSAFE="$(UNSAFE)" ENVTEX=$(BUILD)/envtex tools/grade/run "$(SUBMISSIONS)" "$(GRADE_OUT)"
 .PHONY: grade
 
 # assignment starter kits (docs/teaching.md)
@@ -149,7 +150,7 @@ bench: $(BUILD)/envtex $(TOOL_BIN)
 	@BUILD=$(BUILD) ENVTEX=$(BUILD)/envtex tools/bench/run
 
 # ---- the quick start -----------------------------------------------------------------------
-DEB_PACKAGES = build-essential pkg-config libpng-dev libopenexr-dev check
+DEB_PACKAGES = build-essential pkg-config libpng-dev libopenexr-dev check bubblewrap
 deps:
 	@missing=""; \
 	for p in $(DEB_PACKAGES); do \
