@@ -57,8 +57,8 @@ TOOL_SRC = $(wildcard tools/programs/*.c)
 TOOL_BIN = $(TOOL_SRC:tools/programs/%.c=$(BUILD)/tools/%)
 
 # Each test case's limit, CASE_TIMEOUT seconds (tests/unit/unit.h), times Check's multiplier:
-# 1 here (every case takes under half a second at -O2 but those of the few test cases marked
-# unit_slow, which have three times the limit), 10 under the sanitizers.  TEST_TIMEOUT is each test program's (tests/run).
+# 1 here (the few test cases marked unit_slow have three times the limit; docs/design-notes.md,
+# "Test cases' limits"), 10 under the sanitizers.  TEST_TIMEOUT is each test program's (tests/run).
 CASE_TIMEOUT ?= 10
 CK_TIMEOUT_MULTIPLIER ?= 1
 

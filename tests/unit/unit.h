@@ -36,7 +36,8 @@ static inline void unit_set_case_timeout(void)
     snprintf(t, sizeof t, "%g", unit_case_timeout());
     setenv("CK_DEFAULT_TIMEOUT", t, 1);
 }
-/* A test case that takes over half a second at -O2 (5 s at -O0): three times the limit. */
+/* A test case that holds a slow case (docs/design-notes.md, "Test cases' limits"): three times
+ * the limit. */
 static inline void unit_slow(TCase *tc) { tcase_set_timeout(tc, 3.0 * unit_case_timeout()); }
 
 #define UNIT_MAIN(suite_fn)                                                                        \
@@ -80,25 +81,28 @@ static inline void unit_near(const char *file, int line, const char *what, doubl
         unit_fail_at(file, line, "%s: got %.17g, want %.17g, tolerance %.3g (off by %.3g)", what,
                      got, want, tol, fabs(got - want));
 }
+/* three values against three, at most tol apart each (`unit`: "component", "channel") */
+static inline void unit_triple_near(const char *file, int line, const char *what, const double g[3],
+                                    const double w[3], double tol, const char *unit)
+{
+    double off = fmax(fabs(g[0] - w[0]), fmax(fabs(g[1] - w[1]), fabs(g[2] - w[2])));
+    if (!(off <= tol) || !isfinite(g[0] + g[1] + g[2])) /* fmax would hide a NaN */
+        unit_fail_at(file, line,
+                     "%s: got (%.17g, %.17g, %.17g), want (%.17g, %.17g, %.17g), tolerance %.3g "
+                     "per %s (off by %.3g)",
+                     what, g[0], g[1], g[2], w[0], w[1], w[2], tol, unit, off);
+}
 static inline void unit_vec_near(const char *file, int line, const char *what, vec3 got,
                                  vec3 want, double tol)
 {
-    double off = fmax(fabs(got.x - want.x), fmax(fabs(got.y - want.y), fabs(got.z - want.z)));
-    if (!(off <= tol) || !vec3_is_finite(got))
-        unit_fail_at(file, line,
-                     "%s: got (%.17g, %.17g, %.17g), want (%.17g, %.17g, %.17g), tolerance %.3g "
-                     "per component (off by %.3g)",
-                     what, got.x, got.y, got.z, want.x, want.y, want.z, tol, off);
+    const double g[3] = {got.x, got.y, got.z}, w[3] = {want.x, want.y, want.z};
+    unit_triple_near(file, line, what, g, w, tol, "component");
 }
 static inline void unit_rgb_near(const char *file, int line, const char *what, rgb got, rgb want,
                                  double tol)
 {
-    double off = fmax(fabs(got.r - want.r), fmax(fabs(got.g - want.g), fabs(got.b - want.b)));
-    if (!(off <= tol) || !isfinite(got.r + got.g + got.b))
-        unit_fail_at(file, line,
-                     "%s: got (%.17g, %.17g, %.17g), want (%.17g, %.17g, %.17g), tolerance %.3g "
-                     "per channel (off by %.3g)",
-                     what, got.r, got.g, got.b, want.r, want.g, want.b, tol, off);
+    const double g[3] = {got.r, got.g, got.b}, w[3] = {want.r, want.g, want.b};
+    unit_triple_near(file, line, what, g, w, tol, "channel");
 }
 static inline void unit_uv_near(const char *file, int line, const char *what, uv2 got, uv2 want,
                                 double tol)

@@ -1165,7 +1165,7 @@ Suite *distrib_suite(void)
     suite_add_tcase(s, tc);
 
     tc = tcase_create("distrib2d");
-    unit_slow(tc); /* a case over half a second at -O2 */
+    unit_slow(tc); /* a slow case (unit.h) */
     tcase_add_test(tc, test_distrib2d_pmf_is_weight_over_total_with_outer_major_layout);
     tcase_add_loop_test(tc, test_distrib2d_binary_search_samples_fit_the_pmf, 0, T2_COUNT);
     tcase_add_loop_test(tc, test_distrib2d_alias_samples_fit_the_binary_search_pmf, 0, T2_COUNT);

@@ -675,7 +675,7 @@ Suite *convert_suite(void)
     tcase_add_test(t, test_a_constant_map_stays_constant_with_power_four_pi);
     suite_add_tcase(s, t);
     t = tcase_create("resampling");
-    unit_slow(t); /* a case over half a second at -O2 */
+    unit_slow(t); /* a slow case (unit.h) */
     tcase_add_test(t, test_a_texel_is_the_solid_angle_average_not_the_uv_average);
     tcase_add_test(t, test_round_trips_keep_the_power_of_a_sun_map);
     tcase_add_test(t, test_default_samples_keep_the_power_of_a_sun_in_a_pole_row_or_the_rim_ring);

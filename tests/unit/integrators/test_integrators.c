@@ -1418,7 +1418,7 @@ Suite *integrators_suite(void)
     tcase_add_test(tc, test_integrators_analytic_irradiance_in_the_lights_own_plane);
     suite_add_tcase(s, tc);
     tc = tcase_create("paths");
-    unit_slow(tc); /* a case over half a second at -O2 */
+    unit_slow(tc); /* a slow case (unit.h) */
     tcase_add_test(tc, test_integrators_nee_off_on_and_mis_agree_under_a_quad_light);
     tcase_add_test(tc, test_integrators_nee_off_on_and_mis_agree_under_a_sun_map);
     tcase_add_test(tc, test_integrators_quad_lights_block_shadow_rays_as_they_block_brdf_rays);

@@ -404,7 +404,7 @@ Suite *prefiltered_suite(void)
 {
     Suite *s = suite_create("prefiltered");
     TCase *tc = tcase_create("core");
-    unit_slow(tc); /* a case over half a second at -O2 */
+    unit_slow(tc); /* a slow case (unit.h) */
     tcase_add_test(tc, test_the_scene_chooses_the_integrator_and_the_irradiance_method);
     tcase_add_test(tc, test_lights_in_a_prefiltered_scene_are_warned_about_at_the_first);
     tcase_add_test(tc,

@@ -629,7 +629,7 @@ Suite *displacemap_suite(void)
 {
     Suite *s = suite_create("displacemap");
     TCase *tc = tcase_create("core");
-    unit_slow(tc); /* a case over half a second at -O2 */
+    unit_slow(tc); /* a slow case (unit.h) */
     tcase_add_test(tc, test_scenes_without_displacement_need_none);
     tcase_add_test(tc, test_the_memory_budget_lowers_the_rates_until_the_triangles_fit);
     tcase_add_test(tc, test_displaced_sphere_vertices_lie_at_radius_plus_scale_times_height);
