@@ -8,6 +8,8 @@
 #   make update-golden   re-render the golden references (look at them before committing)
 #   make docs-images     re-render the pictures in docs/images/ from data/scenes/
 #   make grade SUBMISSIONS=dir   build, test and render each student's tree: out/grade/ (CSV, HTML)
+#   make autograder  Gradescope's autograder, out/autograder.zip; make submission (in a kit) the
+#                    student's tree, out/submission.tar.gz (docs/grading.md)
 #   make starter STEPS="latlong cdf" [HINTS=1|2|3]   a starter kit with those steps as stubs (or all)
 #   make test STEP=cdf   only the tests of one lecture step (tests/steps)
 #   make deps       install the Debian packages envtex needs (apt-get, as root or via sudo)
@@ -131,6 +133,19 @@ grade: $(BUILD)/envtex
 	@UNSAFE="$(UNSAFE)" ENVTEX=$(BUILD)/envtex tools/grade/run "$(SUBMISSIONS)" "$(GRADE_OUT)"
 .PHONY: grade
 
+# Gradescope's autograder: out/autograder.zip (setup.sh, run_autograder; docs/grading.md)
+autograder:
+	@$(IN_KIT)
+	@tools/grade/autograder/make-zip out/autograder.zip
+
+# a student's submission, out/submission.tar.gz: the tree without build/ and out/, in one folder
+submission:
+	@mkdir -p out
+	@tar -czf out/submission.tar.gz --exclude='./build*' --exclude=./out --exclude=./.git \
+		--exclude=./envtex --transform 's,^\.,envtex,' .
+	@echo "submission: out/submission.tar.gz (upload it to Gradescope)"
+.PHONY: autograder submission
+
 # assignment starter kits (docs/teaching.md)
 # (a kit has neither: it is made in the instructor's tree)
 IN_KIT = [ -d tools/starter ] || { echo "envtex: make $@: this is a starter kit; make $@ runs in the" \
@@ -150,7 +165,8 @@ bench: $(BUILD)/envtex $(TOOL_BIN)
 	@BUILD=$(BUILD) ENVTEX=$(BUILD)/envtex tools/bench/run
 
 # ---- the quick start -----------------------------------------------------------------------
-DEB_PACKAGES = build-essential pkg-config libpng-dev libopenexr-dev check bubblewrap
+# (zip for make autograder; unzip and jq for its test)
+DEB_PACKAGES = build-essential pkg-config libpng-dev libopenexr-dev check bubblewrap zip unzip jq
 deps:
 	@missing=""; \
 	for p in $(DEB_PACKAGES); do \
