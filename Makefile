@@ -124,13 +124,14 @@ asan:
 update-golden: $(BUILD)/envtex $(TOOL_BIN)
 	@BUILD=$(BUILD) ENVTEX=$(BUILD)/envtex tests/golden/update
 
-# a class's grades: make grade SUBMISSIONS=dir [GRADE_OUT=out/grade] [UNSAFE=1] (docs/grading.md;
-# each submission in a sandbox, tools/grade/sandbox)
+# a class's grades: make grade SUBMISSIONS=dir [GRADE_OUT=out/grade] [GRADE_JOBS=N] [UNSAFE=1]
+# (docs/grading.md; each submission in a sandbox, tools/grade/sandbox; N students at once)
 GRADE_OUT ?= out/grade
 grade: $(BUILD)/envtex
 	@[ -n "$(SUBMISSIONS)" ] || { echo "envtex: make grade needs SUBMISSIONS=DIR, a folder of" \
 		"student trees or tarballs" >&2; exit 1; }
-	@UNSAFE="$(UNSAFE)" ENVTEX=$(BUILD)/envtex tools/grade/run "$(SUBMISSIONS)" "$(GRADE_OUT)"
+	@UNSAFE="$(UNSAFE)" GRADE_JOBS="$(or $(GRADE_JOBS),1)" ENVTEX=$(BUILD)/envtex \
+		tools/grade/run "$(SUBMISSIONS)" "$(GRADE_OUT)"
 .PHONY: grade
 
 # Gradescope's autograder: out/autograder.zip (setup.sh, run_autograder; docs/grading.md)
