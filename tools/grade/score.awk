@@ -18,15 +18,18 @@ BEGIN { FS = "[ \t]+" }
 FILENAME == ARGV[1] && /^(step|scene)[ \t]/ {
     if ($1 == "step") { name = $2; pts = $3; vis = $4 }
     else { name = $3; sub(/.*\//, "", name); sub(/\.test$/, "", name); pts = $4; vis = $5 }
-    if (pts !~ /^[0-9]+(\.[0-9]+)?$/) { bad = "points.txt: line " FNR ": points must be a number"; exit 2 }
+    if (pts !~ /^[0-9]+(\.[0-9]+)?$/) {
+        bad = FILENAME ":" FNR ": points must be a number"
+        exit 2
+    }
     if (vis == "") vis = "visible"
     if (vis !~ /^(visible|hidden|after_due_date|after_published)$/) {
-        bad = "points.txt: line " FNR ": visibility must be visible, hidden, after_due_date or" \
+        bad = FILENAME ":" FNR ": visibility must be visible, hidden, after_due_date or" \
             " after_published"
         exit 2
     }
     order[++n] = $1 SUBSEP name; kind[n] = $1; nm[n] = name; max[n] = pts; visib[n] = vis
-    if ($1 == "step" && pts > 0) graded[name] = 1
+    if ($1 == "step" && pts > 0) { graded[name] = 1; where[name] = FILENAME ":" FNR }
     next
 }
 FILENAME == ARGV[2] && /^[a-z]/ {
@@ -54,7 +57,10 @@ function share(s,    i, f) {
     return f / ntests[s]
 }
 END {
-    if (bad != "") { print "envtex: tools/grade/" bad > "/dev/stderr"; exit 2 }
+    if (bad != "") { print "envtex: " bad > "/dev/stderr"; exit 2 }
+    for (s in graded) if (!(s in ntests)) {
+        print "envtex: " where[s] ": no step " s " in tests/steps" > "/dev/stderr"; exit 2
+    }
     # 1 and 2
     for (j = 1; j <= n; j++) {
         s = nm[j]

@@ -10,7 +10,8 @@ cd "$ROOT/source"
 packages=$(sed -n 's/^DEB_PACKAGES = //p' Makefile)
 missing=""
 for p in $packages; do
-    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing="$missing $p"
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' ||
+        missing="$missing $p"
 done
 if [ -n "$missing" ]; then
     echo "setup.sh: installing$missing"
