@@ -275,6 +275,12 @@ static void leaf_tris(bvh *b)
             b->tris[i].e1[a] = (float)vec3_get(v[1], a);
             b->tris[i].e2[a] = (float)vec3_get(v[2], a);
         }
+        /* too far from the origin for its smallest altitude (twice its area over its longest
+         * edge): no float filter (a NaN e1: the double test decides) */
+        double longest = fmax(fmax(vec3_length(v[1]), vec3_length(v[2])),
+                              vec3_length(vec3_sub(v[2], v[1])));
+        double altitude = vec3_length(vec3_cross(v[1], v[2])) / longest;
+        if (!(vec3_max_abs(v[0]) <= BVH_FILTER_REACH * altitude)) b->tris[i].e1[0] = NAN;
     }
 }
 

@@ -1,11 +1,12 @@
 /* test_hardcases.c - the numerical hard cases of docs/robustness.md, through the public APIs:
  * envmaps with NaN / Inf / negative texels, 1 x 1 and 8192 x 4096 maps at the poles and the
- * seam; rays through shared triangle edges and vertices (no cracks), grazing rays, degenerate
- * triangles; reflection and refraction far from the origin (no acne); a camera inside a sphere;
- * textures of 1 x 1 and 1 x N texels read far outside [0, 1] and with zero and whole-texture
- * footprints; noise at |x| = 1e6; tone mapping of Inf and NaN.  Each test names the bug it would
- * catch.  Other modules' own tests hold their own hard cases; this file collects the ones that
- * cross modules. */
+ * seam; rays through shared triangle edges and vertices (no cracks), a mesh moved to 1e7 and
+ * scaled by 1e-4 .. 1e4 (no holes), grazing rays, degenerate triangles; reflection and
+ * refraction far from the origin (no acne); a camera inside a sphere; textures of 1 x 1 and
+ * 1 x N texels read far outside [0, 1] and with zero and whole-texture footprints; noise at
+ * |x| = 1e6; tone mapping of Inf and NaN.  Each test names the bug it would catch.  Other
+ * modules' own tests hold their own hard cases; this file collects the ones that cross
+ * modules. */
 #include <math.h>
 #include <string.h>
 
@@ -18,6 +19,7 @@
 #include "envtex/scene/scene_load.h"
 #include "envtex/textures/texlookup.h"
 #include "envtex/io/tonemap.h"
+#include "envtex/geometry/bvh_packet.h"
 #include "envtex/geometry/triangle.h"
 #include "unit.h"
 
@@ -226,6 +228,79 @@ START_TEST(test_rays_across_shared_edges_and_vertices_never_fall_through)
         }
     }
     ck_assert_msg(misses == 0, "%ld of %ld rays fell through the fan", misses, rays);
+}
+END_TEST
+
+/* A UV sphere of 48 x 24 quads (2304 triangles, the poles' degenerate ones included) of radius
+ * `scale` about (far, far, far), seen from 4 radii away: every ray of a 32 x 32 grid gets from
+ * the BVH - one at a time, as shadow rays and in packets - what the double test of every
+ * triangle gives (hit or miss, and the closest t).  Catches a float filter that is not
+ * conservative far from the origin: p0 rounded to float moves by |p0| 2^-24, at 1e6 about the
+ * size of these triangles, and a fixed barycentric margin rejected true hits (at 1e5, of 1024
+ * rays, 4 holes and 40 that found a farther triangle; at 1e7 nearly all). */
+static void check_mesh_far_from_origin(double far, double scale)
+{
+    enum { NU = 48, NV = 24, W = 32 };
+    static triangle tri[2 * NU * NV];
+    memset(tri, 0, sizeof tri);
+    int n = 0;
+    for (int j = 0; j < NV; j++)
+        for (int i = 0; i < NU; i++) {
+            vec3 q[4];
+            for (int k = 0; k < 4; k++) {
+                double th = PI * (j + (k >= 2)) / NV, ph = 2 * PI * (i + (k == 1 || k == 2)) / NU;
+                q[k] = vec3_make(far + scale * sin(th) * cos(ph), far + scale * sin(th) * sin(ph),
+                                 far + scale * cos(th));
+            }
+            tri[n].p[0] = q[0], tri[n].p[1] = q[1], tri[n++].p[2] = q[2];
+            tri[n].p[0] = q[0], tri[n].p[1] = q[2], tri[n++].p[2] = q[3];
+        }
+    bvh b;
+    error err = {0};
+    ck_assert_int_eq(bvh_build(&b, (bvh_prims){.triangles = tri, .n_triangles = n}, NULL, &err), 0);
+    vec3 o = vec3_make(far, far - 4 * scale, far + 0.5 * scale);
+    long holes = 0, extra = 0, wrong_t = 0, shadow = 0, packet = 0, hits = 0;
+    for (int y = 0; y < W; y++) {
+        ray r[W];
+        int ref[W];
+        double ref_t[W];
+        for (int x = 0; x < W; x++) {
+            vec3 d = vec3_make((x + 0.5) / W * 0.6 - 0.3, 1, 0.175 - (y + 0.5) / W * 0.6);
+            r[x] = (ray){o, vec3_normalize(d), 0, INFINITY};
+            ray rr = r[x];
+            ref[x] = 0;
+            for (int k = 0; k < n; k++) {
+                double t, b1, b2;
+                if (triangle_intersect(tri[k].p[0], tri[k].p[1], tri[k].p[2], &rr, &t, &b1, &b2))
+                    ref[x] = 1, rr.tmax = ref_t[x] = t;
+            }
+            hit h;
+            int got = bvh_intersect(&b, &r[x], &h) == BVH_SURFACE;
+            hits += ref[x];
+            holes += ref[x] && !got;
+            extra += got && !ref[x];
+            wrong_t += got && ref[x] && h.t != ref_t[x];
+            shadow += bvh_occluded(&b, &r[x]) != ref[x];
+        }
+        int got[W];
+        hit h[W];
+        bvh_intersect_packet(&b, r, W, got, h);
+        for (int x = 0; x < W; x++) packet += (got[x] == BVH_SURFACE) != ref[x];
+    }
+    ck_assert_msg(hits > W * W / 4, "at %g, scale %g: the mesh is not in view", far, scale);
+    ck_assert_msg(holes == 0 && extra == 0 && wrong_t == 0 && shadow == 0 && packet == 0,
+                  "mesh at %g, scale %g: of %ld hits, %ld holes, %ld extra, %ld with another t; "
+                  "%ld shadow rays and %ld packet rays disagree", far, scale, hits, holes, extra,
+                  wrong_t, shadow, packet);
+    bvh_free(&b);
+}
+
+START_TEST(test_a_mesh_far_from_the_origin_has_no_holes)
+{
+    const double at[][2] = {{0, 1}, {1e3, 1}, {1e5, 1}, {1e6, 1}, {1e7, 1}, {1e6, 1e-4},
+                            {0, 1e-4}, {0, 1e4}, {1e5, 1e4}};
+    for (size_t i = 0; i < sizeof at / sizeof at[0]; i++)
+        check_mesh_far_from_origin(at[i][0], at[i][1]);
 }
 END_TEST
 
@@ -569,6 +644,7 @@ Suite *hardcases_suite(void)
     TCase *geo = tcase_create("geometry");
     tcase_add_test(geo, test_rays_across_shared_edges_and_vertices_never_fall_through);
     tcase_add_test(geo, test_rendered_quad_diagonal_has_no_crack);
+    tcase_add_test(geo, test_a_mesh_far_from_the_origin_has_no_holes);
     tcase_add_test(geo, test_grazing_rays_and_degenerate_triangles_give_no_garbage);
     tcase_add_test(geo, test_mirror_far_from_origin_has_no_acne);
     tcase_add_test(geo, test_glass_far_from_origin_has_no_acne);
