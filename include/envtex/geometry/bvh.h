@@ -57,7 +57,8 @@ typedef struct bvh_node {
     uint8_t pad;
 } bvh_node;
 
-/* A triangle (or quad: a, ab, ac) for the float test: p0, e1 = p1 - p0, e2 = p2 - p0. */
+/* A triangle (or quad: a, ab, ac) for the float test: p0, e1 = p1 - p0, e2 = p2 - p0; e1[0] is
+ * NaN for one beyond BVH_FILTER_REACH, which the filter then passes to the double test. */
 typedef struct bvh_tri {
     float p0[3], e1[3], e2[3];
 } bvh_tri;
