@@ -30,7 +30,7 @@
 /* SAH: a node visit's cost, in primitive float tests */
 #define BVH_TRAVERSAL_COST 2.0
 /* Each primitive's box grows by this times (its extent + its largest coordinate) before it is
- * rounded outwards to float: room for TRIANGLE_EDGE_EPS and rounding. */
+ * rounded outwards to float: room for the double test's rounding. */
 #define BVH_BOX_PAD_REL 0x1p-18
 /* The far end of each float slab is widened by 2 gamma(3) = 6 u / (1 - 3 u), u = 2^-24. */
 #define BVH_SLAB_SLACK (6 * 0x1p-24f / (1 - 3 * 0x1p-24f))

@@ -4,9 +4,13 @@
  *     double t, b1, b2;
  *     if (triangle_intersect(p0, p1, p2, &r, &t, &b1, &b2)) ...
  *
- * Moller-Trumbore in double precision.  Edges and vertices count as inside, with a tolerance of
- * TRIANGLE_EDGE_EPS in barycentric units, so a ray through an edge shared by two triangles hits
- * at least one of them (no cracks).  Degenerate (zero-area) triangles are never hit.
+ * Watertight (Woop, Benthin and Wald, JCGT 2013; pbrt-v4's IntersectTriangle), in double
+ * precision: the corners are moved into the ray's frame (translated to its origin, sheared so
+ * that it runs along z) and the ray's point is tested against the three 2D edge functions,
+ * whose signs are exact.  Two triangles sharing an edge compute the same edge function, so a
+ * ray through the edge hits exactly one of them (no crack, no double hit); a ray exactly on an
+ * edge line goes to the side a fixed rule picks, so a vertex inside a fan belongs to exactly
+ * one of its triangles.  Degenerate (zero-area) triangles are never hit.
  */
 #ifndef ENVTEX_TRIANGLE_H
 #define ENVTEX_TRIANGLE_H
@@ -27,9 +31,6 @@ typedef struct triangle {
     vec3 q[3];     /* OBJECT-space corners (as written, before the transform), for the point
                        mappings and solid textures: P_object = sum b_i q_i */
 } triangle;
-
-/* The barycentric tolerance that closes shared-edge cracks (rounding is ~1e-16 relative). */
-#define TRIANGLE_EDGE_EPS 1e-12
 
 /* Degenerate (never hit) when |d . (e1 x e2)| is below this fraction of |d| |e1| |e2|: a corner
  * or grazing angle under 1e-10 rad. */

@@ -1,6 +1,7 @@
 /* test_hardcases.c - the numerical hard cases of docs/robustness.md, through the public APIs:
  * envmaps with NaN / Inf / negative texels, 1 x 1 and 8192 x 4096 maps at the poles and the
- * seam; rays through shared triangle edges and vertices (no cracks), a mesh moved to 1e7 and
+ * seam; rays through shared triangle edges and vertices of a fan and a grid (exactly one
+ * hit: no cracks, no double hits), a mesh moved to 1e7 and
  * scaled by 1e-4 .. 1e4 (no holes), grazing rays, degenerate triangles; reflection and
  * refraction far from the origin (no acne); a camera inside a sphere; textures of 1 x 1 and
  * 1 x N texels read far outside [0, 1] and with zero and whole-texture footprints; noise at
@@ -174,21 +175,40 @@ END_TEST
 
 /* ---- triangles ----------------------------------------------------------------------------- */
 
-/* A fan of 7 triangles around a centre vertex at awkward (non-binary) coordinates.  Rays along
- * -z are swept across every shared edge, in steps of a few ulps around the edge line, and
- * through the centre vertex and every rim vertex: each ray hits at least one triangle (catches
- * a strict inside test, or an edge function whose rounding differs between the two triangles
- * of an edge, which leaves pinholes). */
-START_TEST(test_rays_across_shared_edges_and_vertices_never_fall_through)
+/* How many of the n triangles tri[k] ray r hits (each tested alone, so two hits at one t count
+ * as two). */
+static int count_hits(const triangle *tri, int n, const ray *r)
+{
+    int hits = 0;
+    for (int k = 0; k < n; k++) {
+        double t, b1, b2;
+        hits += triangle_intersect(tri[k].p[0], tri[k].p[1], tri[k].p[2], r, &t, &b1, &b2);
+    }
+    return hits;
+}
+
+/* A fan of 7 triangles around a centre vertex at awkward (non-binary) coordinates, every other
+ * one wound the other way.  Rays along -z are swept across every shared edge, in steps of a few
+ * ulps around the edge line, and through the centre vertex and near every rim vertex from
+ * slanted directions: each ray hits exactly one triangle.  Catches a strict inside test, or an
+ * edge function whose rounding differs between the two triangles of an edge (pinholes), and an
+ * inside test with a tolerance (two hits: an edge counted twice, as light or as an occluder). */
+START_TEST(test_rays_across_shared_edges_and_vertices_hit_exactly_one_triangle)
 {
     enum { N = 7 };
     vec3 centre = vec3_make(0.1, 1.0 / 3.0, 0.7);
     vec3 rim[N];
+    triangle fan[N];
     for (int k = 0; k < N; k++) {
         double a = 2 * PI * k / N + 0.1;
         rim[k] = vec3_make(centre.x + 1.3 * cos(a), centre.y + 0.9 * sin(a), 0.7 + 0.01 * k);
     }
-    long rays = 0, misses = 0;
+    for (int k = 0; k < N; k++) {
+        fan[k].p[0] = centre;
+        fan[k].p[1 + k % 2] = rim[k];
+        fan[k].p[2 - k % 2] = rim[(k + 1) % N];
+    }
+    long rays = 0, misses = 0, doubles = 0;
     for (int k = 0; k < N; k++) {
         vec3 a = centre, b = rim[k];
         vec3 side = vec3_make(-(b.y - a.y), b.x - a.x, 0); /* across the edge, in the xy plane */
@@ -201,13 +221,8 @@ START_TEST(test_rays_across_shared_edges_and_vertices_never_fall_through)
                 double off = j * 1e-15 * (1 + fabs(on.x) + fabs(on.y));
                 ray r = {vec3_make(on.x + off * side.x, on.y + off * side.y, 5),
                          vec3_make(0, 0, -1), 0, INFINITY};
-                int hits = 0;
-                for (int q = 0; q < N; q++) {
-                    double t, b1, b2;
-                    hits += triangle_intersect(centre, rim[q], rim[(q + 1) % N], &r, &t, &b1, &b2);
-                }
-                rays++;
-                if (!hits) misses++;
+                int hits = count_hits(fan, N, &r);
+                rays++, misses += hits == 0, doubles += hits > 1;
             }
         }
     }
@@ -218,16 +233,71 @@ START_TEST(test_rays_across_shared_edges_and_vertices_never_fall_through)
         for (int j = 0; j < 8; j++) {
             vec3 d = vec3_make(0.3 * cos(j), 0.3 * sin(j), -1);
             ray r = {vec3_sub(v, vec3_scale(d, 3)), d, 0, INFINITY};
-            int hits = 0;
-            for (int q = 0; q < N; q++) {
-                double t, b1, b2;
-                hits += triangle_intersect(centre, rim[q], rim[(q + 1) % N], &r, &t, &b1, &b2);
-            }
-            rays++;
-            if (!hits) misses++;
+            int hits = count_hits(fan, N, &r);
+            rays++, misses += hits == 0, doubles += hits > 1;
         }
     }
-    ck_assert_msg(misses == 0, "%ld of %ld rays fell through the fan", misses, rays);
+    ck_assert_msg(misses == 0 && doubles == 0, "of %ld rays, %ld fell through the fan, %ld hit two",
+                  rays, misses, doubles);
+}
+END_TEST
+
+/* A grid of 12 x 12 quads on a tilted, bumpy sheet at awkward coordinates, split along
+ * alternating diagonals, at the origin and moved to 1e6: rays through every inner vertex (where
+ * eight or four triangles meet) and through points of its edges, from three directions,
+ * each hit exactly one triangle; and the BVH finds each of them (the same t as that triangle).
+ * Catches what the fan does, at vertices of both valences, and a filter that drops a hit when
+ * the sheet is far from the origin. */
+START_TEST(test_rays_through_a_grid_hit_exactly_one_triangle)
+{
+    enum { G = 12, NT = 2 * G * G };
+    static triangle tri[NT];
+    const vec3 dirs[3] = {{0, 0, -1}, {0.31, -0.17, -1}, {-0.6, 0.45, -0.7}};
+    const double at[2] = {0, 1e6};
+    for (int o = 0; o < 2; o++) {
+        vec3 v[G + 1][G + 1];
+        for (int j = 0; j <= G; j++)
+            for (int i = 0; i <= G; i++)
+                v[j][i] = vec3_make(at[o] + i / 3.0 + 0.01 * sin(j), at[o] + j / 7.0 * 2.3,
+                                    at[o] + 0.1 * i - 0.07 * j + 0.02 * cos(i * j));
+        int n = 0;
+        memset(tri, 0, sizeof tri);
+        for (int j = 0; j < G; j++)
+            for (int i = 0; i < G; i++) {
+                vec3 a = v[j][i], b = v[j][i + 1], c = v[j + 1][i + 1], d = v[j + 1][i];
+                if ((i + j) % 2) /* diagonal a-c */
+                    tri[n].p[0] = a, tri[n].p[1] = b, tri[n++].p[2] = c,
+                    tri[n].p[0] = a, tri[n].p[1] = c, tri[n++].p[2] = d;
+                else /* diagonal b-d */
+                    tri[n].p[0] = a, tri[n].p[1] = b, tri[n++].p[2] = d,
+                    tri[n].p[0] = b, tri[n].p[1] = c, tri[n++].p[2] = d;
+            }
+        bvh b;
+        error err = {0};
+        ck_assert_int_eq(bvh_build(&b, (bvh_prims){.triangles = tri, .n_triangles = n}, NULL, &err),
+                         0);
+        long rays = 0, misses = 0, doubles = 0, bvh_misses = 0;
+        for (int j = 1; j < G; j++)
+            for (int i = 1; i < G; i++)
+                for (int e = 0; e < 4; e++) { /* the vertex, points on two of its edges, and
+                                                 * towards its diagonal neighbour (an edge where
+                                                 * the quad's diagonal runs there) */
+                    vec3 q = v[j][i], nb = e == 1 ? v[j][i + 1] : e == 2 ? v[j + 1][i]
+                                                                         : v[j + 1][i + 1];
+                    if (e) q = vec3_add(vec3_scale(q, 0.6), vec3_scale(nb, 0.4));
+                    for (int k = 0; k < 3; k++) {
+                        ray r = {vec3_madd(q, dirs[k], -2), dirs[k], 0, INFINITY};
+                        int hits = count_hits(tri, n, &r);
+                        hit h;
+                        rays++, misses += hits == 0, doubles += hits > 1;
+                        bvh_misses += bvh_intersect(&b, &r, &h) != BVH_SURFACE;
+                    }
+                }
+        ck_assert_msg(misses == 0 && doubles == 0 && bvh_misses == 0,
+                      "grid at %g: of %ld rays, %ld fell through, %ld hit two, the BVH missed %ld",
+                      at[o], rays, misses, doubles, bvh_misses);
+        bvh_free(&b);
+    }
 }
 END_TEST
 
@@ -642,7 +712,8 @@ Suite *hardcases_suite(void)
     tcase_add_test(env, test_8192_map_poles_and_seam_are_exact);
     suite_add_tcase(s, env);
     TCase *geo = tcase_create("geometry");
-    tcase_add_test(geo, test_rays_across_shared_edges_and_vertices_never_fall_through);
+    tcase_add_test(geo, test_rays_across_shared_edges_and_vertices_hit_exactly_one_triangle);
+    tcase_add_test(geo, test_rays_through_a_grid_hit_exactly_one_triangle);
     tcase_add_test(geo, test_rendered_quad_diagonal_has_no_crack);
     tcase_add_test(geo, test_a_mesh_far_from_the_origin_has_no_holes);
     tcase_add_test(geo, test_grazing_rays_and_degenerate_triangles_give_no_garbage);
