@@ -44,23 +44,34 @@ int sphere_intersect(const sphere *s, const ray *r, double *t_out)
     return 0;
 }
 
+/* An object-space point po near the sphere moved onto it along its radius: o + t d is off the
+ * surface by t's error, which grows with the ray's length (a camera 1e8 away: 1e-8); the
+ * projected point is off by a few ulps of |center| + radius, what ray.h's offset covers. */
+static vec3 onto_sphere(const sphere *s, vec3 po, vec3 *local)
+{
+    vec3 l = vec3_sub(po, s->center);
+    double len = vec3_length(l);
+    *local = len > 0 ? vec3_scale(l, s->radius / len) : l; /* (a radius 0 sphere's centre) */
+    return vec3_add(s->center, *local);
+}
+
 void sphere_hit(const sphere *s, const ray *r, double t, hit *h)
 {
     h->t = t;
+    h->bary = (uv2){0, 0}; /* a sphere's (s, t) comes from its texture mapping (texshade.h) */
+    vec3 local;
     if (s->untransformed) {
-        /* M = I: p = o + t d, n = (p - c) / |p - c|, the general path's bits: its products are
-         * exact, and its translation's + 0 turns a -0 into +0, so p gets the same + 0 */
-        h->p = vec3_add(vec3_add(r->o, vec3_scale(r->d, t)), vec3_make(0, 0, 0));
-        h->ng = h->ns = vec3_normalize(vec3_sub(h->p, s->center));
-        h->bary = (uv2){0, 0};
+        /* M = I: the general path's bits: its products are exact, and its translation's + 0
+         * turns a -0 into +0, so p gets the same + 0 */
+        h->p = vec3_add(onto_sphere(s, vec3_add(r->o, vec3_scale(r->d, t)), &local),
+                        vec3_make(0, 0, 0));
+        h->ng = h->ns = vec3_normalize(vec3_add(local, vec3_make(0, 0, 0)));
         return;
     }
     vec3 po = vec3_add(mat4_point(&s->inv, r->o), vec3_scale(mat4_dir(&s->inv, r->d), t));
-    vec3 local = vec3_sub(po, s->center);
-    h->p = mat4_point(&s->xf, po);
+    h->p = mat4_point(&s->xf, onto_sphere(s, po, &local));
     /* normal: object normal (p - c) through the inverse transpose */
     h->ng = h->ns = vec3_normalize(mat4_normal(&s->inv, local));
-    h->bary = (uv2){0, 0}; /* a sphere's (s, t) comes from its texture mapping (texshade.h) */
 }
 
 void sphere_bounds(const sphere *s, vec3 *lo, vec3 *hi)

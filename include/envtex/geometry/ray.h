@@ -31,9 +31,12 @@ typedef struct hit {
     int material;  /* index into scene.materials */
 } hit;
 
-/* A leaving ray's origin moves along ng by ABS + REL max |p_i| (no "acne"): six orders above
- * the ~1e-15 hit error, invisible at any scale. */
-#define RAY_OFFSET_REL 1e-9
+/* A leaving ray's origin moves along ng by ABS + REL max |p_i| (no "acne").  A hit point is
+ * off its surface by at most sqrt(3) gamma(7) ~ 1.4e-15 times its triangle's largest corner
+ * coordinate (pbrt-v4's bound for the barycentric point; a sphere's point, moved onto the
+ * sphere, by less): REL = 2^-40 ~ 9.1e-13 is 670 times that, and ABS covers a triangle up to
+ * 7e5 + 670 max |p_i| long.  Invisible at any scale: 1e-5 at 1e7, where 1e-9 gave 1e-2. */
+#define RAY_OFFSET_REL 0x1p-40
 #define RAY_OFFSET_ABS 1e-9
 
 /* p moved off the surface with normal ng towards the side of direction d. */

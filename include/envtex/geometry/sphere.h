@@ -22,7 +22,8 @@ typedef struct sphere {
 int sphere_intersect(const sphere *s, const ray *r, double *t);
 
 /* h->p and h->ng = h->ns (unit, outward, world) of the hit at t; h->bary = (0, 0) (texture
- * coordinates come from the object-space point: texshade.h). */
+ * coordinates come from the object-space point: texshade.h).  The point is o + t d moved onto
+ * the sphere along its radius, so it is a few ulps off the surface however far the ray came. */
 void sphere_hit(const sphere *s, const ray *r, double t, hit *h);
 
 /* World axis-aligned bounds: the transformed corners of the object box. */

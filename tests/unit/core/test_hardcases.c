@@ -9,6 +9,8 @@
  * modules' own tests hold their own hard cases; this file collects the ones that cross
  * modules. */
 #include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "envtex/envmaps/genenv.h"
@@ -537,55 +539,171 @@ END_TEST
 
 /* ---- self-intersection --------------------------------------------------------------------- */
 
-/* The scene at the origin and the same scene moved by (D, D, D): the images agree (at most 1%
- * of the pixels, all on silhouettes, differ by more than 0.02).  Acne - a reflected or
- * refracted ray that hits its own surface because the offset does not grow with the hit
- * point's magnitude - makes the far copy speckled or black.  Materials: a mirror and glass. */
-static void check_far_from_origin(const char *material, double far)
+/* The 2304-triangle UV sphere of check_mesh_far_from_origin, radius 1 about (o, o, o), as
+ * scene commands appended at t + n (capacity cap); returns the new length. */
+static int ball_mesh(char *t, size_t cap, int n, double o)
 {
-    char a[1024], b[1024];
-    const char *fmt = "size 48 48\n"
-                      "camera %.17g %.17g %.17g  %.17g %.17g %.17g  0 0 1  40\n"
-                      "maxdepth 6\nambient 0 0 0\n%s\n"
-                      "sphere %.17g %.17g %.17g 1\n";
-    double o = 0;
-    snprintf(a, sizeof a, fmt, o, o - 4, o + 0.5, o, o, o, material, o, o, o);
-    o = far;
-    snprintf(b, sizeof b, fmt, o, o - 4, o + 0.5, o, o, o, material, o, o, o);
+    enum { NU = 48, NV = 24 };
+    n += snprintf(t + n, cap - n, "maxverts %d\n", (NU + 1) * (NV + 1));
+    for (int j = 0; j <= NV; j++)
+        for (int i = 0; i <= NU; i++) {
+            double th = PI * j / NV, ph = 2 * PI * i / NU;
+            n += snprintf(t + n, cap - n, "vertex %.17g %.17g %.17g\n", o + sin(th) * cos(ph),
+                          o + sin(th) * sin(ph), o + cos(th));
+        }
+    for (int j = 0; j < NV; j++)
+        for (int i = 0; i < NU; i++) {
+            int a = j * (NU + 1) + i, b = a + 1, c = b + NU + 1, d = a + NU + 1;
+            n += snprintf(t + n, cap - n, "tri %d %d %d\ntri %d %d %d\n", a, c, b, a, d, c);
+        }
+    return n;
+}
+#define BALL_MESH_CHARS 200000 /* room for ball_mesh's commands */
+
+/* A scene of a ball seen from 4 radii away, everything moved by `far` on each axis: the ball
+ * an analytic sphere or (mesh = 1) ball_mesh, in `material`.  The caller frees it. */
+static char *far_scene(const char *material, double far, int mesh)
+{
+    size_t cap = 512 + strlen(material) + BALL_MESH_CHARS;
+    char *t = malloc(cap);
+    ck_assert_ptr_nonnull(t);
+    double o = far;
+    int n = snprintf(t, cap,
+                     "size 48 48\ncamera %.17g %.17g %.17g  %.17g %.17g %.17g  0 0 1  40\n"
+                     "maxdepth 6\nambient 0 0 0\n%s\n",
+                     o, o - 4, o + 0.5, o, o, o, material);
+    if (mesh)
+        ball_mesh(t, cap, n, o);
+    else
+        snprintf(t + n, cap - n, "sphere %.17g %.17g %.17g 1\n", o, o, o);
+    return t;
+}
+
+/* How many pixels of two renders differ by more than tol in a channel (or are not finite). */
+static long pixels_apart(const image *a, const image *b, double tol)
+{
+    long differ = 0;
+    for (int y = 0; y < a->h; y++)
+        for (int x = 0; x < a->w; x++) {
+            rgb p = image_get(a, x, y), q = image_get(b, x, y);
+            differ += !rgb_is_finite(q) || fabs(p.r - q.r) > tol || fabs(p.g - q.g) > tol ||
+                      fabs(p.b - q.b) > tol;
+        }
+    return differ;
+}
+
+/* The ball in `material` at `far` renders like the same ball at the origin: every pixel within
+ * tol (no acne: a leaving ray that hits its own surface; no light leaking through a mesh). */
+static void check_far_from_origin(const char *name, const char *material, double far, int mesh,
+                                  double tol)
+{
+    char *a = far_scene(material, 0, mesh), *b = far_scene(material, far, mesh);
     scene sa, sb;
     load(&sa, a);
     load(&sb, b);
+    free(a);
+    free(b);
     set_sky(&sa);
     set_sky(&sb);
     image ia = {0}, ib = {0};
     render_stats st;
     render(&sa, &ia, &st);
     render(&sb, &ib, &st);
-    long differ = 0;
-    for (int y = 0; y < ia.h; y++)
-        for (int x = 0; x < ia.w; x++) {
-            rgb p = image_get(&ia, x, y), q = image_get(&ib, x, y);
-            if (!rgb_is_finite(q) || fabs(p.r - q.r) > 0.02 || fabs(p.g - q.g) > 0.02 ||
-                fabs(p.b - q.b) > 0.02)
-                differ++;
-        }
-    ck_assert_msg(differ <= ia.w * ia.h / 100, "%s at %g: %ld of %d pixels differ", material, far,
-                  differ, ia.w * ia.h);
+    long differ = pixels_apart(&ia, &ib, tol);
+    ck_assert_msg(differ == 0, "%s %s at %g: %ld of %d pixels differ by more than %g",
+                  mesh ? "mesh" : "sphere", name, far, differ, ia.w * ia.h, tol);
     image_free(&ia);
     image_free(&ib);
     scene_free(&sa);
     scene_free(&sb);
 }
 
+/* A mirror ball, analytic and a mesh, at 1e5 .. 1e7: every pixel within 0.005 of the ball at
+ * the origin.  Catches a leaving ray offset too small for the hit point's rounding (acne) and
+ * one far too large: RAY_OFFSET_REL at 1e-9 moved rays by 1e-2 at 1e7. */
 START_TEST(test_mirror_far_from_origin_has_no_acne)
 {
-    check_far_from_origin("brdf mirror\nspecular 1 1 1", 1e5);
+    for (int mesh = 0; mesh < 2; mesh++)
+        for (double far = 1e5; far <= 1e7; far *= 10)
+            check_far_from_origin("mirror", "brdf mirror\nspecular 1 1 1", far, mesh, 0.005);
 }
 END_TEST
 
+/* The same for glass (rays that enter, reflect inside and leave): with RAY_OFFSET_REL at 1e-9,
+ * 0.04 apart at 1e6 and 0.07 at 1e7 (the sphere), 0.74 at 1e7 (the mesh). */
 START_TEST(test_glass_far_from_origin_has_no_acne)
 {
-    check_far_from_origin("brdf glass\nspecular 1 1 1\nior 1.5", 1e5);
+    for (int mesh = 0; mesh < 2; mesh++)
+        for (double far = 1e5; far <= 1e7; far *= 10)
+            check_far_from_origin("glass", "brdf glass\nspecular 1 1 1\nior 1.5", far, mesh,
+                                  0.005);
+}
+END_TEST
+
+/* A point light inside the closed mesh ball at 1e6 (and at the origin), a ground square and the
+ * ball's outside seen from above: nothing the camera sees has a line to the light, so every
+ * pixel is exactly 0.  Catches a shadow ray that leaks through the mesh: a hole between
+ * triangles (the float filter far from the origin), or an edge or vertex that neither of its
+ * triangles takes. */
+START_TEST(test_a_light_inside_a_closed_mesh_far_away_does_not_leak)
+{
+    const double at[2] = {0, 1e6};
+    for (int k = 0; k < 2; k++) {
+        double o = at[k];
+        size_t cap = 1024 + BALL_MESH_CHARS;
+        char *t = malloc(cap);
+        ck_assert_ptr_nonnull(t);
+        int n = snprintf(t, cap,
+                         "size 48 48\nintegrator raytracer\nmaxdepth 1\n"
+                         "camera %.17g %.17g %.17g  %.17g %.17g %.17g  0 1 0  60\n"
+                         "ambient 0 0 0\ndiffuse 0.8 0.8 0.8\npoint %.17g %.17g %.17g 1e6 1e6 1e6\n"
+                         "vertex %.17g %.17g %.17g\nvertex %.17g %.17g %.17g\n"
+                         "vertex %.17g %.17g %.17g\nvertex %.17g %.17g %.17g\n"
+                         "tri 0 1 2\ntri 0 2 3\n",
+                         o + 0.3, o + 0.2, o + 6, o, o, o - 1.5, o, o, o, o - 9, o - 9, o - 1.5,
+                         o + 9, o - 9, o - 1.5, o + 9, o + 9, o - 1.5, o - 9, o + 9, o - 1.5);
+        ball_mesh(t, cap, n, o);
+        scene sc;
+        load(&sc, t);
+        free(t);
+        image im = {0};
+        render_stats st;
+        render(&sc, &im, &st);
+        long lit = 0;
+        for (int y = 0; y < im.h; y++)
+            for (int x = 0; x < im.w; x++) lit += !rgb_is_black(image_get(&im, x, y));
+        ck_assert_msg(lit == 0, "at %g: light leaks into %ld of %d pixels", o, lit, im.w * im.h);
+        image_free(&im);
+        scene_free(&sc);
+    }
+}
+END_TEST
+
+/* A glass ball seen from 1e8 away (the camera's fovy narrowed to frame it) renders like the same
+ * ball seen from 1e6 away: every pixel within 1e-4 (measured 4e-6: the two perspectives).
+ * Catches a sphere hit point taken as o + t d alone, whose error grows with t (1e-8 at 1e8,
+ * beyond the offset): before sphere_hit moved it onto the sphere, pixels 0.41 apart. */
+START_TEST(test_glass_ball_seen_from_1e8_away_has_no_acne)
+{
+    image im[2] = {{0}, {0}};
+    for (int k = 0; k < 2; k++) {
+        double dist = k ? 1e8 : 1e6;
+        char text[512];
+        snprintf(text, sizeof text,
+                 "size 48 48\ncamera 0 %.17g 0.3  0 0 0.3  0 0 1  %.17g\nmaxdepth 6\n"
+                 "ambient 0 0 0\nbrdf glass\nspecular 1 1 1\nior 1.5\nsphere 0 0 0 1\n",
+                 -dist, 2 * atan(1.3 / dist) * 180 / PI);
+        scene sc;
+        load(&sc, text);
+        set_sky(&sc);
+        render_stats st;
+        render(&sc, &im[k], &st);
+        scene_free(&sc);
+    }
+    long differ = pixels_apart(&im[0], &im[1], 1e-4);
+    ck_assert_msg(differ == 0, "%ld of %d pixels differ", differ, im[0].w * im[0].h);
+    image_free(&im[0]);
+    image_free(&im[1]);
 }
 END_TEST
 
@@ -719,6 +837,8 @@ Suite *hardcases_suite(void)
     tcase_add_test(geo, test_grazing_rays_and_degenerate_triangles_give_no_garbage);
     tcase_add_test(geo, test_mirror_far_from_origin_has_no_acne);
     tcase_add_test(geo, test_glass_far_from_origin_has_no_acne);
+    tcase_add_test(geo, test_glass_ball_seen_from_1e8_away_has_no_acne);
+    tcase_add_test(geo, test_a_light_inside_a_closed_mesh_far_away_does_not_leak);
     tcase_add_test(geo, test_camera_inside_a_sphere_sees_its_inside_everywhere);
     suite_add_tcase(s, geo);
     TCase *tex = tcase_create("textures and noise");

@@ -372,6 +372,37 @@ START_TEST(test_sphere_bounds_contain_the_transformed_surface)
 }
 END_TEST
 
+/* A hit from a ray 1e2 .. 1e10 long lies on the sphere to a few ulps of |center| + radius, and
+ * so does an ellipsoid's (its object-space point), for rays from every side.  Catches a hit
+ * point taken as o + t d alone, off the sphere by t's error (1e-8 for a ray 1e8 long), which
+ * the leaving ray's offset (ray.h) does not cover. */
+START_TEST(test_sphere_hit_point_lies_on_the_sphere_however_far_the_ray_came)
+{
+    rng g;
+    rng_seed(&g, 9, 0);
+    const vec3 c = {0.5, -2, 3};
+    const double R = 1.5;
+    sphere plain = make_sphere(c, R, mat4_identity());
+    sphere oval = make_sphere(c, R, mat4_scale(vec3_make(2, 1, 0.5)));
+    double worst = 0;
+    for (int i = 0; i < 4000; i++) {
+        const sphere *s = i % 2 ? &oval : &plain;
+        double dist = pow(10, 2 + 8 * rng_uniform(&g));
+        vec3 aim = vec3_madd(c, random_unit(&g), 0.9 * R * rng_uniform(&g)); /* inside */
+        vec3 wc = mat4_point(&s->xf, aim), from = vec3_madd(wc, random_unit(&g), dist);
+        ray r = make_ray(from, vec3_sub(wc, from));
+        double t;
+        if (!sphere_intersect(s, &r, &t)) ck_abort_msg("ray %d from %g away missed", i, dist);
+        hit h;
+        sphere_hit(s, &r, t, &h);
+        vec3 po = mat4_point(&s->inv, h.p); /* object space */
+        double off = fabs(vec3_length(vec3_sub(po, c)) - R) / (vec3_max_abs(c) + R);
+        worst = fmax(worst, off);
+    }
+    ck_assert_msg(worst < 1e-14, "a hit point is %g (of |center| + radius) off the sphere", worst);
+}
+END_TEST
+
 Suite *sphere_suite(void)
 {
     Suite *s = suite_create("sphere");
@@ -384,6 +415,7 @@ Suite *sphere_suite(void)
     tcase_add_test(tc, test_sphere_ellipsoid_normal_is_the_analytic_one);
     tcase_add_test(tc, test_sphere_hit_respects_tmin_and_tmax);
     tcase_add_test(tc, test_sphere_far_from_the_origin_keeps_precision);
+    tcase_add_test(tc, test_sphere_hit_point_lies_on_the_sphere_however_far_the_ray_came);
     tcase_add_test(tc, test_sphere_nan_or_zero_ray_misses_without_crashing);
     tcase_add_test(tc, test_sphere_untransformed_fast_path_gives_the_general_paths_t);
     tcase_add_test(tc, test_sphere_bounds_contain_the_transformed_surface);
