@@ -413,14 +413,17 @@ static inline int tri_maybe(const bvh_tri *t, const fray *f, float tmax, int qua
     float pv[3] = {d[1] * e2[2] - d[2] * e2[1], d[2] * e2[0] - d[0] * e2[2],
                    d[0] * e2[1] - d[1] * e2[0]};
     float det = e1[0] * pv[0] + e1[1] * pv[1] + e1[2] * pv[2];
-    /* |det| = |e1| |pv| cos: a grazing ray (cos below ~BVH_GRAZING, L1 norms) makes the float
-     * barycentrics noise: the double test decides (NaN too) */
-    float n1 = fabsf(e1[0]) + fabsf(e1[1]) + fabsf(e1[2]),
-          np = fabsf(pv[0]) + fabsf(pv[1]) + fabsf(pv[2]);
-    if (!(fabsf(det) > BVH_GRAZING * n1 * np)) return 1;
-    float inv = 1 / det;
     float s[3] = {(f->o[0] - t->p0[0]) + f->o_lo[0], (f->o[1] - t->p0[1]) + f->o_lo[1],
                   (f->o[2] - t->p0[2]) + f->o_lo[2]};
+    /* |det| = |e1| |pv| cos: a grazing ray (cos below ~BVH_GRAZING, L1 norms), or an origin
+     * far for the triangle's size (|s| |pv| / |det| beyond BVH_FILTER_REACH_RAY), makes the
+     * float barycentrics noise: the double test decides (NaN too) */
+    float n1 = fabsf(e1[0]) + fabsf(e1[1]) + fabsf(e1[2]),
+          np = fabsf(pv[0]) + fabsf(pv[1]) + fabsf(pv[2]),
+          ns = fabsf(s[0]) + fabsf(s[1]) + fabsf(s[2]);
+    float graze = BVH_GRAZING * n1, far = ns * (1 / BVH_FILTER_REACH_RAY);
+    if (!(fabsf(det) > np * (graze > far ? graze : far))) return 1;
+    float inv = 1 / det;
     float b1 = (s[0] * pv[0] + s[1] * pv[1] + s[2] * pv[2]) * inv;
     if (!(b1 >= -BVH_FILTER_EPS && b1 <= 1 + BVH_FILTER_EPS)) return 0;
     float qv[3] = {s[1] * e1[2] - s[2] * e1[1], s[2] * e1[0] - s[0] * e1[2],

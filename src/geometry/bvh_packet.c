@@ -141,10 +141,13 @@ static int lanes_triangle(const packet *p, const lanes *g, const bvh_tri *t, int
     f4 det = e1[0] * pv[0] + e1[1] * pv[1] + e1[2] * pv[2];
     float n1 = fabsf(e1[0]) + fabsf(e1[1]) + fabsf(e1[2]);
     f4 np = f4_abs(pv[0]) + f4_abs(pv[1]) + f4_abs(pv[2]);
-    i4 grazing = ~(f4_abs(det) > BVH_GRAZING * n1 * np); /* the double test decides */
-    f4 inv = 1 / det;
     float s[3] = {(p->o[0] - t->p0[0]) + p->o_lo[0], (p->o[1] - t->p0[1]) + p->o_lo[1],
                   (p->o[2] - t->p0[2]) + p->o_lo[2]};
+    float ns = fabsf(s[0]) + fabsf(s[1]) + fabsf(s[2]);
+    /* grazing, or the origin far for the triangle's size: the double test decides */
+    float graze = BVH_GRAZING * n1, far = ns * (1 / BVH_FILTER_REACH_RAY);
+    i4 grazing = ~(f4_abs(det) > np * (graze > far ? graze : far));
+    f4 inv = 1 / det;
     float q[3] = {s[1] * e1[2] - s[2] * e1[1], s[2] * e1[0] - s[0] * e1[2],
                   s[0] * e1[1] - s[1] * e1[0]};
     f4 b1 = (s[0] * pv[0] + s[1] * pv[1] + s[2] * pv[2]) * inv;

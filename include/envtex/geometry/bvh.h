@@ -35,14 +35,18 @@
 /* The far end of each float slab is widened by 2 gamma(3) = 6 u / (1 - 3 u), u = 2^-24. */
 #define BVH_SLAB_SLACK (6 * 0x1p-24f / (1 - 3 * 0x1p-24f))
 /* The float triangle test accepts barycentrics this far outside [0, 1] and t this fraction
- * beyond tmax (enough while the ray's origin is within ~10^3 triangle sizes of it, cos >=
- * BVH_GRAZING, and the triangle within BVH_FILTER_REACH of the world's origin). */
+ * beyond tmax: enough where the three guards below let it decide. */
 #define BVH_FILTER_EPS 0x1p-7f
 /* A triangle (or quad) whose p0 lies farther from the world's origin than this times its
  * smallest altitude gets no float filter (the double test decides): p0 rounded to float moves
  * by up to |p0| 2^-24, a barycentric error of that over the altitude, which BVH_FILTER_EPS
  * covers only this far (docs/robustness.md, "Numerical hard cases"). */
 #define BVH_FILTER_REACH 0x1p10
+/* A ray whose origin is farther from a triangle than this in |s| |pv| / |det| (s = o - p0,
+ * pv = d x e2, L1 norms: about its distance over the triangle's size and the ray's cosine)
+ * gets no float filter: rounding s and pv moves the float barycentrics by about 4 2^-24
+ * times that ratio, which must stay under half of BVH_FILTER_EPS. */
+#define BVH_FILTER_REACH_RAY 0x1p14f
 /* Below this |det| / (|e1| |pv|) (L1 norms; ~ the ray's cosine) the double test decides alone */
 #define BVH_GRAZING 0x1p-5f
 

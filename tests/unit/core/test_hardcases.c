@@ -304,13 +304,15 @@ START_TEST(test_rays_through_a_grid_hit_exactly_one_triangle)
 END_TEST
 
 /* A UV sphere of 48 x 24 quads (2304 triangles, the poles' degenerate ones included) of radius
- * `scale` about (far, far, far), seen from 4 radii away: every ray of a 32 x 32 grid gets from
- * the BVH - one at a time, as shadow rays and in packets - what the double test of every
- * triangle gives (hit or miss, and the closest t).  Catches a float filter that is not
- * conservative far from the origin: p0 rounded to float moves by |p0| 2^-24, at 1e6 about the
- * size of these triangles, and a fixed barycentric margin rejected true hits (at 1e5, of 1024
- * rays, 4 holes and 40 that found a farther triangle; at 1e7 nearly all). */
-static void check_mesh_far_from_origin(double far, double scale)
+ * `scale` about (far, far, far), seen from `dist` radii away along a diagonal: every ray of a
+ * 32 x 32 grid gets from the BVH - one at a time, as shadow rays and in packets - what the
+ * double test of every triangle gives (hit or miss, and the closest t).  Catches a float
+ * filter that is not conservative far from the origin: p0 rounded to float moves by |p0|
+ * 2^-24, at 1e6 about the size of these triangles, and a fixed barycentric margin rejected true
+ * hits (at 1e5, of 1024 rays, 4 holes and 40 that found a farther triangle; at 1e7 nearly
+ * all); or far from its camera: s = o - p0 rounded to float (seen from 1e4 radii, 2 rays found
+ * a farther triangle). */
+static void check_mesh_far_from_origin(double far, double scale, double dist)
 {
     enum { NU = 48, NV = 24, W = 32 };
     static triangle tri[2 * NU * NV];
@@ -330,14 +332,20 @@ static void check_mesh_far_from_origin(double far, double scale)
     bvh b;
     error err = {0};
     ck_assert_int_eq(bvh_build(&b, (bvh_prims){.triangles = tri, .n_triangles = n}, NULL, &err), 0);
-    vec3 o = vec3_make(far, far - 4 * scale, far + 0.5 * scale);
+    /* the camera dist radii away along an awkward diagonal (so that every coordinate of
+     * o - p0 is large), the view's width shrinking with the distance */
+    vec3 w = vec3_normalize(vec3_make(1, 1.1, 0.9)), u, v;
+    vec3_basis(w, &u, &v);
+    vec3 o = vec3_madd(vec3_make(far, far, far), w, -dist * scale);
+    double spread = 4 / dist;
     long holes = 0, extra = 0, wrong_t = 0, shadow = 0, packet = 0, hits = 0;
     for (int y = 0; y < W; y++) {
         ray r[W];
         int ref[W];
         double ref_t[W];
         for (int x = 0; x < W; x++) {
-            vec3 d = vec3_make((x + 0.5) / W * 0.6 - 0.3, 1, 0.175 - (y + 0.5) / W * 0.6);
+            vec3 d = vec3_madd(vec3_madd(w, u, ((x + 0.5) / W * 0.6 - 0.3) * spread), v,
+                               (0.3 - (y + 0.5) / W * 0.6) * spread);
             r[x] = (ray){o, vec3_normalize(d), 0, INFINITY};
             ray rr = r[x];
             ref[x] = 0;
@@ -359,10 +367,12 @@ static void check_mesh_far_from_origin(double far, double scale)
         bvh_intersect_packet(&b, r, W, got, h);
         for (int x = 0; x < W; x++) packet += (got[x] == BVH_SURFACE) != ref[x];
     }
-    ck_assert_msg(hits > W * W / 4, "at %g, scale %g: the mesh is not in view", far, scale);
+    ck_assert_msg(hits > W * W / 4, "at %g, scale %g, %g radii: the mesh is not in view", far,
+                  scale, dist);
     ck_assert_msg(holes == 0 && extra == 0 && wrong_t == 0 && shadow == 0 && packet == 0,
-                  "mesh at %g, scale %g: of %ld hits, %ld holes, %ld extra, %ld with another t; "
-                  "%ld shadow rays and %ld packet rays disagree", far, scale, hits, holes, extra,
+                  "mesh at %g, scale %g, seen from %g radii: of %ld hits, %ld holes, %ld extra, "
+                  "%ld with another t; %ld shadow rays and %ld packet rays disagree", far, scale,
+                  dist, hits, holes, extra,
                   wrong_t, shadow, packet);
     bvh_free(&b);
 }
@@ -372,7 +382,8 @@ START_TEST(test_a_mesh_far_from_the_origin_has_no_holes)
     const double at[][2] = {{0, 1}, {1e3, 1}, {1e5, 1}, {1e6, 1}, {1e7, 1}, {1e6, 1e-4},
                             {0, 1e-4}, {0, 1e4}, {1e5, 1e4}};
     for (size_t i = 0; i < sizeof at / sizeof at[0]; i++)
-        check_mesh_far_from_origin(at[i][0], at[i][1]);
+        check_mesh_far_from_origin(at[i][0], at[i][1], 4);
+    for (double dist = 1e2; dist <= 1e6; dist *= 10) check_mesh_far_from_origin(0, 1, dist);
 }
 END_TEST
 
