@@ -178,17 +178,16 @@ void prefilter_sh9_basis(vec3 d, double y[PREFILTER_SH9])
     /* END STEP(sh9) */
 }
 
-/* L_lm += L Y_lm(w) dOmega, one texel (row sums in acc, in double) */
-static void project_texel(double acc[PREFILTER_SH9][3], const float *L, vec3 w, double omega)
+/* L_lm += L times the integral of Y_lm over one texel, y[k] (row sums in acc, in double) */
+static void project_texel(double acc[PREFILTER_SH9][3], const float *L,
+                          const double y[PREFILTER_SH9])
 {
     /* STEP(sh9): the projection of the map onto the 9 functions: this texel's share of each
-     * coefficient L_lm, per channel (Ramamoorthi & Hanrahan 2001; prefilter.h) */
-    /* STUB: (void)acc; (void)L; (void)w; (void)omega; */
-    double y[PREFILTER_SH9];
-    prefilter_sh9_basis(w, y);
-    double lw[3] = {L[0] * omega, L[1] * omega, L[2] * omega}; /* L dOmega */
+     * coefficient L_lm, per channel, from y, the integral of each function over the texel
+     * (Ramamoorthi & Hanrahan 2001; prefilter.h) */
+    /* STUB: (void)acc; (void)L; (void)y; */
     for (int k = 0; k < PREFILTER_SH9; k++)
-        for (int ch = 0; ch < 3; ch++) acc[k][ch] += lw[ch] * y[k];
+        for (int ch = 0; ch < 3; ch++) acc[k][ch] += L[ch] * y[k];
     /* END STEP(sh9) */
 }
 
@@ -201,32 +200,101 @@ static void add_into(prefilter_sh9 *out, double acc[PREFILTER_SH9][3])
         }
 }
 
+/* A rows kind's row edge e (0 .. h) at the top of row e: cos and sin theta, and theta. */
+static void row_edge(const convert_env *env, int e, double *z, double *s, double *theta)
+{
+    const image *im = convert_face_image(env, 0);
+    uv2 uv = {0, (double)e / im->h};
+    vec3 d = vec3_make(0, 0, 1);
+    if (env->kind == CONVERT_LATLONG)
+        d = latlong_uv_to_dir(uv);
+    else if (env->kind == CONVERT_EQUALAREA)
+        d = equalarea_uv_to_dir(uv);
+    else
+        cylindrical_uv_to_dir(uv, env->max_height, &d); /* v in [0, 1]: never fails */
+    *z = d.z;
+    *s = sqrt(d.x * d.x + d.y * d.y);
+    *theta = env->kind == CONVERT_LATLONG ? M_PI * uv.v : atan2(*s, *z);
+}
+
+/* The integrals over row r (z = cos theta from z1 at its bottom edge to z0 at its top) of the
+ * z parts of the 9 functions, with s = sqrt(1 - z^2) = sin theta:
+ * a[0] = int dz, a[1] = int z dz, a[2] = int s dz, a[3] = int z s dz, a[4] = int s^2 dz,
+ * a[5] = int (3 z^2 - 1) dz. */
+static void row_integrals(const convert_env *env, int r, double a[6])
+{
+    double z0, s0, t0, z1, s1, t1;
+    row_edge(env, r, &z0, &s0, &t0);
+    row_edge(env, r + 1, &z1, &s1, &t1);
+    double dz = z0 - z1, zz = z0 * z0 + z0 * z1 + z1 * z1; /* (z0^3 - z1^3) = dz zz */
+    a[0] = dz;
+    a[1] = dz * (z0 + z1) / 2;
+    a[2] = (z0 * s0 - z1 * s1 + (t1 - t0)) / 2; /* (z s + asin z) / 2, asin z = pi / 2 - theta */
+    a[3] = (s1 * s1 * s1 - s0 * s0 * s0) / 3;  /* -(1 - z^2)^(3/2) / 3 */
+    a[4] = dz * (1 - zz / 3);
+    a[5] = dz * (zz - 1);
+}
+
+/* The integrals over column c of a w-column map (phi from 2 pi c / w to 2 pi (c + 1) / w) of
+ * the phi parts: b[0] = int dphi, b[1] = int cos, b[2] = int sin, b[3] = int cos 2 phi,
+ * b[4] = int sin 2 phi. */
+static void column_integrals(int c, int w, double b[5])
+{
+    double p0 = 2.0 * M_PI * c / w, p1 = 2.0 * M_PI * (c + 1) / w;
+    b[0] = p1 - p0;
+    b[1] = sin(p1) - sin(p0);
+    b[2] = cos(p0) - cos(p1);
+    b[3] = (sin(2 * p1) - sin(2 * p0)) / 2;
+    b[4] = (cos(2 * p0) - cos(2 * p1)) / 2;
+}
+
+/* The integral of each of the 9 functions over a texel of a rows kind, exactly, for the map as
+ * the light sees it (constant over the texel's rectangle in (cos theta, phi)): from its row's
+ * and its column's parts, x = s cos phi, y = s sin phi. */
+static void texel_integrals(const double a[6], const double b[5], double y[PREFILTER_SH9])
+{
+    y[0] = SH_K0 * a[0] * b[0];       /* Y00 */
+    y[1] = SH_K1 * a[2] * b[2];       /* Y1-1: y */
+    y[2] = SH_K1 * a[1] * b[0];       /* Y10: z */
+    y[3] = SH_K1 * a[2] * b[1];       /* Y11: x */
+    y[4] = SH_K2 * a[4] * b[4] / 2;   /* Y2-2: x y = s^2 sin 2 phi / 2 */
+    y[5] = SH_K2 * a[3] * b[2];       /* Y2-1: y z */
+    y[6] = SH_K20 * a[5] * b[0];      /* Y20: 3 z^2 - 1 */
+    y[7] = SH_K2 * a[3] * b[1];       /* Y21: x z */
+    y[8] = SH_K22 * a[4] * b[3];      /* Y22: x^2 - y^2 = s^2 cos 2 phi */
+}
+
 int prefilter_sh9_project(const convert_env *env, prefilter_sh9 *out, error *err)
 {
     memset(out, 0, sizeof *out);
-    double acc[PREFILTER_SH9][3] = {{0}};
-    if (is_rows_kind(env->kind)) { /* one pass, cos and sin of theta and phi tabulated */
-        rows rw;
-        if (rows_build(env, &rw, err)) return -1;
-        for (int r = 0; r < rw.h; r++) {
-            for (int c = 0; c < rw.w; c++) {
-                double st = rw.sin_t[r];
-                vec3 w = vec3_make(st * rw.cos_p[c], st * rw.sin_p[c], rw.cos_t[r]);
-                project_texel(acc, image_px(rw.img, c, r), w, rw.omega[r]);
+    double acc[PREFILTER_SH9][3] = {{0}}, y[PREFILTER_SH9];
+    if (is_rows_kind(env->kind)) { /* exact: per row and per column integrals */
+        const image *im = convert_face_image(env, 0);
+        double (*b)[5] = malloc((size_t)im->w * sizeof *b);
+        if (!b) return error_set(err, NULL, 0, "out of memory for a %d-wide map's columns", im->w);
+        for (int c = 0; c < im->w; c++) column_integrals(c, im->w, b[c]);
+        for (int r = 0; r < im->h; r++) {
+            double a[6];
+            row_integrals(env, r, a);
+            for (int c = 0; c < im->w; c++) {
+                texel_integrals(a, b[c], y);
+                project_texel(acc, image_px(im, c, r), y);
             }
             add_into(out, acc); /* a row at a time: the long sum in double, in row sums */
         }
-        rows_free(&rw);
+        free(b);
         return 0;
     }
-    for (int f = 0; f < convert_faces(env); f++) {
+    for (int f = 0; f < convert_faces(env); f++) { /* the others: at each texel's centre */
         const image *im = convert_face_image(env, f);
         for (int r = 0; r < im->h; r++) {
             for (int c = 0; c < im->w; c++) {
                 vec3 w;
                 double om = convert_texel_solid_angle(env, f, c, r);
                 if (om == 0 || texel_centre(env, f, c, r, &w)) continue; /* outside the disc */
-                project_texel(acc, image_px(im, c, r), vec3_normalize(w), om);
+                prefilter_sh9_basis(vec3_normalize(w), y);
+                for (int k = 0; k < PREFILTER_SH9; k++) y[k] *= om; /* Y_lm(w) dOmega */
+                project_texel(acc, image_px(im, c, r), y);
             }
             add_into(out, acc);
         }

@@ -92,7 +92,8 @@ int integrator_stratum(int j, int m, double *xi1, double *xi2);
 int integrator_light_sample(integrator *it, const surface *s, vec3 wo, int k, double xi1,
                             double xi2, double xi3, int stratified, light_sample *l, rgb *f_li_cos);
 
-/* power heuristic with beta = 2: w = (nf pf)^2 / ((nf pf)^2 + (ng pg)^2) */
+/* power heuristic with beta = 2: w = (nf pf)^2 / ((nf pf)^2 + (ng pg)^2), for pdfs of any
+ * size (their squares may underflow or overflow: w stays in [0, 1]) */
 static inline double integrator_power_heuristic(double nf, double pf, double ng, double pg)
 {
     /* STEP(mis): Veach's power heuristic (beta = 2; Veach 1997) weighting strategy f's sample
@@ -103,7 +104,8 @@ static inline double integrator_power_heuristic(double nf, double pf, double ng,
     double f = nf * pf, g = ng * pg;
     if (!(f > 0)) return 0;
     if (isinf(f)) return 1;
-    return f * f / (f * f + g * g);
+    double r = g / f; /* by the ratio: f^2 and g^2 underflow below 1e-154 (0 / 0) */
+    return 1 / (1 + r * r);
     /* END STEP(mis) */
 }
 

@@ -48,6 +48,28 @@ START_TEST(test_mis_zero_nan_and_infinite_pdfs_are_guarded)
 }
 END_TEST
 
+/* pdfs whose squares underflow or overflow the doubles (a sun's pdf of 1e200, a BRDF lobe's
+ * 1e-200 far from its peak) still give weights in [0, 1] that sum to one, and the power
+ * heuristic's value.  Catches (n p)^2 / ((n p)^2 + (n q)^2), which is 0 / 0 = NaN when both
+ * squares underflow and Inf / Inf when both overflow: a NaN pixel. */
+START_TEST(test_mis_weights_of_pdfs_whose_squares_underflow_or_overflow)
+{
+    ck_assert_near(integrator_power_heuristic(1, 1e-200, 1, 1e-200), 0.5, 1e-15);
+    ck_assert_near(integrator_power_heuristic(1, 1e200, 1, 1e200), 0.5, 1e-15);
+    ck_assert_near(integrator_power_heuristic(1, 2e-170, 1, 1e-170), 0.8, 1e-15);
+    ck_assert_near(integrator_power_heuristic(1, 1e-300, 1, 1e-290), 1e-20, 1e-30);
+    ck_assert(integrator_power_heuristic(1, 1e-300, 1, 1e300) == 0);
+    const double p[] = {1e-320, 1e-300, 1e-200, 1e-160, 1, 1e160, 1e200, 1e300};
+    for (int i = 0; i < 8; i++)
+        for (int j = 0; j < 8; j++) {
+            double wl = integrator_power_heuristic(1, p[i], 1, p[j]);
+            double wb = integrator_power_heuristic(1, p[j], 1, p[i]);
+            ck_require_msg(wl >= 0 && wl <= 1 && fabs(wl + wb - 1) < 1e-12,
+                           "pl %g pb %g: %g + %g", p[i], p[j], wl, wb);
+        }
+}
+END_TEST
+
 static Suite *mis_suite(void)
 {
     Suite *s = suite_create("mis");
@@ -55,6 +77,7 @@ static Suite *mis_suite(void)
     tcase_add_test(tc, test_mis_power_heuristic_squares_the_weighted_pdfs);
     tcase_add_test(tc, test_mis_weights_of_the_two_strategies_sum_to_one);
     tcase_add_test(tc, test_mis_zero_nan_and_infinite_pdfs_are_guarded);
+    tcase_add_test(tc, test_mis_weights_of_pdfs_whose_squares_underflow_or_overflow);
     suite_add_tcase(s, tc);
     return s;
 }
