@@ -10,7 +10,7 @@ double fresnel_dielectric(double cos_i, double eta)
      * Fresnel reflectance (slide 5 (Using Environment for Reflection Map): "mirror reflections
      * (refraction)"; fresnel.h) */
     /* STUB: (void)eta; return 0.0; */
-    double sin2_t = (1 - cos_i * cos_i) / (eta * eta); /* Snell: sin_t = sin_i / eta */
+    double sin2_t = (1 - cos_i) * (1 + cos_i) / (eta * eta); /* Snell: sin_t = sin_i / eta */
     if (sin2_t >= 1) return 1.0;                       /* total internal reflection */
     double cos_t = sqrt(1 - sin2_t);
     double rs = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
@@ -25,7 +25,7 @@ int fresnel_refract(vec3 d, vec3 n, double eta, vec3 *t)
      * (slide 5 (Using Environment for Reflection Map); fresnel.h) */
     /* STUB: (void)d; (void)n; (void)eta; (void)t; return 0; */
     double cos_i = -vec3_dot(d, n);
-    double k = 1 - (1 - cos_i * cos_i) / (eta * eta); /* cos_t^2 */
+    double k = 1 - (1 - cos_i) * (1 + cos_i) / (eta * eta); /* cos_t^2 */
     if (k < 0) return 0;
     /* t = d / eta + (cos_i / eta - cos_t) n */
     *t = vec3_normalize(vec3_add(vec3_scale(d, 1 / eta), vec3_scale(n, cos_i / eta - sqrt(k))));

@@ -24,6 +24,7 @@
 #include "envtex/io/tonemap.h"
 #include "envtex/geometry/bvh_packet.h"
 #include "envtex/geometry/triangle.h"
+#include "envtex/reflection/fresnel.h"
 #include "unit.h"
 
 #define PI 3.14159265358979323846
@@ -718,6 +719,130 @@ START_TEST(test_glass_ball_seen_from_1e8_away_has_no_acne)
 }
 END_TEST
 
+/* ---- glass ------------------------------------------------------------------------------- */
+
+/* Fresnel in long double, from Snell's law: the independent answer (eta = n_t / n_i). */
+static long double fresnel_reference(long double ci, long double eta)
+{
+    long double st2 = (1 - ci * ci) / (eta * eta);
+    if (st2 >= 1) return 1;
+    long double ct = sqrtl(1 - st2);
+    long double rs = (ci - eta * ct) / (ci + eta * ct), rp = (eta * ci - ct) / (eta * ci + ct);
+    return (rs * rs + rp * rp) / 2;
+}
+
+/* Glass at ior 0.01, 1 / 1.5 (leaving glass), 1, 1.5 and 100, at 2001 angles from normal to
+ * grazing and at the critical angle and one ulp either side: F within 1e-12 of the long double
+ * Snell-Fresnel, refraction unit and obeying Snell's law where it exists, total internal
+ * reflection (F = 1, no refracted ray) past the critical angle, F = 0 and the ray unbent at
+ * ior 1, F = 1 at grazing.  Catches a cos_t taken as sqrt of a slightly negative number at the
+ * critical angle (NaN), eta inverted, and F < 1 under total internal reflection. */
+START_TEST(test_glass_from_ior_0_01_to_100_and_at_the_critical_angle)
+{
+    const double etas[] = {0.01, 1 / 1.5, 1, 1.5, 100};
+    const vec3 n = vec3_make(0, 0, 1);
+    for (int e = 0; e < 5; e++) {
+        double eta = etas[e];
+        double cosines[2004];
+        int m = 0;
+        for (int i = 0; i <= 2000; i++) cosines[m++] = i / 2000.0;
+        if (eta < 1) { /* the critical angle: sin_i = eta, and one ulp either side */
+            double cc = sqrt(1 - eta * eta);
+            cosines[m++] = cc, cosines[m++] = nextafter(cc, 0), cosines[m++] = nextafter(cc, 1);
+        }
+        for (int i = 0; i < m; i++) {
+            double ci = cosines[i], si = sqrt(fmax(0, 1 - ci * ci));
+            double F = fresnel_dielectric(ci, eta);
+            long double want = fresnel_reference(ci, eta);
+            /* near the critical angle F falls as 2 cos_t (1 / eta + eta), and cos_t^2, a few
+             * ulps of 1 apart from its rounding, moves cos_t by ~1e-16 / cos_t: F's
+             * condition (2e-8 at eta = 0.01 one ulp inside the critical angle) */
+            long double ct2 = 1 - (1 - (long double)ci * ci) / ((long double)eta * eta);
+            double tol = 1e-12 + (ct2 > 0 ? 1e-15 * (1 / eta + eta) / sqrtl(ct2 + 1e-32L) : 0);
+            ck_assert_msg(isfinite(F) && fabsl(F - want) <= tol,
+                          "eta %g, cos_i %.17g: F %.17g, want %.17Lg", eta, ci, F, want);
+            vec3 d = vec3_make(si, 0, -ci), t;
+            int refracts = fresnel_refract(d, n, eta, &t);
+            if (si > eta * (1 + 1e-12)) { /* past the critical angle */
+                ck_assert_msg(!refracts && F == 1, "eta %g, cos_i %.17g: no TIR", eta, ci);
+                continue;
+            }
+            if (!refracts) { /* only at the critical angle itself, within rounding */
+                ck_assert_msg(si > eta * (1 - 1e-12) && F == 1, "eta %g, cos_i %.17g", eta, ci);
+                continue;
+            }
+            ck_assert_msg(vec3_is_finite(t) && fabs(vec3_length(t) - 1) < 1e-14 && t.z <= 0,
+                          "eta %g, cos_i %.17g: refracted (%g %g %g)", eta, ci, t.x, t.y, t.z);
+            ck_assert_msg(fabs(t.x * eta - si) < 1e-12, "eta %g, cos_i %.17g: Snell", eta, ci);
+            /* ior 1: nothing reflected, nothing bent, but for cos_t's rounding (~1e-16 /
+             * cos_i near grazing; at grazing itself F = 1 at any ior) */
+            double bend = 1e-15 / fmax(ci, 1e-300);
+            if (eta == 1 && ci > 0)
+                ck_assert_msg(F <= bend * bend / (ci * ci) && vec3_length(vec3_sub(t, d)) <= bend,
+                              "ior 1, cos_i %.17g: F %g, bent by %g", ci, F,
+                              vec3_length(vec3_sub(t, d)));
+        }
+        ck_assert(fresnel_dielectric(0, eta) == 1 || eta == 1); /* grazing */
+    }
+}
+END_TEST
+
+/* ---- furnaces ------------------------------------------------------------------------------ */
+
+/* A diffuse sphere (albedo 0.5) under a constant sky of radiance V reflects 0.5 V everywhere:
+ * `integrator direct`, 32 x 32 pixels all on the sphere, 16 samples each, under every
+ * envsampling, for V from 1e-37 (near float's smallest normal) to 1e37 (near its largest).
+ * Every pixel finite, the mean within 5% of 0.5 V (4 sigma for the unbiased samplers; measured
+ * 0.997 uniform, 0.991 cdf and cdf-sintheta, 0.989 SIS at every V; median cut 0.976 .. 1.008,
+ * its strata moving with V).  Catches a product of radiances rounded to
+ * float: the map's power |L| (the pdf's divisor) taken through (float)(L^2 dOmega) / L left
+ * every light sample weighing 0 from V = 1e20 on; a pdf of 0 or Inf; a NaN. */
+START_TEST(test_furnaces_from_1e_37_to_1e37_under_every_envsampling)
+{
+    const char *modes[] = {"uniform", "cdf", "cdf-sintheta", "mediancut 64", "sis 64"};
+    const double scales[] = {1e-37, 1e-20, 1, 1e20, 1e37};
+    for (int m = 0; m < 5; m++)
+        for (int k = 0; k < 5; k++) {
+            char text[512];
+            snprintf(text, sizeof text,
+                     "size 32 32\nintegrator direct\nspp 16\nenvsampling %s\n"
+                     "camera 0 -3 0  0 0 0  0 0 1  25\nambient 0 0 0\ndiffuse 0.5 0.5 0.5\n"
+                     "sphere 0 0 0 1\n",
+                     modes[m]);
+            scene sc;
+            load(&sc, text);
+            genenv_params p = genenv_defaults();
+            p.width = 32;
+            p.value = scales[k];
+            error err = {0};
+            image_free(&sc.envmap.img);
+            ck_assert_int_eq(genenv_make(GENENV_CONSTANT, &p, &sc.envmap.img, &err), 0);
+            sc.envmap.present = 1;
+            sc.envmap.scale = 1;
+            sc.envmap.xf = sc.envmap.inv = mat4_identity();
+            render_opts o = render_defaults();
+            o.spp = 16;
+            image im = {0};
+            render_stats st;
+            if (render_scene(&sc, &o, &im, &st, &err)) ck_abort_msg("render: %s", err.msg);
+            double sum = 0;
+            long bad = 0;
+            for (int y = 0; y < im.h; y++)
+                for (int x = 0; x < im.w; x++) {
+                    rgb c = image_get(&im, x, y);
+                    bad += !rgb_is_finite(c);
+                    sum += c.g;
+                }
+            double mean = sum / (im.w * im.h) / (0.5 * scales[k]);
+            ck_assert_msg(bad == 0 && fabs(mean - 1) < 0.05,
+                          "envsampling %s, V = %g: mean %g of 0.5 V, %ld pixels not finite",
+                          modes[m], scales[k], mean, bad);
+            image_free(&im);
+            scene_free(&sc);
+        }
+}
+END_TEST
+
 /* ---- camera inside a sphere ---------------------------------------------------------------- */
 
 /* Every primary ray starts inside the sphere and hits its inside: every pixel is the ambient
@@ -851,6 +976,8 @@ Suite *hardcases_suite(void)
     tcase_add_test(geo, test_glass_ball_seen_from_1e8_away_has_no_acne);
     tcase_add_test(geo, test_a_light_inside_a_closed_mesh_far_away_does_not_leak);
     tcase_add_test(geo, test_camera_inside_a_sphere_sees_its_inside_everywhere);
+    tcase_add_test(geo, test_furnaces_from_1e_37_to_1e37_under_every_envsampling);
+    tcase_add_test(geo, test_glass_from_ior_0_01_to_100_and_at_the_critical_angle);
     suite_add_tcase(s, geo);
     TCase *tex = tcase_create("textures and noise");
     tcase_add_test(tex, test_tiny_textures_read_far_outside_stay_inside_their_texels);
