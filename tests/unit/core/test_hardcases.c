@@ -14,6 +14,8 @@
 #include <string.h>
 
 #include "envtex/envmaps/genenv.h"
+#include "envtex/envmaps/mirrorball.h"
+#include "envtex/envmaps/cubemap.h"
 #include "envtex/envmaps/latlong.h"
 #include "envtex/textures/mipmap.h"
 #include "envtex/textures/perlin.h"
@@ -719,6 +721,92 @@ START_TEST(test_glass_ball_seen_from_1e8_away_has_no_acne)
 }
 END_TEST
 
+/* ---- far lattices, corners and rims ------------------------------------------------------ */
+
+/* Noise is periodic (256 on each axis): at x = 1e15 + f it is the noise at (1e15 mod 256) + f,
+ * f on the 1/8 grid (the only fractions a double holds there), also near -1e15 and 2^49: the same
+ * value to 1e-12, 0 on the lattice.  Catches a lattice index taken
+ * through int (overflows past 2^31) or a fraction taken as x - (long)x in float. */
+START_TEST(test_noise_at_1e15_is_the_noise_of_its_period)
+{
+    const double bases[] = {1e15 + 37, -1e15 - 101, 0x1p49 + 77}; /* (not multiples of 256) */
+    for (int b = 0; b < 3; b++) {
+        double x = bases[b], m = x - 256 * floor(x / 256); /* exact: x is a whole number */
+        for (int k = 0; k < 8; k++) {
+            double f = k / 8.0, got = perlin_noise(x + f, 0.375 - x, x + 0.625);
+            double want = perlin_noise(m + f, 0.375 - x + 256 * ceil(x / 256), m + 0.625);
+            ck_assert_msg(fabs(got - want) <= 1e-12 && (k || perlin_noise(x, -x, x) == 0),
+                          "x = %.17g + %g: %.17g, its period's %.17g", x, f, got, want);
+        }
+    }
+}
+END_TEST
+
+/* Directions exactly at the 8 cube corners and the 12 edge midpoints, and an ulp of a component
+ * either side: a face whose axis holds the largest |component| (ties: x before y before z,
+ * cubemap.h), (s, t) in [0, 1], and back through the face the same direction to 1e-15.
+ * Catches a strict comparison that picks no face on a tie, and s or t a rounding outside the
+ * face that reads past its edge. */
+START_TEST(test_cube_corners_and_edges_pick_a_face_and_come_back)
+{
+    long n = 0;
+    for (int i = 0; i < 27; i++) {
+        vec3 d0 = vec3_make(i % 3 - 1, i / 3 % 3 - 1, i / 9 - 1);
+        int zeros = (d0.x == 0) + (d0.y == 0) + (d0.z == 0);
+        if (zeros > 1) continue; /* corners (0 zeros) and edges (1) */
+        for (int a = 0; a < 3; a++)
+            for (int sgn = -1; sgn <= 1; sgn++) {
+                vec3 d = d0;
+                double *c = a == 0 ? &d.x : a == 1 ? &d.y : &d.z;
+                if (sgn && *c != 0) *c = nextafter(*c, sgn * INFINITY);
+                int face;
+                uv2 st;
+                ck_assert_int_eq(cubemap_dir_to_face(d, &face, &st), 0);
+                double comp[3] = {d.x, d.y, d.z}, big = fmax(fabs(d.x), fmax(fabs(d.y), fabs(d.z)));
+                int axis = face / 2, first = fabs(d.x) == big ? 0 : fabs(d.y) == big ? 1 : 2;
+                ck_assert_msg(axis == first && (comp[axis] > 0) == (face % 2 == 0),
+                              "(%g %g %g): face %d", d.x, d.y, d.z, face);
+                ck_assert(st.u >= 0 && st.u <= 1 && st.v >= 0 && st.v <= 1);
+                vec3 back = cubemap_face_to_dir(face, st);
+                ck_assert_msg(vec3_length(vec3_sub(back, vec3_normalize(d))) < 1e-15,
+                              "(%g %g %g): back %.17g %.17g %.17g", d.x, d.y, d.z, back.x, back.y,
+                              back.z);
+                n++;
+            }
+    }
+    ck_assert_int_eq(n, 20 * 9);
+}
+END_TEST
+
+/* A direction alpha from the probe's centre direction (+x) sits at radius sin(alpha / 2) on the
+ * mirror ball (its normal halfway): for alpha up to pi - 1e-300 (the rim, all of it -x) the map
+ * and its inverse hold that to 1e-15, -x itself lands on the rim, and no uv leaves the disc.
+ * Catches rho from cos alpha (sqrt((1 - cos alpha) / 2) loses everything near the centre), a
+ * normal that divides by |r + V| = 0 at -x, and a rim point pushed past rho = 1. */
+START_TEST(test_mirror_ball_radius_is_sin_half_the_angle_up_to_the_rim)
+{
+    for (int e = 0; e <= 300; e++) {
+        double gap = pow(10, -e), alpha = e == 0 ? 1.0 : M_PI - gap; /* (e = 0: one radian) */
+        for (int k = 0; k < 4; k++) {
+            double psi = k * 1.1;
+            vec3 d = vec3_make(cos(alpha), sin(alpha) * cos(psi), sin(alpha) * sin(psi));
+            uv2 uv;
+            ck_assert_int_eq(mirrorball_dir_to_uv(d, &uv), 0);
+            double a = 2 * uv.u - 1, b = 1 - 2 * uv.v, rho = sqrt(a * a + b * b);
+            double want = sin(alpha / 2);
+            ck_assert_msg(fabs(rho - want) <= 1e-15 && rho <= 1,
+                          "alpha = pi - 1e-%d: rho %.17g, want %.17g", e, rho, want);
+            vec3 back;
+            ck_assert_int_eq(mirrorball_uv_to_dir(uv, &back), 0);
+            ck_assert(vec3_is_finite(back) && fabs(vec3_length(back) - 1) < 1e-15);
+        }
+    }
+    uv2 uv;
+    ck_assert_int_eq(mirrorball_dir_to_uv(vec3_make(-1, 0, 0), &uv), 0);
+    ck_assert_msg(fabs(hypot(2 * uv.u - 1, 1 - 2 * uv.v) - 1) < 1e-15, "-x at %g %g", uv.u, uv.v);
+}
+END_TEST
+
 /* ---- glass ------------------------------------------------------------------------------- */
 
 /* Fresnel in long double, from Snell's law: the independent answer (eta = n_t / n_i). */
@@ -978,6 +1066,9 @@ Suite *hardcases_suite(void)
     tcase_add_test(geo, test_camera_inside_a_sphere_sees_its_inside_everywhere);
     tcase_add_test(geo, test_furnaces_from_1e_37_to_1e37_under_every_envsampling);
     tcase_add_test(geo, test_glass_from_ior_0_01_to_100_and_at_the_critical_angle);
+    tcase_add_test(geo, test_noise_at_1e15_is_the_noise_of_its_period);
+    tcase_add_test(geo, test_cube_corners_and_edges_pick_a_face_and_come_back);
+    tcase_add_test(geo, test_mirror_ball_radius_is_sin_half_the_angle_up_to_the_rim);
     suite_add_tcase(s, geo);
     TCase *tex = tcase_create("textures and noise");
     tcase_add_test(tex, test_tiny_textures_read_far_outside_stay_inside_their_texels);
