@@ -807,6 +807,32 @@ START_TEST(test_mirror_ball_radius_is_sin_half_the_angle_up_to_the_rim)
 }
 END_TEST
 
+ /* A 5 x 3 texture of distinct texels read at (s, t) + 1e9 (1e9 + f is exact for f on the 1/64
+ * grid, and 1e9 is whole periods) with repeat, and at 2e9 + 2 - (s, t) with mirror (the copy
+ * in an odd period is mirrored): nearest and bilinear give exactly the lookup at (s, t).  Catches a
+ * texel index through a 32-bit int of s w (2e9 x 5 overflows it) and a wrap by fmod in float. */
+START_TEST(test_texture_lookups_at_1e9_are_the_lookups_of_their_period)
+{
+    image im = {0};
+    error err = {0};
+    ck_assert_int_eq(image_alloc(&im, 5, 3, &err), 0);
+    for (int j = 0; j < 3; j++)
+        for (int i = 0; i < 5; i++) image_set(&im, i, j, rgb_make(i, j, i * 3 + j));
+    for (int k = 0; k < 64; k++) {
+        uv2 st = {k / 64.0, (63 - k) / 64.0};
+        uv2 far = {st.u + 1e9, st.v + 1e9}, flip = {2e9 + 2 - st.u, 2e9 + 2 - st.v};
+        const wrap_mode rep = WRAP_REPEAT, mir = WRAP_MIRROR;
+        rgb n0 = texlookup_nearest(&im, st, rep), n1 = texlookup_nearest(&im, far, rep);
+        rgb b0 = texlookup_bilinear(&im, st, rep), b1 = texlookup_bilinear(&im, far, rep);
+        rgb m0 = texlookup_bilinear(&im, st, mir), m1 = texlookup_bilinear(&im, flip, mir);
+        ck_assert_msg(n0.b == n1.b && b0.r == b1.r && b0.g == b1.g && m0.r == m1.r && m0.g == m1.g,
+                      "(%g, %g): nearest %g %g, bilinear %g %g, mirrored %g %g", st.u, st.v, n0.b,
+                      n1.b, b0.r, b1.r, m0.r, m1.r);
+    }
+    image_free(&im);
+}
+END_TEST
+
 /* ---- glass ------------------------------------------------------------------------------- */
 
 /* Fresnel in long double, from Snell's law: the independent answer (eta = n_t / n_i). */
@@ -1069,6 +1095,7 @@ Suite *hardcases_suite(void)
     tcase_add_test(geo, test_noise_at_1e15_is_the_noise_of_its_period);
     tcase_add_test(geo, test_cube_corners_and_edges_pick_a_face_and_come_back);
     tcase_add_test(geo, test_mirror_ball_radius_is_sin_half_the_angle_up_to_the_rim);
+    tcase_add_test(geo, test_texture_lookups_at_1e9_are_the_lookups_of_their_period);
     suite_add_tcase(s, geo);
     TCase *tex = tcase_create("textures and noise");
     tcase_add_test(tex, test_tiny_textures_read_far_outside_stay_inside_their_texels);
