@@ -833,6 +833,55 @@ START_TEST(test_texture_lookups_at_1e9_are_the_lookups_of_their_period)
 }
 END_TEST
 
+/* A sun one texel wide (1000 over black) of a 256 x 128 map - in the pole row, in the seam's
+ * column, in the two rows either side of the horizon - lights a diffuse ground (albedo 0.5,
+ * normal +z) through `integrator direct` and the cdf light, binary search and alias: the ground
+ * reflects 0.5 / pi times the texel's exact integral of max(0, z): 1000 dphi (z0+^2 - z1+^2) / 2
+ * over its rows' z0 > z1.  Within 1% (the samples' spread over the texel).  Catches a texel
+ * sampled a row off (2.3% at row 30), a pdf from the wrong row or column at the pole or the
+ * seam, and a horizon row counted whole (the half below the ground lights nothing). */
+START_TEST(test_a_one_texel_sun_at_the_pole_seam_and_horizon_lights_the_ground)
+{
+    const int w = 256, h = 128, at[][2] = {{40, 0}, {w - 1, 30}, {7, h / 2 - 1}, {100, h / 2}};
+    const char *samplers[] = {"binary", "alias"};
+    for (int i = 0; i < 4; i++)
+        for (int k = 0; k < 2; k++) {
+            char text[512];
+            snprintf(text, sizeof text,
+                     "size 16 16\nintegrator direct\nenvsampling cdf\nenvsampler %s\n"
+                     "camera 0 0 5  0 0 0  0 1 0  20\nambient 0 0 0\ndiffuse 0.5 0.5 0.5\n"
+                     "vertex -9 -9 0\nvertex 9 -9 0\nvertex 9 9 0\nvertex -9 9 0\n"
+                     "tri 0 1 2\ntri 0 2 3\n",
+                     samplers[k]);
+            scene sc;
+            load(&sc, text);
+            error err = {0};
+            image_free(&sc.envmap.img);
+            ck_assert_int_eq(image_alloc(&sc.envmap.img, w, h, &err), 0);
+            image_set(&sc.envmap.img, at[i][0], at[i][1], rgb_gray(1000));
+            sc.envmap.present = 1;
+            sc.envmap.scale = 1;
+            sc.envmap.xf = sc.envmap.inv = mat4_identity();
+            render_opts o = render_defaults();
+            o.spp = 16;
+            image im = {0};
+            render_stats st;
+            if (render_scene(&sc, &o, &im, &st, &err)) ck_abort_msg("render: %s", err.msg);
+            double z0 = fmax(0, cos(PI * at[i][1] / h)), z1 = fmax(0, cos(PI * (at[i][1] + 1) / h));
+            double want = 0.5 / PI * 1000 * (2 * PI / w) * (z0 * z0 - z1 * z1) / 2, sum = 0;
+            for (int y = 0; y < im.h; y++)
+                for (int x = 0; x < im.w; x++) sum += image_get(&im, x, y).g;
+            double mean = sum / (im.w * im.h);
+            /* (the row just below the horizon: cos(pi / 2) rounds to 6e-17, want to 7e-33) */
+            ck_assert_msg(want < 1e-20 ? mean < 1e-20 : fabs(mean / want - 1) < 0.01,
+                          "sun at texel (%d, %d), %s: the ground %.9g, want %.9g", at[i][0],
+                          at[i][1], samplers[k], mean, want);
+            image_free(&im);
+            scene_free(&sc);
+        }
+}
+END_TEST
+
 /* ---- glass ------------------------------------------------------------------------------- */
 
 /* Fresnel in long double, from Snell's law: the independent answer (eta = n_t / n_i). */
@@ -1096,6 +1145,7 @@ Suite *hardcases_suite(void)
     tcase_add_test(geo, test_cube_corners_and_edges_pick_a_face_and_come_back);
     tcase_add_test(geo, test_mirror_ball_radius_is_sin_half_the_angle_up_to_the_rim);
     tcase_add_test(geo, test_texture_lookups_at_1e9_are_the_lookups_of_their_period);
+    tcase_add_test(geo, test_a_one_texel_sun_at_the_pole_seam_and_horizon_lights_the_ground);
     suite_add_tcase(s, geo);
     TCase *tex = tcase_create("textures and noise");
     tcase_add_test(tex, test_tiny_textures_read_far_outside_stay_inside_their_texels);
