@@ -414,6 +414,45 @@ START_TEST(test_rendered_quad_diagonal_has_no_crack)
 }
 END_TEST
 
+/* Grazing footprints: needles 1e-9 wide and 0.1 long at angles 0 .. 90 degrees, on a 64 x 64
+ * ramp (texel i holds (i + 1/2) / 64, so its bilinear reconstruction is s itself): EWA and
+ * trilinear give s (a symmetric normalized filter keeps a linear function) to 2e-3, an eighth
+ * of a texel (EWA's Gaussian, cut to its support on the texel grid, is centred within a
+ * fraction of a texel: 5e-4 measured); needles
+ * 1e6 long (a plane seen edge-on) give a value within the ramp, never NaN.  Catches EWA's
+ * ellipse without its one texel^2 (a 1e-9 needle then meets the texel grid lopsided: 3.6e-3
+ * off), a level from log2 of 0, and an ellipse coefficient that overflows to NaN. */
+START_TEST(test_grazing_footprints_keep_a_ramp_and_stay_finite)
+{
+    image im = {0};
+    error err = {0};
+    ck_assert_int_eq(image_alloc(&im, 64, 64, &err), 0);
+    for (int y = 0; y < 64; y++)
+        for (int x = 0; x < 64; x++) image_set(&im, x, y, rgb_gray((x + 0.5) / 64));
+    mipmap m;
+    ck_assert_int_eq(mipmap_build(&m, &im, WRAP_CLAMP, &err), 0);
+    for (int a = 0; a <= 6; a++) {
+        double ang = a * PI / 12;
+        for (int i = 0; i < 3; i++) {
+            uv2 st = {0.3 + 0.2 * i, 0.35 + 0.1 * i};
+            uv2 dx = {1e-9 * cos(ang), -1e-9 * sin(ang)}, dy = {0.1 * sin(ang), 0.1 * cos(ang)};
+            double e = mipmap_lookup_ewa(&m, st, dx, dy).r;
+            double t = mipmap_lookup_trilinear(&m, st, 0.1).r;
+            ck_assert_msg(fabs(e - st.u) < 2e-3 && fabs(t - st.u) < 2e-3,
+                          "angle %d deg at s %g: EWA %.9g, trilinear %.9g", a * 15, st.u, e, t);
+            uv2 far = {1e6 * sin(ang), 1e6 * cos(ang)};
+            double g = mipmap_lookup_ewa(&m, st, dx, far).r;
+            double h = mipmap_lookup_trilinear(&m, st, 1e6).r;
+            ck_assert_msg(isfinite(g) && g >= 0.5 / 64 && g <= 63.5 / 64 && isfinite(h) &&
+                              h >= 0.5 / 64 && h <= 63.5 / 64,
+                          "angle %d deg, 1e6 long: EWA %g, trilinear %g", a * 15, g, h);
+        }
+    }
+    mipmap_free(&m);
+    image_free(&im);
+}
+END_TEST
+
 /* Grazing rays (direction nearly in the plane) either miss or hit at a finite t on the plane;
  * rays exactly in the plane never hit; degenerate triangles (collinear corners, a repeated
  * corner, a needle) are never hit (catches NaN t or barycentrics from a zero determinant). */
@@ -1150,6 +1189,7 @@ Suite *hardcases_suite(void)
     TCase *tex = tcase_create("textures and noise");
     tcase_add_test(tex, test_tiny_textures_read_far_outside_stay_inside_their_texels);
     tcase_add_test(tex, test_zero_and_whole_texture_footprints_give_bilinear_and_mean);
+    tcase_add_test(tex, test_grazing_footprints_keep_a_ramp_and_stay_finite);
     tcase_add_test(tex, test_noise_far_away_and_negative_is_bounded_and_zero_on_the_lattice);
     suite_add_tcase(s, tex);
     TCase *rep = tcase_create("reporting");
