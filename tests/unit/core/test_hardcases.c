@@ -42,25 +42,57 @@ static void load(scene *sc, const char *text)
         ck_abort_msg("scene: line %d: %s", err.line, err.msg);
 }
 
+/* The scene's envmap becomes *map (taken over: *map is left empty), in the world's frame, at
+ * scale 1. */
+static void set_map(scene *sc, image *map)
+{
+    image_free(&sc->envmap.img);
+    sc->envmap.img = *map;
+    *map = (image){0};
+    sc->envmap.present = 1;
+    sc->envmap.scale = 1;
+    sc->envmap.xf = sc->envmap.inv = mat4_identity();
+}
+
 /* The scene's envmap becomes a genenv sky (envmap frame = world frame, scale 1). */
 static void set_sky(scene *sc)
 {
     genenv_params p = genenv_defaults();
     p.width = 64;
     error err = {0};
-    image_free(&sc->envmap.img);
-    ck_assert_int_eq(genenv_make(GENENV_SKY, &p, &sc->envmap.img, &err), 0);
-    sc->envmap.present = 1;
-    sc->envmap.scale = 1;
-    sc->envmap.xf = sc->envmap.inv = mat4_identity();
+    image sky = {0};
+    ck_assert_int_eq(genenv_make(GENENV_SKY, &p, &sky, &err), 0);
+    set_map(sc, &sky);
 }
 
-static void render(const scene *sc, image *out, render_stats *st)
+static void render_at(const scene *sc, int spp, image *out, render_stats *st)
 {
     render_opts o = render_defaults();
-    o.spp = 1;
+    o.spp = spp;
     error err = {0};
     if (render_scene(sc, &o, out, st, &err)) ck_abort_msg("render: %s", err.msg);
+}
+
+static void render(const scene *sc, image *out, render_stats *st) { render_at(sc, 1, out, st); }
+
+/* The mean of the green channel of sc rendered at spp samples a pixel; *bad: pixels that are not
+ * finite. */
+static double render_mean(const scene *sc, int spp, long *bad)
+{
+    image im = {0};
+    render_stats st;
+    render_at(sc, spp, &im, &st);
+    double sum = 0;
+    *bad = 0;
+    for (int y = 0; y < im.h; y++)
+        for (int x = 0; x < im.w; x++) {
+            rgb c = image_get(&im, x, y);
+            *bad += !rgb_is_finite(c);
+            sum += c.g;
+        }
+    double n = (double)im.w * im.h;
+    image_free(&im);
+    return sum / n;
 }
 
 static long count_nonfinite(const image *im)
@@ -418,8 +450,8 @@ END_TEST
  * ramp (texel i holds (i + 1/2) / 64, so its bilinear reconstruction is s itself): EWA and
  * trilinear give s (a symmetric normalized filter keeps a linear function) to 2e-3, an eighth
  * of a texel (EWA's Gaussian, cut to its support on the texel grid, is centred within a
- * fraction of a texel: 5e-4 measured); needles
- * 1e6 long (a plane seen edge-on) give a value within the ramp, never NaN.  Catches EWA's
+ * fraction of a texel: 5e-4 measured); needles 1e6 long (a plane seen edge-on) give a value
+ * within the ramp, never NaN.  Catches EWA's
  * ellipse without its one texel^2 (a 1e-9 needle then meets the texel grid lopsided: 3.6e-3
  * off), a level from log2 of 0, and an ellipse coefficient that overflows to NaN. */
 START_TEST(test_grazing_footprints_keep_a_ramp_and_stay_finite)
@@ -846,10 +878,11 @@ START_TEST(test_mirror_ball_radius_is_sin_half_the_angle_up_to_the_rim)
 }
 END_TEST
 
- /* A 5 x 3 texture of distinct texels read at (s, t) + 1e9 (1e9 + f is exact for f on the 1/64
+/* A 5 x 3 texture of distinct texels read at (s, t) + 1e9 (1e9 + f is exact for f on the 1/64
  * grid, and 1e9 is whole periods) with repeat, and at 2e9 + 2 - (s, t) with mirror (the copy
- * in an odd period is mirrored): nearest and bilinear give exactly the lookup at (s, t).  Catches a
- * texel index through a 32-bit int of s w (2e9 x 5 overflows it) and a wrap by fmod in float. */
+ * in an odd period is mirrored): nearest and bilinear give exactly the lookup at (s, t).
+ * Catches a texel index through a 32-bit int of s w (2e9 x 5 overflows it) and a wrap by fmod
+ * in float. */
 START_TEST(test_texture_lookups_at_1e9_are_the_lookups_of_their_period)
 {
     image im = {0};
@@ -895,27 +928,18 @@ START_TEST(test_a_one_texel_sun_at_the_pole_seam_and_horizon_lights_the_ground)
             scene sc;
             load(&sc, text);
             error err = {0};
-            image_free(&sc.envmap.img);
-            ck_assert_int_eq(image_alloc(&sc.envmap.img, w, h, &err), 0);
-            image_set(&sc.envmap.img, at[i][0], at[i][1], rgb_gray(1000));
-            sc.envmap.present = 1;
-            sc.envmap.scale = 1;
-            sc.envmap.xf = sc.envmap.inv = mat4_identity();
-            render_opts o = render_defaults();
-            o.spp = 16;
-            image im = {0};
-            render_stats st;
-            if (render_scene(&sc, &o, &im, &st, &err)) ck_abort_msg("render: %s", err.msg);
+            image sun = {0};
+            ck_assert_int_eq(image_alloc(&sun, w, h, &err), 0);
+            image_set(&sun, at[i][0], at[i][1], rgb_gray(1000));
+            set_map(&sc, &sun);
+            long bad;
+            double mean = render_mean(&sc, 16, &bad);
             double z0 = fmax(0, cos(PI * at[i][1] / h)), z1 = fmax(0, cos(PI * (at[i][1] + 1) / h));
-            double want = 0.5 / PI * 1000 * (2 * PI / w) * (z0 * z0 - z1 * z1) / 2, sum = 0;
-            for (int y = 0; y < im.h; y++)
-                for (int x = 0; x < im.w; x++) sum += image_get(&im, x, y).g;
-            double mean = sum / (im.w * im.h);
+            double want = 0.5 / PI * 1000 * (2 * PI / w) * (z0 * z0 - z1 * z1) / 2;
             /* (the row just below the horizon: cos(pi / 2) rounds to 6e-17, want to 7e-33) */
             ck_assert_msg(want < 1e-20 ? mean < 1e-20 : fabs(mean / want - 1) < 0.01,
                           "sun at texel (%d, %d), %s: the ground %.9g, want %.9g", at[i][0],
                           at[i][1], samplers[k], mean, want);
-            image_free(&im);
             scene_free(&sc);
         }
 }
@@ -1007,7 +1031,7 @@ START_TEST(test_furnaces_from_1e_37_to_1e37_under_every_envsampling)
         for (int k = 0; k < 5; k++) {
             char text[512];
             snprintf(text, sizeof text,
-                     "size 32 32\nintegrator direct\nspp 16\nenvsampling %s\n"
+                     "size 32 32\nintegrator direct\nenvsampling %s\n"
                      "camera 0 -3 0  0 0 0  0 0 1  25\nambient 0 0 0\ndiffuse 0.5 0.5 0.5\n"
                      "sphere 0 0 0 1\n",
                      modes[m]);
@@ -1017,29 +1041,14 @@ START_TEST(test_furnaces_from_1e_37_to_1e37_under_every_envsampling)
             p.width = 32;
             p.value = scales[k];
             error err = {0};
-            image_free(&sc.envmap.img);
-            ck_assert_int_eq(genenv_make(GENENV_CONSTANT, &p, &sc.envmap.img, &err), 0);
-            sc.envmap.present = 1;
-            sc.envmap.scale = 1;
-            sc.envmap.xf = sc.envmap.inv = mat4_identity();
-            render_opts o = render_defaults();
-            o.spp = 16;
-            image im = {0};
-            render_stats st;
-            if (render_scene(&sc, &o, &im, &st, &err)) ck_abort_msg("render: %s", err.msg);
-            double sum = 0;
-            long bad = 0;
-            for (int y = 0; y < im.h; y++)
-                for (int x = 0; x < im.w; x++) {
-                    rgb c = image_get(&im, x, y);
-                    bad += !rgb_is_finite(c);
-                    sum += c.g;
-                }
-            double mean = sum / (im.w * im.h) / (0.5 * scales[k]);
+            image sky = {0};
+            ck_assert_int_eq(genenv_make(GENENV_CONSTANT, &p, &sky, &err), 0);
+            set_map(&sc, &sky);
+            long bad;
+            double mean = render_mean(&sc, 16, &bad) / (0.5 * scales[k]);
             ck_assert_msg(bad == 0 && fabs(mean - 1) < 0.05,
                           "envsampling %s, V = %g: mean %g of 0.5 V, %ld pixels not finite",
                           modes[m], scales[k], mean, bad);
-            image_free(&im);
             scene_free(&sc);
         }
 }
